@@ -1,0 +1,86 @@
+/* Front-to-back stack traversal of the KD-tree (Havran's thesis, "Heuristic Ray Shooting
+ * Algorithms", 2000, algorithm TA_B^rec as in pbrt): visit the near child first, push the far one
+ * with its t interval, and stop as soon as the closest hit lies before the next cell. */
+#ifndef COHORT_KDTREE_TRAVERSE_H
+#define COHORT_KDTREE_TRAVERSE_H
+
+#include "common/intersect.h"
+
+/* The builder caps depth at KD_MAX_DEPTH, so the stack never overflows. */
+#define KD_MAX_DEPTH 48
+
+typedef struct KdTreeView {
+  const CO_GLOBAL KdNode* nodes;
+  const CO_GLOBAL uint32_t* leaf_triangles;
+  const CO_GLOBAL Triangle* triangles;
+  co_vec3 lo, hi;
+} KdTreeView;
+
+typedef struct KdStackEntry {
+  uint32_t node;
+  float tmin, tmax;
+} KdStackEntry;
+
+/* Intersects the triangles of one leaf, narrowing *hit. Returns 1 at the first hit when any_hit. */
+CO_INLINE int kd_intersect_leaf(const KdTreeView* tree, KdNode leaf, const WatertightRay* wr,
+                                float ray_tmin, HitOut* hit, int any_hit) {
+  uint32_t first = kd_leaf_first(leaf), count = kd_leaf_count(leaf);
+  for (uint32_t i = 0; i < count; ++i) {
+    uint32_t tri = tree->leaf_triangles[first + i];
+    CO_GLOBAL const Triangle* tp = &tree->triangles[tri];
+    float t, u, v;
+    if (intersect_triangle(wr, v3_from4(tp->v0), v3_from4(tp->v1), v3_from4(tp->v2), ray_tmin, hit->t,
+                           &t, &u, &v)) {
+      hit->t = t; hit->u = u; hit->v = v; hit->triangle = tri;
+      if (any_hit) return 1;
+    }
+  }
+  return 0;
+}
+
+/* Closest hit (any_hit = 0) or any hit (any_hit = 1) in (tmin, tmax). A miss has triangle HIT_NONE. */
+CO_INLINE HitOut kd_trace(const KdTreeView* tree, co_vec3 org, co_vec3 dir, float tmin, float tmax,
+                          int any_hit) {
+  HitOut hit;
+  hit.t = tmax; hit.u = 0.0f; hit.v = 0.0f; hit.triangle = HIT_NONE;
+  co_vec3 inv_dir = v3(1.0f / dir.x, 1.0f / dir.y, 1.0f / dir.z);
+  float t0 = tmin, t1 = tmax;
+  if (!intersect_box(org, inv_dir, tree->lo, tree->hi, &t0, &t1)) return hit;
+
+  WatertightRay wr = watertight_ray(org, dir);
+  KdStackEntry stack[KD_MAX_DEPTH];
+  int sp = 0;
+  uint32_t node_index = 0;
+  for (;;) {
+    if (hit.t < t0) break;  /* the closest hit lies before this cell */
+    KdNode node = tree->nodes[node_index];
+    if (!kd_is_leaf(node)) {
+      uint32_t axis = kd_axis(node);
+      float split = co_as_float(node.word1);
+      float o = v3_get(org, axis), d = v3_get(dir, axis);
+      float t_plane = (split - o) * v3_get(inv_dir, axis);
+      int below_first = (o < split) || (o == split && d <= 0.0f);
+      uint32_t near_child = kd_left_child(node) + (below_first ? 0u : 1u);
+      uint32_t far_child = kd_left_child(node) + (below_first ? 1u : 0u);
+      /* !(t_plane > 0) also catches the NaN of a ray lying in the split plane */
+      if (t_plane > t1 || !(t_plane > 0.0f)) {
+        node_index = near_child;
+      } else if (t_plane < t0) {
+        node_index = far_child;
+      } else {
+        stack[sp].node = far_child; stack[sp].tmin = t_plane; stack[sp].tmax = t1;
+        ++sp;
+        node_index = near_child;
+        t1 = t_plane;
+      }
+      continue;
+    }
+    if (kd_intersect_leaf(tree, node, &wr, tmin, &hit, any_hit)) return hit;
+    if (sp == 0) break;
+    --sp;
+    node_index = stack[sp].node; t0 = stack[sp].tmin; t1 = stack[sp].tmax;
+  }
+  return hit;
+}
+
+#endif

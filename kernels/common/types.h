@@ -1,0 +1,113 @@
+/* Structs shared by host and device. Every layout is checked on the host with static_asserts;
+ * change one field and both sides change with it. */
+#ifndef COHORT_TYPES_H
+#define COHORT_TYPES_H
+
+#include "common/port.h"
+
+/* ---- KD-tree, 8 bytes per node --------------------------------------------------------------
+ * Children of an inner node are adjacent (left at `child`, right at `child + 1`) and nodes are in
+ * breadth-first order, so the top L levels of the tree are a prefix of the node array (what the
+ * PTH subtree in local memory needs).
+ *   word0 bits 0-1 : split axis 0..2, or KD_LEAF (3)
+ *   word0 bits 2-31: inner -> index of the left child; leaf -> number of triangles
+ *   word1          : inner -> split position (float bits); leaf -> first entry in the leaf index list */
+#define KD_LEAF 3u
+#define KD_MAX_INDEX ((1u << 30) - 1u)
+typedef struct KdNode {
+  uint32_t word0;
+  uint32_t word1;
+} KdNode;
+CO_STATIC_ASSERT(sizeof(KdNode) == 8, "KdNode must stay 8 bytes");
+
+CO_INLINE uint32_t kd_axis(KdNode n) { return n.word0 & 3u; }
+CO_INLINE int kd_is_leaf(KdNode n) { return (n.word0 & 3u) == KD_LEAF; }
+CO_INLINE uint32_t kd_left_child(KdNode n) { return n.word0 >> 2; }
+CO_INLINE uint32_t kd_leaf_count(KdNode n) { return n.word0 >> 2; }
+CO_INLINE uint32_t kd_leaf_first(KdNode n) { return n.word1; }
+
+/* ---- Triangles, stored for the watertight test of Woop, Benthin & Wald (JCGT 2013) -----------
+ * The watertight test needs the vertices themselves; w components are padding. 48 bytes. */
+typedef struct Triangle {
+  co_float4 v0;
+  co_float4 v1;
+  co_float4 v2;
+} Triangle;
+CO_STATIC_ASSERT(sizeof(Triangle) == 48, "Triangle must stay 48 bytes");
+
+/* ---- Materials ------------------------------------------------------------------------------
+ * The glTF metallic-roughness parameters; kernels at this stage shade base_color as Lambertian
+ * albedo and emission as a one-sided (or two-sided) area light. */
+#define MAT_TWO_SIDED_EMISSION 1u
+typedef struct Material {
+  co_float4 base_color;  /* rgb; a = alpha */
+  co_float4 emission;    /* rgb radiance (factor x strength); a unused */
+  float metallic;
+  float roughness;
+  float transmission;
+  float ior;
+  int32_t base_color_texture; /* -1: none */
+  uint32_t flags;
+  uint32_t pad0, pad1;
+} Material;
+CO_STATIC_ASSERT(sizeof(Material) == 64, "Material must stay 64 bytes");
+
+/* ---- Emissive triangles, sampled by power --------------------------------------------------- */
+typedef struct EmitterEntry {
+  uint32_t triangle;
+  float cdf;   /* inclusive running sum of power, normalised to 1 at the last entry */
+  float pmf;   /* probability of picking this triangle */
+  float area;
+} EmitterEntry;
+CO_STATIC_ASSERT(sizeof(EmitterEntry) == 16, "EmitterEntry must stay 16 bytes");
+
+/* ---- Camera and per-render constants -------------------------------------------------------- */
+typedef struct CameraParams {
+  co_float4 eye;
+  co_float4 forward;  /* unit */
+  co_float4 right;    /* unit, scaled by tan(fov/2) * aspect */
+  co_float4 up;       /* unit, scaled by tan(fov/2) */
+} CameraParams;
+CO_STATIC_ASSERT(sizeof(CameraParams) == 64, "CameraParams must stay 64 bytes");
+
+#define RENDER_FLAG_NEE 1u
+#define RENDER_FLAG_MIS 2u
+#define RENDER_FLAG_RUSSIAN_ROULETTE 4u
+#define RENDER_FLAG_ENVIRONMENT 8u
+typedef struct RenderParams {
+  CameraParams camera;
+  co_float4 environment;   /* constant environment radiance, rgb */
+  co_float4 scene_min;     /* bounds of the KD-tree root; w unused */
+  co_float4 scene_max;
+  uint32_t width;
+  uint32_t height;
+  uint32_t max_depth;      /* path segments, as Mitsuba's max_depth; 0 = unbounded */
+  uint32_t rr_depth;       /* first segment at which Russian roulette may end a path */
+  uint32_t seed;
+  uint32_t flags;
+  uint32_t emitter_count;
+  uint32_t sample_offset;  /* index of the first sample of this pass */
+  uint32_t samples_per_pass;
+  float emitter_power_total; /* sum of emitter_power() over emissive triangles */
+  float ray_epsilon;         /* offset of secondary ray origins along the normal */
+  uint32_t pad0;
+} RenderParams;
+CO_STATIC_ASSERT(sizeof(RenderParams) == 160, "RenderParams must stay 160 bytes");
+
+/* ---- Rays and hits for the traversal-only kernels -------------------------------------------- */
+typedef struct RayIn {
+  co_float4 origin;  /* w = tmin */
+  co_float4 dir;     /* w = tmax */
+} RayIn;
+CO_STATIC_ASSERT(sizeof(RayIn) == 32, "RayIn must stay 32 bytes");
+
+#define HIT_NONE 0xffffffffu
+typedef struct HitOut {
+  float t;
+  float u;
+  float v;
+  uint32_t triangle; /* HIT_NONE on a miss */
+} HitOut;
+CO_STATIC_ASSERT(sizeof(HitOut) == 16, "HitOut must stay 16 bytes");
+
+#endif

@@ -1,0 +1,51 @@
+// SAH KD-tree over a triangle soup, in the device layout of kernels/common/types.h.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "kernels/common/types.h"
+#include "runtime/scene/bounds.h"
+
+namespace cohort {
+
+struct KdBuildOptions {
+  float traversal_cost = 1.0f;     // cost of one inner-node step
+  float intersection_cost = 1.5f;  // cost of one ray-triangle test
+  float empty_bonus = 0.8f;        // SAH cost factor (1 - bonus) for splits that cut off empty space
+  int max_depth = 0;               // 0: 8 + 1.3 log2(N), capped at KD_MAX_DEPTH
+  int leaf_triangles = 1;          // never split a node with this many triangles or fewer
+  bool parallel = true;            // build subtrees with TBB
+};
+
+struct KdTreeStats {
+  int depth = 0;                   // deepest leaf (root = depth 0)
+  std::size_t node_count = 0;
+  std::size_t leaf_count = 0;
+  std::size_t empty_leaf_count = 0;
+  std::size_t leaf_references = 0;     // total triangle references in leaves
+  double average_leaf_triangles = 0;   // over non-empty leaves
+  double sah_cost = 0;                 // expected cost of a random ray, with the options' costs
+  std::size_t dropped_triangles = 0;   // degenerate, zero-area, NaN or infinite
+  double build_seconds = 0;
+  std::size_t bytes = 0;               // nodes + leaf lists + triangles
+};
+
+struct KdTree {
+  std::vector<KdNode> nodes;               // breadth-first, children adjacent; node 0 is the root
+  std::vector<std::uint32_t> leaf_triangles;  // leaf lists, entries index `triangles`
+  std::vector<Triangle> triangles;         // kept triangles, in input order
+  std::vector<std::uint32_t> source_index; // input triangle index of each kept triangle
+  Bounds bounds;                           // of the kept triangles
+  KdTreeStats stats;
+};
+
+// positions: 3 per triangle. Bad triangles are dropped and counted, never an error; an input with
+// no good triangle gives a tree with one empty leaf.
+KdTree build_kdtree(std::span<const glm::vec3> positions, const KdBuildOptions& options = {});
+
+}  // namespace cohort

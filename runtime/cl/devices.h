@@ -1,0 +1,38 @@
+// OpenCL platforms and devices: listing and choosing one.
+#pragma once
+
+#include <CL/opencl.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace cohort {
+
+struct DeviceInfo {
+  std::size_t platform_index = 0;
+  std::size_t device_index = 0;  // global index over all platforms, as `cohort devices` prints it
+  std::string platform_name;
+  std::string name;
+  std::string vendor;
+  std::string version;         // CL_DEVICE_VERSION
+  std::string driver_version;  // CL_DRIVER_VERSION
+  bool is_gpu = false;
+  bool is_cpu = false;
+  std::uint32_t compute_units = 0;
+  std::uint64_t local_memory = 0;
+  bool local_memory_is_global = false;  // PoCL: "local" memory is ordinary cached memory
+  std::uint64_t global_memory = 0;
+  std::uint64_t max_allocation = 0;
+  std::size_t max_work_group = 0;
+  cl::Device device;
+};
+
+// Every device of every platform, in platform order. Empty when no platform is installed.
+std::vector<DeviceInfo> list_devices();
+
+// "" picks the first GPU, else the first CPU device; otherwise an index into list_devices() or a
+// case-insensitive substring of the device or platform name. Throws InputError when nothing matches.
+DeviceInfo select_device(const std::string& spec);
+
+}  // namespace cohort

@@ -1,0 +1,129 @@
+#include "runtime/cl/program_cache.h"
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include <fmt/format.h>
+
+#include "runtime/cl/cl_error.h"
+#include "runtime/util/atomic_file.h"
+#include "runtime/util/hash.h"
+
+namespace cohort {
+namespace {
+
+// Entry layout: magic, key length, key, payload length, payload checksum, payload.
+constexpr std::string_view kMagic = "COHORT-KERNEL-CACHE-1\n";
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void append_u64(std::string& out, std::uint64_t v) { out.append(reinterpret_cast<const char*>(&v), 8); }
+
+bool read_u64(std::string_view& in, std::uint64_t& v) {
+  if (in.size() < 8) return false;
+  std::memcpy(&v, in.data(), 8);
+  in.remove_prefix(8);
+  return true;
+}
+
+// The cached binary for `key`, or nothing when the entry is absent, truncated or does not match.
+std::optional<std::string> read_entry(const std::filesystem::path& file, const std::string& key) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return std::nullopt;
+  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string_view view(data);
+  if (!view.starts_with(kMagic)) return std::nullopt;
+  view.remove_prefix(kMagic.size());
+  std::uint64_t key_size = 0, payload_size = 0, checksum = 0;
+  if (!read_u64(view, key_size) || view.size() < key_size || view.substr(0, key_size) != key) return std::nullopt;
+  view.remove_prefix(key_size);
+  if (!read_u64(view, payload_size) || !read_u64(view, checksum) || view.size() != payload_size) return std::nullopt;
+  if (fnv1a64(view) != checksum) return std::nullopt;
+  return std::string(view);
+}
+
+std::string make_entry(const std::string& key, const std::string& binary) {
+  std::string out(kMagic);
+  append_u64(out, key.size());
+  out += key;
+  append_u64(out, binary.size());
+  append_u64(out, fnv1a64(binary));
+  out += binary;
+  return out;
+}
+
+std::string build_log(const cl::Program& program, const cl::Device& device) {
+  try {
+    return program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device);
+  } catch (const cl::Error&) {
+    return "(no build log)";
+  }
+}
+
+}  // namespace
+
+ProgramCache::ProgramCache(std::optional<std::filesystem::path> directory) : directory_(std::move(directory)) {}
+
+std::filesystem::path ProgramCache::default_directory() {
+  if (const char* dir = std::getenv("COHORT_CACHE_DIR"); dir && *dir) return dir;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::filesystem::path(xdg) / "cohort/kernels";
+  if (const char* home = std::getenv("HOME"); home && *home) return std::filesystem::path(home) / ".cache/cohort/kernels";
+  return std::filesystem::temp_directory_path() / "cohort-kernels";
+}
+
+std::string ProgramCache::key(const DeviceInfo& device, const std::string& source, const std::string& options) {
+  return fmt::format("platform={}\ndevice={}\nversion={}\ndriver={}\noptions={}\nsource={:016x}/{}\n",
+                     device.platform_name, device.name, device.version, device.driver_version, options,
+                     fnv1a64(source), source.size());
+}
+
+ProgramBuild ProgramCache::build(const cl::Context& context, const DeviceInfo& device, const std::string& source,
+                                 const std::string& options) const {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string entry_key = key(device, source, options);
+  ProgramBuild result;
+  if (directory_) {
+    result.cache_file = (*directory_ / fmt::format("{:016x}.bin", fnv1a64(entry_key))).string();
+    if (auto binary = read_entry(result.cache_file, entry_key)) {
+      try {
+        cl::Program::Binaries binaries{std::vector<unsigned char>(binary->begin(), binary->end())};
+        cl::Program program(context, {device.device}, binaries);
+        program.build({device.device}, options.c_str());
+        result.program = program;
+        result.from_cache = true;
+        result.seconds = seconds_since(t0);
+        return result;
+      } catch (const cl::Error&) {
+        // the driver rejected the cached binary (a new driver, a damaged file): rebuild below
+      }
+    }
+  }
+  cl::Program program(context, source);
+  try {
+    program.build({device.device}, options.c_str());
+  } catch (const cl::Error& e) {
+    throw DeviceError(fmt::format("{} on {}:\n{}", describe(e), device.name, build_log(program, device.device)));
+  }
+  result.program = program;
+  result.seconds = seconds_since(t0);
+  if (directory_) {
+    try {
+      const auto binaries = program.getInfo<CL_PROGRAM_BINARIES>();
+      if (!binaries.empty() && !binaries.front().empty()) {
+        std::filesystem::create_directories(*directory_);
+        const std::string bytes(binaries.front().begin(), binaries.front().end());
+        write_file_atomically(result.cache_file, make_entry(entry_key, bytes));
+      }
+    } catch (const std::exception&) {
+      // a read-only or full cache directory costs speed, not correctness
+    }
+  }
+  return result;
+}
+
+}  // namespace cohort

@@ -1,0 +1,75 @@
+#include "runtime/cli/cli.h"
+
+#include <exception>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "runtime/cl/cl_error.h"
+#include "runtime/cli/commands.h"
+#include "runtime/util/error.h"
+
+namespace cohort {
+namespace {
+
+void add_render_options(CLI::App& cmd, RenderCommand& r) {
+  cmd.add_option("scene", r.scene, "Scene file: .gltf, .glb, .obj, .ply (optionally .gz)")->required();
+  cmd.add_option("-o,--output", r.output, "Output path: NAME, NAME.exr or NAME.png (both are written)");
+  cmd.add_option("--spp", r.settings.spp, "Samples per pixel (0 with --time: until the time is up)");
+  cmd.add_option("--res", r.resolution, "Image size WxH")->default_val("512x512");
+  cmd.add_option("--max-depth", r.settings.max_depth,
+                 "Path segments, as Mitsuba's max_depth (1 = emitters seen directly); 0 = unbounded");
+  cmd.add_option("--rr-depth", r.settings.rr_depth, "First segment where Russian roulette may end a path");
+  cmd.add_option("--seed", r.settings.seed, "Random seed: the same seed gives the same image");
+  cmd.add_option("--device", r.device, "Device index or name substring (see `cohort devices`)");
+  cmd.add_option("--method", r.settings.method, "Rendering method")->check(CLI::IsMember({"naive"}));
+  cmd.add_option("--time", r.settings.time_limit, "Stop after this many seconds of rendering")
+      ->check(CLI::NonNegativeNumber);
+  cmd.add_option("--env", r.environment, "Constant environment radiance: R,G,B or one value");
+  cmd.add_option("--stats", r.stats_file, "Write the run's figures to this JSON file");
+  cmd.add_flag("--no-nee", [&r](std::int64_t) { r.settings.nee = false; }, "Disable next-event estimation");
+  cmd.add_flag("--no-mis", [&r](std::int64_t) { r.settings.mis = false; }, "NEE without multiple importance sampling");
+  cmd.add_flag("--no-rr", [&r](std::int64_t) { r.settings.russian_roulette = false; }, "Disable Russian roulette");
+  cmd.add_flag("--no-cache", r.no_cache, "Do not read or write the kernel binary cache");
+  cmd.add_flag("-v,--verbose", r.verbose, "Report compile times, tree statistics and kernel times");
+}
+
+}  // namespace
+
+int run_cli(int argc, char** argv) {
+  CLI::App app{"Cohort: a wavefront path tracer for OpenCL devices", "cohort"};
+  app.set_version_flag("--version", "cohort 0.1.0");
+  app.require_subcommand(1);
+
+  RenderCommand render;
+  auto* render_cmd = app.add_subcommand("render", "Render a scene to OpenEXR and PNG");
+  add_render_options(*render_cmd, render);
+
+  std::filesystem::path info_scene;
+  auto* info_cmd = app.add_subcommand("info", "Print a scene's size, materials, lights and KD-tree");
+  info_cmd->add_option("scene", info_scene, "Scene file")->required();
+
+  auto* devices_cmd = app.add_subcommand("devices", "List OpenCL platforms and devices");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version exit 0; every usage error exits 2 with CLI11's message
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+  try {
+    if (*render_cmd) return run_render(render);
+    if (*info_cmd) return run_info(info_scene);
+    if (*devices_cmd) return run_devices();
+  } catch (const InputError& e) {
+    fmt::print(stderr, "cohort: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "cohort: {}\n", e.what());
+    return 1;
+  }
+  return 2;
+}
+
+}  // namespace cohort

@@ -1,0 +1,60 @@
+#include <fmt/format.h>
+
+#include "runtime/cl/devices.h"
+#include "runtime/cli/commands.h"
+#include "runtime/render/prepared_scene.h"
+
+namespace cohort {
+
+int run_info(const std::filesystem::path& path) {
+  const PreparedScene p = prepare_scene(path);
+  const Bounds b = p.scene.bounds();
+  const auto& ts = p.tree.stats;
+  fmt::print("scene: {}\n", path.string());
+  fmt::print("triangles: {} ({} kept, {} dropped as degenerate or non-finite)\n", p.scene.triangle_count(),
+             p.tree.triangles.size(), ts.dropped_triangles);
+  fmt::print("materials: {}\n", p.scene.materials.size());
+  for (std::size_t i = 0; i < p.scene.materials.size(); ++i) {
+    const auto& m = p.scene.materials[i];
+    fmt::print("  [{}] {}: base colour ({:.3g}, {:.3g}, {:.3g}), emission ({:.3g}, {:.3g}, {:.3g}){}\n", i,
+               m.name.empty() ? "(unnamed)" : m.name, m.base_color.x, m.base_color.y, m.base_color.z, m.emission.x,
+               m.emission.y, m.emission.z, m.base_color_texture >= 0 ? ", textured" : "");
+  }
+  fmt::print("textures: {}\n", p.scene.textures.size());
+  fmt::print("lights: {} emissive triangles, total power {:.4g}\n", p.tables.emitters.entries.size(),
+             p.tables.emitters.total_power);
+  fmt::print("bounds: ({:.4g}, {:.4g}, {:.4g}) - ({:.4g}, {:.4g}, {:.4g}), diagonal {:.4g}\n", b.lo.x, b.lo.y, b.lo.z,
+             b.hi.x, b.hi.y, b.hi.z, b.diagonal());
+  fmt::print("camera: {}, eye ({:.4g}, {:.4g}, {:.4g}), target ({:.4g}, {:.4g}, {:.4g}), vfov {:.4g} deg\n",
+             p.scene.camera ? "from the file" : "framing (bench protocol)", p.camera.eye.x, p.camera.eye.y,
+             p.camera.eye.z, p.camera.target.x, p.camera.target.y, p.camera.target.z, p.camera.vfov_degrees);
+  fmt::print("kd-tree: depth {}, {} nodes, {} leaves ({} empty), {:.2f} triangles per leaf, SAH cost {:.2f}, "
+             "built in {:.3f}s\n",
+             ts.depth, ts.node_count, ts.leaf_count, ts.empty_leaf_count, ts.average_leaf_triangles, ts.sah_cost,
+             ts.build_seconds);
+  const std::size_t device_bytes = ts.bytes + p.tables.triangle_material.size() * 4 +
+                                   p.tables.materials.size() * sizeof(Material) +
+                                   p.tables.emitters.entries.size() * sizeof(EmitterEntry);
+  fmt::print("memory: {:.2f} MiB on the device (tree {:.2f} MiB), {:.2f} MiB of scene geometry\n",
+             device_bytes / 1048576.0, ts.bytes / 1048576.0, p.scene.geometry_bytes() / 1048576.0);
+  for (const auto& w : p.scene.warnings) fmt::print("warning: {}\n", w);
+  return 0;
+}
+
+int run_devices() {
+  const auto devices = list_devices();
+  if (devices.empty()) {
+    fmt::print("no OpenCL devices found (Debian: install pocl-opencl-icd for the CPU)\n");
+    return 1;
+  }
+  for (const auto& d : devices) {
+    fmt::print("[{}] {} | {} | {}\n", d.device_index, d.name, d.platform_name, d.is_gpu ? "GPU" : (d.is_cpu ? "CPU" : "other"));
+    fmt::print("    {} compute units, local memory {} KiB{}, global memory {} MiB (max allocation {} MiB)\n",
+               d.compute_units, d.local_memory / 1024, d.local_memory_is_global ? " (global)" : "",
+               d.global_memory >> 20, d.max_allocation >> 20);
+    fmt::print("    {}, driver {}\n", d.version, d.driver_version);
+  }
+  return 0;
+}
+
+}  // namespace cohort

@@ -1,0 +1,102 @@
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+#include "runtime/cl/devices.h"
+#include "runtime/cli/commands.h"
+#include "runtime/cli/output_paths.h"
+#include "runtime/cli/parse_values.h"
+#include "runtime/cli/progress.h"
+#include "runtime/render/prepared_scene.h"
+#include "runtime/render/renderer.h"
+#include "runtime/util/atomic_file.h"
+
+namespace cohort {
+namespace {
+
+nlohmann::json stats_json(const RenderCommand& cmd, const DeviceInfo& device, const PreparedScene& prepared,
+                          const RenderResult& r, const OutputPaths& out) {
+  nlohmann::json j;
+  j["scene"] = cmd.scene.string();
+  j["method"] = cmd.settings.method;
+  j["device"] = {{"name", device.name}, {"platform", device.platform_name}, {"driver", device.driver_version},
+                 {"compute_units", device.compute_units}};
+  j["image"] = {{"width", cmd.settings.width}, {"height", cmd.settings.height}, {"spp", r.samples},
+                {"exr", out.exr.string()}, {"png", out.png.string()}};
+  j["settings"] = {{"max_depth", cmd.settings.max_depth}, {"rr_depth", cmd.settings.rr_depth},
+                   {"seed", cmd.settings.seed}, {"nee", cmd.settings.nee}, {"mis", cmd.settings.mis},
+                   {"russian_roulette", cmd.settings.russian_roulette}};
+  const auto& ts = prepared.tree.stats;
+  j["scene_stats"] = {{"triangles", prepared.scene.triangle_count()}, {"dropped_triangles", ts.dropped_triangles},
+                      {"emitters", prepared.tables.emitters.entries.size()}};
+  j["kdtree"] = {{"depth", ts.depth}, {"nodes", ts.node_count}, {"leaves", ts.leaf_count},
+                 {"average_leaf_triangles", ts.average_leaf_triangles}, {"sah_cost", ts.sah_cost},
+                 {"bytes", ts.bytes}};
+  j["timings"] = {{"load_seconds", prepared.load_seconds}, {"build_seconds", ts.build_seconds},
+                  {"compile_seconds", r.compile_seconds}, {"compile_from_cache", r.compile_from_cache},
+                  {"render_seconds", r.render_seconds}};
+  j["rays"] = r.rays;
+  j["rays_per_second"] = r.render_seconds > 0 ? static_cast<double>(r.rays) / r.render_seconds : 0.0;
+  j["samples_per_second"] =
+      r.render_seconds > 0 ? double(r.samples) * cmd.settings.width * cmd.settings.height / r.render_seconds : 0.0;
+  j["dropped_samples"] = r.dropped_samples;
+  nlohmann::json kernels;
+  for (const auto& [name, seconds] : r.kernel_seconds)
+    kernels[name] = {{"seconds", seconds}, {"rays_per_second", seconds > 0 ? double(r.rays) / seconds : 0.0}};
+  j["kernels"] = kernels;
+  return j;
+}
+
+}  // namespace
+
+int run_render(const RenderCommand& cmd_in) {
+  RenderCommand cmd = cmd_in;
+  std::tie(cmd.settings.width, cmd.settings.height) = parse_resolution(cmd.resolution);
+  if (!cmd.environment.empty()) cmd.settings.environment = parse_rgb("--env", cmd.environment);
+  if (cmd.settings.spp == 0 && cmd.settings.time_limit <= 0)
+    throw InputError("--spp 0 needs --time SECONDS to say when to stop");
+  // check where the outputs go before spending time on the render
+  const OutputPaths out = output_paths(cmd.output, cmd.scene);
+
+  const DeviceInfo device = select_device(cmd.device);
+  PreparedScene prepared = prepare_scene(cmd.scene);
+  for (const auto& w : prepared.scene.warnings) fmt::print(stderr, "warning: {}: {}\n", cmd.scene.string(), w);
+  if (prepared.tree.stats.dropped_triangles)
+    fmt::print(stderr, "warning: {}: dropped {} degenerate or non-finite triangles\n", cmd.scene.string(),
+               prepared.tree.stats.dropped_triangles);
+
+  const ClContext cl(device);
+  const ProgramCache cache(cmd.no_cache ? std::nullopt : std::optional(ProgramCache::default_directory()));
+  const DeviceScene device_scene = upload_scene(cl, prepared.tree, prepared.tables);
+  ProgressReporter reporter(stderr);
+  const RenderResult result = render_naive(cl, cache, device_scene, prepared.camera, cmd.settings,
+                                           [&](const Progress& p) { reporter.update(p); });
+  reporter.finish();
+
+  write_exr(out.exr, result.image);
+  write_png(out.png, result.image);
+  const double mrays = result.render_seconds > 0 ? double(result.rays) / result.render_seconds * 1e-6 : 0;
+  if (cmd.verbose) {
+    const auto& ts = prepared.tree.stats;
+    fmt::print("device: {} ({})\n", device.name, device.platform_name);
+    fmt::print("scene: {} triangles, {} emissive, loaded in {:.3f}s\n", prepared.scene.triangle_count(),
+               prepared.tables.emitters.entries.size(), prepared.load_seconds);
+    fmt::print("kd-tree: depth {}, {} nodes, {} leaves, {:.2f} triangles per leaf, SAH cost {:.2f}, built in {:.3f}s\n",
+               ts.depth, ts.node_count, ts.leaf_count, ts.average_leaf_triangles, ts.sah_cost, ts.build_seconds);
+    fmt::print("kernel compile: {:.3f}s ({})\n", result.compile_seconds, result.compile_from_cache ? "warm, from cache" : "cold");
+    for (const auto& [name, seconds] : result.kernel_seconds) fmt::print("kernel {}: {:.3f}s\n", name, seconds);
+  }
+  if (result.dropped_samples)
+    fmt::print(stderr, "warning: {} NaN or infinite samples were dropped\n", result.dropped_samples);
+  fmt::print("rendered {}x{} at {} spp in {:.2f}s ({:.2f} Mrays/s)\n", cmd.settings.width, cmd.settings.height,
+             result.samples, result.render_seconds, mrays);
+  fmt::print("wrote {}\nwrote {}\n", out.exr.string(), out.png.string());
+  if (!cmd.stats_file.empty()) {
+    write_file_atomically(cmd.stats_file, stats_json(cmd, device, prepared, result, out).dump(2) + "\n");
+    fmt::print("wrote {}\n", cmd.stats_file);
+  }
+  return 0;
+}
+
+}  // namespace cohort

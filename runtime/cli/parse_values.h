@@ -1,0 +1,16 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+
+#include <glm/glm.hpp>
+
+namespace cohort {
+
+// "WxH" with both in 1..16384; throws InputError naming the option otherwise.
+std::pair<std::uint32_t, std::uint32_t> parse_resolution(const std::string& text);
+// "R,G,B" or one value for all three, each finite and >= 0.
+glm::vec3 parse_rgb(const std::string& option, const std::string& text);
+
+}  // namespace cohort

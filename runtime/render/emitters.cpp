@@ -1,0 +1,36 @@
+#include "runtime/render/emitters.h"
+
+#include "kernels/common/scene_view.h"
+
+namespace cohort {
+
+EmitterTable build_emitter_table(const KdTree& tree, const std::vector<Material>& materials,
+                                 const std::vector<std::uint32_t>& triangle_material) {
+  EmitterTable table;
+  std::vector<double> power;
+  for (std::uint32_t i = 0; i < tree.triangles.size(); ++i) {
+    const Material& m = materials[triangle_material[i]];
+    const float area = 0.5f * v3_length(triangle_cross(&tree.triangles[i]));
+    // the same function the kernel uses for MIS, so both sides agree on each triangle's power
+    const float p = emitter_power(v3_from4(m.emission), area, material_two_sided_emission(&m));
+    if (!(p > 0.f)) continue;
+    table.entries.push_back(EmitterEntry{i, 0.f, 0.f, area});
+    power.push_back(p);
+  }
+  double total = 0;
+  for (double p : power) total += p;
+  double running = 0;
+  for (std::size_t i = 0; i < power.size(); ++i) {
+    running += power[i];
+    table.entries[i].cdf = static_cast<float>(running / total);
+    table.entries[i].pmf = static_cast<float>(power[i] / total);
+  }
+  if (!table.entries.empty()) table.entries.back().cdf = 1.f;  // no rounding gap at the top
+  // the pmf the estimator divides by must be the cdf step the search really uses
+  for (std::size_t i = 0; i < table.entries.size(); ++i)
+    table.entries[i].pmf = table.entries[i].cdf - (i == 0 ? 0.f : table.entries[i - 1].cdf);
+  table.total_power = static_cast<float>(total);
+  return table;
+}
+
+}  // namespace cohort

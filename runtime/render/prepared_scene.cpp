@@ -1,0 +1,18 @@
+#include "runtime/render/prepared_scene.h"
+
+#include <chrono>
+
+namespace cohort {
+
+PreparedScene prepare_scene(const std::filesystem::path& path, const KdBuildOptions& options) {
+  PreparedScene p;
+  const auto t0 = std::chrono::steady_clock::now();
+  p.scene = load_scene(path);
+  p.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  p.tree = build_kdtree(p.scene.positions, options);
+  p.tables = make_scene_tables(p.scene, p.tree);
+  p.camera = p.scene.camera ? *p.scene.camera : framing_camera(p.scene.bounds());
+  return p;
+}
+
+}  // namespace cohort

@@ -1,0 +1,29 @@
+// What to render and how: everything the CLI can set, in one value.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "runtime/scene/scene.h"
+
+namespace cohort {
+
+struct RenderSettings {
+  std::uint32_t width = 512;
+  std::uint32_t height = 512;
+  std::uint32_t spp = 64;
+  std::uint32_t max_depth = 0;  // path segments, as Mitsuba's max_depth; 0 = until Russian roulette
+  std::uint32_t rr_depth = 5;   // first segment at which Russian roulette may end a path
+  std::uint32_t seed = 0;
+  double time_limit = 0;        // seconds; 0 = none. Stops after the pass that crosses it.
+  bool nee = true;
+  bool mis = true;
+  bool russian_roulette = true;
+  std::optional<glm::vec3> environment;  // constant environment radiance
+  std::string method = "naive";
+};
+
+}  // namespace cohort

@@ -1,0 +1,43 @@
+// Renders a scene on one device with one method and reports what it measured.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+
+#include "runtime/accel/kdtree.h"
+#include "runtime/cl/context.h"
+#include "runtime/cl/program_cache.h"
+#include "runtime/image/image.h"
+#include "runtime/render/device_scene.h"
+#include "runtime/render/render_settings.h"
+
+namespace cohort {
+
+struct Progress {
+  std::uint32_t samples_done = 0;
+  std::uint32_t samples_target = 0;  // 0 when only --time bounds the render
+  std::uint64_t rays = 0;
+  double seconds = 0;
+};
+
+struct RenderResult {
+  Image image;                 // mean radiance per pixel
+  std::uint32_t samples = 0;   // per pixel
+  std::uint64_t rays = 0;      // extension + shadow rays
+  std::uint64_t dropped_samples = 0;  // NaN or infinite, counted as zero
+  double render_seconds = 0;   // wall time of the render loop
+  double compile_seconds = 0;
+  bool compile_from_cache = false;
+  std::map<std::string, double> kernel_seconds;  // device time per kernel name
+};
+
+using ProgressCallback = std::function<void(const Progress&)>;
+
+// The NAIVE megakernel (kernels/naive.cl).
+RenderResult render_naive(const ClContext& cl, const ProgramCache& cache, const DeviceScene& scene,
+                          const SceneCamera& camera, const RenderSettings& settings,
+                          const ProgressCallback& progress = {});
+
+}  // namespace cohort

@@ -1,0 +1,71 @@
+// The in-memory scene every loader produces: a world-space triangle soup with a material per
+// triangle, a material table, textures and an optional camera.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "runtime/scene/bounds.h"
+
+namespace cohort {
+
+struct SceneMaterial {
+  std::string name;
+  glm::vec3 base_color{0.8f};
+  float alpha = 1.f;
+  glm::vec3 emission{0.f};  // radiance: emissive factor x KHR_materials_emissive_strength
+  float metallic = 0.f;
+  float roughness = 1.f;
+  float transmission = 0.f;  // KHR_materials_transmission
+  float ior = 1.5f;          // KHR_materials_ior
+  int base_color_texture = -1;  // index into Scene::textures
+  bool double_sided = false;    // glTF doubleSided; emission leaves both faces when set
+  bool is_emissive() const { return emission.x > 0.f || emission.y > 0.f || emission.z > 0.f; }
+};
+
+// 8-bit RGBA texels as stored in the file (glTF base colour is sRGB-encoded).
+struct Texture {
+  std::string name;
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgba;
+};
+
+struct SceneCamera {
+  glm::vec3 eye{0.f};
+  glm::vec3 target{0.f, 0.f, -1.f};
+  glm::vec3 up{0.f, 1.f, 0.f};
+  float vfov_degrees = 45.f;
+};
+
+struct Scene {
+  std::filesystem::path source;
+  std::vector<glm::vec3> positions;        // 3 per triangle, world space, counter-clockwise front
+  std::vector<glm::vec2> uvs;              // empty, or 3 per triangle
+  std::vector<std::uint32_t> material_ids; // 1 per triangle, index into materials
+  std::vector<SceneMaterial> materials;    // never empty once loaded
+  std::vector<Texture> textures;
+  std::optional<SceneCamera> camera;       // from the file, when it has one
+  std::vector<std::string> warnings;       // legal but odd input (no light, skipped primitives)
+
+  std::size_t triangle_count() const { return positions.size() / 3; }
+  Bounds bounds() const;
+  std::size_t emissive_triangle_count() const;
+  // Bytes the device buffers of this scene need before the acceleration structure.
+  std::size_t geometry_bytes() const;
+};
+
+// Loads .gltf, .glb, .obj (with .mtl), .ply, each optionally gzip-compressed (NAME.EXT.gz).
+// Throws InputError naming the file and the problem.
+Scene load_scene(const std::filesystem::path& path);
+
+// The framing camera of bench-protocol.md: eye = c + (0, 0, diag), looking at c, +Y up, 45 degrees.
+SceneCamera framing_camera(const Bounds& bounds);
+
+}  // namespace cohort

@@ -1,0 +1,105 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "runtime/cl/cl_error.h"
+#include "runtime/cl/context.h"
+#include "runtime/cl/embedded_sources.h"
+#include "runtime/cl/kernel_program.h"
+#include "runtime/cl/program_cache.h"
+
+namespace fs = std::filesystem;
+using namespace cohort;
+
+namespace {
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    path = fs::temp_directory_path() / ("cohort-test-" + std::to_string(std::random_device{}()));
+    fs::create_directories(path);
+  }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+ClContext cpu_context() { return ClContext(select_device("")); }
+
+}  // namespace
+
+TEST(EmbeddedSources, ExpandsIncludesOnce) {
+  const std::string src = expand_kernel_source("naive.cl");
+  EXPECT_NE(src.find("render_naive"), std::string::npos);
+  EXPECT_EQ(src.find("#include \""), std::string::npos);
+  // types.h is reached through several headers but appears once
+  const auto first = src.find("#line 1 \"common/types.h\"");
+  ASSERT_NE(first, std::string::npos);
+  EXPECT_EQ(src.find("#line 1 \"common/types.h\"", first + 1), std::string::npos);
+  EXPECT_THROW(expand_kernel_source("no-such-file.cl"), std::runtime_error);
+}
+
+TEST(ProgramCache, ColdThenWarmThenCorruptedEntryIsRebuilt) {
+  TempDir dir;
+  const ClContext cl = cpu_context();
+  const ProgramCache cache(dir.path);
+  const ProgramBuild cold = build_kernel_program(cl, cache, "trace.cl");
+  EXPECT_FALSE(cold.from_cache);
+  ASSERT_TRUE(fs::exists(cold.cache_file));
+
+  const ProgramBuild warm = build_kernel_program(cl, cache, "trace.cl");
+  EXPECT_TRUE(warm.from_cache);
+  EXPECT_NO_THROW(cl::Kernel(warm.program, "trace_rays"));
+
+  // flip bytes in the payload: the checksum must catch it and the entry is rebuilt and replaced
+  {
+    std::fstream f(cold.cache_file, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(static_cast<std::streamoff>(fs::file_size(cold.cache_file) - 16));
+    f.write("CORRUPTCORRUPT!!", 16);
+  }
+  const ProgramBuild rebuilt = build_kernel_program(cl, cache, "trace.cl");
+  EXPECT_FALSE(rebuilt.from_cache);
+  EXPECT_NO_THROW(cl::Kernel(rebuilt.program, "trace_rays"));
+  EXPECT_TRUE(build_kernel_program(cl, cache, "trace.cl").from_cache);
+
+  // a truncated entry is not trusted either
+  fs::resize_file(cold.cache_file, 40);
+  EXPECT_FALSE(build_kernel_program(cl, cache, "trace.cl").from_cache);
+}
+
+TEST(ProgramCache, KeyDependsOnOptionsSourceAndDevice) {
+  DeviceInfo a;
+  a.name = "A";
+  a.driver_version = "1";
+  DeviceInfo b = a;
+  b.driver_version = "2";
+  EXPECT_NE(ProgramCache::key(a, "src", ""), ProgramCache::key(b, "src", ""));
+  EXPECT_NE(ProgramCache::key(a, "src", ""), ProgramCache::key(a, "src2", ""));
+  EXPECT_NE(ProgramCache::key(a, "src", ""), ProgramCache::key(a, "src", "-DX"));
+  TempDir dir;
+  const ClContext cl = cpu_context();
+  const ProgramCache cache(dir.path);
+  EXPECT_FALSE(build_kernel_program(cl, cache, "trace.cl", "-DCOHORT_TEST_A").from_cache);
+  EXPECT_FALSE(build_kernel_program(cl, cache, "trace.cl", "-DCOHORT_TEST_B").from_cache);
+  EXPECT_TRUE(build_kernel_program(cl, cache, "trace.cl", "-DCOHORT_TEST_A").from_cache);
+}
+
+TEST(ProgramCache, BuildErrorNamesTheCallAndCarriesTheLog) {
+  const ClContext cl = cpu_context();
+  const ProgramCache cache(std::nullopt);
+  try {
+    cache.build(cl.context, cl.device, "__kernel void broken( { }", "");
+    FAIL() << "expected a build failure";
+  } catch (const DeviceError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("clBuildProgram"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("CL_BUILD_PROGRAM_FAILURE"), std::string::npos) << msg;
+  }
+}
+
+TEST(ProgramCache, NaiveKernelCompiles) {
+  const ClContext cl = cpu_context();
+  const ProgramCache cache(std::nullopt);
+  const ProgramBuild b = build_kernel_program(cl, cache, "naive.cl");
+  EXPECT_NO_THROW(cl::Kernel(b.program, "render_naive"));
+}
