@@ -4,6 +4,9 @@
 #define COHORT_PORT_H
 
 #ifdef __OPENCL_VERSION__
+/* No a*b+c -> fma contraction: the host build does not contract either, so host and device
+ * traversal agree bit for bit, and every kernel rounds the shared code the same way. */
+#pragma OPENCL FP_CONTRACT OFF
 typedef uint uint32_t;
 typedef int int32_t;
 typedef ulong uint64_t;

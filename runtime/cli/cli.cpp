@@ -26,6 +26,11 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
   cmd.add_option("--time", r.settings.time_limit, "Stop after this many seconds of rendering")
       ->check(CLI::NonNegativeNumber);
   cmd.add_option("--env", r.environment, "Constant environment radiance: R,G,B or one value");
+  cmd.add_flag("--white-sky", r.white_sky,
+               "Benchmark workload: albedo 0.5 everywhere, constant sky 1, protocol camera, 5 segments, no RR");
+  cmd.add_option("--camera-bounds", r.camera_bounds,
+                 "Camera at fractions of the scene bounds: ex,ey,ez,tx,ty,tz (eye, then target)");
+  cmd.add_option("--fov", r.fov, "Vertical field of view in degrees")->check(CLI::Range(0.01f, 179.f));
   cmd.add_option("--stats", r.stats_file, "Write the run's figures to this JSON file");
   cmd.add_flag("--no-nee", [&r](std::int64_t) { r.settings.nee = false; }, "Disable next-event estimation");
   cmd.add_flag("--no-mis", [&r](std::int64_t) { r.settings.mis = false; }, "NEE without multiple importance sampling");

@@ -10,7 +10,9 @@
 #include "runtime/cli/progress.h"
 #include "runtime/render/prepared_scene.h"
 #include "runtime/render/renderer.h"
+#include "runtime/render/workloads.h"
 #include "runtime/util/atomic_file.h"
+#include "runtime/util/error.h"
 
 namespace cohort {
 namespace {
@@ -61,6 +63,11 @@ int run_render(const RenderCommand& cmd_in) {
 
   const DeviceInfo device = select_device(cmd.device);
   PreparedScene prepared = prepare_scene(cmd.scene);
+  if (cmd.white_sky) apply_white_sky(prepared, cmd.settings);
+  if (!cmd.camera_bounds.empty())
+    prepared.camera = camera_from_bounds(prepared.scene.bounds(), parse_six("--camera-bounds", cmd.camera_bounds),
+                                         prepared.camera.vfov_degrees);
+  if (cmd.fov > 0) prepared.camera.vfov_degrees = cmd.fov;
   for (const auto& w : prepared.scene.warnings) fmt::print(stderr, "warning: {}: {}\n", cmd.scene.string(), w);
   if (prepared.tree.stats.dropped_triangles)
     fmt::print(stderr, "warning: {}: dropped {} degenerate or non-finite triangles\n", cmd.scene.string(),

@@ -15,6 +15,9 @@ struct RenderCommand {
   std::string device;
   std::string stats_file;
   std::string environment;  // "R,G,B" or one value
+  std::string camera_bounds;  // "ex,ey,ez,tx,ty,tz": fractions of the scene bounds
+  float fov = 0;              // vertical field of view in degrees; 0 = the camera's own
+  bool white_sky = false;
   bool verbose = false;
   bool no_cache = false;
   RenderSettings settings;

@@ -28,21 +28,45 @@ std::pair<std::uint32_t, std::uint32_t> parse_resolution(const std::string& text
   return {w, h};
 }
 
-glm::vec3 parse_rgb(const std::string& option, const std::string& text) {
+namespace {
+
+// Comma-separated finite numbers; throws with `expected` in the message otherwise.
+std::vector<float> parse_list(const std::string& option, const std::string& text, const char* expected) {
   std::vector<float> values;
   std::string_view rest(text);
   while (true) {
     const auto comma = rest.find(',');
     float v = 0;
-    if (!parse_number(rest.substr(0, comma), v) || !std::isfinite(v) || v < 0)
-      throw InputError(fmt::format("{} {}: expected R,G,B or one value, each finite and >= 0", option, text));
+    if (!parse_number(rest.substr(0, comma), v) || !std::isfinite(v))
+      throw InputError(fmt::format("{} {}: expected {}", option, text, expected));
     values.push_back(v);
     if (comma == std::string_view::npos) break;
     rest.remove_prefix(comma + 1);
   }
+  return values;
+}
+
+}  // namespace
+
+glm::vec3 parse_rgb(const std::string& option, const std::string& text) {
+  const auto values = parse_list(option, text, "R,G,B or one value, each finite and >= 0");
+  for (float v : values)
+    if (v < 0) throw InputError(fmt::format("{} {}: values must be >= 0", option, text));
   if (values.size() == 1) return glm::vec3(values[0]);
   if (values.size() == 3) return {values[0], values[1], values[2]};
   throw InputError(fmt::format("{} {}: expected R,G,B or one value", option, text));
+}
+
+}  // namespace cohort
+
+namespace cohort {
+
+std::array<float, 6> parse_six(const std::string& option, const std::string& text) {
+  const auto values = parse_list(option, text, "six comma-separated numbers");
+  if (values.size() != 6) throw InputError(fmt::format("{} {}: expected six comma-separated numbers", option, text));
+  std::array<float, 6> out{};
+  std::copy(values.begin(), values.end(), out.begin());
+  return out;
 }
 
 }  // namespace cohort

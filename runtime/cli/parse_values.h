@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -12,5 +13,8 @@ namespace cohort {
 std::pair<std::uint32_t, std::uint32_t> parse_resolution(const std::string& text);
 // "R,G,B" or one value for all three, each finite and >= 0.
 glm::vec3 parse_rgb(const std::string& option, const std::string& text);
+
+// "a,b,c,d,e,f": six finite numbers (fractions for --camera-bounds).
+std::array<float, 6> parse_six(const std::string& option, const std::string& text);
 
 }  // namespace cohort

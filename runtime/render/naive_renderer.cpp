@@ -53,7 +53,7 @@ RenderResult render_naive(const ClContext& cl, const ProgramCache& cache, const 
     cl::Buffer counters = cl.buffer("ray counters", sizeof(counters_init), counters_init);
     cl::Buffer dropped = cl.buffer("dropped-sample counter", sizeof(std::uint32_t), counters_init);
     int arg = 0;
-    for (const cl::Buffer* b : {&params_buffer, &scene.nodes, &scene.leaf_triangles, &scene.triangles,
+    for (const cl::Buffer* b : std::initializer_list<const cl::Buffer*>{&params_buffer, &scene.nodes, &scene.leaf_triangles, &scene.triangles,
                                 &scene.triangle_material, &scene.materials, &scene.emitters, &film, &counters, &dropped})
       kernel.setArg(arg++, *b);
 

@@ -1,0 +1,128 @@
+// The OpenCL traversal kernel (kernels/trace.cl on the default device, PoCL in CI) against a
+// brute-force loop over every triangle on the host: >= 100k rays on three scenes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include <tbb/parallel_for.h>
+
+#include "accel/ray_check.h"
+#include "runtime/cl/cl_error.h"
+#include "runtime/cl/context.h"
+#include "runtime/cl/kernel_program.h"
+#include "runtime/scene/scene.h"
+
+namespace fs = std::filesystem;
+using namespace cohort;
+using namespace cohort::test;
+
+namespace {
+
+std::vector<HitOut> trace_on_device(const KdTree& tree, const std::vector<TestRay>& rays, bool any_hit,
+                                    const std::vector<float>& tmax) {
+  const ClContext cl(select_device(""));
+  const ProgramCache cache(ProgramCache::default_directory());
+  const ProgramBuild build = build_kernel_program(cl, cache, "trace.cl");
+  std::vector<RayIn> in(rays.size());
+  for (std::size_t i = 0; i < rays.size(); ++i)
+    in[i] = RayIn{{rays[i].org.x, rays[i].org.y, rays[i].org.z, 0.f}, {rays[i].dir.x, rays[i].dir.y, rays[i].dir.z, tmax[i]}};
+  auto nodes = cl.buffer("nodes", tree.nodes.size() * sizeof(KdNode), tree.nodes.data());
+  auto leaves = cl.buffer("leaves", tree.leaf_triangles.size() * 4, tree.leaf_triangles.data());
+  auto tris = cl.buffer("triangles", tree.triangles.size() * sizeof(Triangle), tree.triangles.data());
+  auto ray_buf = cl.buffer("rays", in.size() * sizeof(RayIn), in.data());
+  auto hit_buf = cl.buffer("hits", in.size() * sizeof(HitOut));
+  cl::Kernel k(build.program, "trace_rays");
+  const co_float4 lo{tree.bounds.lo.x, tree.bounds.lo.y, tree.bounds.lo.z, 0.f};
+  const co_float4 hi{tree.bounds.hi.x, tree.bounds.hi.y, tree.bounds.hi.z, 0.f};
+  k.setArg(0, nodes);
+  k.setArg(1, leaves);
+  k.setArg(2, tris);
+  k.setArg(3, sizeof(lo), &lo);
+  k.setArg(4, sizeof(hi), &hi);
+  k.setArg(5, ray_buf);
+  k.setArg(6, hit_buf);
+  k.setArg(7, static_cast<cl_uint>(in.size()));
+  k.setArg(8, static_cast<cl_uint>(any_hit));
+  cl.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange((in.size() + 63) / 64 * 64), cl::NDRange(64));
+  std::vector<HitOut> hits(in.size());
+  cl.queue.enqueueReadBuffer(hit_buf, CL_TRUE, 0, hits.size() * sizeof(HitOut), hits.data());
+  return hits;
+}
+
+float triangle_t(const KdTree& tree, const TestRay& ray, std::uint32_t tri) {
+  const WatertightRay wr = watertight_ray(v3(ray.org.x, ray.org.y, ray.org.z), v3(ray.dir.x, ray.dir.y, ray.dir.z));
+  const Triangle& t = tree.triangles[tri];
+  float th = INFINITY, u, v;
+  intersect_triangle(&wr, v3_from4(t.v0), v3_from4(t.v1), v3_from4(t.v2), 0.f, INFINITY, &th, &u, &v);
+  return th;
+}
+
+void check_scene(const fs::path& path, std::size_t ray_count) {
+  const Scene scene = load_scene(path);
+  const KdTree tree = build_kdtree(scene.positions);
+  const auto rays = make_rays(tree.bounds, ray_count, 1234);
+  const std::vector<float> unbounded(rays.size(), INFINITY);
+  const auto closest = trace_on_device(tree, rays, false, unbounded);
+  std::vector<HitOut> expected(rays.size());
+  std::vector<float> half(rays.size()), beyond(rays.size());
+  tbb::parallel_for(std::size_t(0), rays.size(),
+                    [&](std::size_t i) { expected[i] = brute_force(tree, rays[i], 0.f, INFINITY); });
+  std::size_t hits = 0, ties = 0, mismatches = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const HitOut& e = expected[i];
+    const HitOut& g = closest[i];
+    half[i] = e.triangle == HIT_NONE ? INFINITY : 0.5f * e.t;
+    beyond[i] = e.triangle == HIT_NONE ? INFINITY : 1.5f * e.t;
+    if ((e.triangle == HIT_NONE) != (g.triangle == HIT_NONE)) { ++mismatches; continue; }
+    if (e.triangle == HIT_NONE) continue;
+    ++hits;
+    if (std::abs(g.t - e.t) > 1e-5f * std::abs(e.t)) {
+      if (mismatches < 5) std::printf("mismatch: brute tri %u t %.9g, kernel tri %u t %.9g\n", e.triangle, e.t, g.triangle, g.t);
+      ++mismatches;
+      continue;
+    }
+    if (g.triangle != e.triangle) {
+      // a different triangle counts only at a genuine tie: its own t equals the closest t exactly
+      if (triangle_t(tree, rays[i], g.triangle) == e.t) ++ties;
+      else {
+        if (mismatches < 5)
+          std::printf("mismatch: brute tri %u t %.9g, kernel tri %u t %.9g (own t %.9g)\n", e.triangle, e.t, g.triangle,
+                      g.t, triangle_t(tree, rays[i], g.triangle));
+        ++mismatches;
+      }
+    }
+  }
+  // any hit: nothing before half the closest distance, something before 1.5 times it
+  const auto occluded_half = trace_on_device(tree, rays, true, half);
+  const auto occluded_beyond = trace_on_device(tree, rays, true, beyond);
+  std::size_t occlusion_mismatches = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const bool hit = expected[i].triangle != HIT_NONE;
+    if (occluded_half[i].triangle != HIT_NONE) ++occlusion_mismatches;
+    if (hit != (occluded_beyond[i].triangle != HIT_NONE)) ++occlusion_mismatches;
+  }
+  std::printf("%s: %zu rays, %zu hits, %zu ties, %zu mismatches, %zu any-hit mismatches\n",
+              path.filename().c_str(), rays.size(), hits, ties, mismatches, occlusion_mismatches);
+  EXPECT_EQ(mismatches, 0u);
+  EXPECT_EQ(occlusion_mismatches, 0u);
+  EXPECT_GT(hits, rays.size() / 10);  // the rays must actually exercise the tree
+}
+
+fs::path shared(const char* rel) { return fs::path(COHORT_SHARED_SCENES) / rel; }
+
+}  // namespace
+
+TEST(TraceKernel, CornellBoxMatchesBruteForce) {
+  check_scene(fs::path(COHORT_SOURCE_DIR) / "scenes/cornell-box.gltf", 100000);
+}
+
+TEST(TraceKernel, BunnyMatchesBruteForce) {
+  if (!fs::exists(shared("bunny"))) GTEST_SKIP() << "../shared/scenes is missing";
+  check_scene(shared("bunny/bun_zipper_res2.ply"), 100000);
+}
+
+TEST(TraceKernel, CornellSphereMatchesBruteForce) {
+  if (!fs::exists(shared("cornell-box-mcguire"))) GTEST_SKIP() << "../shared/scenes is missing";
+  check_scene(shared("cornell-box-mcguire/CornellBox-Sphere.obj"), 100000);
+}
