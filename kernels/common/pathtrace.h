@@ -39,10 +39,14 @@ CO_INLINE co_vec3 sample_direct_light(const SceneView* s, const RenderParams* p,
   co_vec3 le = emitted_radiance(m, nl, v3_neg(wi));
   if (v3_max_component(le) <= 0.0f) return zero;
 
+  /* the shadow ray leaves from the offset origin and stops one epsilon short of the light, so
+   * neither the receiver's nor the light's own triangle can occlude the sample */
   co_vec3 origin = v3_madd(pos, n, p->ray_epsilon);
+  co_vec3 shadow = v3_sub(pl, origin);
+  float shadow_len = v3_length(shadow);
+  if (!(shadow_len > 2.0f * p->ray_epsilon)) return zero;
   *rays += 1u;
-  /* stop short of the light so its own triangle does not occlude the sample */
-  HitOut occ = kd_trace(&s->tree, origin, wi, 0.0f, dist * (1.0f - 1e-4f), 1);
+  HitOut occ = kd_trace(&s->tree, origin, v3_scale(shadow, 1.0f / shadow_len), 0.0f, shadow_len - p->ray_epsilon, 1);
   if (occ.triangle != HIT_NONE) return zero;
 
   float pdf_light = light_pdf_solid_angle(s, m, entry.area, pos, pl, nl);
