@@ -25,6 +25,7 @@ struct SceneMaterial {
   float transmission = 0.f;  // KHR_materials_transmission
   float ior = 1.5f;          // KHR_materials_ior
   int base_color_texture = -1;  // index into Scene::textures
+  int emission_texture = -1;    // index into Scene::textures (sRGB-encoded); multiplies emission
   bool double_sided = false;    // glTF doubleSided; emission leaves both faces when set
   bool is_emissive() const { return emission.x > 0.f || emission.y > 0.f || emission.z > 0.f; }
 };
@@ -47,7 +48,7 @@ struct SceneCamera {
 struct Scene {
   std::filesystem::path source;
   std::vector<glm::vec3> positions;        // 3 per triangle, world space, counter-clockwise front
-  std::vector<glm::vec2> uvs;              // empty, or 3 per triangle
+  std::vector<glm::vec2> uvs;              // empty, or 3 per triangle; (0,0) is the top-left texel
   std::vector<std::uint32_t> material_ids; // 1 per triangle, index into materials
   std::vector<SceneMaterial> materials;    // never empty once loaded
   std::vector<Texture> textures;

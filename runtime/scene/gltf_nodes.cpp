@@ -1,0 +1,152 @@
+#include "runtime/scene/gltf_nodes.h"
+
+#include <cmath>
+#include <vector>
+
+#include <fmt/format.h>
+#include <tiny_gltf.h>
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "runtime/scene/gltf_primitive.h"
+#include "runtime/scene/scene_builder.h"
+#include "runtime/util/error.h"
+
+namespace cohort::gltf {
+namespace {
+
+// Far beyond any authored hierarchy; a deeper one is corrupt or hostile and would overflow the stack.
+constexpr int kMaxDepth = 256;
+// A node graph that shares subtrees (a DAG) is walked once per path; this bounds the expansion.
+constexpr std::size_t kMaxNodeVisits = std::size_t{1} << 22;
+
+glm::dmat4 local_transform(const tinygltf::Node& n) {
+  if (n.matrix.size() == 16) return glm::make_mat4(n.matrix.data());
+  glm::dmat4 m(1.0);
+  if (n.translation.size() == 3)
+    m = glm::translate(m, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
+  if (n.rotation.size() == 4) {
+    const glm::dquat q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
+    if (glm::length(q) > 0.0) m *= glm::mat4_cast(glm::normalize(q));
+  }
+  if (n.scale.size() == 3) m = glm::scale(m, glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
+  return m;
+}
+
+bool usable_direction(const glm::dvec3& v) {
+  const double length = glm::length(v);
+  return std::isfinite(length) && length > 1e-12;
+}
+
+class NodeWalker {
+ public:
+  NodeWalker(const tinygltf::Model& model, const std::string& file, Scene& scene)
+      : model_(model),
+        file_(file),
+        scene_(scene),
+        builder_(scene),
+        emitter_(model, file, scene, builder_),
+        on_path_(model.nodes.size(), false) {}
+
+  void walk() {
+    if (model_.nodes.empty()) {
+      // Meshes with no nodes at all are still geometry; place them untransformed.
+      for (std::size_t m = 0; m < model_.meshes.size(); ++m)
+        emitter_.emit_mesh(static_cast<int>(m), glm::dmat4(1.0));
+      return;
+    }
+    for (int root : root_nodes()) visit(root, glm::dmat4(1.0), 0);
+  }
+
+  void finish() { emitter_.finish(); }
+
+ private:
+  std::vector<int> root_nodes() const {
+    if (!model_.scenes.empty()) {
+      const int s =
+          model_.defaultScene >= 0 && static_cast<std::size_t>(model_.defaultScene) < model_.scenes.size()
+              ? model_.defaultScene
+              : 0;
+      return model_.scenes[static_cast<std::size_t>(s)].nodes;
+    }
+    std::vector<bool> is_child(model_.nodes.size(), false);
+    for (const auto& n : model_.nodes)
+      for (int c : n.children)
+        if (c >= 0 && static_cast<std::size_t>(c) < is_child.size())
+          is_child[static_cast<std::size_t>(c)] = true;
+    std::vector<int> roots;
+    for (std::size_t i = 0; i < is_child.size(); ++i)
+      if (!is_child[i]) roots.push_back(static_cast<int>(i));
+    return roots;
+  }
+
+  void visit(int index, const glm::dmat4& parent, int depth) {
+    check_node(index, depth);
+    const auto i = static_cast<std::size_t>(index);
+    const tinygltf::Node& node = model_.nodes[i];
+    const glm::dmat4 world = parent * local_transform(node);
+    if (node.mesh >= 0) emitter_.emit_mesh(node.mesh, world);
+    if (node.camera >= 0 && !scene_.camera) take_camera(node.camera, world);
+    on_path_[i] = true;
+    for (int child : node.children) visit(child, world, depth + 1);
+    on_path_[i] = false;
+  }
+
+  void check_node(int index, int depth) {
+    if (index < 0 || static_cast<std::size_t>(index) >= model_.nodes.size())
+      throw InputError(
+          fmt::format("{}: node {} does not exist ({} nodes)", file_, index, model_.nodes.size()));
+    if (on_path_[static_cast<std::size_t>(index)])
+      throw InputError(fmt::format("{}: node {} is its own ancestor (cyclic node graph)", file_, index));
+    if (depth > kMaxDepth)
+      throw InputError(fmt::format("{}: node hierarchy deeper than {} levels", file_, kMaxDepth));
+    if (++visits_ > kMaxNodeVisits)
+      throw InputError(
+          fmt::format("{}: node graph expands to more than {} node instances", file_, kMaxNodeVisits));
+  }
+
+  void take_camera(int index, const glm::dmat4& world) {
+    if (static_cast<std::size_t>(index) >= model_.cameras.size())
+      throw InputError(
+          fmt::format("{}: camera {} does not exist ({} cameras)", file_, index, model_.cameras.size()));
+    const tinygltf::Camera& c = model_.cameras[static_cast<std::size_t>(index)];
+    if (c.type != "perspective") {
+      scene_.warnings.push_back(fmt::format("{}: {} camera {} ignored", file_, c.type, index));
+      return;
+    }
+    // glTF cameras look down their local -Z with +Y up.
+    const glm::dvec3 eye(world * glm::dvec4(0, 0, 0, 1));
+    const glm::dvec3 forward(world * glm::dvec4(0, 0, -1, 0));
+    const glm::dvec3 up(world * glm::dvec4(0, 1, 0, 0));
+    const double yfov = c.perspective.yfov;
+    if (!(yfov > 0.0 && yfov < glm::pi<double>()) || !usable_direction(forward) || !usable_direction(up)) {
+      scene_.warnings.push_back(
+          fmt::format("{}: camera {} ignored: degenerate transform or yfov {}", file_, index, yfov));
+      return;
+    }
+    scene_.camera = SceneCamera{.eye = glm::vec3(eye),
+                                .target = glm::vec3(eye + glm::normalize(forward)),
+                                .up = glm::vec3(glm::normalize(up)),
+                                .vfov_degrees = static_cast<float>(glm::degrees(yfov))};
+  }
+
+  const tinygltf::Model& model_;
+  const std::string& file_;
+  Scene& scene_;
+  SceneBuilder builder_;
+  PrimitiveEmitter emitter_;
+  std::vector<bool> on_path_;
+  std::size_t visits_ = 0;
+};
+
+}  // namespace
+
+void emit_default_scene(const tinygltf::Model& model, const std::string& file, Scene& scene) {
+  NodeWalker walker(model, file, scene);
+  walker.walk();
+  walker.finish();
+}
+
+}  // namespace cohort::gltf

@@ -1,0 +1,110 @@
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <sstream>
+#include <string_view>
+
+#include <fmt/format.h>
+#include <tiny_gltf.h>
+
+#include "runtime/scene/gltf_materials.h"
+#include "runtime/scene/gltf_nodes.h"
+#include "runtime/scene/library_message.h"
+#include "runtime/scene/loaders.h"
+#include "runtime/util/error.h"
+
+namespace cohort {
+namespace {
+
+constexpr std::uint32_t kGlbMagic = 0x46546C67;  // "glTF"
+
+// Keeps external images encoded so that only those materials use get decoded, later. tinygltf passes
+// buffer-view images without checking the view's range, so those bytes are not touched here.
+bool keep_encoded_image(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                        const unsigned char* bytes, int size, void*) {
+  if (image->bufferView < 0 && size > 0) image->image.assign(bytes, bytes + size);
+  return true;
+}
+
+std::uint32_t u32_at(const std::string& bytes, std::size_t offset) {
+  std::uint32_t v;
+  std::memcpy(&v, bytes.data() + offset, 4);
+  return v;
+}
+
+// tinygltf trusts the BIN chunk header by 8 bytes too many; checking every chunk here first
+// keeps a truncated or lying .glb from being read past its end.
+void check_glb_chunks(const std::string& bytes, const std::string& file) {
+  if (bytes.size() < 20 || u32_at(bytes, 0) != kGlbMagic)
+    throw InputError(fmt::format("{}: not a binary glTF (bad header)", file));
+  if (u32_at(bytes, 4) != 2)
+    throw InputError(fmt::format("{}: binary glTF version {} (only 2 is supported)", file, u32_at(bytes, 4)));
+  const std::uint64_t length = u32_at(bytes, 8);
+  if (length > bytes.size())
+    throw InputError(fmt::format("{}: truncated binary glTF: header says {} bytes, file has {}", file, length,
+                                 bytes.size()));
+  for (std::uint64_t at = 12; at < length;) {
+    if (length - at < 8) throw InputError(fmt::format("{}: truncated chunk header at byte {}", file, at));
+    const std::uint64_t chunk = u32_at(bytes, static_cast<std::size_t>(at));
+    if (chunk > length - at - 8)
+      throw InputError(fmt::format("{}: chunk at byte {} ({} bytes) runs past the end", file, at, chunk));
+    at += 8 + chunk;
+  }
+}
+
+void add_warnings(const std::string& text, const std::string& file, Scene& scene) {
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);)
+    if (!line.empty()) scene.warnings.push_back(fmt::format("{}: {}", file, library_message(line)));
+}
+
+// Extensions that change what the loader reads; others (lights, variants...) only add to it.
+void warn_unsupported_extensions(const tinygltf::Model& model, const std::string& file, Scene& scene) {
+  static constexpr std::array kUnderstood = {
+      std::string_view("KHR_materials_emissive_strength"), std::string_view("KHR_materials_transmission"),
+      std::string_view("KHR_materials_ior"), std::string_view("KHR_mesh_quantization")};
+  for (const std::string& name : model.extensionsRequired)
+    if (std::find(kUnderstood.begin(), kUnderstood.end(), name) == kUnderstood.end())
+      scene.warnings.push_back(
+          fmt::format("{}: required extension {} is not supported; geometry or "
+                      "materials may be wrong",
+                      file, name));
+}
+
+tinygltf::Model parse(const std::filesystem::path& path, const std::string& bytes, bool binary,
+                      Scene& scene) {
+  const std::string file = path.string();
+  if (bytes.size() > std::numeric_limits<unsigned int>::max())
+    throw InputError(fmt::format("{}: glTF larger than 4 GiB", file));
+  if (binary) check_glb_chunks(bytes, file);
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(keep_encoded_image, nullptr);
+  tinygltf::Model model;
+  std::string err, warn;
+  const std::string base_dir = path.parent_path().string();
+  const auto size = static_cast<unsigned int>(bytes.size());
+  const bool ok =
+      binary ? loader.LoadBinaryFromMemory(
+                   &model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()), size, base_dir)
+             : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), size, base_dir);
+  if (!ok) throw InputError(fmt::format("{}: invalid glTF: {}", file, library_message(err)));
+  add_warnings(warn, file, scene);
+  warn_unsupported_extensions(model, file, scene);
+  return model;
+}
+
+}  // namespace
+
+Scene load_gltf(const std::filesystem::path& path, const std::string& bytes, bool binary) {
+  Scene scene;
+  // Content wins over the name: a .gltf that holds binary glTF still loads.
+  const bool glb = binary || bytes.compare(0, 4, "glTF") == 0;
+  const tinygltf::Model model = parse(path, bytes, glb, scene);
+  gltf::convert_materials(model, path.string(), scene);
+  gltf::emit_default_scene(model, path.string(), scene);
+  return scene;
+}
+
+}  // namespace cohort

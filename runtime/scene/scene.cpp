@@ -1,0 +1,98 @@
+#include "runtime/scene/scene.h"
+
+#include <algorithm>
+#include <cctype>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "runtime/scene/gzip_file.h"
+#include "runtime/scene/loaders.h"
+#include "runtime/util/error.h"
+
+namespace cohort {
+namespace {
+
+// Device layout sizes (see geometry_bytes()): a triangle is three float4 vertices.
+constexpr std::size_t kTriangleBytes = 48;
+constexpr std::size_t kMaterialIdBytes = 4;
+constexpr std::size_t kMaterialBytes = 64;
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+// The format extension, looking through a trailing ".gz".
+std::string format_extension(const std::filesystem::path& path) {
+  const std::filesystem::path inner = is_gzip_name(path) ? path.stem() : path;
+  return lower(inner.extension().string());
+}
+
+Scene read_format(const std::filesystem::path& path, const std::string& ext) {
+  if (ext == ".gltf") return load_gltf(path, read_whole_file(path), false);
+  if (ext == ".glb") return load_gltf(path, read_whole_file(path), true);
+  if (ext == ".obj") return load_obj(path, read_whole_file(path));
+  if (ext == ".ply") return load_ply(path, read_whole_file(path));
+  throw InputError(
+      fmt::format("{}: unknown scene format '{}' (expected .gltf, .glb, .obj or .ply, optionally .gz)",
+                  path.string(), ext));
+}
+
+void check_loaded(const Scene& scene, const std::filesystem::path& path) {
+  if (scene.triangle_count() == 0)
+    throw InputError(fmt::format("{}: the scene has no triangles", path.string()));
+  if (scene.materials.empty()) throw InputError(fmt::format("{}: the scene has no materials", path.string()));
+  const auto bad = std::find_if(scene.material_ids.begin(), scene.material_ids.end(),
+                                [&](std::uint32_t id) { return id >= scene.materials.size(); });
+  if (bad != scene.material_ids.end())
+    throw InputError(fmt::format("{}: triangle {} uses material {} of {}", path.string(),
+                                 bad - scene.material_ids.begin(), *bad, scene.materials.size()));
+}
+
+}  // namespace
+
+Bounds Scene::bounds() const {
+  Bounds b;
+  for (const glm::vec3& p : positions) b.extend(p);
+  return b;
+}
+
+std::size_t Scene::emissive_triangle_count() const {
+  return static_cast<std::size_t>(
+      std::count_if(material_ids.begin(), material_ids.end(),
+                    [&](std::uint32_t id) { return id < materials.size() && materials[id].is_emissive(); }));
+}
+
+std::size_t Scene::geometry_bytes() const {
+  std::size_t bytes = triangle_count() * (kTriangleBytes + kMaterialIdBytes);
+  bytes += uvs.size() * sizeof(glm::vec2);
+  bytes += materials.size() * kMaterialBytes;
+  for (const Texture& t : textures) bytes += t.rgba.size();
+  return bytes;
+}
+
+Scene load_scene(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(fmt::format("{}: no such file", path.string()));
+  Scene scene = read_format(path, format_extension(path));
+  scene.source = path;
+  check_loaded(scene, path);
+  if (scene.emissive_triangle_count() == 0)
+    scene.warnings.push_back("no light: the image will be black unless an environment is set");
+  return scene;
+}
+
+SceneCamera framing_camera(const Bounds& bounds) {
+  SceneCamera camera;
+  if (bounds.empty()) return camera;
+  const glm::vec3 c = bounds.center();
+  camera.eye = c + glm::vec3(0.f, 0.f, bounds.diagonal());
+  camera.target = c;
+  camera.up = glm::vec3(0.f, 1.f, 0.f);
+  camera.vfov_degrees = 45.f;
+  return camera;
+}
+
+}  // namespace cohort

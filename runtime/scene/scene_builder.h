@@ -1,0 +1,31 @@
+// Appends triangles to a Scene while keeping its per-triangle arrays in step.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+
+#include <glm/glm.hpp>
+
+#include "runtime/scene/scene.h"
+
+namespace cohort {
+
+class SceneBuilder {
+ public:
+  explicit SceneBuilder(Scene& scene) : scene_(scene) {}
+
+  void reserve(std::size_t triangles);
+  // uvs are optional per triangle: the first triangle with uvs back-fills zeros for the earlier
+  // ones, and triangles without uvs get zeros once any have them.
+  void add(const std::array<glm::vec3, 3>& p, std::uint32_t material,
+           const std::optional<std::array<glm::vec2, 3>>& uv = std::nullopt);
+  // The index of the shared "default" material, appended on first use.
+  std::uint32_t default_material();
+
+ private:
+  Scene& scene_;
+  std::optional<std::uint32_t> default_material_;
+};
+
+}  // namespace cohort
