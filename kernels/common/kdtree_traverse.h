@@ -62,16 +62,20 @@ CO_INLINE HitOut kd_trace(const KdTreeView* tree, co_vec3 org, co_vec3 dir, floa
       int below_first = (o < split) || (o == split && d <= 0.0f);
       uint32_t near_child = kd_left_child(node) + (below_first ? 0u : 1u);
       uint32_t far_child = kd_left_child(node) + (below_first ? 1u : 0u);
-      /* !(t_plane > 0) also catches the NaN of a ray lying in the split plane */
-      if (t_plane > t1 || !(t_plane > 0.0f)) {
+      /* The plane distance and the watertight hit distance round differently, so a hit on the
+       * split plane can fall just outside the cell the plane bounds. Widening the decision and
+       * both intervals by a few ulps keeps such hits (on shared edges and vertices that lie in
+       * split planes) inside a visited cell. !(t_plane > 0) catches the NaN of a ray in the plane. */
+      float eps = 4e-6f * fmax(fabs(t_plane), fabs(t1));
+      if (t_plane > t1 + eps || !(t_plane > 0.0f)) {
         node_index = near_child;
-      } else if (t_plane < t0) {
+      } else if (t_plane < t0 - eps) {
         node_index = far_child;
       } else {
-        stack[sp].node = far_child; stack[sp].tmin = t_plane; stack[sp].tmax = t1;
+        stack[sp].node = far_child; stack[sp].tmin = fmax(t0, t_plane - eps); stack[sp].tmax = t1;
         ++sp;
         node_index = near_child;
-        t1 = t_plane;
+        t1 = fmin(t1, t_plane + eps);
       }
       continue;
     }

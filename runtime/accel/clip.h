@@ -1,0 +1,22 @@
+// Clipping a triangle to an axis-aligned box, for the "perfect splits" of the SAH KD-tree build
+// (Havran's thesis, "Heuristic Ray Shooting Algorithms", 2000; Wald & Havran 2006): a triangle that
+// straddles a split plane is registered in a child only with the bounds of its part inside that
+// child's cell, so the SAH sees its true extent and later splits do not drag it into cells it never
+// reaches.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "runtime/scene/bounds.h"
+
+namespace cohort::kd {
+
+// Bounds of (triangle a, b, c) intersected with `box` (closed), or an empty Bounds when they do not
+// meet. Conservative: computed in double and rounded outward to float, then clamped to `box`, so
+// the result contains every float point of the triangle inside the box and lies inside the box.
+// A triangle that only touches the box (a vertex or an edge on a face) yields a flat, non-empty
+// box.
+Bounds clip_triangle_bounds(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
+                            const Bounds& box);
+
+}  // namespace cohort::kd

@@ -1,0 +1,62 @@
+// Flattening the intermediate tree into the device layout of kernels/common/types.h: breadth-first
+// node order with the two children of every inner node adjacent, so one index names both and the
+// top L levels are a prefix of the array (what a kernel caching the top of the tree needs).
+#include <fmt/format.h>
+
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+
+#include "runtime/accel/kdtree_internal.h"
+
+namespace cohort::kd {
+namespace {
+
+void check_fits(std::size_t value, std::size_t limit, const char* what) {
+  if (value > limit) {
+    throw std::length_error(fmt::format(
+        "KD-tree too large for the device layout: {} is {}, the 8-byte KdNode holds at most {}",
+        what, value, limit));
+  }
+}
+
+KdNode inner_node(const BuildNode& node, std::size_t left_child) {
+  check_fits(left_child + 1, KD_MAX_INDEX, "a child node index");
+  std::uint32_t split_bits = 0;
+  std::memcpy(&split_bits, &node.split, sizeof split_bits);
+  return {static_cast<std::uint32_t>(left_child) << 2 | node.axis, split_bits};
+}
+
+KdNode leaf_node(std::size_t count, std::size_t first) {
+  check_fits(count, KD_MAX_INDEX, "a leaf's triangle count");
+  check_fits(first + count, std::numeric_limits<std::uint32_t>::max(), "the leaf list length");
+  return {static_cast<std::uint32_t>(count) << 2 | KD_LEAF, static_cast<std::uint32_t>(first)};
+}
+
+}  // namespace
+
+void flatten(const Subtree& subtree, KdTree& tree) {
+  tree.nodes.clear();
+  tree.leaf_triangles.clear();
+  tree.nodes.reserve(subtree.nodes.size());
+  tree.leaf_triangles.reserve(subtree.leaf_triangles.size());
+  // `order` is the breadth-first queue and, by position, the output index of every node: the two
+  // children of a node are queued together, so they land next to each other.
+  std::vector<std::uint32_t> order;
+  order.reserve(subtree.nodes.size());
+  order.push_back(0);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const BuildNode& node = subtree.nodes[order[i]];
+    if (node.axis == KD_LEAF) {
+      tree.nodes.push_back(leaf_node(node.b, tree.leaf_triangles.size()));
+      const auto first = subtree.leaf_triangles.begin() + node.a;
+      tree.leaf_triangles.insert(tree.leaf_triangles.end(), first, first + node.b);
+    } else {
+      tree.nodes.push_back(inner_node(node, order.size()));
+      order.push_back(node.a);
+      order.push_back(node.b);
+    }
+  }
+}
+
+}  // namespace cohort::kd
