@@ -8,12 +8,17 @@
 #include "common/types.h"
 #include "common/vec.h"
 
-/* Per-ray constants of the watertight test: the shear that maps the ray to +Z. */
+/* Per-ray constants of the watertight test: the shear that maps the ray to +Z, as three rows.
+ * Row x is e_kx - sx e_kz, row y is e_ky - sy e_kz, row z is e_kz: each has at most two nonzero
+ * entries, so dot(A, row) rounds exactly as Woop's A[kx] - sx * A[kz] (adding the zero term is
+ * exact) while the kernel needs no data-dependent component selects per triangle. */
 typedef struct WatertightRay {
   co_vec3 org;
-  uint32_t kx, ky, kz;
-  float sx, sy, sz;
+  co_vec3 row_x, row_y, row_z;
+  float sz;
 } WatertightRay;
+
+CO_INLINE co_vec3 unit_axis(uint32_t k) { return v3(k == 0u ? 1.0f : 0.0f, k == 1u ? 1.0f : 0.0f, k == 2u ? 1.0f : 0.0f); }
 
 CO_INLINE WatertightRay watertight_ray(co_vec3 org, co_vec3 dir) {
   WatertightRay r;
@@ -23,10 +28,11 @@ CO_INLINE WatertightRay watertight_ray(co_vec3 org, co_vec3 dir) {
   uint32_t ky = kx == 2u ? 0u : kx + 1u;
   float dz = v3_get(dir, kz);
   if (dz < 0.0f) { uint32_t tmp = kx; kx = ky; ky = tmp; }  /* keep the winding */
+  co_vec3 ez = unit_axis(kz);
   r.org = org;
-  r.kx = kx; r.ky = ky; r.kz = kz;
-  r.sx = v3_get(dir, kx) / dz;
-  r.sy = v3_get(dir, ky) / dz;
+  r.row_x = v3_madd(unit_axis(kx), ez, -(v3_get(dir, kx) / dz));
+  r.row_y = v3_madd(unit_axis(ky), ez, -(v3_get(dir, ky) / dz));
+  r.row_z = ez;
   r.sz = 1.0f / dz;
   return r;
 }
@@ -36,10 +42,9 @@ CO_INLINE WatertightRay watertight_ray(co_vec3 org, co_vec3 dir) {
 CO_INLINE int intersect_triangle(const WatertightRay* r, co_vec3 p0, co_vec3 p1, co_vec3 p2,
                                  float tmin, float tmax, float* t_out, float* u_out, float* v_out) {
   co_vec3 a = v3_sub(p0, r->org), b = v3_sub(p1, r->org), c = v3_sub(p2, r->org);
-  float az = v3_get(a, r->kz), bz = v3_get(b, r->kz), cz = v3_get(c, r->kz);
-  float ax = v3_get(a, r->kx) - r->sx * az, ay = v3_get(a, r->ky) - r->sy * az;
-  float bx = v3_get(b, r->kx) - r->sx * bz, by = v3_get(b, r->ky) - r->sy * bz;
-  float cx = v3_get(c, r->kx) - r->sx * cz, cy = v3_get(c, r->ky) - r->sy * cz;
+  float ax = v3_dot(a, r->row_x), ay = v3_dot(a, r->row_y), az = v3_dot(a, r->row_z);
+  float bx = v3_dot(b, r->row_x), by = v3_dot(b, r->row_y), bz = v3_dot(b, r->row_z);
+  float cx = v3_dot(c, r->row_x), cy = v3_dot(c, r->row_y), cz = v3_dot(c, r->row_z);
   float eu = cx * by - cy * bx;
   float ev = ax * cy - ay * cx;
   float ew = bx * ay - by * ax;
