@@ -3,25 +3,12 @@
  * whatever the work-group size or device scheduling. */
 #include "common/pathtrace.h"
 
-__kernel void render_naive(__constant RenderParams* params, __global const KdNode* nodes,
-                           __global const uint* leaf_triangles, __global const Triangle* triangles,
-                           __global const uint* triangle_material, __global const Material* materials,
-                           __global const EmitterEntry* emitters, __global float4* film,
-                           __global uint* ray_counter, __global uint* dropped_samples) {
+__kernel void render_naive(SCENE_KERNEL_PARAMS, __global float4* film, __global uint* ray_counter,
+                           __global uint* dropped_samples) {
   uint pixel = get_global_id(0);
   RenderParams p = *params;
   if (pixel >= p.width * p.height) return;
-  SceneView s;
-  s.tree.nodes = nodes;
-  s.tree.leaf_triangles = leaf_triangles;
-  s.tree.triangles = triangles;
-  s.tree.lo = v3_from4(p.scene_min);
-  s.tree.hi = v3_from4(p.scene_max);
-  s.triangle_material = triangle_material;
-  s.materials = materials;
-  s.emitters = emitters;
-  s.emitter_count = p.emitter_count;
-  s.emitter_power_total = p.emitter_power_total;
+  SceneView s = SCENE_VIEW(p);
 
   float4 acc = film[pixel];
   uint rays = 0u, dropped = 0u;

@@ -9,15 +9,52 @@
 #include "common/rng.h"
 #include "common/scene_view.h"
 
-typedef struct PathResult {
-  co_vec3 radiance;
-  uint32_t rays;
-} PathResult;
+/* A path between stages: what the megakernel keeps in registers and the wavefront kernels keep
+ * in structure-of-arrays buffers. Every method runs these same functions in the same order per
+ * path, so they all compute the same radiance bit for bit. */
+#define PATH_ALIVE 0u       /* `org, dir` is the next ray to trace */
+#define PATH_TERMINATED 1u  /* finished; its pending shadow ray may still add light */
 
-/* Direct light at p from one emitter sample (NEE), MIS-weighted against BSDF sampling. */
-CO_INLINE co_vec3 sample_direct_light(const SceneView* s, const RenderParams* p, Rng* rng, co_vec3 pos,
-                                      co_vec3 n, co_vec3 albedo, uint32_t* rays) {
-  co_vec3 zero = v3_splat(0.0f);
+typedef struct PathState {
+  co_vec3 org, dir;
+  co_vec3 throughput;
+  co_vec3 radiance;
+  co_vec3 prev_pos;       /* last scattering vertex, for the MIS weight of emission */
+  float prev_bsdf_pdf;    /* 0: the previous vertex was the camera */
+  uint32_t segment;       /* the segment `dir` traces; the camera ray is segment 1 */
+  uint32_t status;
+} PathState;
+
+/* A shadow ray whose `contribution` is added to the path's radiance when nothing occludes it. */
+typedef struct ShadowRay {
+  co_vec3 org, dir;
+  float tmax;
+  co_vec3 contribution;
+  int valid;
+} ShadowRay;
+
+CO_INLINE PathState path_start(const RenderParams* p, uint32_t pixel, uint32_t sample) {
+  PathState st;
+  uint32_t x = pixel % p->width, y = pixel / p->width;
+  Rng cam_rng = rng_make(p->seed, pixel, sample, 0u, RNG_CAMERA);
+  float jx = rng_next(&cam_rng), jy = rng_next(&cam_rng);
+  st.org = v3_from4(p->camera.eye);
+  st.dir = camera_direction(&p->camera, p->width, p->height, x, y, jx, jy);
+  st.throughput = v3_splat(1.0f);
+  st.radiance = v3_splat(0.0f);
+  st.prev_pos = st.org;
+  st.prev_bsdf_pdf = 0.0f;
+  st.segment = 1u;
+  st.status = PATH_ALIVE;
+  return st;
+}
+
+/* Next-event estimation at `pos`: picks an emitter point and returns the shadow ray towards it
+ * with the MIS-weighted contribution it adds when unoccluded (already times the throughput). */
+CO_INLINE ShadowRay sample_direct_light(const SceneView* s, const RenderParams* p, Rng* rng, co_vec3 pos, co_vec3 n,
+                                        co_vec3 albedo, co_vec3 throughput) {
+  ShadowRay sr;
+  sr.valid = 0;
   float u_pick = rng_next(rng), u1 = rng_next(rng), u2 = rng_next(rng);
   uint32_t e = pick_emitter(s, u_pick);
   EmitterEntry entry = s->emitters[e];
@@ -31,100 +68,132 @@ CO_INLINE co_vec3 sample_direct_light(const SceneView* s, const RenderParams* p,
   co_vec3 nl = v3_normalize(v3_cross(e1, e2));
   co_vec3 to_light = v3_sub(pl, pos);
   float dist2 = v3_dot(to_light, to_light);
-  if (!(dist2 > 0.0f)) return zero;
+  if (!(dist2 > 0.0f)) return sr;
   float dist = sqrt(dist2);
   co_vec3 wi = v3_scale(to_light, 1.0f / dist);
   float cos_s = v3_dot(n, wi);
-  if (cos_s <= 0.0f) return zero;
+  if (cos_s <= 0.0f) return sr;
   co_vec3 le = emitted_radiance(m, nl, v3_neg(wi));
-  if (v3_max_component(le) <= 0.0f) return zero;
+  if (v3_max_component(le) <= 0.0f) return sr;
 
   /* the shadow ray leaves from the offset origin and stops one epsilon short of the light, so
    * neither the receiver's nor the light's own triangle can occlude the sample */
   co_vec3 origin = v3_madd(pos, n, p->ray_epsilon);
   co_vec3 shadow = v3_sub(pl, origin);
   float shadow_len = v3_length(shadow);
-  if (!(shadow_len > 2.0f * p->ray_epsilon)) return zero;
-  *rays += 1u;
-  HitOut occ = kd_trace(&s->tree, origin, v3_scale(shadow, 1.0f / shadow_len), 0.0f, shadow_len - p->ray_epsilon, 1);
-  if (occ.triangle != HIT_NONE) return zero;
+  if (!(shadow_len > 2.0f * p->ray_epsilon)) return sr;
 
   float pdf_light = light_pdf_solid_angle(s, m, entry.area, pos, pl, nl);
   float weight = (p->flags & RENDER_FLAG_MIS) ? mis_power(pdf_light, cos_s * CO_INV_PI) : 1.0f;
   /* estimator divides by the probability the table actually used to pick this triangle */
   float pdf_pick = entry.pmf * dist2 / (entry.area * fabs(v3_dot(nl, wi)));
   float scale = cos_s * CO_INV_PI * weight / pdf_pick;
-  return v3_scale(v3_mul(albedo, le), scale);
+  sr.org = origin;
+  sr.dir = v3_scale(shadow, 1.0f / shadow_len);
+  sr.tmax = shadow_len - p->ray_epsilon;
+  sr.contribution = v3_mul(throughput, v3_scale(v3_mul(albedo, le), scale));
+  sr.valid = 1;
+  return sr;
 }
 
+/* Everything that happens at the end of the segment `st->segment` given its closest hit:
+ * emission, next-event estimation (returned as a shadow ray), Russian roulette and the next
+ * direction. Leaves the path ALIVE with its next ray, or TERMINATED. */
+CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathState* st, HitOut hit, uint32_t pixel,
+                               uint32_t sample) {
+  ShadowRay none;
+  none.valid = 0;
+  if (hit.triangle == HIT_NONE) {
+    if (p->flags & RENDER_FLAG_ENVIRONMENT)
+      st->radiance = v3_add(st->radiance, v3_mul(st->throughput, v3_from4(p->environment)));
+    st->status = PATH_TERMINATED;
+    return none;
+  }
+  uint32_t segment = st->segment;
+  int nee = (p->flags & RENDER_FLAG_NEE) && s->emitter_count > 0u;
+  CO_GLOBAL const Triangle* tri = &s->tree.triangles[hit.triangle];
+  const CO_GLOBAL Material* m = &s->materials[s->triangle_material[hit.triangle]];
+  co_vec3 cross_n = triangle_cross(tri);
+  co_vec3 n_geo = v3_normalize(cross_n);
+  co_vec3 pos = v3_madd(st->org, st->dir, hit.t);
+
+  co_vec3 le = emitted_radiance(m, n_geo, v3_neg(st->dir));
+  if (v3_max_component(le) > 0.0f) {
+    float w = 1.0f;
+    if (st->prev_bsdf_pdf > 0.0f && nee) {
+      if (p->flags & RENDER_FLAG_MIS) {
+        float area = 0.5f * v3_length(cross_n);
+        w = mis_power(st->prev_bsdf_pdf, light_pdf_solid_angle(s, m, area, st->prev_pos, pos, n_geo));
+      } else {
+        w = 0.0f; /* NEE alone accounts for emitters after the first segment */
+      }
+    }
+    st->radiance = v3_add(st->radiance, v3_scale(v3_mul(st->throughput, le), w));
+  }
+  if (p->max_depth != 0u && segment >= p->max_depth) {
+    st->status = PATH_TERMINATED;
+    return none;
+  }
+
+  co_vec3 n = v3_dot(n_geo, st->dir) < 0.0f ? n_geo : v3_neg(n_geo); /* two-sided: face the ray */
+  co_vec3 albedo = v3_from4(m->base_color);
+  ShadowRay shadow = none;
+  if (nee) {
+    Rng light_rng = rng_make(p->seed, pixel, sample, segment, RNG_LIGHT);
+    shadow = sample_direct_light(s, p, &light_rng, pos, n, albedo, st->throughput);
+  }
+  if ((p->flags & RENDER_FLAG_RUSSIAN_ROULETTE) && segment >= p->rr_depth) {
+    Rng rr_rng = rng_make(p->seed, pixel, sample, segment, RNG_ROULETTE);
+    float q = fmin(v3_max_component(st->throughput), 0.95f);
+    if (!(rng_next(&rr_rng) < q)) {
+      st->status = PATH_TERMINATED;
+      return shadow;
+    }
+    st->throughput = v3_scale(st->throughput, 1.0f / q);
+  }
+  Rng bsdf_rng = rng_make(p->seed, pixel, sample, segment, RNG_BSDF);
+  float u1 = rng_next(&bsdf_rng), u2 = rng_next(&bsdf_rng);
+  co_vec3 wi = sample_cosine_hemisphere(n, u1, u2);
+  float cos_i = v3_dot(wi, n);
+  co_vec3 next_throughput = v3_mul(st->throughput, albedo); /* f cos / pdf = albedo for Lambertian */
+  if (!(cos_i > 0.0f) || v3_max_component(next_throughput) <= 0.0f) {
+    st->status = PATH_TERMINATED;
+    return shadow;
+  }
+  st->throughput = next_throughput;
+  st->prev_bsdf_pdf = cos_i * CO_INV_PI;
+  st->prev_pos = pos;
+  st->org = v3_madd(pos, n, p->ray_epsilon);
+  st->dir = wi;
+  st->segment = segment + 1u;
+  return shadow;
+}
+
+/* Closes a shadow ray: its light counts only when nothing lies in between. */
+CO_INLINE void path_resolve_shadow(PathState* st, const ShadowRay* sr, HitOut occluder) {
+  if (occluder.triangle == HIT_NONE) st->radiance = v3_add(st->radiance, sr->contribution);
+}
+
+typedef struct PathResult {
+  co_vec3 radiance;
+  uint32_t rays;
+} PathResult;
+
+/* The whole path in one call: what the NAIVE megakernel runs per sample. */
 CO_INLINE PathResult trace_path(const SceneView* s, const RenderParams* p, uint32_t pixel, uint32_t sample) {
   PathResult result;
-  result.radiance = v3_splat(0.0f);
   result.rays = 0u;
-  uint32_t x = pixel % p->width, y = pixel / p->width;
-  Rng cam_rng = rng_make(p->seed, pixel, sample, 0u, RNG_CAMERA);
-  float jx = rng_next(&cam_rng), jy = rng_next(&cam_rng);
-  co_vec3 org = v3_from4(p->camera.eye);
-  co_vec3 dir = camera_direction(&p->camera, p->width, p->height, x, y, jx, jy);
-  co_vec3 throughput = v3_splat(1.0f);
-  int nee = (p->flags & RENDER_FLAG_NEE) && s->emitter_count > 0u;
-  float prev_bsdf_pdf = 0.0f; /* 0: the previous vertex was the camera */
-  co_vec3 prev_pos = org;
-
-  for (uint32_t segment = 1u;; ++segment) {
+  PathState st = path_start(p, pixel, sample);
+  while (st.status == PATH_ALIVE) {
+    HitOut hit = kd_trace(&s->tree, st.org, st.dir, 0.0f, INFINITY, 0);
     result.rays += 1u;
-    HitOut hit = kd_trace(&s->tree, org, dir, 0.0f, INFINITY, 0);
-    if (hit.triangle == HIT_NONE) {
-      if (p->flags & RENDER_FLAG_ENVIRONMENT)
-        result.radiance = v3_add(result.radiance, v3_mul(throughput, v3_from4(p->environment)));
-      break;
+    ShadowRay sr = path_shade(s, p, &st, hit, pixel, sample);
+    if (sr.valid) {
+      result.rays += 1u;
+      path_resolve_shadow(&st, &sr, kd_trace(&s->tree, sr.org, sr.dir, 0.0f, sr.tmax, 1));
     }
-    CO_GLOBAL const Triangle* tri = &s->tree.triangles[hit.triangle];
-    const CO_GLOBAL Material* m = &s->materials[s->triangle_material[hit.triangle]];
-    co_vec3 cross_n = triangle_cross(tri);
-    co_vec3 n_geo = v3_normalize(cross_n);
-    co_vec3 pos = v3_madd(org, dir, hit.t);
-
-    co_vec3 le = emitted_radiance(m, n_geo, v3_neg(dir));
-    if (v3_max_component(le) > 0.0f) {
-      float w = 1.0f;
-      if (prev_bsdf_pdf > 0.0f && nee) {
-        if (p->flags & RENDER_FLAG_MIS) {
-          float area = 0.5f * v3_length(cross_n);
-          w = mis_power(prev_bsdf_pdf, light_pdf_solid_angle(s, m, area, prev_pos, pos, n_geo));
-        } else {
-          w = 0.0f; /* NEE alone accounts for emitters after the first segment */
-        }
-      }
-      result.radiance = v3_add(result.radiance, v3_scale(v3_mul(throughput, le), w));
-    }
-    if (p->max_depth != 0u && segment >= p->max_depth) break;
-
-    co_vec3 n = v3_dot(n_geo, dir) < 0.0f ? n_geo : v3_neg(n_geo); /* two-sided: face the ray */
-    co_vec3 albedo = v3_from4(m->base_color);
-    if (nee) {
-      Rng light_rng = rng_make(p->seed, pixel, sample, segment, RNG_LIGHT);
-      co_vec3 direct = sample_direct_light(s, p, &light_rng, pos, n, albedo, &result.rays);
-      result.radiance = v3_add(result.radiance, v3_mul(throughput, direct));
-    }
-    if ((p->flags & RENDER_FLAG_RUSSIAN_ROULETTE) && segment >= p->rr_depth) {
-      Rng rr_rng = rng_make(p->seed, pixel, sample, segment, RNG_ROULETTE);
-      float q = fmin(v3_max_component(throughput), 0.95f);
-      if (!(rng_next(&rr_rng) < q)) break;
-      throughput = v3_scale(throughput, 1.0f / q);
-    }
-    Rng bsdf_rng = rng_make(p->seed, pixel, sample, segment, RNG_BSDF);
-    float u1 = rng_next(&bsdf_rng), u2 = rng_next(&bsdf_rng);
-    co_vec3 wi = sample_cosine_hemisphere(n, u1, u2);
-    float cos_i = v3_dot(wi, n);
-    if (!(cos_i > 0.0f)) break;
-    throughput = v3_mul(throughput, albedo); /* f cos / pdf = albedo for Lambertian */
-    if (v3_max_component(throughput) <= 0.0f) break;
-    prev_bsdf_pdf = cos_i * CO_INV_PI;
-    prev_pos = pos;
-    org = v3_madd(pos, n, p->ray_epsilon);
-    dir = wi;
   }
+  result.radiance = st.radiance;
   return result;
 }
 

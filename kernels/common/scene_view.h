@@ -14,6 +14,31 @@ typedef struct SceneView {
   float emitter_power_total;
 } SceneView;
 
+/* The kernel arguments every rendering kernel takes, and the view they make. */
+#define SCENE_KERNEL_PARAMS                                                                         \
+  CO_CONSTANT RenderParams *params, CO_GLOBAL const KdNode *nodes, CO_GLOBAL const uint32_t *leaf_triangles, \
+      CO_GLOBAL const Triangle *triangles, CO_GLOBAL const uint32_t *triangle_material,              \
+      CO_GLOBAL const Material *materials, CO_GLOBAL const EmitterEntry *emitters
+
+CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNode* nodes,
+                                    const CO_GLOBAL uint32_t* leaf_triangles, const CO_GLOBAL Triangle* triangles,
+                                    const CO_GLOBAL uint32_t* triangle_material, const CO_GLOBAL Material* materials,
+                                    const CO_GLOBAL EmitterEntry* emitters) {
+  SceneView s;
+  s.tree.nodes = nodes;
+  s.tree.leaf_triangles = leaf_triangles;
+  s.tree.triangles = triangles;
+  s.tree.lo = v3_from4(p->scene_min);
+  s.tree.hi = v3_from4(p->scene_max);
+  s.triangle_material = triangle_material;
+  s.materials = materials;
+  s.emitters = emitters;
+  s.emitter_count = p->emitter_count;
+  s.emitter_power_total = p->emitter_power_total;
+  return s;
+}
+#define SCENE_VIEW(p) make_scene_view(&(p), nodes, leaf_triangles, triangles, triangle_material, materials, emitters)
+
 CO_INLINE float luminance(co_vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 /* Unnormalised geometric normal; its length is twice the area. Counter-clockwise is the front. */

@@ -4,9 +4,11 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "runtime/cl/cl_error.h"
 #include "runtime/cli/commands.h"
+#include "runtime/render/methods.h"
 #include "runtime/util/error.h"
 
 namespace cohort {
@@ -22,7 +24,10 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
   cmd.add_option("--rr-depth", r.settings.rr_depth, "First segment where Russian roulette may end a path");
   cmd.add_option("--seed", r.settings.seed, "Random seed: the same seed gives the same image");
   cmd.add_option("--device", r.device, "Device index or name substring (see `cohort devices`)");
-  cmd.add_option("--method", r.settings.method, "Rendering method")->check(CLI::IsMember({"naive"}));
+  cmd.add_option("--method", r.settings.method, "Rendering method: " + fmt::format("{}", fmt::join(method_names(), ", ")))
+      ->check(CLI::IsMember(method_names()));
+  cmd.add_option("--wavefront-size", r.settings.wavefront_size,
+                 "Path slots of the wavefront methods (default: chosen from the device)");
   cmd.add_option("--time", r.settings.time_limit, "Stop after this many seconds of rendering")
       ->check(CLI::NonNegativeNumber);
   cmd.add_option("--env", r.environment, "Constant environment radiance: R,G,B or one value");

@@ -9,6 +9,7 @@
 #include "runtime/cli/parse_values.h"
 #include "runtime/cli/progress.h"
 #include "runtime/render/prepared_scene.h"
+#include "runtime/render/methods.h"
 #include "runtime/render/renderer.h"
 #include "runtime/render/workloads.h"
 #include "runtime/util/atomic_file.h"
@@ -47,6 +48,14 @@ nlohmann::json stats_json(const RenderCommand& cmd, const DeviceInfo& device, co
   for (const auto& [name, seconds] : r.kernel_seconds)
     kernels[name] = {{"seconds", seconds}, {"rays_per_second", seconds > 0 ? double(r.rays) / seconds : 0.0}};
   j["kernels"] = kernels;
+  if (r.wavefront_size) {
+    j["wavefront"] = {{"slots", r.wavefront_size}, {"bytes_per_path", r.path_state_bytes}};
+    nlohmann::json bounces = nlohmann::json::array();
+    for (const auto& it : r.iterations)
+      bounces.push_back({{"live_paths", it.live_paths}, {"extension_rays", it.live_paths},
+                         {"shadow_rays", it.shadow_rays}, {"kernel_seconds", it.kernel_seconds}});
+    j["bounces"] = bounces;
+  }
   return j;
 }
 
@@ -77,8 +86,8 @@ int run_render(const RenderCommand& cmd_in) {
   const ProgramCache cache(cmd.no_cache ? std::nullopt : std::optional(ProgramCache::default_directory()));
   const DeviceScene device_scene = upload_scene(cl, prepared.tree, prepared.tables);
   ProgressReporter reporter(stderr);
-  const RenderResult result = render_naive(cl, cache, device_scene, prepared.camera, cmd.settings,
-                                           [&](const Progress& p) { reporter.update(p); });
+  const RenderResult result = render(cl, cache, device_scene, prepared.camera, cmd.settings,
+                                     [&](const Progress& p) { reporter.update(p); });
   reporter.finish();
 
   write_exr(out.exr, result.image);
@@ -93,6 +102,10 @@ int run_render(const RenderCommand& cmd_in) {
                ts.depth, ts.node_count, ts.leaf_count, ts.average_leaf_triangles, ts.sah_cost, ts.build_seconds);
     fmt::print("kernel compile: {:.3f}s ({})\n", result.compile_seconds, result.compile_from_cache ? "warm, from cache" : "cold");
     for (const auto& [name, seconds] : result.kernel_seconds) fmt::print("kernel {}: {:.3f}s\n", name, seconds);
+    if (result.wavefront_size)
+      fmt::print("wavefront: {} path slots x {} bytes = {:.1f} MiB, {} bounces\n", result.wavefront_size,
+                 result.path_state_bytes, result.wavefront_size * result.path_state_bytes / 1048576.0,
+                 result.iterations.size());
   }
   if (result.dropped_samples)
     fmt::print(stderr, "warning: {} NaN or infinite samples were dropped\n", result.dropped_samples);

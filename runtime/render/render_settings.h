@@ -24,6 +24,7 @@ struct RenderSettings {
   bool russian_roulette = true;
   std::optional<glm::vec3> environment;  // constant environment radiance
   std::string method = "naive";
+  std::uint32_t wavefront_size = 0;  // path slots of the wavefront methods; 0: chosen from the device
 };
 
 }  // namespace cohort

@@ -5,6 +5,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "runtime/accel/kdtree.h"
 #include "runtime/cl/context.h"
@@ -22,6 +23,13 @@ struct Progress {
   double seconds = 0;
 };
 
+// One bounce of a wavefront method (one iteration of its loop), summed over passes.
+struct IterationStats {
+  std::uint64_t live_paths = 0;  // paths traced this iteration (= extension rays)
+  std::uint64_t shadow_rays = 0;
+  std::map<std::string, double> kernel_seconds;
+};
+
 struct RenderResult {
   Image image;                 // mean radiance per pixel
   std::uint32_t samples = 0;   // per pixel
@@ -31,13 +39,15 @@ struct RenderResult {
   double compile_seconds = 0;
   bool compile_from_cache = false;
   std::map<std::string, double> kernel_seconds;  // device time per kernel name
+  std::vector<IterationStats> iterations;        // wavefront methods only
+  std::size_t wavefront_size = 0;                // path slots in the pool (wavefront methods)
+  std::size_t path_state_bytes = 0;              // device bytes per path slot
 };
 
 using ProgressCallback = std::function<void(const Progress&)>;
 
-// The NAIVE megakernel (kernels/naive.cl).
-RenderResult render_naive(const ClContext& cl, const ProgramCache& cache, const DeviceScene& scene,
-                          const SceneCamera& camera, const RenderSettings& settings,
-                          const ProgressCallback& progress = {});
+// Renders with settings.method (see methods.h).
+RenderResult render(const ClContext& cl, const ProgramCache& cache, const DeviceScene& scene,
+                    const SceneCamera& camera, const RenderSettings& settings, const ProgressCallback& progress = {});
 
 }  // namespace cohort

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "render_fixture.h"
 
@@ -26,10 +27,10 @@ struct FurnaceCase {
   unsigned max_depth;  // 0: unbounded
 };
 
-class Furnace : public ::testing::TestWithParam<FurnaceCase> {};
+class Furnace : public ::testing::TestWithParam<std::tuple<FurnaceCase, const char*>> {};
 
 TEST_P(Furnace, ConvergesToTheAnalyticRadiance) {
-  const FurnaceCase c = GetParam();
+  const FurnaceCase c = std::get<0>(GetParam());
   RenderSettings s;
   s.width = s.height = 32;
   s.spp = 64;
@@ -39,6 +40,7 @@ TEST_P(Furnace, ConvergesToTheAnalyticRadiance) {
   s.russian_roulette = c.rr;
   s.rr_depth = 3;
   s.seed = 7;
+  s.method = std::get<1>(GetParam());
   const RenderResult r = render_scene(shipped_scene("furnace-sphere.gltf"), s);
   const double expected = c.max_depth ? finite_series(c.max_depth) : kLe / (1 - kRho);
   EXPECT_EQ(r.dropped_samples, 0u);
@@ -53,13 +55,19 @@ TEST_P(Furnace, ConvergesToTheAnalyticRadiance) {
 
 INSTANTIATE_TEST_SUITE_P(
     Sphere, Furnace,
-    ::testing::Values(FurnaceCase{"bsdf_only_unbounded", false, false, true, 0},
+    ::testing::Combine(::testing::Values(FurnaceCase{"bsdf_only_unbounded", false, false, true, 0},
                       FurnaceCase{"nee_mis_unbounded", true, true, true, 0},
                       FurnaceCase{"nee_without_mis_unbounded", true, false, true, 0},
                       FurnaceCase{"emitters_only_depth1", true, true, false, 1},
                       FurnaceCase{"direct_depth2", true, true, false, 2},
                       FurnaceCase{"bsdf_only_depth4", false, false, false, 4},
                       FurnaceCase{"nee_mis_depth5", true, true, false, 5}),
-    [](const auto& info) { return std::string(info.param.name); });
+                       ::testing::Values("naive", "wavefront", "sc", "rg", "sc+rg")),
+    [](const auto& info) {
+      std::string method = std::get<1>(info.param);
+      for (char& ch : method)
+        if (ch == '+') ch = '_';
+      return std::string(std::get<0>(info.param).name) + "_" + method;
+    });
 
 }  // namespace

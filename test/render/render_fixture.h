@@ -22,7 +22,7 @@ inline RenderResult render_scene(const std::filesystem::path& path, const Render
   const ClContext cl(select_device(""));
   const ProgramCache cache(ProgramCache::default_directory());
   const DeviceScene scene = upload_scene(cl, prepared.tree, prepared.tables);
-  return render_naive(cl, cache, scene, prepared.camera, settings);
+  return render(cl, cache, scene, prepared.camera, settings);
 }
 
 // Mean over pixels and the standard error of that mean, from the spread of per-pixel estimates

@@ -1,0 +1,47 @@
+#include "runtime/render/methods.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "runtime/cl/cl_error.h"
+#include "runtime/render/render_params.h"
+#include "runtime/util/error.h"
+
+namespace cohort {
+
+const std::vector<Method>& methods() {
+  static const std::vector<Method> table = {
+      {"naive", "one megakernel, a work item per pixel (the reference)", false, false, false},
+      {"wavefront", "wavefront stages over the whole pool, refilled when it drains", true, false, false},
+      {"sc", "wavefront with stream compaction of live paths after every bounce", true, true, false},
+      {"rg", "wavefront with path regeneration into free slots after every bounce", true, false, true},
+      {"sc+rg", "stream compaction and path regeneration", true, true, true},
+  };
+  return table;
+}
+
+std::vector<std::string> method_names() {
+  std::vector<std::string> names;
+  for (const auto& m : methods()) names.emplace_back(m.name);
+  return names;
+}
+
+const Method& find_method(const std::string& name) {
+  for (const auto& m : methods())
+    if (name == m.name) return m;
+  throw InputError(fmt::format("--method {}: unknown method (choose from {})", name, fmt::join(method_names(), ", ")));
+}
+
+RenderResult render(const ClContext& cl, const ProgramCache& cache, const DeviceScene& scene, const SceneCamera& camera,
+                    const RenderSettings& settings, const ProgressCallback& progress) {
+  const Method& method = find_method(settings.method);
+  const RenderParams params = make_render_params(scene, camera, settings);
+  try {
+    return method.wavefront ? render_wavefront(method, cl, cache, scene, params, settings, progress)
+                            : render_naive(cl, cache, scene, params, settings, progress);
+  } catch (const cl::Error& e) {
+    throw DeviceError(describe(e, fmt::format("--method {}", method.name)));
+  }
+}
+
+}  // namespace cohort

@@ -1,0 +1,30 @@
+// The rendering methods: the megakernel and the wavefront variants, which differ only in two
+// scheduling choices (see kernels/wavefront.cl).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "runtime/render/renderer.h"
+
+namespace cohort {
+
+struct Method {
+  const char* name;
+  const char* description;
+  bool wavefront;   // false: the NAIVE megakernel
+  bool compact;     // stream compaction: launches cover a queue of live paths only (Wald 2011)
+  bool regenerate;  // path regeneration: free slots take new paths after every bounce (Novak 2010)
+};
+
+const std::vector<Method>& methods();
+std::vector<std::string> method_names();
+const Method& find_method(const std::string& name);  // throws InputError for an unknown name
+
+RenderResult render_naive(const ClContext& cl, const ProgramCache& cache, const DeviceScene& scene,
+                          const RenderParams& params, const RenderSettings& settings, const ProgressCallback& progress);
+RenderResult render_wavefront(const Method& method, const ClContext& cl, const ProgramCache& cache,
+                              const DeviceScene& scene, const RenderParams& params, const RenderSettings& settings,
+                              const ProgressCallback& progress);
+
+}  // namespace cohort

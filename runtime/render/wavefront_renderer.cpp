@@ -1,0 +1,150 @@
+// The wavefront scheduler: a pool of path slots and one loop of small kernels per bounce
+// (kernels/wavefront.cl). `compact` and `regenerate` are the only differences between methods.
+#include <algorithm>
+#include <array>
+
+#include "runtime/cl/kernel_program.h"
+#include "runtime/render/launch_log.h"
+#include "runtime/render/methods.h"
+#include "runtime/render/pass_driver.h"
+
+namespace cohort {
+namespace {
+
+constexpr std::uint32_t kItemNone = 0xffffffffu;
+enum Counter { kNextItem = 0, kQueue = 1, kShadow = 2, kCounterCount = 3 };
+
+// Device bytes per slot: path state (5 float4 + 3 uint), hit, shadow ray (3 float4), two queues.
+constexpr std::size_t kPathStateBytes = 5 * 16 + 3 * 4 + sizeof(HitOut) + 3 * 16 + 2 * 4;
+
+// Enough paths in flight to fill the device: a few thousand per compute unit on a GPU, fewer on
+// a CPU whose "compute units" are cores; never more than a quarter of the device memory.
+std::uint32_t choose_pool_size(const ClContext& cl, const RenderSettings& s, std::uint64_t items) {
+  std::uint64_t slots = s.wavefront_size;
+  if (slots == 0) {
+    const std::uint64_t per_cu = cl.device.is_gpu ? 8192 : 32768;
+    slots = std::clamp<std::uint64_t>(per_cu * cl.device.compute_units, 65536, 1u << 21);
+    slots = std::min(slots, cl.device.global_memory / 4 / kPathStateBytes);
+  }
+  slots = std::min<std::uint64_t>(slots, items);
+  return static_cast<std::uint32_t>(std::max<std::uint64_t>(slots, 1));
+}
+
+struct Pool {
+  std::uint32_t slots = 0;
+  cl::Buffer org, dir, throughput, radiance, prev, item, segment, status, hits;
+  cl::Buffer shadow_org, shadow_dir, shadow_contribution, shadow_queue, queue, counters;
+
+  Pool(const ClContext& cl, std::uint32_t n) : slots(n) {
+    const std::size_t f4 = std::size_t(n) * 16, u = std::size_t(n) * 4;
+    org = cl.buffer("path origins", f4);
+    dir = cl.buffer("path directions", f4);
+    throughput = cl.buffer("path throughput", f4);
+    radiance = cl.buffer("path radiance", f4);
+    prev = cl.buffer("path previous vertex", f4);
+    const std::vector<std::uint32_t> free_slots(n, kItemNone);
+    item = cl.buffer("path work items", u, free_slots.data());
+    segment = cl.buffer("path segments", u);
+    status = cl.buffer("path status", u);
+    hits = cl.buffer("hits", std::size_t(n) * sizeof(HitOut));
+    shadow_org = cl.buffer("shadow origins", f4);
+    shadow_dir = cl.buffer("shadow directions", f4);
+    shadow_contribution = cl.buffer("shadow contributions", f4);
+    shadow_queue = cl.buffer("shadow queue", u);
+    queue = cl.buffer("path queue", u);
+    const std::array<std::uint32_t, kCounterCount> zero{};
+    counters = cl.buffer("queue counters", sizeof(zero), zero.data());
+  }
+};
+
+template <class... Args>
+void set_args(cl::Kernel& k, const Args&... args) {
+  cl_uint i = 0;
+  (k.setArg(i++, args), ...);
+}
+
+}  // namespace
+
+RenderResult render_wavefront(const Method& method, const ClContext& cl, const ProgramCache& cache,
+                              const DeviceScene& scene, const RenderParams& params, const RenderSettings& settings,
+                              const ProgressCallback& progress) {
+  const ProgramBuild build = build_kernel_program(cl, cache, "wavefront.cl");
+  const std::uint32_t pixels = settings.width * settings.height;
+  // a pass holds one result per (pixel, sample): bound it to ~64 MiB of results
+  const std::uint32_t max_per_pass = std::max<std::uint32_t>(1, (1u << 22) / std::max<std::uint32_t>(pixels, 1));
+  const std::uint64_t max_items = std::uint64_t(pixels) * std::min(max_per_pass, std::max<std::uint32_t>(settings.spp, 1));
+  Pool pool(cl, choose_pool_size(cl, settings, max_items));
+  cl::Buffer results = cl.buffer("pass results", std::size_t(pixels) * max_per_pass * 16);
+  const cl_uint use_queue = method.compact ? 1 : 0;
+
+  cl::Kernel generate(build.program, "wf_generate"), extend(build.program, "wf_extend"),
+      shade(build.program, "wf_shade"), shadow(build.program, "wf_shadow"), finish(build.program, "wf_finish"),
+      accumulate(build.program, "wf_accumulate");
+  std::vector<IterationStats> iterations;
+
+  auto pass = [&](const PassBuffers& b, const RenderParams& p) {
+    const std::uint32_t items = pixels * p.samples_per_pass;
+    const auto path_args = std::tuple(pool.org, pool.dir, pool.throughput, pool.radiance, pool.prev, pool.item,
+                                      pool.segment, pool.status);
+    const auto [o, d, t, r, pv, it, sg, st] = path_args;
+    set_args(generate, b.params, o, d, t, r, pv, it, sg, st, pool.counters, pool.queue, use_queue, pool.slots, items);
+    set_args(finish, o, d, t, r, pv, it, sg, st, results, pool.counters, pool.queue, use_queue, pool.slots);
+    set_args(shadow, b.params, scene.nodes, scene.leaf_triangles, scene.triangles, scene.triangle_material,
+             scene.materials, scene.emitters, r, pool.shadow_org, pool.shadow_dir, pool.shadow_contribution,
+             pool.shadow_queue, pool.counters);
+    set_args(accumulate, b.params, results, b.film, b.dropped);
+
+    std::array<std::uint32_t, kCounterCount> counters{};
+    cl.queue.enqueueWriteBuffer(pool.counters, CL_FALSE, 0, sizeof(counters), counters.data());
+    PassOutput out;
+    LaunchLog log;
+    std::uint64_t remaining = items;
+    std::uint32_t live = 0;
+    for (std::size_t iteration = 0;; ++iteration) {
+      // free slots take new paths: every bounce with regeneration, else only when the pool drained
+      if (remaining > 0 && (method.regenerate || live == 0)) {
+        log.launch(cl, generate, "generate", pool.slots);
+        const std::uint64_t started = std::min<std::uint64_t>(pool.slots - live, remaining);
+        remaining -= started;
+        live += static_cast<std::uint32_t>(started);
+      }
+      if (live == 0) break;
+      const cl_uint count = method.compact ? live : pool.slots;
+      set_args(extend, b.params, scene.nodes, scene.leaf_triangles, scene.triangles, scene.triangle_material,
+               scene.materials, scene.emitters, o, d, t, r, pv, it, sg, st, pool.hits, pool.queue, use_queue, count);
+      set_args(shade, b.params, scene.nodes, scene.leaf_triangles, scene.triangles, scene.triangle_material,
+               scene.materials, scene.emitters, o, d, t, r, pv, it, sg, st, pool.hits, pool.queue, use_queue, count,
+               pool.shadow_org, pool.shadow_dir, pool.shadow_contribution, pool.shadow_queue, pool.counters);
+      log.launch(cl, extend, "extend", count);
+      log.launch(cl, shade, "shade", count);
+      log.launch(cl, shadow, "shadow", live);  // at most one shadow ray per live path
+      const std::uint32_t zero = 0;
+      cl.queue.enqueueWriteBuffer(pool.counters, CL_FALSE, kQueue * 4, 4, &zero);
+      log.launch(cl, finish, "finish", pool.slots);
+      cl.queue.enqueueReadBuffer(pool.counters, CL_TRUE, 0, sizeof(counters), counters.data());
+      cl.queue.enqueueWriteBuffer(pool.counters, CL_FALSE, kShadow * 4, 4, &zero);
+
+      if (iterations.size() <= iteration) iterations.resize(iteration + 1);
+      IterationStats& stats = iterations[iteration];
+      stats.live_paths += live;
+      stats.shadow_rays += counters[kShadow];
+      const auto seconds = log.collect();
+      add_seconds(stats.kernel_seconds, seconds);
+      add_seconds(out.kernel_seconds, seconds);
+      out.rays += live + counters[kShadow];
+      live = counters[kQueue];
+    }
+    log.launch(cl, accumulate, "accumulate", pixels);
+    add_seconds(out.kernel_seconds, log.collect());
+    return out;
+  };
+  RenderResult result = drive_passes(cl, params, settings, max_per_pass, progress, pass);
+  result.compile_seconds = build.seconds;
+  result.compile_from_cache = build.from_cache;
+  result.iterations = std::move(iterations);
+  result.wavefront_size = pool.slots;
+  result.path_state_bytes = kPathStateBytes;
+  return result;
+}
+
+}  // namespace cohort

@@ -1,0 +1,102 @@
+// Every wavefront method traces the reference paths and adds them to the film in the same order,
+// so it must give the NAIVE image bit for bit on the same device.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+
+#include "render_fixture.h"
+#include "runtime/render/methods.h"
+#include "runtime/render/workloads.h"
+#include "runtime/util/error.h"
+
+using namespace cohort;
+using namespace cohort::test;
+
+namespace {
+
+struct AgreementCase {
+  const char* method;
+  std::uint32_t wavefront_size;  // 0: the device default; small odd pools force many refills
+};
+
+class MethodAgreement : public ::testing::TestWithParam<AgreementCase> {};
+
+void expect_bitwise_equal(const RenderResult& reference, const RenderResult& other, const char* what) {
+  ASSERT_EQ(reference.image.rgb.size(), other.image.rgb.size());
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < reference.image.rgb.size(); ++i)
+    if (std::memcmp(&reference.image.rgb[i], &other.image.rgb[i], sizeof(float)) != 0) ++differing;
+  EXPECT_EQ(differing, 0u) << what << ": values differ from the naive image";
+  EXPECT_EQ(reference.rays, other.rays) << what << ": a different number of rays";
+  EXPECT_EQ(reference.dropped_samples, other.dropped_samples);
+}
+
+TEST_P(MethodAgreement, CornellBoxBitForBit) {
+  RenderSettings s;
+  s.width = 40;
+  s.height = 30;
+  s.spp = 6;
+  s.seed = 11;
+  s.rr_depth = 2;  // paths of very different lengths: regeneration and compaction have work to do
+  const auto path = shipped_scene("cornell-box.gltf");
+  const RenderResult reference = render_scene(path, s);
+  s.method = GetParam().method;
+  s.wavefront_size = GetParam().wavefront_size;
+  const RenderResult other = render_scene(path, s);
+  expect_bitwise_equal(reference, other, GetParam().method);
+  if (GetParam().wavefront_size) EXPECT_EQ(other.wavefront_size, GetParam().wavefront_size);
+  EXPECT_FALSE(other.iterations.empty());
+}
+
+TEST_P(MethodAgreement, SharedModelUnderWhiteSkyBitForBit) {
+  const std::filesystem::path model = std::filesystem::path(COHORT_SHARED_SCENES) / "bunny/bun_zipper_res3.ply";
+  if (!std::filesystem::exists(model)) GTEST_SKIP() << "../shared/scenes is missing";
+  PreparedScene prepared = prepare_scene(model);
+  RenderSettings s;
+  s.width = s.height = 32;
+  s.spp = 3;
+  apply_white_sky(prepared, s);
+  const ClContext cl(select_device(""));
+  const ProgramCache cache(ProgramCache::default_directory());
+  const DeviceScene scene = upload_scene(cl, prepared.tree, prepared.tables);
+  const RenderResult reference = render(cl, cache, scene, prepared.camera, s);
+  s.method = GetParam().method;
+  s.wavefront_size = GetParam().wavefront_size;
+  const RenderResult other = render(cl, cache, scene, prepared.camera, s);
+  expect_bitwise_equal(reference, other, GetParam().method);
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, MethodAgreement,
+                         ::testing::Values(AgreementCase{"wavefront", 0}, AgreementCase{"sc", 0},
+                                           AgreementCase{"rg", 0}, AgreementCase{"sc+rg", 0},
+                                           AgreementCase{"wavefront", 333}, AgreementCase{"sc", 1000},
+                                           AgreementCase{"rg", 97}, AgreementCase{"sc+rg", 1}),
+                         [](const auto& info) {
+                           std::string name = info.param.method;
+                           for (char& c : name)
+                             if (c == '+') c = '_';
+                           return name + "_pool" + std::to_string(info.param.wavefront_size);
+                         });
+
+TEST(Methods, UnknownMethodIsAnInputError) {
+  EXPECT_THROW(find_method("teleport"), InputError);
+  EXPECT_EQ(method_names().size(), methods().size());
+}
+
+TEST(Methods, StreamCompactionLaunchesOnlyLivePaths) {
+  // with compaction the per-bounce live counts fall; every bounce's rays are at most the pool size
+  RenderSettings s;
+  s.width = s.height = 24;
+  s.spp = 4;
+  s.rr_depth = 2;
+  s.method = "sc";
+  const RenderResult r = render_scene(shipped_scene("cornell-box.gltf"), s);
+  ASSERT_GE(r.iterations.size(), 3u);
+  EXPECT_GT(r.iterations.front().live_paths, r.iterations.back().live_paths);
+  std::uint64_t rays = 0;
+  for (const auto& it : r.iterations) rays += it.live_paths + it.shadow_rays;
+  EXPECT_EQ(rays, r.rays);
+}
+
+}  // namespace
