@@ -38,53 +38,87 @@ CO_INLINE int kd_intersect_leaf(const KdTreeView* tree, KdNode leaf, const Water
   return 0;
 }
 
-/* Closest hit (any_hit = 0) or any hit (any_hit = 1) in (tmin, tmax). A miss has triangle HIT_NONE. */
-CO_INLINE HitOut kd_trace(const KdTreeView* tree, co_vec3 org, co_vec3 dir, float tmin, float tmax,
-                          int any_hit) {
+/* One step at an inner node: picks the next node and pushes the far child when the ray needs
+ * both. Returns the step's partial-traversal bits (Wang & Deng, Figure 1): bit 1 is set when the
+ * ray goes to the left child next, bit 0 when it pushes the other child. Every traversal (full,
+ * partial in local memory, resumed) takes its inner steps through this one function, so they all
+ * round the same way and a resumed traversal finds exactly the hit of a full one. */
+CO_INLINE uint32_t kd_inner_step(KdNode node, co_vec3 org, co_vec3 dir, co_vec3 inv_dir, uint32_t* node_index,
+                                 float* t0, float* t1, KdStackEntry* stack, int* sp) {
+  uint32_t axis = kd_axis(node);
+  float split = co_as_float(node.word1);
+  float o = v3_get(org, axis), d = v3_get(dir, axis);
+  float t_plane = (split - o) * v3_get(inv_dir, axis);
+  int below_first = (o < split) || (o == split && d <= 0.0f);
+  uint32_t near_child = kd_left_child(node) + (below_first ? 0u : 1u);
+  uint32_t far_child = kd_left_child(node) + (below_first ? 1u : 0u);
+  /* The plane distance and the watertight hit distance round differently, so a hit on the
+   * split plane can fall just outside the cell the plane bounds. Widening the decision and
+   * both intervals by a few ulps keeps such hits (on shared edges and vertices that lie in
+   * split planes) inside a visited cell. !(t_plane > 0) catches the NaN of a ray in the plane. */
+  float eps = 4e-6f * fmax(fabs(t_plane), fabs(*t1));
+  uint32_t next, pushed = 0u;
+  if (t_plane > *t1 + eps || !(t_plane > 0.0f)) {
+    next = near_child;
+  } else if (t_plane < *t0 - eps) {
+    next = far_child;
+  } else {
+    stack[*sp].node = far_child; stack[*sp].tmin = fmax(*t0, t_plane - eps); stack[*sp].tmax = *t1;
+    *sp += 1;
+    next = near_child;
+    *t1 = fmin(*t1, t_plane + eps);
+    pushed = 1u;
+  }
+  *node_index = next;
+  return ((next == kd_left_child(node)) ? 2u : 0u) | pushed;
+}
+
+/* Clips the ray to the tree's box; 0 when it misses. */
+CO_INLINE int kd_begin(const KdTreeView* tree, co_vec3 org, co_vec3 inv_dir, float tmin, float tmax, float* t0,
+                       float* t1) {
+  *t0 = tmin;
+  *t1 = tmax;
+  return intersect_box(org, inv_dir, tree->lo, tree->hi, t0, t1);
+}
+
+CO_INLINE co_vec3 kd_inverse(co_vec3 dir) { return v3(1.0f / dir.x, 1.0f / dir.y, 1.0f / dir.z); }
+
+/* Continues a traversal from `node_index` with cell interval [t0, t1] and `sp` stacked cells.
+ * `steps`, when not null, counts nodes visited (the SIMD efficiency figure). */
+CO_INLINE HitOut kd_resume(const KdTreeView* tree, co_vec3 org, co_vec3 dir, float tmin, float tmax, int any_hit,
+                           uint32_t node_index, float t0, float t1, KdStackEntry* stack, int sp, uint32_t* steps) {
   HitOut hit;
   hit.t = tmax; hit.u = 0.0f; hit.v = 0.0f; hit.triangle = HIT_NONE;
-  co_vec3 inv_dir = v3(1.0f / dir.x, 1.0f / dir.y, 1.0f / dir.z);
-  float t0 = tmin, t1 = tmax;
-  if (!intersect_box(org, inv_dir, tree->lo, tree->hi, &t0, &t1)) return hit;
-
+  co_vec3 inv_dir = kd_inverse(dir);
   WatertightRay wr = watertight_ray(org, dir);
-  KdStackEntry stack[KD_MAX_DEPTH];
-  int sp = 0;
-  uint32_t node_index = 0;
+  uint32_t visited = 0u;
   for (;;) {
     if (hit.t < t0) break;  /* the closest hit lies before this cell */
     KdNode node = tree->nodes[node_index];
+    ++visited;
     if (!kd_is_leaf(node)) {
-      uint32_t axis = kd_axis(node);
-      float split = co_as_float(node.word1);
-      float o = v3_get(org, axis), d = v3_get(dir, axis);
-      float t_plane = (split - o) * v3_get(inv_dir, axis);
-      int below_first = (o < split) || (o == split && d <= 0.0f);
-      uint32_t near_child = kd_left_child(node) + (below_first ? 0u : 1u);
-      uint32_t far_child = kd_left_child(node) + (below_first ? 1u : 0u);
-      /* The plane distance and the watertight hit distance round differently, so a hit on the
-       * split plane can fall just outside the cell the plane bounds. Widening the decision and
-       * both intervals by a few ulps keeps such hits (on shared edges and vertices that lie in
-       * split planes) inside a visited cell. !(t_plane > 0) catches the NaN of a ray in the plane. */
-      float eps = 4e-6f * fmax(fabs(t_plane), fabs(t1));
-      if (t_plane > t1 + eps || !(t_plane > 0.0f)) {
-        node_index = near_child;
-      } else if (t_plane < t0 - eps) {
-        node_index = far_child;
-      } else {
-        stack[sp].node = far_child; stack[sp].tmin = fmax(t0, t_plane - eps); stack[sp].tmax = t1;
-        ++sp;
-        node_index = near_child;
-        t1 = fmin(t1, t_plane + eps);
-      }
+      kd_inner_step(node, org, dir, inv_dir, &node_index, &t0, &t1, stack, &sp);
       continue;
     }
-    if (kd_intersect_leaf(tree, node, &wr, tmin, &hit, any_hit)) return hit;
+    if (kd_intersect_leaf(tree, node, &wr, tmin, &hit, any_hit)) break;
     if (sp == 0) break;
     --sp;
     node_index = stack[sp].node; t0 = stack[sp].tmin; t1 = stack[sp].tmax;
   }
+  if (steps) *steps = visited;
   return hit;
+}
+
+/* Closest hit (any_hit = 0) or any hit (any_hit = 1) in (tmin, tmax). A miss has triangle HIT_NONE. */
+CO_INLINE HitOut kd_trace(const KdTreeView* tree, co_vec3 org, co_vec3 dir, float tmin, float tmax, int any_hit) {
+  float t0, t1;
+  if (!kd_begin(tree, org, kd_inverse(dir), tmin, tmax, &t0, &t1)) {
+    HitOut miss;
+    miss.t = tmax; miss.u = 0.0f; miss.v = 0.0f; miss.triangle = HIT_NONE;
+    return miss;
+  }
+  KdStackEntry stack[KD_MAX_DEPTH];
+  return kd_resume(tree, org, dir, tmin, tmax, any_hit, 0u, t0, t1, stack, 0, 0);
 }
 
 #endif
