@@ -5,53 +5,7 @@
  * calls the functions the NAIVE megakernel calls, in the same order per path, so every method
  * computes the reference radiance bit for bit; results land per work item and are added to the
  * film in sample order by wf_accumulate. */
-#include "common/pathtrace.h"
-
-#define ITEM_NONE 0xffffffffu
-
-/* counters[] */
-#define COUNTER_NEXT_ITEM 0
-#define COUNTER_QUEUE 1   /* live slots (and the length of the compacted queue) */
-#define COUNTER_SHADOW 2  /* shadow rays queued this bounce */
-
-#define PATH_PARAMS                                                                                  \
-  __global float4 *path_org, __global float4 *path_dir, __global float4 *path_throughput,            \
-      __global float4 *path_radiance, __global float4 *path_prev, __global uint *path_item,          \
-      __global uint *path_segment, __global uint *path_status
-
-inline PathState load_path(PATH_PARAMS, uint slot) {
-  PathState st;
-  st.org = v3_from4(path_org[slot]);
-  st.dir = v3_from4(path_dir[slot]);
-  st.throughput = v3_from4(path_throughput[slot]);
-  st.radiance = v3_from4(path_radiance[slot]);
-  float4 prev = path_prev[slot];
-  st.prev_pos = v3_from4(prev);
-  st.prev_bsdf_pdf = prev.w;
-  st.segment = path_segment[slot];
-  st.status = path_status[slot];
-  return st;
-}
-
-inline float4 to4(co_vec3 v, float w) { return (float4)(v.x, v.y, v.z, w); }
-
-inline void store_path(PATH_PARAMS, uint slot, const PathState* st) {
-  path_org[slot] = to4(st->org, 0.0f);
-  path_dir[slot] = to4(st->dir, 0.0f);
-  path_throughput[slot] = to4(st->throughput, 0.0f);
-  path_radiance[slot] = to4(st->radiance, 0.0f);
-  path_prev[slot] = to4(st->prev_pos, st->prev_bsdf_pdf);
-  path_segment[slot] = st->segment;
-  path_status[slot] = st->status;
-}
-
-#define PATH_ARGS path_org, path_dir, path_throughput, path_radiance, path_prev, path_item, path_segment, path_status
-
-/* The slot a launch index stands for: the compacted queue's entry, or the index itself. */
-inline uint slot_of(uint i, __global const uint* queue, uint use_queue) { return use_queue ? queue[i] : i; }
-
-inline uint pixel_of(uint item, const RenderParams* p) { return item % (p->width * p->height); }
-inline uint sample_of(uint item, const RenderParams* p) { return p->sample_offset + item / (p->width * p->height); }
+#include "wavefront_path.h"
 
 /* Free slots take the next work items (pixel, sample) of the pass; in queue mode they join the
  * queue of live slots. */
@@ -70,14 +24,18 @@ __kernel void wf_generate(__constant RenderParams* params, PATH_PARAMS, __global
 
 /* Closest hit of every live path's next ray. */
 __kernel void wf_extend(SCENE_KERNEL_PARAMS, PATH_PARAMS, __global HitOut* hits, __global const uint* queue,
-                        uint use_queue, uint count) {
+                        uint use_queue, uint count, __global uint* steps) {
   uint i = get_global_id(0);
   if (i >= count) return;
   uint slot = slot_of(i, queue, use_queue);
-  if (path_item[slot] == ITEM_NONE || path_status[slot] != PATH_ALIVE) return;
-  RenderParams p = *params;
-  SceneView s = SCENE_VIEW(p);
-  hits[slot] = kd_trace(&s.tree, v3_from4(path_org[slot]), v3_from4(path_dir[slot]), 0.0f, INFINITY, 0);
+  uint visited = 0u;
+  if (path_item[slot] != ITEM_NONE && path_status[slot] == PATH_ALIVE) {
+    RenderParams p = *params;
+    SceneView s = SCENE_VIEW(p);
+    hits[slot] = kd_trace_steps(&s.tree, v3_from4(path_org[slot]), v3_from4(path_dir[slot]), 0.0f, INFINITY, 0,
+                                &visited);
+  }
+  steps[i] = visited;  /* nodes visited per launch index: the SIMD efficiency figure */
 }
 
 /* Emission, light sample (queued as a shadow ray), Russian roulette and the next direction. */
@@ -154,4 +112,21 @@ __kernel void wf_accumulate(__constant RenderParams* params, __global const floa
   }
   film[pixel] = acc;
   if (dropped) atomic_add(dropped_samples, dropped);
+}
+
+/* SIMD efficiency of a traversal launch (Aila & Laine 2009): for each group of 32 consecutive
+ * launch indices, mean over max of the nodes each visited; summed in units of 1e-4 with the
+ * number of groups, so the host reads two counters instead of every step count. */
+__kernel void wf_simd_efficiency(__global const uint* steps, uint count, __global uint* counters) {
+  uint group = get_global_id(0);
+  uint first = group * 32u;
+  if (first >= count) return;
+  uint last = min(first + 32u, count), sum = 0u, most = 0u;
+  for (uint i = first; i < last; ++i) {
+    sum += steps[i];
+    most = max(most, steps[i]);
+  }
+  if (most == 0u) return;
+  atomic_add(&counters[COUNTER_SIMD_SUM], (uint)(10000.0f * (float)sum / (float)(most * (last - first)) + 0.5f));
+  atomic_inc(&counters[COUNTER_SIMD_GROUPS]);
 }

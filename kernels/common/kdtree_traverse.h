@@ -109,16 +109,23 @@ CO_INLINE HitOut kd_resume(const KdTreeView* tree, co_vec3 org, co_vec3 dir, flo
   return hit;
 }
 
-/* Closest hit (any_hit = 0) or any hit (any_hit = 1) in (tmin, tmax). A miss has triangle HIT_NONE. */
-CO_INLINE HitOut kd_trace(const KdTreeView* tree, co_vec3 org, co_vec3 dir, float tmin, float tmax, int any_hit) {
+/* Closest hit (any_hit = 0) or any hit (any_hit = 1) in (tmin, tmax). A miss has triangle HIT_NONE.
+ * `steps`, when not null, receives the number of nodes visited. */
+CO_INLINE HitOut kd_trace_steps(const KdTreeView* tree, co_vec3 org, co_vec3 dir, float tmin, float tmax, int any_hit,
+                                uint32_t* steps) {
   float t0, t1;
   if (!kd_begin(tree, org, kd_inverse(dir), tmin, tmax, &t0, &t1)) {
     HitOut miss;
     miss.t = tmax; miss.u = 0.0f; miss.v = 0.0f; miss.triangle = HIT_NONE;
+    if (steps) *steps = 0u;
     return miss;
   }
   KdStackEntry stack[KD_MAX_DEPTH];
-  return kd_resume(tree, org, dir, tmin, tmax, any_hit, 0u, t0, t1, stack, 0, 0);
+  return kd_resume(tree, org, dir, tmin, tmax, any_hit, 0u, t0, t1, stack, 0, steps);
+}
+
+CO_INLINE HitOut kd_trace(const KdTreeView* tree, co_vec3 org, co_vec3 dir, float tmin, float tmax, int any_hit) {
+  return kd_trace_steps(tree, org, dir, tmin, tmax, any_hit, 0);
 }
 
 #endif

@@ -12,6 +12,7 @@ typedef int int32_t;
 typedef ulong uint64_t;
 #define CO_GLOBAL __global
 #define CO_CONSTANT __constant
+#define CO_LOCAL __local
 #define CO_INLINE inline
 #define CO_ALIGN(n) __attribute__((aligned(n)))
 #define CO_STATIC_ASSERT(cond, msg)
@@ -28,6 +29,7 @@ using std::fmin;
 using std::sqrt;
 #define CO_GLOBAL
 #define CO_CONSTANT
+#define CO_LOCAL
 #define CO_INLINE inline
 #define CO_ALIGN(n) alignas(n)
 #define CO_STATIC_ASSERT(cond, msg) static_assert(cond, msg)

@@ -94,6 +94,24 @@ typedef struct RenderParams {
 } RenderParams;
 CO_STATIC_ASSERT(sizeof(RenderParams) == 160, "RenderParams must stay 160 bytes");
 
+/* ---- Coherence code (Wang & Deng, section 3) -------------------------------------------------
+ * A 64-bit sort key packing three parts; each part's width and position are set on the host
+ * (`--code`). Origin and direction cells are Morton-interleaved so that nearby cells get nearby
+ * codes. */
+typedef struct CodeParams {
+  uint32_t origin_bits;      /* per axis, 0..10 */
+  uint32_t origin_shift;
+  uint32_t origin_adaptive;  /* 1: cells bounded by per-axis quantiles of triangle centroids */
+  uint32_t pth_levels;       /* 2 bits per level, 0..16 */
+  uint32_t pth_shift;
+  uint32_t direction_bits;   /* per octahedral coordinate, 0..16 */
+  uint32_t direction_shift;
+  uint32_t key_bits;         /* bits the radix sort must look at */
+  co_float4 lo;              /* uniform origin grid */
+  co_float4 hi;
+} CodeParams;
+CO_STATIC_ASSERT(sizeof(CodeParams) == 64, "CodeParams must stay 64 bytes");
+
 /* ---- Rays and hits for the traversal-only kernels -------------------------------------------- */
 typedef struct RayIn {
   co_float4 origin;  /* w = tmin */

@@ -28,6 +28,11 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
       ->check(CLI::IsMember(method_names()));
   cmd.add_option("--wavefront-size", r.settings.wavefront_size,
                  "Path slots of the wavefront methods (default: chosen from the device)");
+  cmd.add_option("--code", r.settings.code,
+                 "Coherence code of hash/pth, most significant part first (default origin:8,pth:10,dir:8)");
+  cmd.add_option("--pth-levels", r.settings.pth_levels,
+                 "KD-tree levels pth walks in local memory (default: 10, fewer if the tree or local memory is smaller)")
+      ->check(CLI::Range(1, 16));
   cmd.add_option("--time", r.settings.time_limit, "Stop after this many seconds of rendering")
       ->check(CLI::NonNegativeNumber);
   cmd.add_option("--env", r.environment, "Constant environment radiance: R,G,B or one value");

@@ -49,11 +49,16 @@ nlohmann::json stats_json(const RenderCommand& cmd, const DeviceInfo& device, co
     kernels[name] = {{"seconds", seconds}, {"rays_per_second", seconds > 0 ? double(r.rays) / seconds : 0.0}};
   j["kernels"] = kernels;
   if (r.wavefront_size) {
-    j["wavefront"] = {{"slots", r.wavefront_size}, {"bytes_per_path", r.path_state_bytes}};
+    j["wavefront"] = {{"slots", r.wavefront_size}, {"bytes_per_path", r.path_state_bytes},
+                      {"simd_efficiency", r.simd_efficiency}};
+    if (!r.code_layout.empty())
+      j["coherence"] = {{"code", r.code_layout}, {"pth_levels", r.pth_levels}, {"subtree_nodes", r.pth_subtree_nodes}};
     nlohmann::json bounces = nlohmann::json::array();
     for (const auto& it : r.iterations)
       bounces.push_back({{"live_paths", it.live_paths}, {"extension_rays", it.live_paths},
-                         {"shadow_rays", it.shadow_rays}, {"kernel_seconds", it.kernel_seconds}});
+                         {"shadow_rays", it.shadow_rays},
+                         {"simd_efficiency", it.simd_groups ? it.simd_efficiency_sum / double(it.simd_groups) : 0.0},
+                         {"kernel_seconds", it.kernel_seconds}});
     j["bounces"] = bounces;
   }
   return j;
@@ -103,9 +108,13 @@ int run_render(const RenderCommand& cmd_in) {
     fmt::print("kernel compile: {:.3f}s ({})\n", result.compile_seconds, result.compile_from_cache ? "warm, from cache" : "cold");
     for (const auto& [name, seconds] : result.kernel_seconds) fmt::print("kernel {}: {:.3f}s\n", name, seconds);
     if (result.wavefront_size)
-      fmt::print("wavefront: {} path slots x {} bytes = {:.1f} MiB, {} bounces\n", result.wavefront_size,
-                 result.path_state_bytes, result.wavefront_size * result.path_state_bytes / 1048576.0,
-                 result.iterations.size());
+      fmt::print("wavefront: {} path slots x {} bytes = {:.1f} MiB, {} bounces, SIMD efficiency {:.3f}\n",
+                 result.wavefront_size, result.path_state_bytes,
+                 result.wavefront_size * result.path_state_bytes / 1048576.0, result.iterations.size(),
+                 result.simd_efficiency);
+    if (!result.code_layout.empty())
+      fmt::print("coherence code: {}; PTH subtree {} levels, {} nodes\n", result.code_layout, result.pth_levels,
+                 result.pth_subtree_nodes);
   }
   if (result.dropped_samples)
     fmt::print(stderr, "warning: {} NaN or infinite samples were dropped\n", result.dropped_samples);

@@ -1,5 +1,7 @@
 #include "runtime/render/device_scene.h"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "runtime/cl/cl_error.h"
@@ -12,6 +14,33 @@ co_float4 to_float4(const glm::vec3& v, float w = 0.f) { return co_float4{v.x, v
 template <class T>
 std::size_t bytes_of(const std::vector<T>& v) {
   return v.size() * sizeof(T);
+}
+
+// Nodes are breadth-first, so each depth is a contiguous range; walk the tree once to find them.
+std::vector<std::uint32_t> level_starts(const KdTree& tree) {
+  std::vector<std::uint32_t> depth(tree.nodes.size(), 0);
+  std::vector<std::uint32_t> starts{0};
+  for (std::uint32_t i = 0; i < tree.nodes.size(); ++i) {
+    if (depth[i] + 1 > starts.size()) starts.push_back(i);
+    const KdNode n = tree.nodes[i];
+    if (!kd_is_leaf(n)) depth[kd_left_child(n)] = depth[kd_left_child(n) + 1] = depth[i] + 1;
+  }
+  starts.push_back(static_cast<std::uint32_t>(tree.nodes.size()));
+  return starts;
+}
+
+std::array<std::vector<float>, 3> centroid_samples(const KdTree& tree) {
+  constexpr std::size_t kMaxSamples = 1 << 16;  // quantiles of a 64K sample are plenty for 1K cells
+  const std::size_t step = std::max<std::size_t>(1, tree.triangles.size() / kMaxSamples);
+  std::array<std::vector<float>, 3> axes;
+  for (std::size_t i = 0; i < tree.triangles.size(); i += step) {
+    const Triangle& t = tree.triangles[i];
+    axes[0].push_back((t.v0.x + t.v1.x + t.v2.x) / 3.f);
+    axes[1].push_back((t.v0.y + t.v1.y + t.v2.y) / 3.f);
+    axes[2].push_back((t.v0.z + t.v1.z + t.v2.z) / 3.f);
+  }
+  for (auto& a : axes) std::sort(a.begin(), a.end());
+  return axes;
 }
 
 }  // namespace
@@ -56,6 +85,8 @@ DeviceScene upload_scene(const ClContext& cl, const KdTree& tree, const SceneTab
   d.emitter_count = static_cast<std::uint32_t>(tables.emitters.entries.size());
   d.emitter_power_total = tables.emitters.total_power;
   d.bounds = tree.bounds;
+  d.level_starts = level_starts(tree);
+  d.centroid_samples = centroid_samples(tree);
   return d;
 }
 

@@ -3,6 +3,7 @@
 
 #include <CL/opencl.hpp>
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -30,6 +31,9 @@ struct DeviceScene {
   float emitter_power_total = 0;
   Bounds bounds;
   std::size_t bytes = 0;
+  // host-side facts the PTH method sizes itself from
+  std::vector<std::uint32_t> level_starts;  // first node of each depth, then the node count
+  std::array<std::vector<float>, 3> centroid_samples;  // sorted triangle centroids per axis (subsampled)
 };
 
 DeviceScene upload_scene(const ClContext& cl, const KdTree& tree, const SceneTables& tables);

@@ -16,6 +16,10 @@ const std::vector<Method>& methods() {
       {"sc", "wavefront with stream compaction of live paths after every bounce", true, true, false},
       {"rg", "wavefront with path regeneration into free slots after every bounce", true, false, true},
       {"sc+rg", "stream compaction and path regeneration", true, true, true},
+      {"hash", "sc+rg, rays sorted by origin and direction hash before traversal (Garanzha & Loop 2010)", true,
+       true, true, RaySort::hash},
+      {"pth", "sc+rg, rays sorted by the coherence code of a partial traversal in local memory (Wang & Deng)",
+       true, true, true, RaySort::pth},
   };
   return table;
 }

@@ -9,12 +9,20 @@
 
 namespace cohort {
 
+// How a wavefront method orders rays before traversal.
+enum class RaySort {
+  none,
+  hash,  // by origin and direction hash (Garanzha & Loop 2010)
+  pth,   // by the coherence code with partial traversal in local memory (Wang & Deng)
+};
+
 struct Method {
   const char* name;
   const char* description;
   bool wavefront;   // false: the NAIVE megakernel
   bool compact;     // stream compaction: launches cover a queue of live paths only (Wald 2011)
   bool regenerate;  // path regeneration: free slots take new paths after every bounce (Novak 2010)
+  RaySort sort = RaySort::none;
 };
 
 const std::vector<Method>& methods();

@@ -25,6 +25,8 @@ struct RenderSettings {
   std::optional<glm::vec3> environment;  // constant environment radiance
   std::string method = "naive";
   std::uint32_t wavefront_size = 0;  // path slots of the wavefront methods; 0: chosen from the device
+  std::string code;                  // coherence code layout of hash/pth; empty: the method's default
+  std::uint32_t pth_levels = 0;      // subtree levels of pth; 0: chosen from the device and the tree
 };
 
 }  // namespace cohort

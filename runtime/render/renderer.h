@@ -27,6 +27,8 @@ struct Progress {
 struct IterationStats {
   std::uint64_t live_paths = 0;  // paths traced this iteration (= extension rays)
   std::uint64_t shadow_rays = 0;
+  std::uint64_t simd_groups = 0;        // groups of 32 traced rays
+  double simd_efficiency_sum = 0;       // sum over groups of mean / max nodes visited
   std::map<std::string, double> kernel_seconds;
 };
 
@@ -42,6 +44,10 @@ struct RenderResult {
   std::vector<IterationStats> iterations;        // wavefront methods only
   std::size_t wavefront_size = 0;                // path slots in the pool (wavefront methods)
   std::size_t path_state_bytes = 0;              // device bytes per path slot
+  double simd_efficiency = 0;                    // traversal: mean over max steps per 32 rays
+  std::string code_layout;                       // hash and pth: the coherence code used
+  std::uint32_t pth_levels = 0;                  // pth: subtree levels in local memory
+  std::uint32_t pth_subtree_nodes = 0;
 };
 
 using ProgressCallback = std::function<void(const Progress&)>;

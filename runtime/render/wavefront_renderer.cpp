@@ -1,30 +1,40 @@
 // The wavefront scheduler: a pool of path slots and one loop of small kernels per bounce
-// (kernels/wavefront.cl). `compact` and `regenerate` are the only differences between methods.
+// (kernels/wavefront.cl). `compact`, `regenerate` and the ray sort are the only differences
+// between methods; with a sort, the extend stage becomes walk + code, device sort, and resumed
+// traversal in sorted order (kernels/pth.cl).
 #include <algorithm>
 #include <array>
+#include <optional>
 
 #include "runtime/cl/kernel_program.h"
+#include "runtime/render/coherence.h"
 #include "runtime/render/launch_log.h"
 #include "runtime/render/methods.h"
 #include "runtime/render/pass_driver.h"
+#include "runtime/sort/radix_sort.h"
 
 namespace cohort {
 namespace {
 
 constexpr std::uint32_t kItemNone = 0xffffffffu;
-enum Counter { kNextItem = 0, kQueue = 1, kShadow = 2, kCounterCount = 3 };
+enum Counter { kNextItem = 0, kQueue, kShadow, kSimdSum, kSimdGroups, kCounterCount };
+constexpr std::uint32_t kPthMaxLevels = 16;  // PTH_MAX_LEVELS in kernels/pth.cl
 
-// Device bytes per slot: path state (5 float4 + 3 uint), hit, shadow ray (3 float4), two queues.
-constexpr std::size_t kPathStateBytes = 5 * 16 + 3 * 4 + sizeof(HitOut) + 3 * 16 + 2 * 4;
+// Device bytes per slot: path state (5 float4 + 3 uint), hit, shadow ray (3 float4), two queues,
+// traversal steps.
+constexpr std::size_t kPathStateBytes = 5 * 16 + 3 * 4 + sizeof(HitOut) + 3 * 16 + 3 * 4;
+// With a ray sort: key and value (twice, for the sort's ping-pong), traversal state.
+constexpr std::size_t kSortBytes = 2 * (8 + 4) + 16;
 
-// Enough paths in flight to fill the device: a few thousand per compute unit on a GPU, fewer on
-// a CPU whose "compute units" are cores; never more than a quarter of the device memory.
-std::uint32_t choose_pool_size(const ClContext& cl, const RenderSettings& s, std::uint64_t items) {
+// Enough paths in flight to fill the device: a few thousand per compute unit on a GPU, more on a
+// CPU whose "compute units" are cores; never more than a quarter of the device memory.
+std::uint32_t choose_pool_size(const ClContext& cl, const RenderSettings& s, std::uint64_t items,
+                               std::size_t bytes_per_slot) {
   std::uint64_t slots = s.wavefront_size;
   if (slots == 0) {
     const std::uint64_t per_cu = cl.device.is_gpu ? 8192 : 32768;
     slots = std::clamp<std::uint64_t>(per_cu * cl.device.compute_units, 65536, 1u << 21);
-    slots = std::min(slots, cl.device.global_memory / 4 / kPathStateBytes);
+    slots = std::min<std::uint64_t>(slots, cl.device.global_memory / 4 / bytes_per_slot);
   }
   slots = std::min<std::uint64_t>(slots, items);
   return static_cast<std::uint32_t>(std::max<std::uint64_t>(slots, 1));
@@ -32,7 +42,7 @@ std::uint32_t choose_pool_size(const ClContext& cl, const RenderSettings& s, std
 
 struct Pool {
   std::uint32_t slots = 0;
-  cl::Buffer org, dir, throughput, radiance, prev, item, segment, status, hits;
+  cl::Buffer org, dir, throughput, radiance, prev, item, segment, status, hits, steps;
   cl::Buffer shadow_org, shadow_dir, shadow_contribution, shadow_queue, queue, counters;
 
   Pool(const ClContext& cl, std::uint32_t n) : slots(n) {
@@ -47,6 +57,7 @@ struct Pool {
     segment = cl.buffer("path segments", u);
     status = cl.buffer("path status", u);
     hits = cl.buffer("hits", std::size_t(n) * sizeof(HitOut));
+    steps = cl.buffer("traversal steps", u);
     shadow_org = cl.buffer("shadow origins", f4);
     shadow_dir = cl.buffer("shadow directions", f4);
     shadow_contribution = cl.buffer("shadow contributions", f4);
@@ -54,6 +65,34 @@ struct Pool {
     queue = cl.buffer("path queue", u);
     const std::array<std::uint32_t, kCounterCount> zero{};
     counters = cl.buffer("queue counters", sizeof(zero), zero.data());
+  }
+};
+
+// What a sorting method adds: codes, the saved traversal states, the subtree and the sort.
+struct SortStage {
+  CodeParams code{};
+  SubtreeChoice subtree;
+  std::string layout;
+  cl::Buffer code_params, origin_bounds, keys, values, traversal, traversal_stack;
+  std::optional<RadixSort> sort;
+  cl::Kernel walk, resume;
+
+  SortStage(const ClContext& cl, const ProgramCache& cache, const DeviceScene& scene, const Method& method,
+            const RenderSettings& s, std::uint32_t slots) {
+    const bool pth = method.sort == RaySort::pth;
+    subtree = pth ? choose_subtree(cl.device, scene, s.pth_levels) : SubtreeChoice{};
+    layout = s.code.empty() ? default_code_layout(pth) : s.code;
+    code = parse_code_layout(layout, subtree.levels, scene.bounds);
+    if (!pth) code.pth_levels = 0;  // the hash sort never walks the subtree
+    if (code.pth_levels > kPthMaxLevels) code.pth_levels = kPthMaxLevels;
+    code_params = cl.buffer("code parameters", sizeof(code), &code, CL_MEM_READ_ONLY);
+    const auto bounds = origin_boundaries(scene, code.origin_bits);
+    origin_bounds = cl.buffer("origin grid", bounds.size() * sizeof(float), bounds.data(), CL_MEM_READ_ONLY);
+    keys = cl.buffer("coherence codes", std::size_t(slots) * 8);
+    values = cl.buffer("sorted slots", std::size_t(slots) * 4);
+    traversal = cl.buffer("traversal states", std::size_t(slots) * 16);
+    traversal_stack = cl.buffer("traversal stacks", std::size_t(slots) * 16 * std::max<std::uint32_t>(code.pth_levels, 1));
+    sort.emplace(cl, cache, slots);
   }
 };
 
@@ -73,31 +112,41 @@ RenderResult render_wavefront(const Method& method, const ClContext& cl, const P
   // a pass holds one result per (pixel, sample): bound it to ~64 MiB of results
   const std::uint32_t max_per_pass = std::max<std::uint32_t>(1, (1u << 22) / std::max<std::uint32_t>(pixels, 1));
   const std::uint64_t max_items = std::uint64_t(pixels) * std::min(max_per_pass, std::max<std::uint32_t>(settings.spp, 1));
-  Pool pool(cl, choose_pool_size(cl, settings, max_items));
+  const bool sorting = method.sort != RaySort::none;
+  Pool pool(cl, choose_pool_size(cl, settings, max_items, kPathStateBytes + (sorting ? kSortBytes : 0)));
   cl::Buffer results = cl.buffer("pass results", std::size_t(pixels) * max_per_pass * 16);
   const cl_uint use_queue = method.compact ? 1 : 0;
 
   cl::Kernel generate(build.program, "wf_generate"), extend(build.program, "wf_extend"),
       shade(build.program, "wf_shade"), shadow(build.program, "wf_shadow"), finish(build.program, "wf_finish"),
-      accumulate(build.program, "wf_accumulate");
+      accumulate(build.program, "wf_accumulate"), simd(build.program, "wf_simd_efficiency");
+  std::optional<SortStage> sort_stage;
+  std::optional<ProgramBuild> pth_build;
+  if (sorting) {
+    pth_build = build_kernel_program(cl, cache, "pth.cl");
+    sort_stage.emplace(cl, cache, scene, method, settings, pool.slots);
+    sort_stage->walk = cl::Kernel(pth_build->program, "pth_walk_and_code");
+    sort_stage->resume = cl::Kernel(pth_build->program, "pth_resume");
+  }
+  const auto& sc = scene;
   std::vector<IterationStats> iterations;
 
   auto pass = [&](const PassBuffers& b, const RenderParams& p) {
     const std::uint32_t items = pixels * p.samples_per_pass;
-    const auto path_args = std::tuple(pool.org, pool.dir, pool.throughput, pool.radiance, pool.prev, pool.item,
-                                      pool.segment, pool.status);
-    const auto [o, d, t, r, pv, it, sg, st] = path_args;
+    const auto& [o, d, t, r, pv, it, sg, st] =
+        std::tie(pool.org, pool.dir, pool.throughput, pool.radiance, pool.prev, pool.item, pool.segment, pool.status);
     set_args(generate, b.params, o, d, t, r, pv, it, sg, st, pool.counters, pool.queue, use_queue, pool.slots, items);
     set_args(finish, o, d, t, r, pv, it, sg, st, results, pool.counters, pool.queue, use_queue, pool.slots);
-    set_args(shadow, b.params, scene.nodes, scene.leaf_triangles, scene.triangles, scene.triangle_material,
-             scene.materials, scene.emitters, r, pool.shadow_org, pool.shadow_dir, pool.shadow_contribution,
-             pool.shadow_queue, pool.counters);
+    set_args(shadow, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
+             sc.emitters, r, pool.shadow_org, pool.shadow_dir, pool.shadow_contribution, pool.shadow_queue,
+             pool.counters);
     set_args(accumulate, b.params, results, b.film, b.dropped);
 
     std::array<std::uint32_t, kCounterCount> counters{};
     cl.queue.enqueueWriteBuffer(pool.counters, CL_FALSE, 0, sizeof(counters), counters.data());
     PassOutput out;
     LaunchLog log;
+    std::map<std::string, double> sort_seconds;
     std::uint64_t remaining = items;
     std::uint32_t live = 0;
     for (std::size_t iteration = 0;; ++iteration) {
@@ -110,25 +159,47 @@ RenderResult render_wavefront(const Method& method, const ClContext& cl, const P
       }
       if (live == 0) break;
       const cl_uint count = method.compact ? live : pool.slots;
-      set_args(extend, b.params, scene.nodes, scene.leaf_triangles, scene.triangles, scene.triangle_material,
-               scene.materials, scene.emitters, o, d, t, r, pv, it, sg, st, pool.hits, pool.queue, use_queue, count);
-      set_args(shade, b.params, scene.nodes, scene.leaf_triangles, scene.triangles, scene.triangle_material,
-               scene.materials, scene.emitters, o, d, t, r, pv, it, sg, st, pool.hits, pool.queue, use_queue, count,
-               pool.shadow_org, pool.shadow_dir, pool.shadow_contribution, pool.shadow_queue, pool.counters);
-      log.launch(cl, extend, "extend", count);
+      if (sort_stage) {
+        SortStage& ss = *sort_stage;
+        set_args(ss.walk, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
+                 sc.emitters, o, d, it, st, pool.queue, use_queue, count,
+                 cl::Local(std::max<std::size_t>(ss.subtree.local_bytes, sizeof(KdNode))), ss.subtree.nodes,
+                 ss.code_params, ss.origin_bounds, ss.keys, ss.values, ss.traversal, ss.traversal_stack, pool.slots,
+                 pool.hits);
+        log.launch(cl, ss.walk, method.sort == RaySort::pth ? "pth" : "hash", count);
+        ss.sort->sort(ss.keys, ss.values, count, ss.code.key_bits, &sort_seconds);
+        set_args(ss.resume, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
+                 sc.emitters, o, d, ss.values, count, ss.traversal, ss.traversal_stack, pool.slots, pool.hits,
+                 pool.steps);
+        log.launch(cl, ss.resume, "resume", count);
+      } else {
+        set_args(extend, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
+                 sc.emitters, o, d, t, r, pv, it, sg, st, pool.hits, pool.queue, use_queue, count, pool.steps);
+        log.launch(cl, extend, "extend", count);
+      }
+      set_args(simd, pool.steps, count, pool.counters);
+      log.launch(cl, simd, "simd efficiency", (count + 31) / 32);
+      set_args(shade, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
+               sc.emitters, o, d, t, r, pv, it, sg, st, pool.hits, pool.queue, use_queue, count, pool.shadow_org,
+               pool.shadow_dir, pool.shadow_contribution, pool.shadow_queue, pool.counters);
       log.launch(cl, shade, "shade", count);
       log.launch(cl, shadow, "shadow", live);  // at most one shadow ray per live path
       const std::uint32_t zero = 0;
       cl.queue.enqueueWriteBuffer(pool.counters, CL_FALSE, kQueue * 4, 4, &zero);
       log.launch(cl, finish, "finish", pool.slots);
       cl.queue.enqueueReadBuffer(pool.counters, CL_TRUE, 0, sizeof(counters), counters.data());
-      cl.queue.enqueueWriteBuffer(pool.counters, CL_FALSE, kShadow * 4, 4, &zero);
+      const std::array<std::uint32_t, 3> zeros{};
+      cl.queue.enqueueWriteBuffer(pool.counters, CL_FALSE, kShadow * 4, sizeof(zeros), zeros.data());
 
       if (iterations.size() <= iteration) iterations.resize(iteration + 1);
       IterationStats& stats = iterations[iteration];
       stats.live_paths += live;
       stats.shadow_rays += counters[kShadow];
-      const auto seconds = log.collect();
+      stats.simd_groups += counters[kSimdGroups];
+      stats.simd_efficiency_sum += counters[kSimdSum] * 1e-4;
+      auto seconds = log.collect();
+      add_seconds(seconds, sort_seconds);
+      sort_seconds.clear();
       add_seconds(stats.kernel_seconds, seconds);
       add_seconds(out.kernel_seconds, seconds);
       out.rays += live + counters[kShadow];
@@ -139,11 +210,23 @@ RenderResult render_wavefront(const Method& method, const ClContext& cl, const P
     return out;
   };
   RenderResult result = drive_passes(cl, params, settings, max_per_pass, progress, pass);
-  result.compile_seconds = build.seconds;
-  result.compile_from_cache = build.from_cache;
+  result.compile_seconds = build.seconds + (pth_build ? pth_build->seconds : 0);
+  result.compile_from_cache = build.from_cache && (!pth_build || pth_build->from_cache);
+  std::uint64_t groups = 0;
+  double efficiency = 0;
+  for (const auto& i : iterations) {
+    groups += i.simd_groups;
+    efficiency += i.simd_efficiency_sum;
+  }
+  result.simd_efficiency = groups ? efficiency / double(groups) : 0;
   result.iterations = std::move(iterations);
   result.wavefront_size = pool.slots;
-  result.path_state_bytes = kPathStateBytes;
+  result.path_state_bytes = kPathStateBytes + (sorting ? kSortBytes + 16 * sort_stage->code.pth_levels : 0);
+  if (sort_stage) {
+    result.code_layout = sort_stage->layout;
+    result.pth_levels = sort_stage->code.pth_levels;
+    result.pth_subtree_nodes = sort_stage->subtree.nodes;
+  }
   return result;
 }
 

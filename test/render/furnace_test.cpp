@@ -62,7 +62,7 @@ INSTANTIATE_TEST_SUITE_P(
                       FurnaceCase{"direct_depth2", true, true, false, 2},
                       FurnaceCase{"bsdf_only_depth4", false, false, false, 4},
                       FurnaceCase{"nee_mis_depth5", true, true, false, 5}),
-                       ::testing::Values("naive", "wavefront", "sc", "rg", "sc+rg")),
+                       ::testing::Values("naive", "wavefront", "sc", "rg", "sc+rg", "hash", "pth")),
     [](const auto& info) {
       std::string method = std::get<1>(info.param);
       for (char& ch : method)

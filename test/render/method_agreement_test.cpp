@@ -71,13 +71,46 @@ INSTANTIATE_TEST_SUITE_P(Methods, MethodAgreement,
                          ::testing::Values(AgreementCase{"wavefront", 0}, AgreementCase{"sc", 0},
                                            AgreementCase{"rg", 0}, AgreementCase{"sc+rg", 0},
                                            AgreementCase{"wavefront", 333}, AgreementCase{"sc", 1000},
-                                           AgreementCase{"rg", 97}, AgreementCase{"sc+rg", 1}),
+                                           AgreementCase{"rg", 97}, AgreementCase{"sc+rg", 1},
+                                           AgreementCase{"hash", 0}, AgreementCase{"pth", 0},
+                                           AgreementCase{"hash", 129}, AgreementCase{"pth", 1000}),
                          [](const auto& info) {
                            std::string name = info.param.method;
                            for (char& c : name)
                              if (c == '+') c = '_';
                            return name + "_pool" + std::to_string(info.param.wavefront_size);
                          });
+
+TEST(Methods, PthWithOtherCodeLayoutsAndSubtreeDepthsStillBitForBit) {
+  RenderSettings s;
+  s.width = 32;
+  s.height = 24;
+  s.spp = 4;
+  s.seed = 2;
+  const auto path = shipped_scene("cornell-box.gltf");
+  const RenderResult reference = render_scene(path, s);
+  s.method = "pth";
+  for (const char* code : {"pth:4", "dir:16,pth:6,origin:4", "origin-uniform:10,pth:12", "pth:16,dir:16"}) {
+    for (std::uint32_t levels : {1u, 3u, 8u}) {  // 8 levels keep every layout within 64 bits
+      s.code = code;
+      s.pth_levels = levels;
+      const RenderResult r = render_scene(path, s);
+      expect_bitwise_equal(reference, r, code);
+      EXPECT_EQ(r.code_layout, code);
+    }
+  }
+}
+
+TEST(Methods, MalformedCodeLayoutsAreInputErrors) {
+  RenderSettings s;
+  s.width = s.height = 8;
+  s.spp = 1;
+  s.method = "pth";
+  for (const char* code : {"origin:11", "pth", "dir:8,colour:3", "origin:10,pth:16,dir:16"}) {
+    s.code = code;
+    EXPECT_THROW(render_scene(shipped_scene("cornell-box.gltf"), s), InputError) << code;
+  }
+}
 
 TEST(Methods, UnknownMethodIsAnInputError) {
   EXPECT_THROW(find_method("teleport"), InputError);

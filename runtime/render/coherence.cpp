@@ -1,0 +1,96 @@
+#include "runtime/render/coherence.h"
+
+#include <algorithm>
+#include <charconv>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "runtime/util/error.h"
+
+namespace cohort {
+
+std::string default_code_layout(bool with_pth) { return with_pth ? "origin:8,pth:10,dir:8" : "origin:8,dir:8"; }
+
+CodeParams parse_code_layout(const std::string& layout, std::uint32_t pth_levels, const Bounds& bounds) {
+  struct Part {
+    std::string name;
+    std::uint32_t width = 0;
+  };
+  std::vector<Part> parts;
+  std::istringstream in(layout);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    const auto colon = item.find(':');
+    Part part{item.substr(0, colon)};
+    const char* first = item.data() + colon + 1;
+    const char* last = item.data() + item.size();
+    if (colon == std::string::npos || std::from_chars(first, last, part.width).ptr != last)
+      throw InputError(fmt::format("--code {}: expected parts like origin:8,pth:10,dir:8", layout));
+    parts.push_back(part);
+  }
+  CodeParams c{};
+  c.lo = {bounds.lo.x, bounds.lo.y, bounds.lo.z, 0.f};
+  c.hi = {bounds.hi.x, bounds.hi.y, bounds.hi.z, 0.f};
+  unsigned total = 0;
+  for (const auto& p : parts) {
+    if (p.name == "origin" || p.name == "origin-uniform") {
+      if (p.width > 10) throw InputError(fmt::format("--code {}: origin takes at most 10 bits per axis", layout));
+      c.origin_bits = p.width;
+      c.origin_adaptive = p.name == "origin";
+      total += 3 * p.width;
+    } else if (p.name == "pth") {
+      c.pth_levels = pth_levels ? pth_levels : p.width;
+      if (c.pth_levels > 16) throw InputError(fmt::format("--code {}: pth takes at most 16 levels", layout));
+      total += 2 * c.pth_levels;
+    } else if (p.name == "dir") {
+      if (p.width > 16) throw InputError(fmt::format("--code {}: dir takes at most 16 bits", layout));
+      c.direction_bits = p.width;
+      total += 2 * p.width;
+    } else {
+      throw InputError(fmt::format("--code {}: unknown part '{}' (origin, origin-uniform, pth, dir)", layout, p.name));
+    }
+  }
+  if (total > 64) throw InputError(fmt::format("--code {}: {} bits do not fit a 64-bit key", layout, total));
+  // the first part is the most significant: shift each part above the ones after it
+  unsigned shift = total;
+  for (const auto& p : parts) {
+    const unsigned width = p.name == "pth" ? 2 * c.pth_levels : (p.name == "dir" ? 2 * p.width : 3 * p.width);
+    shift -= width;
+    if (p.name == "pth") c.pth_shift = shift;
+    else if (p.name == "dir") c.direction_shift = shift;
+    else c.origin_shift = shift;
+  }
+  c.key_bits = total;
+  return c;
+}
+
+std::vector<float> origin_boundaries(const DeviceScene& scene, std::uint32_t bits) {
+  if (bits == 0) return {0.f};
+  const std::size_t cells = std::size_t(1) << bits;
+  std::vector<float> out;
+  for (const auto& axis : scene.centroid_samples) {
+    for (std::size_t k = 1; k < cells; ++k)
+      out.push_back(axis.empty() ? 0.f : axis[std::min(axis.size() - 1, k * axis.size() / cells)]);
+  }
+  return out;
+}
+
+SubtreeChoice choose_subtree(const DeviceInfo& device, const DeviceScene& scene, std::uint32_t requested) {
+  SubtreeChoice c;
+  const auto& starts = scene.level_starts;  // starts[d] = first node of depth d; back() = node count
+  const std::uint32_t tree_levels = static_cast<std::uint32_t>(starts.size() - 1);
+  c.levels = std::min<std::uint32_t>(requested ? requested : 10, tree_levels);
+  if (!device.local_memory_is_global && requested == 0) {
+    const std::size_t budget = device.local_memory / 2;  // room for 2 work-groups per compute unit
+    while (c.levels > 0 && starts[c.levels] * sizeof(KdNode) > budget) --c.levels;
+  }
+  c.nodes = starts[c.levels];
+  c.local_bytes = std::size_t(c.nodes) * sizeof(KdNode);
+  if (c.local_bytes > device.local_memory)
+    throw InputError(fmt::format("--pth-levels {}: the subtree needs {} bytes of local memory; {} has {}", requested,
+                                 c.local_bytes, device.name, device.local_memory));
+  return c;
+}
+
+}  // namespace cohort

@@ -1,0 +1,55 @@
+// Stable device radix sort of (64-bit key, 32-bit value) pairs in OpenCL (kernels/radix_sort.cl).
+#pragma once
+
+#include <CL/opencl.hpp>
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "runtime/cl/context.h"
+#include "runtime/cl/program_cache.h"
+
+namespace cohort {
+
+class RadixSort {
+ public:
+  // Buffers for up to `capacity` pairs are allocated once and reused.
+  RadixSort(const ClContext& cl, const ProgramCache& cache, std::uint32_t capacity);
+
+  // Sorts the first `count` pairs of `keys` (cl_ulong) and `values` (cl_uint) in place, stably, by the
+  // low `key_bits` bits of the key (higher bits are ignored and must be zero for a full sort).
+  // Kernel time per launch name ("sort histogram", "sort scan", "sort scatter") is added to
+  // `seconds` when given.
+  void sort(const cl::Buffer& keys, const cl::Buffer& values, std::uint32_t count, unsigned key_bits,
+            std::map<std::string, double>* seconds = nullptr);
+
+  std::uint32_t capacity() const { return capacity_; }
+
+ private:
+  // Work-group size and pairs per work item: compile-time constants of kernels/radix_sort.cl.
+  struct Tiling {
+    std::uint32_t group = 0;  // SORT_WG
+    std::uint32_t items = 0;  // SORT_ITEMS
+  };
+  friend struct RadixSortTestAccess;  // tests force small tilings to reach every scan level
+  RadixSort(const ClContext& cl, const ProgramCache& cache, std::uint32_t capacity, Tiling tiling);
+  static Tiling choose_tiling(const DeviceInfo& device);
+
+  using Launches = std::vector<std::pair<const char*, cl::Event>>;
+  void scan(std::size_t level, std::uint32_t n, Launches& launches);
+  void launch(cl::Kernel& kernel, const char* name, std::size_t items, Launches& launches);
+
+  const ClContext& cl_;
+  std::uint32_t capacity_;
+  Tiling tiling_;
+  cl::Kernel histogram_, scan_segments_, scan_add_, scatter_;
+  cl::Buffer scratch_keys_, scratch_values_;  // the other half of every ping-pong
+  // scan_levels_[0] is the digit-major histogram table; scan_levels_[i + 1] holds the segment sums
+  // of scan_levels_[i]; the last level has one entry.
+  std::vector<cl::Buffer> scan_levels_;
+};
+
+}  // namespace cohort
