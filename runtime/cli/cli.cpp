@@ -41,6 +41,11 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
   cmd.add_option("--camera-bounds", r.camera_bounds,
                  "Camera at fractions of the scene bounds: ex,ey,ez,tx,ty,tz (eye, then target)");
   cmd.add_option("--fov", r.fov, "Vertical field of view in degrees")->check(CLI::Range(0.01f, 179.f));
+  cmd.add_option("--checkpoint", r.checkpoint_seconds,
+                 "Save the film to OUT.checkpoint every SECONDS (and at the end, or on SIGINT/SIGTERM)")
+      ->check(CLI::PositiveNumber)
+      ->each([&r](const std::string&) { r.checkpoint = true; });
+  cmd.add_flag("--resume", r.resume, "Continue from OUT.checkpoint when it exists (same scene and settings)");
   cmd.add_option("--stats", r.stats_file, "Write the run's figures to this JSON file");
   cmd.add_flag("--no-nee", [&r](std::int64_t) { r.settings.nee = false; }, "Disable next-event estimation");
   cmd.add_flag("--no-mis", [&r](std::int64_t) { r.settings.mis = false; }, "NEE without multiple importance sampling");

@@ -14,6 +14,9 @@
 #include "runtime/render/workloads.h"
 #include "runtime/util/atomic_file.h"
 #include "runtime/util/error.h"
+#include "runtime/util/hash.h"
+#include "runtime/cli/interrupt.h"
+#include "runtime/render/checkpoint.h"
 
 namespace cohort {
 namespace {
@@ -64,6 +67,20 @@ nlohmann::json stats_json(const RenderCommand& cmd, const DeviceInfo& device, co
   return j;
 }
 
+// What decides the image: a checkpoint may only be resumed by a render that would produce it.
+std::uint64_t render_fingerprint(const RenderCommand& cmd, const PreparedScene& p) {
+  const auto& s = cmd.settings;
+  const auto& c = p.camera;
+  const std::string text = fmt::format(
+      "{}|{}x{}|seed {}|depth {} rr {}|nee {} mis {} rr {}|env {}|eye {} {} {}|target {} {} {}|fov {}|tris {}",
+      std::filesystem::weakly_canonical(cmd.scene).string(), s.width, s.height, s.seed, s.max_depth, s.rr_depth, s.nee,
+      s.mis, s.russian_roulette, s.environment ? fmt::format("{} {} {}", s.environment->x, s.environment->y,
+                                                               s.environment->z)
+                                               : "none",
+      c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z, c.vfov_degrees, p.tree.triangles.size());
+  return fnv1a64(text);
+}
+
 }  // namespace
 
 int run_render(const RenderCommand& cmd_in) {
@@ -90,9 +107,19 @@ int run_render(const RenderCommand& cmd_in) {
   const ClContext cl(device);
   const ProgramCache cache(cmd.no_cache ? std::nullopt : std::optional(ProgramCache::default_directory()));
   const DeviceScene device_scene = upload_scene(cl, prepared.tree, prepared.tables);
+  const std::uint64_t fingerprint = render_fingerprint(cmd, prepared);
+  RenderControl control;
+  if (cmd.resume) control.resume_from = load_checkpoint(out.checkpoint, fingerprint);
+  if (control.resume_from) fmt::print("resuming {} at {} spp\n", out.checkpoint.string(), control.resume_from->samples);
+  if (cmd.checkpoint || cmd.resume) {
+    control.checkpoint_seconds = cmd.checkpoint_seconds;
+    control.checkpoint = [&](const FilmState& film) { save_checkpoint(out.checkpoint, fingerprint, film); };
+  }
+  const InterruptGuard interrupt;
+  control.stop_requested = [&] { return interrupt.requested(); };
   ProgressReporter reporter(stderr);
   const RenderResult result = render(cl, cache, device_scene, prepared.camera, cmd.settings,
-                                     [&](const Progress& p) { reporter.update(p); });
+                                     [&](const Progress& p) { reporter.update(p); }, control);
   reporter.finish();
 
   write_exr(out.exr, result.image);
@@ -121,9 +148,15 @@ int run_render(const RenderCommand& cmd_in) {
   fmt::print("rendered {}x{} at {} spp in {:.2f}s ({:.2f} Mrays/s)\n", cmd.settings.width, cmd.settings.height,
              result.samples, result.render_seconds, mrays);
   fmt::print("wrote {}\nwrote {}\n", out.exr.string(), out.png.string());
+  if (cmd.checkpoint || cmd.resume) fmt::print("wrote {}\n", out.checkpoint.string());
   if (!cmd.stats_file.empty()) {
     write_file_atomically(cmd.stats_file, stats_json(cmd, device, prepared, result, out).dump(2) + "\n");
     fmt::print("wrote {}\n", cmd.stats_file);
+  }
+  if (result.interrupted) {
+    fmt::print(stderr, "interrupted by signal {} at {} spp: the image so far is saved{}\n", interrupt.signal_number(),
+               result.samples, cmd.checkpoint || cmd.resume ? "; --resume continues it" : "");
+    return 128 + interrupt.signal_number();
   }
   return 0;
 }

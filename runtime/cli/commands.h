@@ -18,6 +18,9 @@ struct RenderCommand {
   std::string camera_bounds;  // "ex,ey,ez,tx,ty,tz": fractions of the scene bounds
   float fov = 0;              // vertical field of view in degrees; 0 = the camera's own
   bool white_sky = false;
+  double checkpoint_seconds = 0;  // --checkpoint: save the film this often
+  bool checkpoint = false;        // --checkpoint given
+  bool resume = false;
   bool verbose = false;
   bool no_cache = false;
   RenderSettings settings;

@@ -25,6 +25,7 @@ OutputPaths output_paths(const std::string& output, const std::filesystem::path&
   OutputPaths paths;
   paths.exr = fs::path(base).concat(".exr");
   paths.png = fs::path(base).concat(".png");
+  paths.checkpoint = fs::path(base).concat(".checkpoint");
   return paths;
 }
 

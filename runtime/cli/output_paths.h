@@ -8,6 +8,7 @@ namespace cohort {
 struct OutputPaths {
   std::filesystem::path exr;
   std::filesystem::path png;
+  std::filesystem::path checkpoint;  // --checkpoint / --resume
 };
 
 // "-o NAME", "NAME.exr" or "NAME.png" -> both paths; empty -> the scene's stem in the current

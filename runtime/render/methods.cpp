@@ -37,12 +37,12 @@ const Method& find_method(const std::string& name) {
 }
 
 RenderResult render(const ClContext& cl, const ProgramCache& cache, const DeviceScene& scene, const SceneCamera& camera,
-                    const RenderSettings& settings, const ProgressCallback& progress) {
+                    const RenderSettings& settings, const ProgressCallback& progress, const RenderControl& control) {
   const Method& method = find_method(settings.method);
   const RenderParams params = make_render_params(scene, camera, settings);
   try {
-    return method.wavefront ? render_wavefront(method, cl, cache, scene, params, settings, progress)
-                            : render_naive(cl, cache, scene, params, settings, progress);
+    return method.wavefront ? render_wavefront(method, cl, cache, scene, params, settings, progress, control)
+                            : render_naive(cl, cache, scene, params, settings, progress, control);
   } catch (const cl::Error& e) {
     throw DeviceError(describe(e, fmt::format("--method {}", method.name)));
   }

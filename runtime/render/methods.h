@@ -30,9 +30,10 @@ std::vector<std::string> method_names();
 const Method& find_method(const std::string& name);  // throws InputError for an unknown name
 
 RenderResult render_naive(const ClContext& cl, const ProgramCache& cache, const DeviceScene& scene,
-                          const RenderParams& params, const RenderSettings& settings, const ProgressCallback& progress);
+                          const RenderParams& params, const RenderSettings& settings, const ProgressCallback& progress,
+                          const RenderControl& control);
 RenderResult render_wavefront(const Method& method, const ClContext& cl, const ProgramCache& cache,
                               const DeviceScene& scene, const RenderParams& params, const RenderSettings& settings,
-                              const ProgressCallback& progress);
+                              const ProgressCallback& progress, const RenderControl& control);
 
 }  // namespace cohort

@@ -7,7 +7,8 @@
 namespace cohort {
 
 RenderResult render_naive(const ClContext& cl, const ProgramCache& cache, const DeviceScene& scene,
-                          const RenderParams& params, const RenderSettings& settings, const ProgressCallback& progress) {
+                          const RenderParams& params, const RenderSettings& settings, const ProgressCallback& progress,
+                          const RenderControl& control) {
   const ProgramBuild build = build_kernel_program(cl, cache, "naive.cl");
   cl::Kernel kernel(build.program, "render_naive");
   const std::uint32_t zero = 0;
@@ -16,7 +17,7 @@ RenderResult render_naive(const ClContext& cl, const ProgramCache& cache, const 
   // each pass stays far below 2^32 rays so the 32-bit counter cannot wrap
   const std::uint32_t max_per_pass = std::max<std::uint32_t>(1, (1u << 24) / std::max<std::uint32_t>(pixels, 1));
   bool args_set = false;
-  RenderResult result = drive_passes(cl, params, settings, max_per_pass, progress,
+  RenderResult result = drive_passes(cl, params, settings, max_per_pass, progress, control,
                                      [&](const PassBuffers& b, const RenderParams&) {
     if (!args_set) {
       int arg = 0;

@@ -30,6 +30,6 @@ using PassFunction = std::function<PassOutput(const PassBuffers&, const RenderPa
 // max_samples_per_pass bounds what one pass may hold (a method's per-pass buffers).
 RenderResult drive_passes(const ClContext& cl, const RenderParams& params, const RenderSettings& settings,
                           std::uint32_t max_samples_per_pass, const ProgressCallback& progress,
-                          const PassFunction& pass);
+                          const RenderControl& control, const PassFunction& pass);
 
 }  // namespace cohort

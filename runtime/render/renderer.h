@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "runtime/cl/context.h"
 #include "runtime/cl/program_cache.h"
 #include "runtime/image/image.h"
+#include "runtime/render/checkpoint.h"
 #include "runtime/render/device_scene.h"
 #include "runtime/render/render_settings.h"
 
@@ -48,12 +50,23 @@ struct RenderResult {
   std::string code_layout;                       // hash and pth: the coherence code used
   std::uint32_t pth_levels = 0;                  // pth: subtree levels in local memory
   std::uint32_t pth_subtree_nodes = 0;
+  bool interrupted = false;                      // stopped by stop_requested before the sample count
+  std::uint32_t resumed_samples = 0;             // samples taken over from a checkpoint
 };
 
 using ProgressCallback = std::function<void(const Progress&)>;
 
+// How a render starts, and when it saves its film or stops early.
+struct RenderControl {
+  std::optional<FilmState> resume_from;                // continue this film (same size, same settings)
+  std::function<bool()> stop_requested;                // checked after every pass
+  double checkpoint_seconds = 0;                       // save every this many seconds; 0: only at the end
+  std::function<void(const FilmState&)> checkpoint;    // saves the film; also called when the render ends
+};
+
 // Renders with settings.method (see methods.h).
 RenderResult render(const ClContext& cl, const ProgramCache& cache, const DeviceScene& scene,
-                    const SceneCamera& camera, const RenderSettings& settings, const ProgressCallback& progress = {});
+                    const SceneCamera& camera, const RenderSettings& settings, const ProgressCallback& progress = {},
+                    const RenderControl& control = {});
 
 }  // namespace cohort

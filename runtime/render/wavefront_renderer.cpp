@@ -106,7 +106,7 @@ void set_args(cl::Kernel& k, const Args&... args) {
 
 RenderResult render_wavefront(const Method& method, const ClContext& cl, const ProgramCache& cache,
                               const DeviceScene& scene, const RenderParams& params, const RenderSettings& settings,
-                              const ProgressCallback& progress) {
+                              const ProgressCallback& progress, const RenderControl& control) {
   const ProgramBuild build = build_kernel_program(cl, cache, "wavefront.cl");
   const std::uint32_t pixels = settings.width * settings.height;
   // a pass holds one result per (pixel, sample): bound it to ~64 MiB of results
@@ -209,7 +209,7 @@ RenderResult render_wavefront(const Method& method, const ClContext& cl, const P
     add_seconds(out.kernel_seconds, log.collect());
     return out;
   };
-  RenderResult result = drive_passes(cl, params, settings, max_per_pass, progress, pass);
+  RenderResult result = drive_passes(cl, params, settings, max_per_pass, progress, control, pass);
   result.compile_seconds = build.seconds + (pth_build ? pth_build->seconds : 0);
   result.compile_from_cache = build.from_cache && (!pth_build || pth_build->from_cache);
   std::uint64_t groups = 0;
