@@ -29,10 +29,12 @@ class RadixSort {
   std::uint32_t capacity() const { return capacity_; }
 
  private:
-  // Work-group size and pairs per work item: compile-time constants of kernels/radix_sort.cl.
+  // Compile-time sizes of kernels/radix_sort.cl, chosen per device (see choose_tiling).
   struct Tiling {
-    std::uint32_t group = 0;  // SORT_WG
-    std::uint32_t items = 0;  // SORT_ITEMS
+    std::uint32_t group = 0;       // SORT_WG: work items per histogram/scatter work-group
+    std::uint32_t items = 0;       // SORT_ITEMS: pairs per work item; a block is group * items pairs
+    std::uint32_t scan_group = 0;  // SCAN_WG: work items per scan work-group (32 entries each)
+    bool local_exchange = false;   // SORT_LOCAL_EXCHANGE: stage tiles in local memory (GPUs)
   };
   friend struct RadixSortTestAccess;  // tests force small tilings to reach every scan level
   RadixSort(const ClContext& cl, const ProgramCache& cache, std::uint32_t capacity, Tiling tiling);
@@ -40,7 +42,7 @@ class RadixSort {
 
   using Launches = std::vector<std::pair<const char*, cl::Event>>;
   void scan(std::size_t level, std::uint32_t n, Launches& launches);
-  void launch(cl::Kernel& kernel, const char* name, std::size_t items, Launches& launches);
+  void launch(cl::Kernel& kernel, const char* name, std::size_t items, std::size_t group, Launches& launches);
 
   const ClContext& cl_;
   std::uint32_t capacity_;

@@ -1,0 +1,257 @@
+// The device radix sort (runtime/sort, kernels/radix_sort.cl) on the default device (PoCL in CI)
+// against std::stable_sort by the masked key. Values are the original indices, so any instability
+// shows up as a value mismatch.
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <numeric>
+#include <random>
+#include <vector>
+
+#include "runtime/cl/context.h"
+#include "runtime/cl/devices.h"
+#include "runtime/sort/radix_sort.h"
+#include "sort/radix_sort_access.h"
+
+using namespace cohort;
+
+namespace {
+
+constexpr std::uint32_t kCapacity = 1u << 20;
+constexpr std::size_t kGuard = 7;  // pairs past `count` that the sort must leave alone
+constexpr std::uint64_t kGuardKey = 0x5a5a5a5a5a5a5a5aull;
+
+// One context, program cache and sort for the whole executable: building the program once keeps
+// the suite fast, and reusing the sort checks that its buffers carry nothing between calls.
+struct Device {
+  ClContext cl{select_device("")};
+  ProgramCache cache{ProgramCache::default_directory()};
+  RadixSort sort{cl, cache, kCapacity};
+};
+
+Device& device() {
+  static Device d;
+  return d;
+}
+
+std::uint64_t mask_of(unsigned key_bits) { return key_bits >= 64 ? ~0ull : (1ull << key_bits) - 1; }
+
+struct Pairs {
+  std::vector<std::uint64_t> keys;
+  std::vector<std::uint32_t> values;
+};
+
+// Sorts keys[0, count) on the device with values = indices; the buffers hold kGuard more pairs.
+Pairs device_sort(RadixSort& sort, const std::vector<std::uint64_t>& keys, unsigned key_bits,
+                  std::map<std::string, double>* seconds = nullptr) {
+  const ClContext& cl = device().cl;
+  const std::size_t n = keys.size();
+  Pairs in{keys, std::vector<std::uint32_t>(n)};
+  std::iota(in.values.begin(), in.values.end(), 0u);
+  in.keys.resize(n + kGuard, kGuardKey);
+  in.values.resize(n + kGuard, 0xdeadbeefu);
+  cl::Buffer k = cl.buffer("test keys", in.keys.size() * 8, in.keys.data());
+  cl::Buffer v = cl.buffer("test values", in.values.size() * 4, in.values.data());
+  sort.sort(k, v, static_cast<std::uint32_t>(n), key_bits, seconds);
+  Pairs out{std::vector<std::uint64_t>(n + kGuard), std::vector<std::uint32_t>(n + kGuard)};
+  cl.queue.enqueueReadBuffer(k, CL_FALSE, 0, out.keys.size() * 8, out.keys.data());
+  cl.queue.enqueueReadBuffer(v, CL_TRUE, 0, out.values.size() * 4, out.values.data());
+  for (std::size_t i = n; i < n + kGuard; ++i) {
+    EXPECT_EQ(out.keys[i], kGuardKey) << "key past count changed at " << i;
+    EXPECT_EQ(out.values[i], 0xdeadbeefu) << "value past count changed at " << i;
+  }
+  out.keys.resize(n);
+  out.values.resize(n);
+  return out;
+}
+
+// std::stable_sort of (key, index) by the masked key: the reference the device must equal exactly.
+Pairs reference_sort(const std::vector<std::uint64_t>& keys, unsigned key_bits) {
+  const std::uint64_t mask = mask_of(key_bits);
+  std::vector<std::uint32_t> order(keys.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return (keys[a] & mask) < (keys[b] & mask); });
+  Pairs out;
+  for (std::uint32_t i : order) {
+    out.keys.push_back(keys[i]);
+    out.values.push_back(i);
+  }
+  return out;
+}
+
+// Compares without flooding the log: the first mismatch names its position.
+void expect_sorted_like_reference(RadixSort& sort, const std::vector<std::uint64_t>& keys, unsigned key_bits) {
+  const Pairs got = device_sort(sort, keys, key_bits);
+  const Pairs want = reference_sort(keys, key_bits);
+  ASSERT_EQ(got.keys.size(), want.keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    if (got.keys[i] != want.keys[i] || got.values[i] != want.values[i]) {
+      FAIL() << fmt::format("count {} key_bits {}: first mismatch at {}: got ({:#x}, {}), want ({:#x}, {})",
+                            keys.size(), key_bits, i, got.keys[i], got.values[i], want.keys[i], want.values[i]);
+    }
+  }
+}
+
+std::vector<std::uint64_t> random_keys(std::size_t n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::vector<std::uint64_t> keys(n);
+  for (auto& k : keys) k = rng();
+  return keys;
+}
+
+}  // namespace
+
+TEST(RadixSort, RandomKeysEachKeyWidth) {
+  for (unsigned bits : {64u, 48u, 20u, 7u}) {
+    SCOPED_TRACE(bits);
+    expect_sorted_like_reference(device().sort, random_keys(100003, bits), bits);
+  }
+}
+
+TEST(RadixSort, Counts) {
+  for (std::size_t n : {0u, 1u, 2u, 63u, 64u, 65u, 1000u, 100003u}) {
+    SCOPED_TRACE(n);
+    expect_sorted_like_reference(device().sort, random_keys(n, n), 64);
+  }
+}
+
+TEST(RadixSort, OneMillionAt44Bits) {
+  std::vector<std::uint64_t> keys = random_keys(1000000, 44);
+  for (auto& k : keys) k &= mask_of(44);
+  expect_sorted_like_reference(device().sort, keys, 44);
+}
+
+TEST(RadixSort, Patterns) {
+  const std::size_t n = 70001;
+  std::vector<std::uint64_t> equal(n, 0x0123456789abcdefull);
+  std::vector<std::uint64_t> distinct(n), sorted(n), reversed(n), few(n);
+  std::mt19937_64 rng(7);
+  for (auto& k : few) k = rng() & 3;
+  // all distinct: a shuffled range spread over all 64 bits by an odd multiplier (a bijection)
+  std::vector<std::uint64_t> index(n);
+  std::iota(index.begin(), index.end(), 0ull);
+  std::shuffle(index.begin(), index.end(), rng);
+  for (std::size_t i = 0; i < n; ++i) distinct[i] = index[i] * 0x9e3779b97f4a7c15ull;
+  // already sorted and reversed, strictly increasing over the high bits with noise in the low ones
+  for (std::size_t i = 0; i < n; ++i) sorted[i] = (i << 40) | (i * 977 % 1024);
+  for (std::size_t i = 0; i < n; ++i) reversed[i] = sorted[n - 1 - i];
+  struct Case {
+    const char* name;
+    const std::vector<std::uint64_t>& keys;
+  };
+  for (const Case& c : {Case{"equal", equal}, Case{"distinct", distinct}, Case{"sorted", sorted},
+                        Case{"reversed", reversed}, Case{"keys 0..3", few}}) {
+    SCOPED_TRACE(c.name);
+    expect_sorted_like_reference(device().sort, c.keys, 64);
+  }
+  // few distinct keys sorted with 2 bits: one pass, the odd-pass copy back
+  expect_sorted_like_reference(device().sort, few, 2);
+}
+
+TEST(RadixSort, BitsAboveKeyBitsAreIgnored) {
+  // every key has high bits set; only the low key_bits decide the order, the rest rides along
+  std::vector<std::uint64_t> keys = random_keys(50000, 99);
+  for (auto& k : keys) k |= 0xf000000000000000ull;
+  for (unsigned bits : {1u, 3u, 4u, 13u, 33u, 61u}) {
+    SCOPED_TRACE(bits);
+    expect_sorted_like_reference(device().sort, keys, bits);
+  }
+}
+
+TEST(RadixSort, ZeroKeyBitsIsANoOp) {
+  const std::vector<std::uint64_t> keys = random_keys(1000, 5);
+  const Pairs got = device_sort(device().sort, keys, 0);
+  EXPECT_EQ(got.keys, keys);
+  for (std::uint32_t i = 0; i < got.values.size(); ++i) ASSERT_EQ(got.values[i], i);
+}
+
+TEST(RadixSort, RejectsCountAboveCapacityAndWideKeys) {
+  const ClContext& cl = device().cl;
+  RadixSort small(cl, device().cache, 100);
+  EXPECT_EQ(small.capacity(), 100u);
+  cl::Buffer k = cl.buffer("keys", 101 * 8), v = cl.buffer("values", 101 * 4);
+  EXPECT_THROW(small.sort(k, v, 101, 64), std::invalid_argument);
+  EXPECT_THROW(small.sort(k, v, 100, 65), std::invalid_argument);
+  EXPECT_NO_THROW(small.sort(k, v, 100, 64));
+  EXPECT_NO_THROW(small.sort(k, v, 0, 64));
+  RadixSort empty(cl, device().cache, 0);
+  EXPECT_NO_THROW(empty.sort(k, v, 0, 64));
+  EXPECT_THROW(empty.sort(k, v, 1, 64), std::invalid_argument);
+  // buffers too small for `count`
+  cl::Buffer tiny = cl.buffer("tiny", 8);
+  EXPECT_THROW(small.sort(tiny, v, 2, 64), std::invalid_argument);
+}
+
+TEST(RadixSort, ReportsDeviceTimePerLaunchName) {
+  std::map<std::string, double> seconds{{"other", 1.0}};
+  device_sort(device().sort, random_keys(20000, 3), 36, &seconds);
+  EXPECT_EQ(seconds.size(), 4u);
+  EXPECT_EQ(seconds["other"], 1.0);  // added to, never cleared
+  for (const char* name : {"sort histogram", "sort scan", "sort scatter"}) {
+    ASSERT_TRUE(seconds.count(name)) << name;
+    EXPECT_GT(seconds[name], 0.0) << name;
+  }
+}
+
+// Tilings other than this device's, in both modes (the default tests run PoCL's 1 x 4096 direct):
+// tiny blocks and scan work-groups make the histogram table long enough for three and four scan
+// levels, and 256 x 9 staged in local memory is what an NVIDIA GPU with 48 KiB gets.
+TEST(RadixSort, OtherTilings) {
+  struct Case {
+    std::uint32_t group, items, scan_group;
+    bool local_exchange;
+    std::size_t count;
+  };
+  // (PoCL compiles each tiling's kernels on first use: a few seconds each on a cold cache.)
+  for (const Case& c : {Case{8, 3, 8, true, 150001}, Case{32, 5, 4, true, 100001}, Case{256, 9, 256, true, 150001},
+                        Case{128, 64, 32, true, 150001}, Case{4, 100, 2, false, 150001}, Case{1, 1, 1, false, 3001}}) {
+    SCOPED_TRACE(fmt::format("{} x {}, scan {}, {}", c.group, c.items, c.scan_group,
+                             c.local_exchange ? "local exchange" : "direct"));
+    const DeviceInfo& info = device().cl.device;
+    const std::size_t tile_bytes = c.local_exchange ? std::size_t(c.group) * c.items * 12 : 0;
+    if (c.group > info.max_work_group || c.scan_group > info.max_work_group ||
+        (!info.local_memory_is_global && tile_bytes + std::size_t(c.group) * 70 > info.local_memory))
+      continue;  // does not fit this device (these run on PoCL; a GPU runs its own tiling above)
+    auto sort = RadixSortTestAccess::make(device().cl, device().cache, 200000, c.group, c.items, c.scan_group,
+                                          c.local_exchange);
+    expect_sorted_like_reference(*sort, random_keys(c.count, c.group + c.items), 64);
+    expect_sorted_like_reference(*sort, random_keys(777, c.items), 23);
+  }
+}
+
+// Information, not an assertion: sorting rate for 1M pairs of 44-bit keys (11 passes).
+TEST(RadixSort, Rate) {
+  const ClContext& cl = device().cl;
+  const std::uint32_t n = 1000000;
+  std::vector<std::uint64_t> keys = random_keys(n, 11);
+  for (auto& k : keys) k &= mask_of(44);
+  std::vector<std::uint32_t> values(n);
+  std::iota(values.begin(), values.end(), 0u);
+  cl::Buffer k = cl.buffer("rate keys", n * 8ull), v = cl.buffer("rate values", n * 4ull);
+  std::vector<double> wall;
+  std::map<std::string, double> last;
+  for (int rep = 0; rep < 6; ++rep) {
+    cl.queue.enqueueWriteBuffer(k, CL_FALSE, 0, n * 8ull, keys.data());
+    cl.queue.enqueueWriteBuffer(v, CL_TRUE, 0, n * 4ull, values.data());
+    std::map<std::string, double> seconds;
+    const auto start = std::chrono::steady_clock::now();
+    device().sort.sort(k, v, n, 44, &seconds);
+    cl.queue.finish();
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (rep > 0) wall.push_back(s);  // the first run warms caches and the driver
+    last = seconds;
+  }
+  std::sort(wall.begin(), wall.end());
+  const double median = wall[wall.size() / 2];
+  std::string split;
+  for (const auto& [name, s] : last) split += fmt::format(" {} {:.1f} ms,", name, s * 1e3);
+  std::printf("[ rate     ] %s: 1M pairs, 44-bit keys: %.1f Mpairs/s median, %.1f best (%.1f ms median);%s\n",
+              cl.device.name.c_str(), n / median * 1e-6, n / wall.front() * 1e-6, median * 1e3,
+              split.substr(0, split.size() - 1).c_str());
+}
