@@ -40,6 +40,8 @@ DeviceInfo describe(const cl::Platform& platform, const cl::Device& device, std:
   info.global_memory = device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
   info.max_allocation = device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
   info.max_work_group = device.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
+  info.correctly_rounded_divide_sqrt =
+      (device.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>() & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
   info.device = device;
   return info;
 }

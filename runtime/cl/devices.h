@@ -25,6 +25,7 @@ struct DeviceInfo {
   std::uint64_t global_memory = 0;
   std::uint64_t max_allocation = 0;
   std::size_t max_work_group = 0;
+  bool correctly_rounded_divide_sqrt = false;  // CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT
   cl::Device device;
 };
 

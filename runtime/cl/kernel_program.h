@@ -4,13 +4,16 @@
 #include <string>
 
 #include "runtime/cl/context.h"
+#include "runtime/cl/devices.h"
 #include "runtime/cl/program_cache.h"
 
 namespace cohort {
 
-// Options every program shares: the same language level and no fast-math, so every method
-// compiles the shared shading and traversal code identically.
-std::string base_build_options();
+// Options every program shares: the same language level, no fast-math, and IEEE division and
+// square root where the device offers them (NVIDIA's defaults are approximate), so every method
+// compiles the shared shading and traversal code identically and the host, which rounds
+// correctly, computes the same bits.
+std::string base_build_options(const DeviceInfo& device);
 
 ProgramBuild build_kernel_program(const ClContext& cl, const ProgramCache& cache, const std::string& file,
                                   const std::string& extra_options = {});
