@@ -129,8 +129,9 @@ CO_INLINE float diffuse_pdf(co_vec3 wi, co_vec3 wo) {
 /* Cosine-weighted direction in the local frame (Malley's method); z >= 2^-12 for u1 < 1. */
 CO_INLINE co_vec3 sample_cosine_local(float u1, float u2) {
   float r = sqrt(u1);
-  float phi = 2.0f * CO_PI * u2;
-  return v3(r * co_cos(phi), r * co_sin(phi), co_safe_sqrt(1.0f - u1));
+  float sin_phi, cos_phi;
+  co_sincos_2pi(u2, &sin_phi, &cos_phi);
+  return v3(r * cos_phi, r * sin_phi, co_safe_sqrt(1.0f - u1));
 }
 CO_INLINE BsdfSample diffuse_sample(const Bsdf* b, co_vec3 wi, float u1, float u2) {
   BsdfSample s = bsdf_no_sample();

@@ -13,15 +13,31 @@
 
 #include "common/sampling.h"
 
-/* Single-precision cos/sin on both sides. The host's <cmath> leaves the float overloads in std::,
- * so a bare cos(float) there may run in double; these wrappers make the precision explicit. */
-#ifdef __OPENCL_VERSION__
-CO_INLINE float co_cos(float x) { return cos(x); }
-CO_INLINE float co_sin(float x) { return sin(x); }
-#else
-CO_INLINE float co_cos(float x) { return std::cos(x); }
-CO_INLINE float co_sin(float x) { return std::sin(x); }
-#endif
+/* cos and sin of 2 pi u for u in [0, 1], from adds, multiplies and compares only, so the host and
+ * every OpenCL device round them identically (the built-in cos/sin may differ by up to 4 ulp, which
+ * sampling then amplifies near grazing angles). u * 4 is exact, so the quadrant and the remainder
+ * r in [-1/2, 1/2) are exact; x = r pi/2 lies in [-pi/4, pi/4], where the Taylor polynomials below
+ * (to x^11 and x^12) are accurate to about 1 ulp. */
+CO_INLINE void co_sincos_2pi(float u, float* s, float* c) {
+  float q4 = u * 4.0f;
+  int k = (int)q4;
+  float r = q4 - (float)k;
+  if (r >= 0.5f) {
+    r -= 1.0f;
+    k += 1;
+  }
+  float x = r * (0.5f * CO_PI);
+  float x2 = x * x;
+  float sx = x * (1.0f + x2 * (-1.0f / 6.0f + x2 * (1.0f / 120.0f + x2 * (-1.0f / 5040.0f +
+                  x2 * (1.0f / 362880.0f + x2 * (-1.0f / 39916800.0f))))));
+  float cx = 1.0f + x2 * (-0.5f + x2 * (1.0f / 24.0f + x2 * (-1.0f / 720.0f + x2 * (1.0f / 40320.0f +
+                  x2 * (-1.0f / 3628800.0f + x2 * (1.0f / 479001600.0f))))));
+  k &= 3;
+  if (k == 0) { *s = sx; *c = cx; }
+  else if (k == 1) { *s = cx; *c = -sx; }
+  else if (k == 2) { *s = -sx; *c = -cx; }
+  else { *s = -cx; *c = sx; }
+}
 
 CO_INLINE float co_sqr(float x) { return x * x; }
 CO_INLINE float co_safe_sqrt(float x) { return sqrt(fmax(x, 0.0f)); }
@@ -135,9 +151,10 @@ CO_INLINE co_vec3 ggx_sample_vndf(co_vec3 wi, float alpha, float u1, float u2) {
   co_vec3 t1 = lensq > 0.0f ? v3_scale(v3(-vh.y, vh.x, 0.0f), 1.0f / sqrt(lensq)) : v3(1.0f, 0.0f, 0.0f);
   co_vec3 t2 = v3_cross(vh, t1);
   float r = sqrt(u1);
-  float phi = 2.0f * CO_PI * u2;
-  float p1 = r * co_cos(phi);
-  float p2 = r * co_sin(phi);
+  float sin_phi, cos_phi;
+  co_sincos_2pi(u2, &sin_phi, &cos_phi);
+  float p1 = r * cos_phi;
+  float p2 = r * sin_phi;
   float s = 0.5f * (1.0f + vh.z);
   p2 = (1.0f - s) * co_safe_sqrt(1.0f - p1 * p1) + s * p2;
   float pz = co_safe_sqrt(1.0f - p1 * p1 - p2 * p2);

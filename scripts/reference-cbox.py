@@ -1,0 +1,76 @@
+#!/usr/bin/env python3
+"""Mitsuba 3 reference render of the Cornell box (DECISIONS.md: Cohort's cornell-box.gltf must match
+Mitsuba's render of cbox-rgb.xml at the same resolution, spp and max_depth 6).
+
+Renders ../shared/scenes/cornell-box-mitsuba/cbox-rgb.xml with the scalar_rgb variant in passes of
+--pass-spp samples (each pass its own seed) until --seconds have passed or --max-spp is reached, and
+averages the passes (each is an unbiased estimate, so the mean is too). Writes
+test/reference/cornell-box-mitsuba-rgb.exr (float RGB) and a JSON file with the settings beside it.
+Run through scripts/reference, which provides mitsuba and numpy."""
+import argparse
+import json
+import os
+import platform
+import time
+
+import mitsuba as mi
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SCENE = os.path.join(os.path.dirname(ROOT), "shared", "scenes", "cornell-box-mitsuba", "cbox-rgb.xml")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--res", type=int, default=128)
+    ap.add_argument("--max-depth", type=int, default=6)
+    ap.add_argument("--seconds", type=float, default=300.0, help="render time budget (default 5 minutes)")
+    ap.add_argument("--pass-spp", type=int, default=64)
+    ap.add_argument("--max-spp", type=int, default=1 << 16)
+    ap.add_argument("--out", default=os.path.join(ROOT, "test", "reference", "cornell-box-mitsuba-rgb.exr"))
+    args = ap.parse_args()
+
+    mi.set_variant("scalar_rgb")
+    scene = mi.load_file(SCENE, res=args.res, spp=args.pass_spp, max_depth=args.max_depth)
+    start = time.time()
+    total = None
+    spp = 0
+    passes = 0
+    while spp + args.pass_spp <= args.max_spp:
+        img = np.array(mi.render(scene, spp=args.pass_spp, seed=passes), dtype=np.float64)
+        total = img if total is None else total + img
+        spp += args.pass_spp
+        passes += 1
+        elapsed = time.time() - start
+        # stop before a pass that would overrun the budget
+        if elapsed * (passes + 1) / passes > args.seconds:
+            break
+    elapsed = time.time() - start
+    mean = (total / passes).astype(np.float32)[:, :, :3]
+    os.makedirs(os.path.dirname(args.out), exist_ok=True)
+    mi.Bitmap(mean, pixel_format=mi.Bitmap.PixelFormat.RGB).write(args.out)
+    settings = {
+        "scene": os.path.relpath(SCENE, ROOT),
+        "mitsuba_version": mi.__version__,
+        "variant": "scalar_rgb",
+        "integrator": "path",
+        "max_depth": args.max_depth,
+        "resolution": [args.res, args.res],
+        "spp": spp,
+        "passes": passes,
+        "seeds": f"0..{passes - 1} (one per pass of {args.pass_spp} spp)",
+        "sampler": "independent",
+        "reconstruction_filter": "gaussian (stddev 0.5, Mitsuba hdrfilm default as in base.xml)",
+        "render_seconds": round(elapsed, 1),
+        "machine": f"{platform.machine()}, {os.cpu_count()} logical CPUs",
+        "mean_rgb": [float(v) for v in mean.reshape(-1, 3).mean(axis=0)],
+    }
+    with open(os.path.splitext(args.out)[0] + ".json", "w") as f:
+        json.dump(settings, f, indent=2)
+        f.write("\n")
+    print(f"{args.out}: {args.res}x{args.res}, {spp} spp in {passes} passes, {elapsed:.1f} s, "
+          f"mean rgb {settings['mean_rgb']}")
+
+
+if __name__ == "__main__":
+    main()
