@@ -60,7 +60,7 @@ def main():
         "passes": passes,
         "seeds": f"0..{passes - 1} (one per pass of {args.pass_spp} spp)",
         "sampler": "independent",
-        "reconstruction_filter": "gaussian (stddev 0.5, Mitsuba hdrfilm default as in base.xml)",
+        "reconstruction_filter": "box (fragments/base.xml)",
         "render_seconds": round(elapsed, 1),
         "machine": f"{platform.machine()}, {os.cpu_count()} logical CPUs",
         "mean_rgb": [float(v) for v in mean.reshape(-1, 3).mean(axis=0)],
