@@ -6,12 +6,7 @@ __kernel void trace_rays(__global const KdNode* nodes, __global const uint* leaf
                          __global const RayIn* rays, __global HitOut* hits, uint count, uint any_hit) {
   uint i = get_global_id(0);
   if (i >= count) return;
-  KdTreeView tree;
-  tree.nodes = nodes;
-  tree.leaf_triangles = leaf_triangles;
-  tree.triangles = triangles;
-  tree.lo = v3_from4(scene_min);
-  tree.hi = v3_from4(scene_max);
+  KdTreeView tree = make_tree_view(nodes, leaf_triangles, triangles, scene_min, scene_max);
   RayIn r = rays[i];
   hits[i] = kd_trace(&tree, v3_from4(r.origin), v3_from4(r.dir), r.origin.w, r.dir.w, (int)any_hit);
 }
@@ -29,12 +24,7 @@ __kernel void trace_rays_pth(__global const KdNode* nodes, __global const uint* 
   barrier(CLK_LOCAL_MEM_FENCE);
   uint i = get_global_id(0);
   if (i >= count) return;
-  KdTreeView tree;
-  tree.nodes = nodes;
-  tree.leaf_triangles = leaf_triangles;
-  tree.triangles = triangles;
-  tree.lo = v3_from4(scene_min);
-  tree.hi = v3_from4(scene_max);
+  KdTreeView tree = make_tree_view(nodes, leaf_triangles, triangles, scene_min, scene_max);
   RayIn r = rays[i];
   co_vec3 org = v3_from4(r.origin), dir = v3_from4(r.dir);
   co_vec3 inv_dir = kd_inverse(dir);

@@ -16,6 +16,17 @@ typedef struct KdTreeView {
   co_vec3 lo, hi;
 } KdTreeView;
 
+CO_INLINE KdTreeView make_tree_view(const CO_GLOBAL KdNode* nodes, const CO_GLOBAL uint32_t* leaf_triangles,
+                                    const CO_GLOBAL Triangle* triangles, co_float4 lo, co_float4 hi) {
+  KdTreeView t;
+  t.nodes = nodes;
+  t.leaf_triangles = leaf_triangles;
+  t.triangles = triangles;
+  t.lo = v3_from4(lo);
+  t.hi = v3_from4(hi);
+  return t;
+}
+
 typedef struct KdStackEntry {
   uint32_t node;
   float tmin, tmax;
