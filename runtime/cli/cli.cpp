@@ -45,6 +45,8 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
                  "Save the film to OUT.checkpoint every SECONDS (and at the end, or on SIGINT/SIGTERM)")
       ->check(CLI::PositiveNumber)
       ->each([&r](const std::string&) { r.checkpoint = true; });
+  cmd.add_option("--memory-limit", r.memory_limit_mib, "Use at most this many MiB of device memory")
+      ->check(CLI::PositiveNumber);
   cmd.add_flag("--resume", r.resume, "Continue from OUT.checkpoint when it exists (same scene and settings)");
   cmd.add_option("--stats", r.stats_file, "Write the run's figures to this JSON file");
   cmd.add_flag("--no-nee", [&r](std::int64_t) { r.settings.nee = false; }, "Disable next-event estimation");

@@ -1,4 +1,5 @@
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include <fstream>
@@ -92,7 +93,12 @@ int run_render(const RenderCommand& cmd_in) {
   // check where the outputs go before spending time on the render
   const OutputPaths out = output_paths(cmd.output, cmd.scene);
 
-  const DeviceInfo device = select_device(cmd.device);
+  DeviceInfo device = select_device(cmd.device);
+  if (cmd.memory_limit_mib > 0) {
+    const auto limit = static_cast<std::uint64_t>(cmd.memory_limit_mib * 1048576.0);
+    device.global_memory = std::min(device.global_memory, limit);
+    device.max_allocation = std::min(device.max_allocation, limit);
+  }
   PreparedScene prepared = prepare_scene(cmd.scene);
   if (cmd.white_sky) apply_white_sky(prepared, cmd.settings);
   if (!cmd.camera_bounds.empty())
@@ -133,6 +139,9 @@ int run_render(const RenderCommand& cmd_in) {
     fmt::print("kd-tree: depth {}, {} nodes, {} leaves, {:.2f} triangles per leaf, SAH cost {:.2f}, built in {:.3f}s\n",
                ts.depth, ts.node_count, ts.leaf_count, ts.average_leaf_triangles, ts.sah_cost, ts.build_seconds);
     fmt::print("kernel compile: {:.3f}s ({})\n", result.compile_seconds, result.compile_from_cache ? "warm, from cache" : "cold");
+    const auto features = device_scene.features.names();
+    fmt::print("kernel features: {}\n", features.empty() ? std::string("none (Lambertian only)")
+                                                         : fmt::format("{}", fmt::join(features, " ")));
     for (const auto& [name, seconds] : result.kernel_seconds) fmt::print("kernel {}: {:.3f}s\n", name, seconds);
     if (result.wavefront_size)
       fmt::print("wavefront: {} path slots x {} bytes = {:.1f} MiB, {} bounces, SIMD efficiency {:.3f}\n",

@@ -17,6 +17,7 @@ struct RenderCommand {
   std::string environment;  // "R,G,B" or one value
   std::string camera_bounds;  // "ex,ey,ez,tx,ty,tz": fractions of the scene bounds
   float fov = 0;              // vertical field of view in degrees; 0 = the camera's own
+  double memory_limit_mib = 0;  // pretend the device has at most this much memory (tests, sharing)
   bool white_sky = false;
   double checkpoint_seconds = 0;  // --checkpoint: save the film this often
   bool checkpoint = false;        // --checkpoint given

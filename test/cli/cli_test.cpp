@@ -121,3 +121,24 @@ TEST(Cli, DevicesListsPocl) {
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("compute units"), std::string::npos) << r.output;
 }
+
+TEST(Cli, ASceneThatDoesNotFitTheDeviceFailsWithTheSizes) {
+  TempDir dir;
+  const CommandResult r = run("render " + scene("furnace-sphere.gltf") + " --res 8x8 --spp 1 --memory-limit 0.01 -o " +
+                              (dir.path / "x").string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("bytes"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir.path / "x.exr"));
+}
+
+TEST(Cli, TimeLimitStopsTheRender) {
+  TempDir dir;
+  const CommandResult r = run("render " + scene("cornell-box.gltf") + " --res 16x16 --spp 0 --time 0.5 -o " +
+                              (dir.path / "t").string() + " --stats " + (dir.path / "t.json").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(dir.path / "t.json");
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_GT(j["image"]["spp"].get<int>(), 0);
+  EXPECT_GE(j["timings"]["render_seconds"].get<double>(), 0.5);
+  EXPECT_EQ(run("render " + scene("cornell-box.gltf") + " --spp 0").code, 2);  // --spp 0 needs --time
+}
