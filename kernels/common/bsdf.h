@@ -23,6 +23,27 @@
 #include "common/microfacet.h"
 #include "common/types.h"
 
+/* ---- Families compiled --------------------------------------------------------------------------
+ * A rendering program is specialised to its scene: pathtrace.h defines COHORT_BSDF_SPECIALISED and
+ * the host passes -DCOHORT_FEATURE_CONDUCTOR / _DIELECTRIC / _PLASTIC for the families the scene's
+ * materials can select (runtime/render/device_scene.cpp, with the rules of bsdf_from_gltf); the
+ * Lambertian is always compiled. Everything else (host code, bsdf_test.cl) compiles every family. */
+#if defined(COHORT_BSDF_SPECIALISED) && !defined(COHORT_FEATURE_CONDUCTOR)
+#define BSDF_WITH_CONDUCTOR 0
+#else
+#define BSDF_WITH_CONDUCTOR 1
+#endif
+#if defined(COHORT_BSDF_SPECIALISED) && !defined(COHORT_FEATURE_DIELECTRIC)
+#define BSDF_WITH_DIELECTRIC 0
+#else
+#define BSDF_WITH_DIELECTRIC 1
+#endif
+#if defined(COHORT_BSDF_SPECIALISED) && !defined(COHORT_FEATURE_PLASTIC)
+#define BSDF_WITH_PLASTIC 0
+#else
+#define BSDF_WITH_PLASTIC 1
+#endif
+
 /* ---- Shading frame --------------------------------------------------------------------------- */
 
 typedef struct ShadingFrame {
@@ -389,9 +410,15 @@ CO_INLINE co_vec3 bsdf_eval(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
   wi.z *= side;
   wo.z *= side;
   if (b->type == BSDF_DIFFUSE) return diffuse_eval(b, wi, wo);
+#if BSDF_WITH_CONDUCTOR
   if (b->type == BSDF_CONDUCTOR) return conductor_eval(b, wi, wo);
+#endif
+#if BSDF_WITH_DIELECTRIC
   if (b->type == BSDF_DIELECTRIC) return dielectric_eval(b, wi, wo);
+#endif
+#if BSDF_WITH_PLASTIC
   if (b->type == BSDF_PLASTIC) return plastic_eval(b, wi, wo);
+#endif
   return v3_splat(0.0f);
 }
 
@@ -400,9 +427,15 @@ CO_INLINE float bsdf_pdf(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
   wi.z *= side;
   wo.z *= side;
   if (b->type == BSDF_DIFFUSE) return diffuse_pdf(wi, wo);
+#if BSDF_WITH_CONDUCTOR
   if (b->type == BSDF_CONDUCTOR) return conductor_pdf(b, wi, wo);
+#endif
+#if BSDF_WITH_DIELECTRIC
   if (b->type == BSDF_DIELECTRIC) return dielectric_pdf(b, wi, wo);
+#endif
+#if BSDF_WITH_PLASTIC
   if (b->type == BSDF_PLASTIC) return plastic_pdf(b, wi, wo);
+#endif
   return 0.0f;
 }
 
@@ -412,9 +445,15 @@ CO_INLINE BsdfSample bsdf_sample(const Bsdf* b, co_vec3 wi, float u_lobe, float 
   wi.z *= side;
   BsdfSample s;
   if (b->type == BSDF_DIFFUSE) s = diffuse_sample(b, wi, u1, u2);
+#if BSDF_WITH_CONDUCTOR
   else if (b->type == BSDF_CONDUCTOR) s = conductor_sample(b, wi, u1, u2);
+#endif
+#if BSDF_WITH_DIELECTRIC
   else if (b->type == BSDF_DIELECTRIC) s = dielectric_sample(b, wi, u_lobe, u1, u2);
+#endif
+#if BSDF_WITH_PLASTIC
   else if (b->type == BSDF_PLASTIC) s = plastic_sample(b, wi, u_lobe, u1, u2);
+#endif
   else s = bsdf_no_sample();
   s.wo.z *= side;
   return s;
@@ -438,11 +477,18 @@ CO_INLINE Bsdf bsdf_from_gltf(co_vec3 base_color, float metallic, float roughnes
   float alpha = r * r;
   float eta = (ior >= 1.0f && ior <= 10.0f) ? ior : 1.5f;
   float met = fmin(fmax(metallic, 0.0f), 1.0f);
+  /* a program specialised to its scene leaves out the branches its materials cannot take */
+#if BSDF_WITH_CONDUCTOR
   if (u_select < met) return bsdf_conductor(base_color, alpha);
+#endif
   float u = (u_select - met) / (1.0f - met); /* remapped to [0, 1) given "not metal" */
+#if BSDF_WITH_DIELECTRIC
   if (u < transmission) return bsdf_dielectric(eta, alpha, base_color);
-  if (r >= 1.0f) return bsdf_diffuse(base_color);
-  return bsdf_plastic(base_color, eta, alpha);
+#endif
+#if BSDF_WITH_PLASTIC
+  if (r < 1.0f) return bsdf_plastic(base_color, eta, alpha);
+#endif
+  return bsdf_diffuse(base_color);
 }
 
 /* The same for a scene material; base_color is the material's colour times its texture, which

@@ -1,10 +1,16 @@
 /* The reference estimator: unidirectional path tracing with next-event estimation on emissive
  * triangles and multiple importance sampling (power heuristic), Russian roulette, and a depth
- * counted in path segments as Mitsuba's max_depth (1 = emitters seen directly). Surfaces are
- * two-sided Lambertian with albedo = base colour at this stage. */
+ * counted in path segments as Mitsuba's max_depth (1 = emitters seen directly). Surfaces shade
+ * with the BSDFs of bsdf.h, mapped from the glTF material (docs/bsdf.md). The program is built
+ * with the COHORT_FEATURE_* options of its scene, so only the BSDF families and the texture
+ * lookups the scene needs are compiled. */
 #ifndef COHORT_PATHTRACE_H
 #define COHORT_PATHTRACE_H
 
+/* the BSDF dispatch compiles only the families named by COHORT_FEATURE_* (see bsdf.h) */
+#define COHORT_BSDF_SPECIALISED 1
+
+#include "common/bsdf.h"
 #include "common/camera.h"
 #include "common/rng.h"
 #include "common/scene_view.h"
@@ -19,7 +25,7 @@ typedef struct PathState {
   co_vec3 org, dir;
   co_vec3 throughput;
   co_vec3 radiance;
-  co_vec3 prev_pos;       /* last scattering vertex, for the MIS weight of emission */
+  co_vec3 prev_pos;       /* origin of the current ray (the last vertex, offset), for the MIS weight of emission */
   float prev_bsdf_pdf;    /* 0: the previous vertex was the camera */
   uint32_t segment;       /* the segment `dir` traces; the camera ray is segment 1 */
   uint32_t status;
@@ -49,10 +55,12 @@ CO_INLINE PathState path_start(const RenderParams* p, uint32_t pixel, uint32_t s
   return st;
 }
 
-/* Next-event estimation at `pos`: picks an emitter point and returns the shadow ray towards it
- * with the MIS-weighted contribution it adds when unoccluded (already times the throughput). */
-CO_INLINE ShadowRay sample_direct_light(const SceneView* s, const RenderParams* p, Rng* rng, co_vec3 pos, co_vec3 n,
-                                        co_vec3 albedo, co_vec3 throughput) {
+/* Next-event estimation at `pos` for the BSDF `b` chosen there (never a delta BSDF): picks an
+ * emitter point and returns the shadow ray towards it with the MIS-weighted contribution it adds
+ * when unoccluded (already times the throughput). `frame` is the shading frame of the stored
+ * geometric normal and `wi` the local direction towards the previous vertex. */
+CO_INLINE ShadowRay sample_direct_light(const SceneView* s, const RenderParams* p, Rng* rng, co_vec3 pos,
+                                        const ShadingFrame* frame, const Bsdf* b, co_vec3 wi, co_vec3 throughput) {
   ShadowRay sr;
   sr.valid = 0;
   float u_pick = rng_next(rng), u1 = rng_next(rng), u2 = rng_next(rng);
@@ -66,39 +74,52 @@ CO_INLINE ShadowRay sample_direct_light(const SceneView* s, const RenderParams* 
   co_vec3 e1 = v3_sub(v3_from4(tri->v1), p0), e2 = v3_sub(v3_from4(tri->v2), p0);
   co_vec3 pl = v3_add(p0, v3_add(v3_scale(e1, b1), v3_scale(e2, b2)));
   co_vec3 nl = v3_normalize(v3_cross(e1, e2));
-  co_vec3 to_light = v3_sub(pl, pos);
+  /* Both strategies of the MIS pair integrate over the directions seen from the ray origin, which
+   * is offset from `pos` to the side the ray leaves from: NEE measures its direction, distance and
+   * pdfs from the shadow ray's origin, as path_shade measures a BSDF sample's light pdf from the
+   * origin of that ray (prev_pos). Measured from `pos` instead, the two weights of one light path
+   * no longer sum to 1: the furnace lost ~0.05% of the direct light. The shadow ray stops one
+   * epsilon short of the light, so neither the receiver's nor the light's own triangle can
+   * occlude the sample. */
+  float side = v3_dot(v3_sub(pl, pos), frame->n);
+  if (!(side > 0.0f) && !(side < 0.0f)) return sr; /* in the plane, or NaN */
+  co_vec3 origin = v3_madd(pos, frame->n, side > 0.0f ? p->ray_epsilon : -p->ray_epsilon);
+  co_vec3 to_light = v3_sub(pl, origin);
   float dist2 = v3_dot(to_light, to_light);
-  if (!(dist2 > 0.0f)) return sr;
   float dist = sqrt(dist2);
-  co_vec3 wi = v3_scale(to_light, 1.0f / dist);
-  float cos_s = v3_dot(n, wi);
-  if (cos_s <= 0.0f) return sr;
-  co_vec3 le = emitted_radiance(m, nl, v3_neg(wi));
+  if (!(dist > 2.0f * p->ray_epsilon)) return sr;
+  co_vec3 wl = v3_scale(to_light, 1.0f / dist);
+  co_vec3 wl_local = frame_to_local(frame, wl);
+  if (!(wl_local.z * side > 0.0f)) return sr; /* a light within epsilon of the tangent plane */
+  co_vec3 f = bsdf_eval(b, wi, wl_local); /* f |cos|; 0 on the wrong side of a reflector */
+  if (!(v3_max_component(f) > 0.0f)) return sr;
+  co_vec3 le = emitted_radiance_at(s, m, entry.triangle, b1, b2, nl, v3_neg(wl));
   if (v3_max_component(le) <= 0.0f) return sr;
 
-  /* the shadow ray leaves from the offset origin and stops one epsilon short of the light, so
-   * neither the receiver's nor the light's own triangle can occlude the sample */
-  co_vec3 origin = v3_madd(pos, n, p->ray_epsilon);
-  co_vec3 shadow = v3_sub(pl, origin);
-  float shadow_len = v3_length(shadow);
-  if (!(shadow_len > 2.0f * p->ray_epsilon)) return sr;
-
-  float pdf_light = light_pdf_solid_angle(s, m, entry.area, pos, pl, nl);
-  float weight = (p->flags & RENDER_FLAG_MIS) ? mis_power(pdf_light, cos_s * CO_INV_PI) : 1.0f;
+  /* the light pdf of the MIS weight is the one path_shade uses when a BSDF sample hits the
+   * emitter (the untextured power table), so the two weights sum to 1 */
+  float pdf_light = light_pdf_solid_angle(s, m, entry.area, origin, pl, nl);
+  float weight = (p->flags & RENDER_FLAG_MIS) ? mis_power(pdf_light, bsdf_pdf(b, wi, wl_local)) : 1.0f;
   /* estimator divides by the probability the table actually used to pick this triangle */
-  float pdf_pick = entry.pmf * dist2 / (entry.area * fabs(v3_dot(nl, wi)));
-  float scale = cos_s * CO_INV_PI * weight / pdf_pick;
+  float pdf_pick = entry.pmf * dist2 / (entry.area * fabs(v3_dot(nl, wl)));
+  float scale = weight / pdf_pick;
   sr.org = origin;
-  sr.dir = v3_scale(shadow, 1.0f / shadow_len);
-  sr.tmax = shadow_len - p->ray_epsilon;
-  sr.contribution = v3_mul(throughput, v3_scale(v3_mul(albedo, le), scale));
+  sr.dir = wl;
+  sr.tmax = dist - p->ray_epsilon;
+  sr.contribution = v3_mul(throughput, v3_scale(v3_mul(f, le), scale));
   sr.valid = 1;
   return sr;
 }
 
 /* Everything that happens at the end of the segment `st->segment` given its closest hit:
  * emission, next-event estimation (returned as a shadow ray), Russian roulette and the next
- * direction. Leaves the path ALIVE with its next ray, or TERMINATED. */
+ * direction. Leaves the path ALIVE with its next ray, or TERMINATED.
+ *
+ * Shading follows docs/bsdf.md: the frame of the geometric normal as stored (flat shading; the
+ * front is the exterior, which dielectrics need), one BSDF chosen per vertex from the material
+ * with u_select and used for both NEE and the continuation, the four numbers of the RNG_BSDF
+ * stream (u_select, u_lobe, u1, u2), no NEE at delta BSDFs, and after a delta sample a
+ * prev_bsdf_pdf of 0: the next emitter hit counts with weight 1. */
 CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathState* st, HitOut hit, uint32_t pixel,
                                uint32_t sample) {
   ShadowRay none;
@@ -117,7 +138,7 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
   co_vec3 n_geo = v3_normalize(cross_n);
   co_vec3 pos = v3_madd(st->org, st->dir, hit.t);
 
-  co_vec3 le = emitted_radiance(m, n_geo, v3_neg(st->dir));
+  co_vec3 le = emitted_radiance_at(s, m, hit.triangle, hit.u, hit.v, n_geo, v3_neg(st->dir));
   if (v3_max_component(le) > 0.0f) {
     float w = 1.0f;
     if (st->prev_bsdf_pdf > 0.0f && nee) {
@@ -125,7 +146,7 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
         float area = 0.5f * v3_length(cross_n);
         w = mis_power(st->prev_bsdf_pdf, light_pdf_solid_angle(s, m, area, st->prev_pos, pos, n_geo));
       } else {
-        w = 0.0f; /* NEE alone accounts for emitters after the first segment */
+        w = 0.0f; /* NEE alone accounts for emitters after a non-delta vertex */
       }
     }
     st->radiance = v3_add(st->radiance, v3_scale(v3_mul(st->throughput, le), w));
@@ -135,15 +156,23 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
     return none;
   }
 
-  co_vec3 n = v3_dot(n_geo, st->dir) < 0.0f ? n_geo : v3_neg(n_geo); /* two-sided: face the ray */
-  co_vec3 albedo = v3_from4(m->base_color);
+  Rng bsdf_rng = rng_make(p->seed, pixel, sample, segment, RNG_BSDF);
+  float u_select = rng_next(&bsdf_rng), u_lobe = rng_next(&bsdf_rng);
+  float u1 = rng_next(&bsdf_rng), u2 = rng_next(&bsdf_rng);
+  co_vec3 base_color =
+      v3_mul(v3_from4(m->base_color), material_texture(s, m->base_color_texture, hit.triangle, hit.u, hit.v));
+  Bsdf b = bsdf_from_material(m, base_color, u_select);
+  ShadingFrame frame = frame_from_normal(n_geo);
+  co_vec3 wi = frame_to_local(&frame, v3_neg(st->dir));
+
   ShadowRay shadow = none;
-  if (nee) {
+  if (nee && !bsdf_is_delta(&b)) {
     Rng light_rng = rng_make(p->seed, pixel, sample, segment, RNG_LIGHT);
-    shadow = sample_direct_light(s, p, &light_rng, pos, n, albedo, st->throughput);
+    shadow = sample_direct_light(s, p, &light_rng, pos, &frame, &b, wi, st->throughput);
   }
   if ((p->flags & RENDER_FLAG_RUSSIAN_ROULETTE) && segment >= p->rr_depth) {
     Rng rr_rng = rng_make(p->seed, pixel, sample, segment, RNG_ROULETTE);
+    /* refraction may lift the throughput above 1 (the eta^2 scale): q stays at most 0.95 */
     float q = fmin(v3_max_component(st->throughput), 0.95f);
     if (!(rng_next(&rr_rng) < q)) {
       st->status = PATH_TERMINATED;
@@ -151,20 +180,19 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
     }
     st->throughput = v3_scale(st->throughput, 1.0f / q);
   }
-  Rng bsdf_rng = rng_make(p->seed, pixel, sample, segment, RNG_BSDF);
-  float u1 = rng_next(&bsdf_rng), u2 = rng_next(&bsdf_rng);
-  co_vec3 wi = sample_cosine_hemisphere(n, u1, u2);
-  float cos_i = v3_dot(wi, n);
-  co_vec3 next_throughput = v3_mul(st->throughput, albedo); /* f cos / pdf = albedo for Lambertian */
-  if (!(cos_i > 0.0f) || v3_max_component(next_throughput) <= 0.0f) {
+  BsdfSample bs = bsdf_sample(&b, wi, u_lobe, u1, u2);
+  co_vec3 next_throughput = v3_mul(st->throughput, bs.weight);
+  if (bs.flags == 0u || !(bs.wo.z != 0.0f) || v3_max_component(next_throughput) <= 0.0f) {
     st->status = PATH_TERMINATED;
     return shadow;
   }
   st->throughput = next_throughput;
-  st->prev_bsdf_pdf = cos_i * CO_INV_PI;
-  st->prev_pos = pos;
-  st->org = v3_madd(pos, n, p->ray_epsilon);
-  st->dir = wi;
+  st->prev_bsdf_pdf = (bs.flags & BSDF_DELTA) ? 0.0f : bs.pdf; /* 0: the next emitter hit is not MIS-weighted */
+  /* offset to the side the new direction leaves from, not the side of the incoming ray; the MIS
+   * weight of an emitter this ray hits measures the light pdf from this origin, as NEE does */
+  st->org = v3_madd(pos, n_geo, bs.wo.z > 0.0f ? p->ray_epsilon : -p->ray_epsilon);
+  st->prev_pos = st->org;
+  st->dir = frame_to_world(&frame, bs.wo);
   st->segment = segment + 1u;
   return shadow;
 }

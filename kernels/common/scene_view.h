@@ -1,15 +1,21 @@
-/* Device view of a loaded scene: the KD-tree, per-triangle materials and the emitter table. */
+/* Device view of a loaded scene: the KD-tree, per-triangle materials, the emitter table and the
+ * textures (texture coordinates per triangle, descriptors, texels; read only when the program is
+ * built with COHORT_FEATURE_TEXTURES, and one-element placeholders otherwise). */
 #ifndef COHORT_SCENE_VIEW_H
 #define COHORT_SCENE_VIEW_H
 
 #include "common/kdtree_traverse.h"
 #include "common/sampling.h"
+#include "common/texture.h"
 
 typedef struct SceneView {
   KdTreeView tree;
   const CO_GLOBAL uint32_t* triangle_material; /* per kept triangle */
   const CO_GLOBAL Material* materials;
   const CO_GLOBAL EmitterEntry* emitters;      /* emissive triangles, cdf by power */
+  const CO_GLOBAL TriangleUv* triangle_uvs;   /* per kept triangle */
+  const CO_GLOBAL TextureDesc* textures;
+  const CO_GLOBAL uint32_t* texels;           /* RGBA8, sRGB-encoded */
   uint32_t emitter_count;
   float emitter_power_total;
 } SceneView;
@@ -18,26 +24,30 @@ typedef struct SceneView {
 #define SCENE_KERNEL_PARAMS                                                                         \
   CO_CONSTANT RenderParams *params, CO_GLOBAL const KdNode *nodes, CO_GLOBAL const uint32_t *leaf_triangles, \
       CO_GLOBAL const Triangle *triangles, CO_GLOBAL const uint32_t *triangle_material,              \
-      CO_GLOBAL const Material *materials, CO_GLOBAL const EmitterEntry *emitters
+      CO_GLOBAL const Material *materials, CO_GLOBAL const EmitterEntry *emitters,                    \
+      CO_GLOBAL const TriangleUv *triangle_uvs, CO_GLOBAL const TextureDesc *textures,                \
+      CO_GLOBAL const uint32_t *texels
 
 CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNode* nodes,
                                     const CO_GLOBAL uint32_t* leaf_triangles, const CO_GLOBAL Triangle* triangles,
                                     const CO_GLOBAL uint32_t* triangle_material, const CO_GLOBAL Material* materials,
-                                    const CO_GLOBAL EmitterEntry* emitters) {
+                                    const CO_GLOBAL EmitterEntry* emitters, const CO_GLOBAL TriangleUv* triangle_uvs,
+                                    const CO_GLOBAL TextureDesc* textures, const CO_GLOBAL uint32_t* texels) {
   SceneView s;
-  s.tree.nodes = nodes;
-  s.tree.leaf_triangles = leaf_triangles;
-  s.tree.triangles = triangles;
-  s.tree.lo = v3_from4(p->scene_min);
-  s.tree.hi = v3_from4(p->scene_max);
+  s.tree = make_tree_view(nodes, leaf_triangles, triangles, p->scene_min, p->scene_max);
   s.triangle_material = triangle_material;
   s.materials = materials;
   s.emitters = emitters;
+  s.triangle_uvs = triangle_uvs;
+  s.textures = textures;
+  s.texels = texels;
   s.emitter_count = p->emitter_count;
   s.emitter_power_total = p->emitter_power_total;
   return s;
 }
-#define SCENE_VIEW(p) make_scene_view(&(p), nodes, leaf_triangles, triangles, triangle_material, materials, emitters)
+#define SCENE_VIEW(p)                                                                                \
+  make_scene_view(&(p), nodes, leaf_triangles, triangles, triangle_material, materials, emitters, triangle_uvs, \
+                  textures, texels)
 
 CO_INLINE float luminance(co_vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
@@ -60,6 +70,45 @@ CO_INLINE float emitter_power(co_vec3 radiance, float area, int two_sided) {
 CO_INLINE co_vec3 emitted_radiance(const CO_GLOBAL Material* m, co_vec3 n_geo, co_vec3 to_viewer) {
   co_vec3 le = v3_from4(m->emission);
   if (!material_two_sided_emission(m) && v3_dot(n_geo, to_viewer) <= 0.0f) return v3_splat(0.0f);
+  return le;
+}
+
+/* Texture `index` at barycentric weights (b1, b2) of `triangle`, or 1 where the material has no
+ * texture. Without COHORT_FEATURE_TEXTURES every texture is absent and no lookup is compiled. */
+CO_INLINE co_vec3 material_texture(const SceneView* s, int32_t index, uint32_t triangle, float b1, float b2) {
+#ifdef COHORT_FEATURE_TEXTURES
+  if (index >= 0) {
+    float u, v;
+    triangle_uv_at(s->triangle_uvs, triangle, b1, b2, &u, &v);
+    return texture_sample(s->textures, s->texels, index, u, v);
+  }
+#else
+  (void)s;
+  (void)index;
+  (void)triangle;
+  (void)b1;
+  (void)b2;
+#endif
+  return v3_splat(1.0f);
+}
+
+/* emitted_radiance times the emission texture at (b1, b2). The emitter table (host) and the
+ * light pdf below use the untextured emission factor: NEE picks a textured emitter with a
+ * probability that only approximates its power, which stays unbiased because the estimator
+ * divides by the probability the table used, and the MIS weights on both sides use that same
+ * light_pdf_solid_angle. */
+CO_INLINE co_vec3 emitted_radiance_at(const SceneView* s, const CO_GLOBAL Material* m, uint32_t triangle, float b1,
+                                      float b2, co_vec3 n_geo, co_vec3 to_viewer) {
+  co_vec3 le = emitted_radiance(m, n_geo, to_viewer);
+#ifdef COHORT_FEATURE_TEXTURES
+  if (m->emission_texture >= 0 && v3_max_component(le) > 0.0f)
+    le = v3_mul(le, material_texture(s, m->emission_texture, triangle, b1, b2));
+#else
+  (void)s;
+  (void)triangle;
+  (void)b1;
+  (void)b2;
+#endif
   return le;
 }
 

@@ -36,8 +36,9 @@ typedef struct Triangle {
 CO_STATIC_ASSERT(sizeof(Triangle) == 48, "Triangle must stay 48 bytes");
 
 /* ---- Materials ------------------------------------------------------------------------------
- * The glTF metallic-roughness parameters; kernels at this stage shade base_color as Lambertian
- * albedo and emission as a one-sided (or two-sided) area light. */
+ * The glTF metallic-roughness parameters, mapped to a BSDF by bsdf_from_material (bsdf.h), and
+ * emission as a one-sided (or two-sided) area light. Texture indices refer to the TextureDesc
+ * table; the host sets them to -1 when the scene has no texture coordinates. */
 #define MAT_TWO_SIDED_EMISSION 1u
 typedef struct Material {
   co_float4 base_color;  /* rgb; a = alpha */
@@ -46,11 +47,29 @@ typedef struct Material {
   float roughness;
   float transmission;
   float ior;
-  int32_t base_color_texture; /* -1: none */
+  int32_t base_color_texture; /* -1: none; multiplies base_color */
   uint32_t flags;
-  uint32_t pad0, pad1;
+  int32_t emission_texture;   /* -1: none; multiplies emission */
+  uint32_t pad1;
 } Material;
 CO_STATIC_ASSERT(sizeof(Material) == 64, "Material must stay 64 bytes");
+
+/* ---- Textures ---------------------------------------------------------------------------------
+ * Every texture's texels live in one buffer of RGBA8 words (r in the low byte, sRGB-encoded as
+ * glTF stores them, rows from the top: texture coordinate v = 0 is the first row); a descriptor
+ * per texture says where. Texture coordinates are stored per kept triangle, 3 vertices. */
+typedef struct TextureDesc {
+  uint32_t offset; /* first texel in the texel buffer */
+  uint32_t width;
+  uint32_t height;
+  uint32_t pad0;
+} TextureDesc;
+CO_STATIC_ASSERT(sizeof(TextureDesc) == 16, "TextureDesc must stay 16 bytes");
+
+typedef struct TriangleUv {
+  float u0, v0, u1, v1, u2, v2;
+} TriangleUv;
+CO_STATIC_ASSERT(sizeof(TriangleUv) == 24, "TriangleUv must stay 24 bytes");
 
 /* ---- Emissive triangles, sampled by power --------------------------------------------------- */
 typedef struct EmitterEntry {

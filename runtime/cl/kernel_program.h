@@ -15,6 +15,8 @@ namespace cohort {
 // correctly, computes the same bits.
 std::string base_build_options(const DeviceInfo& device);
 
+// extra_options: the scene's -DCOHORT_FEATURE_* defines (DeviceScene::build_options) for the
+// rendering programs; they join the cache key with the rest of the options.
 ProgramBuild build_kernel_program(const ClContext& cl, const ProgramCache& cache, const std::string& file,
                                   const std::string& extra_options = {});
 

@@ -1,6 +1,10 @@
 #include "runtime/render/device_scene.h"
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -55,14 +59,118 @@ Material to_device_material(const SceneMaterial& m) {
   d.ior = m.ior;
   d.base_color_texture = m.base_color_texture;
   d.flags = m.double_sided ? MAT_TWO_SIDED_EMISSION : 0u;
+  d.emission_texture = m.emission_texture;
   return d;
 }
+
+std::vector<std::string> SceneFeatures::names() const {
+  std::vector<std::string> out;
+  if (textures) out.push_back("textures");
+  if (conductor) out.push_back("conductor");
+  if (dielectric) out.push_back("dielectric");
+  if (plastic) out.push_back("plastic");
+  return out;
+}
+
+std::string SceneFeatures::build_options() const {
+  std::string out;
+  for (const std::string& name : names()) {
+    if (!out.empty()) out += ' ';
+    out += "-DCOHORT_FEATURE_";
+    for (char c : name) out += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  }
+  return out;
+}
+
+// Mirrors bsdf_from_gltf (kernels/common/bsdf.h) with the same clamps, so that no family the
+// kernel can select is left out. With u_select in [0, 1): a conductor whenever metallic > 0; the
+// remapped u lies in [0, 1], reaching 1 only through rounding when 0 < metallic < 1, so a
+// dielectric is possible whenever transmission > 0 and the opaque base unless transmission > 1,
+// or transmission = 1 with metallic = 0 (NaN transmission: always the base).
+SceneFeatures material_features(const Material& m) {
+  SceneFeatures f;
+  const float met = std::fmin(std::fmax(m.metallic, 0.f), 1.f);
+  const float r = std::fmin(std::fmax(m.roughness, 0.f), 1.f);
+  f.conductor = met > 0.f;
+  if (met < 1.f) {
+    f.dielectric = m.transmission > 0.f;
+    const bool opaque = !(m.transmission >= 1.f) || (m.transmission == 1.f && met > 0.f);
+    f.plastic = opaque && r < 1.f;
+  }
+  return f;
+}
+
+namespace {
+
+bool texture_usable(const Scene& scene, int index) {
+  if (index < 0 || static_cast<std::size_t>(index) >= scene.textures.size()) return false;
+  const Texture& t = scene.textures[static_cast<std::size_t>(index)];
+  return t.width > 0 && t.height > 0 &&
+         t.rgba.size() == std::size_t(t.width) * std::size_t(t.height) * 4 &&
+         std::size_t(t.width) * std::size_t(t.height) < std::numeric_limits<std::uint32_t>::max();
+}
+
+// Uploads only the textures that used materials refer to, renumbered; the others stay on the host.
+void add_textures(const Scene& scene, const KdTree& tree, const std::vector<bool>& used, SceneTables& t) {
+  std::vector<int> new_index(scene.textures.size(), -1);
+  auto remap = [&](std::int32_t& index) {
+    if (!texture_usable(scene, index)) {
+      index = -1;
+      return;
+    }
+    int& n = new_index[static_cast<std::size_t>(index)];
+    if (n < 0) {
+      const Texture& tex = scene.textures[static_cast<std::size_t>(index)];
+      const std::size_t texels = std::size_t(tex.width) * std::size_t(tex.height);
+      if (t.texels.size() + texels > std::numeric_limits<std::uint32_t>::max()) {
+        index = -1;  // the descriptor's 32-bit offset cannot reach it
+        return;
+      }
+      n = static_cast<int>(t.textures.size());
+      t.textures.push_back(TextureDesc{static_cast<std::uint32_t>(t.texels.size()), std::uint32_t(tex.width),
+                                       std::uint32_t(tex.height), 0u});
+      const std::size_t first = t.texels.size();
+      t.texels.resize(first + texels);
+      std::memcpy(t.texels.data() + first, tex.rgba.data(), texels * 4);  // little-endian: r in the low byte
+    }
+    index = n;
+  };
+  const bool has_uvs = scene.uvs.size() == 3 * scene.triangle_count();
+  for (std::size_t i = 0; i < t.materials.size(); ++i) {
+    Material& m = t.materials[i];
+    if (!has_uvs || !used[i]) {
+      m.base_color_texture = m.emission_texture = -1;
+      continue;
+    }
+    remap(m.base_color_texture);
+    remap(m.emission_texture);
+  }
+  if (t.textures.empty()) return;
+  t.features.textures = true;
+  t.triangle_uvs.reserve(tree.source_index.size());
+  for (std::uint32_t src : tree.source_index) {
+    const glm::vec2* uv = &scene.uvs[3 * std::size_t(src)];
+    t.triangle_uvs.push_back(TriangleUv{uv[0].x, uv[0].y, uv[1].x, uv[1].y, uv[2].x, uv[2].y});
+  }
+}
+
+}  // namespace
 
 SceneTables make_scene_tables(const Scene& scene, const KdTree& tree) {
   SceneTables t;
   for (const auto& m : scene.materials) t.materials.push_back(to_device_material(m));
   t.triangle_material.reserve(tree.source_index.size());
   for (std::uint32_t src : tree.source_index) t.triangle_material.push_back(scene.material_ids.at(src));
+  std::vector<bool> used(t.materials.size(), false);
+  for (std::uint32_t id : t.triangle_material) used.at(id) = true;
+  for (std::size_t i = 0; i < t.materials.size(); ++i) {
+    if (!used[i]) continue;
+    const SceneFeatures f = material_features(t.materials[i]);
+    t.features.conductor |= f.conductor;
+    t.features.dielectric |= f.dielectric;
+    t.features.plastic |= f.plastic;
+  }
+  add_textures(scene, tree, used, t);
   t.emitters = build_emitter_table(tree, t.materials, t.triangle_material);
   return t;
 }
@@ -70,7 +178,8 @@ SceneTables make_scene_tables(const Scene& scene, const KdTree& tree) {
 DeviceScene upload_scene(const ClContext& cl, const KdTree& tree, const SceneTables& tables) {
   DeviceScene d;
   d.bytes = bytes_of(tree.nodes) + bytes_of(tree.leaf_triangles) + bytes_of(tree.triangles) +
-            bytes_of(tables.triangle_material) + bytes_of(tables.materials) + bytes_of(tables.emitters.entries);
+            bytes_of(tables.triangle_material) + bytes_of(tables.materials) + bytes_of(tables.emitters.entries) +
+            bytes_of(tables.triangle_uvs) + bytes_of(tables.textures) + bytes_of(tables.texels);
   if (d.bytes > cl.device.global_memory)
     throw DeviceError(fmt::format("the scene needs {} bytes of device memory; {} has {} bytes", d.bytes,
                                   cl.device.name, cl.device.global_memory));
@@ -82,6 +191,15 @@ DeviceScene upload_scene(const ClContext& cl, const KdTree& tree, const SceneTab
       cl.buffer("triangle materials", bytes_of(tables.triangle_material), tables.triangle_material.data(), ro);
   d.materials = cl.buffer("materials", bytes_of(tables.materials), tables.materials.data(), ro);
   d.emitters = cl.buffer("emitters", bytes_of(tables.emitters.entries), tables.emitters.entries.data(), ro);
+  // without textures the kernels never read these; they take one-element placeholders
+  auto upload = [&](const char* what, const auto& v) {
+    return cl.buffer(what, bytes_of(v), v.empty() ? nullptr : v.data(), ro);
+  };
+  d.triangle_uvs = upload("texture coordinates", tables.triangle_uvs);
+  d.textures = upload("texture descriptors", tables.textures);
+  d.texels = upload("texels", tables.texels);
+  d.features = tables.features;
+  d.build_options = tables.features.build_options();
   d.emitter_count = static_cast<std::uint32_t>(tables.emitters.entries.size());
   d.emitter_power_total = tables.emitters.total_power;
   d.bounds = tree.bounds;

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "kernels/common/types.h"
@@ -15,11 +16,34 @@
 
 namespace cohort {
 
+// What the shading code of a scene needs compiled: the BSDF families its materials can select
+// (bsdf_from_gltf's rules; the Lambertian is always there) and texture lookups. Every rendering
+// program of a render is built with the same options, so the methods still agree bit for bit.
+struct SceneFeatures {
+  bool textures = false;
+  bool conductor = false;
+  bool dielectric = false;
+  bool plastic = false;
+
+  std::vector<std::string> names() const;  // "textures", "conductor", ...; empty for diffuse only
+  std::string build_options() const;       // "-DCOHORT_FEATURE_TEXTURES ..."; empty for diffuse only
+  bool operator==(const SceneFeatures&) const = default;
+};
+
+// The families bsdf_from_gltf can return for a material (any u_select).
+SceneFeatures material_features(const Material& m);
+
 // Host-side device data, testable without a device.
 struct SceneTables {
   std::vector<Material> materials;
   std::vector<std::uint32_t> triangle_material;  // per kept triangle
   EmitterTable emitters;
+  // textures, only when some used material has one and the scene has texture coordinates
+  // (otherwise empty, and every material's texture index is -1)
+  std::vector<TriangleUv> triangle_uvs;  // per kept triangle
+  std::vector<TextureDesc> textures;     // the textures used, renumbered in order of first use
+  std::vector<std::uint32_t> texels;     // RGBA8 words, r in the low byte, sRGB-encoded
+  SceneFeatures features;                // of the materials the kept triangles use
 };
 
 Material to_device_material(const SceneMaterial& m);
@@ -27,6 +51,9 @@ SceneTables make_scene_tables(const Scene& scene, const KdTree& tree);
 
 struct DeviceScene {
   cl::Buffer nodes, leaf_triangles, triangles, triangle_material, materials, emitters;
+  cl::Buffer triangle_uvs, textures, texels;  // one-element placeholders without textures
+  SceneFeatures features;
+  std::string build_options;  // features.build_options(): every rendering program gets them
   std::uint32_t emitter_count = 0;
   float emitter_power_total = 0;
   Bounds bounds;

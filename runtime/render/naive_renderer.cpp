@@ -9,7 +9,7 @@ namespace cohort {
 RenderResult render_naive(const ClContext& cl, const ProgramCache& cache, const DeviceScene& scene,
                           const RenderParams& params, const RenderSettings& settings, const ProgressCallback& progress,
                           const RenderControl& control) {
-  const ProgramBuild build = build_kernel_program(cl, cache, "naive.cl");
+  const ProgramBuild build = build_kernel_program(cl, cache, "naive.cl", scene.build_options);
   cl::Kernel kernel(build.program, "render_naive");
   const std::uint32_t zero = 0;
   cl::Buffer ray_counter = cl.buffer("ray counter", sizeof(zero), &zero);
@@ -23,7 +23,8 @@ RenderResult render_naive(const ClContext& cl, const ProgramCache& cache, const 
       int arg = 0;
       for (const cl::Buffer* buf : std::initializer_list<const cl::Buffer*>{
                &b.params, &scene.nodes, &scene.leaf_triangles, &scene.triangles, &scene.triangle_material,
-               &scene.materials, &scene.emitters, &b.film, &ray_counter, &b.dropped})
+               &scene.materials, &scene.emitters, &scene.triangle_uvs, &scene.textures, &scene.texels, &b.film,
+               &ray_counter, &b.dropped})
         kernel.setArg(arg++, *buf);
       args_set = true;
     }

@@ -107,7 +107,9 @@ void set_args(cl::Kernel& k, const Args&... args) {
 RenderResult render_wavefront(const Method& method, const ClContext& cl, const ProgramCache& cache,
                               const DeviceScene& scene, const RenderParams& params, const RenderSettings& settings,
                               const ProgressCallback& progress, const RenderControl& control) {
-  const ProgramBuild build = build_kernel_program(cl, cache, "wavefront.cl");
+  // the scene's feature options go to every program that shades or traces, so all methods compile
+  // the shared code identically
+  const ProgramBuild build = build_kernel_program(cl, cache, "wavefront.cl", scene.build_options);
   const std::uint32_t pixels = settings.width * settings.height;
   // a pass holds one result per (pixel, sample): bound it to ~64 MiB of results
   const std::uint32_t max_per_pass = std::max<std::uint32_t>(1, (1u << 22) / std::max<std::uint32_t>(pixels, 1));
@@ -123,7 +125,7 @@ RenderResult render_wavefront(const Method& method, const ClContext& cl, const P
   std::optional<SortStage> sort_stage;
   std::optional<ProgramBuild> pth_build;
   if (sorting) {
-    pth_build = build_kernel_program(cl, cache, "pth.cl");
+    pth_build = build_kernel_program(cl, cache, "pth.cl", scene.build_options);
     sort_stage.emplace(cl, cache, scene, method, settings, pool.slots);
     sort_stage->walk = cl::Kernel(pth_build->program, "pth_walk_and_code");
     sort_stage->resume = cl::Kernel(pth_build->program, "pth_resume");
@@ -138,8 +140,8 @@ RenderResult render_wavefront(const Method& method, const ClContext& cl, const P
     set_args(generate, b.params, o, d, t, r, pv, it, sg, st, pool.counters, pool.queue, use_queue, pool.slots, items);
     set_args(finish, o, d, t, r, pv, it, sg, st, results, pool.counters, pool.queue, use_queue, pool.slots);
     set_args(shadow, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
-             sc.emitters, r, pool.shadow_org, pool.shadow_dir, pool.shadow_contribution, pool.shadow_queue,
-             pool.counters);
+             sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, r, pool.shadow_org, pool.shadow_dir,
+             pool.shadow_contribution, pool.shadow_queue, pool.counters);
     set_args(accumulate, b.params, results, b.film, b.dropped);
 
     std::array<std::uint32_t, kCounterCount> counters{};
@@ -162,26 +164,28 @@ RenderResult render_wavefront(const Method& method, const ClContext& cl, const P
       if (sort_stage) {
         SortStage& ss = *sort_stage;
         set_args(ss.walk, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
-                 sc.emitters, o, d, it, st, pool.queue, use_queue, count,
+                 sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, o, d, it, st, pool.queue, use_queue, count,
                  cl::Local(std::max<std::size_t>(ss.subtree.local_bytes, sizeof(KdNode))), ss.subtree.nodes,
                  ss.code_params, ss.origin_bounds, ss.keys, ss.values, ss.traversal, ss.traversal_stack, pool.slots,
                  pool.hits);
         log.launch(cl, ss.walk, method.sort == RaySort::pth ? "pth" : "hash", count);
         ss.sort->sort(ss.keys, ss.values, count, ss.code.key_bits, &sort_seconds);
         set_args(ss.resume, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
-                 sc.emitters, o, d, ss.values, count, ss.traversal, ss.traversal_stack, pool.slots, pool.hits,
-                 pool.steps);
+                 sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, o, d, ss.values, count, ss.traversal,
+                 ss.traversal_stack, pool.slots, pool.hits, pool.steps);
         log.launch(cl, ss.resume, "resume", count);
       } else {
         set_args(extend, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
-                 sc.emitters, o, d, t, r, pv, it, sg, st, pool.hits, pool.queue, use_queue, count, pool.steps);
+                 sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, o, d, t, r, pv, it, sg, st, pool.hits,
+                 pool.queue, use_queue, count, pool.steps);
         log.launch(cl, extend, "extend", count);
       }
       set_args(simd, pool.steps, count, pool.counters);
       log.launch(cl, simd, "simd efficiency", (count + 31) / 32);
       set_args(shade, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
-               sc.emitters, o, d, t, r, pv, it, sg, st, pool.hits, pool.queue, use_queue, count, pool.shadow_org,
-               pool.shadow_dir, pool.shadow_contribution, pool.shadow_queue, pool.counters);
+               sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, o, d, t, r, pv, it, sg, st, pool.hits, pool.queue,
+               use_queue, count, pool.shadow_org, pool.shadow_dir, pool.shadow_contribution, pool.shadow_queue,
+               pool.counters);
       log.launch(cl, shade, "shade", count);
       log.launch(cl, shadow, "shadow", live);  // at most one shadow ray per live path
       const std::uint32_t zero = 0;
