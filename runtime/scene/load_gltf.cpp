@@ -54,6 +54,31 @@ void check_glb_chunks(const std::string& bytes, const std::string& file) {
   }
 }
 
+// tinygltf turns extras and extensions into its own Value type recursively, so a deeply nested JSON
+// document overflows the stack; no glTF needs more than a few dozen levels.
+constexpr int kMaxJsonDepth = 512;
+
+void check_json_depth(std::string_view json, const std::string& file) {
+  int depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < json.size(); ++i) {
+    const char c = json[i];
+    if (in_string) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth)
+        throw InputError(fmt::format("{}: JSON nested deeper than {} levels", file, kMaxJsonDepth));
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+}
+
 void add_warnings(const std::string& text, const std::string& file, Scene& scene) {
   std::istringstream lines(text);
   for (std::string line; std::getline(lines, line);)
@@ -78,7 +103,12 @@ tinygltf::Model parse(const std::filesystem::path& path, const std::string& byte
   const std::string file = path.string();
   if (bytes.size() > std::numeric_limits<unsigned int>::max())
     throw InputError(fmt::format("{}: glTF larger than 4 GiB", file));
-  if (binary) check_glb_chunks(bytes, file);
+  if (binary) {
+    check_glb_chunks(bytes, file);
+    check_json_depth(std::string_view(bytes).substr(20, u32_at(bytes, 12)), file);
+  } else {
+    check_json_depth(bytes, file);
+  }
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(keep_encoded_image, nullptr);
   tinygltf::Model model;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <string>
 
 #include <fmt/format.h>
@@ -53,9 +54,16 @@ void check_loaded(const Scene& scene, const std::filesystem::path& path) {
 
 }  // namespace
 
+// Triangles with a NaN or infinite corner are dropped by the KD-tree build; they must not stretch the
+// bounds either, or the framing camera lands at infinity.
 Bounds Scene::bounds() const {
   Bounds b;
-  for (const glm::vec3& p : positions) b.extend(p);
+  const auto finite = [](const glm::vec3& p) {
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+  };
+  for (std::size_t i = 0; i + 2 < positions.size(); i += 3)
+    if (finite(positions[i]) && finite(positions[i + 1]) && finite(positions[i + 2]))
+      for (std::size_t k = i; k < i + 3; ++k) b.extend(positions[k]);
   return b;
 }
 

@@ -1,10 +1,25 @@
 #include "runtime/scene/scene_builder.h"
 
+#include <algorithm>
+#include <vector>
+
 namespace cohort {
 
+namespace {
+
+// Reserving exactly what one more mesh needs would reallocate on every call, which makes a scene of
+// many instanced meshes quadratic to load; growing at least geometrically keeps it linear.
+template <typename T>
+void reserve_more(std::vector<T>& v, std::size_t extra) {
+  const std::size_t needed = v.size() + extra;
+  if (needed > v.capacity()) v.reserve(std::max(needed, 2 * v.capacity()));
+}
+
+}  // namespace
+
 void SceneBuilder::reserve(std::size_t triangles) {
-  scene_.positions.reserve(scene_.positions.size() + 3 * triangles);
-  scene_.material_ids.reserve(scene_.material_ids.size() + triangles);
+  reserve_more(scene_.positions, 3 * triangles);
+  reserve_more(scene_.material_ids, triangles);
 }
 
 void SceneBuilder::add(const std::array<glm::vec3, 3>& p, std::uint32_t material,

@@ -1,0 +1,7 @@
+// libFuzzer target: bytes loaded as a .gltf (JSON) file. Built by scripts/fuzz.
+#include "fuzz_targets.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  cohort::fuzz::load_bytes(cohort::fuzz::targets()[0], data, size);
+  return 0;
+}
