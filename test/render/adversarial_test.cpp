@@ -7,22 +7,13 @@
 #include <random>
 
 #include "render_fixture.h"
+#include "scene_building.h"
 #include "runtime/render/methods.h"
 
 using namespace cohort;
 using namespace cohort::test;
 
 namespace {
-
-void add_triangle(Scene& s, glm::vec3 a, glm::vec3 b, glm::vec3 c, std::uint32_t material) {
-  s.positions.insert(s.positions.end(), {a, b, c});
-  s.material_ids.push_back(material);
-}
-
-void add_quad(Scene& s, glm::vec3 o, glm::vec3 u, glm::vec3 v, std::uint32_t material) {
-  add_triangle(s, o, o + u, o + u + v, material);
-  add_triangle(s, o, o + u + v, o + v, material);
-}
 
 Scene base_scene() {
   Scene s;

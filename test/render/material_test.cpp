@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "render_fixture.h"
+#include "scene_building.h"
 #include "runtime/render/methods.h"
 #include "kernels/common/texture.h"
 
@@ -21,23 +22,6 @@ using namespace cohort::test;
 
 namespace {
 
-void add_triangle(Scene& s, glm::vec3 a, glm::vec3 b, glm::vec3 c, std::uint32_t material) {
-  s.positions.insert(s.positions.end(), {a, b, c});
-  s.material_ids.push_back(material);
-  if (!s.uvs.empty()) s.uvs.insert(s.uvs.end(), 3, glm::vec2(0.f));
-}
-
-// A quad o, o + u, o + u + v, o + v (front side: u x v) with texture coordinates (0,0)..(1,1).
-void add_quad(Scene& s, glm::vec3 o, glm::vec3 u, glm::vec3 v, std::uint32_t material, bool with_uvs = false) {
-  const std::size_t first = s.positions.size();
-  add_triangle(s, o, o + u, o + u + v, material);
-  add_triangle(s, o, o + u + v, o + v, material);
-  if (with_uvs) {
-    if (s.uvs.empty()) s.uvs.assign(s.positions.size(), glm::vec2(0.f));
-    const glm::vec2 t[6] = {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {0, 1}};
-    for (int i = 0; i < 6; ++i) s.uvs[first + i] = t[i];
-  }
-}
 
 // A closed icosphere (20 * 4^levels flat triangles, shared vertices, so watertight), front faces
 // outwards unless `inward`.
