@@ -18,6 +18,9 @@ namespace {
 
 constexpr std::uint32_t kItemNone = 0xffffffffu;
 enum Counter { kNextItem = 0, kQueue, kShadow, kSimdSum, kSimdGroups, kCounterCount };
+// Source of the non-blocking counter resets: the host memory of a non-blocking write must outlive
+// the command, so it cannot be a local of the loop.
+constexpr std::array<std::uint32_t, kCounterCount> kZeros{};
 constexpr std::uint32_t kPthMaxLevels = 16;  // PTH_MAX_LEVELS in kernels/pth.cl
 
 // Device bytes per slot: path state (5 float4 + 3 uint), hit, shadow ray (3 float4), two queues,
@@ -145,7 +148,7 @@ RenderResult render_wavefront(const Method& method, const ClContext& cl, const P
     set_args(accumulate, b.params, results, b.film, b.dropped);
 
     std::array<std::uint32_t, kCounterCount> counters{};
-    cl.queue.enqueueWriteBuffer(pool.counters, CL_FALSE, 0, sizeof(counters), counters.data());
+    cl.queue.enqueueWriteBuffer(pool.counters, CL_FALSE, 0, sizeof(kZeros), kZeros.data());
     PassOutput out;
     LaunchLog log;
     std::map<std::string, double> sort_seconds;
@@ -188,12 +191,10 @@ RenderResult render_wavefront(const Method& method, const ClContext& cl, const P
                pool.counters);
       log.launch(cl, shade, "shade", count);
       log.launch(cl, shadow, "shadow", live);  // at most one shadow ray per live path
-      const std::uint32_t zero = 0;
-      cl.queue.enqueueWriteBuffer(pool.counters, CL_FALSE, kQueue * 4, 4, &zero);
+      cl.queue.enqueueWriteBuffer(pool.counters, CL_FALSE, kQueue * 4, 4, kZeros.data());
       log.launch(cl, finish, "finish", pool.slots);
       cl.queue.enqueueReadBuffer(pool.counters, CL_TRUE, 0, sizeof(counters), counters.data());
-      const std::array<std::uint32_t, 3> zeros{};
-      cl.queue.enqueueWriteBuffer(pool.counters, CL_FALSE, kShadow * 4, sizeof(zeros), zeros.data());
+      cl.queue.enqueueWriteBuffer(pool.counters, CL_FALSE, kShadow * 4, 3 * 4, kZeros.data());
 
       if (iterations.size() <= iteration) iterations.resize(iteration + 1);
       IterationStats& stats = iterations[iteration];
