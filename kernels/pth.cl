@@ -78,3 +78,36 @@ __kernel void pth_resume(SCENE_KERNEL_PARAMS, __global const float4* path_org, _
   }
   steps[i] = visited;
 }
+
+#include "common/kdtree_speculative.h"
+
+/* pth_resume with speculative traversal (--speculative): the same hits, bit for bit, with leaf
+ * tests postponed until the work-group agrees. Launched with one SIMD group (32) per work-group;
+ * every work item runs the group loop, so the items past `count` join as finished rays. */
+__kernel void pth_resume_speculative(SCENE_KERNEL_PARAMS, __global const float4* path_org,
+                                     __global const float4* path_dir, __global const uint* sorted_slots, uint count,
+                                     __global const uint4* traversal, __global const float4* traversal_stack,
+                                     uint stack_stride, __global HitOut* hits, __global uint* steps) {
+  __local uint votes[3];
+  uint i = get_global_id(0);
+  uint slot = i < count ? sorted_slots[i] : 0u;
+  uint4 state = i < count ? traversal[slot] : (uint4)(TRAVERSAL_DONE, 0u, 0u, 0u);
+  int active = state.x != TRAVERSAL_DONE;
+  RenderParams p = *params;
+  SceneView s = SCENE_VIEW(p);
+  KdStackEntry stack[KD_MAX_DEPTH];
+  for (uint k = 0u; active && k < state.w; ++k) {
+    float4 e = traversal_stack[k * stack_stride + slot];
+    stack[k].node = as_uint(e.x);
+    stack[k].tmin = e.y;
+    stack[k].tmax = e.z;
+  }
+  KdSpeculativeRay ray;
+  kd_spec_start(&ray, active, active ? v3_from4(path_org[slot]) : v3(0.0f, 0.0f, 1.0f),
+                active ? v3_from4(path_dir[slot]) : v3(0.0f, 0.0f, 1.0f), 0.0f, INFINITY, state.x,
+                as_float(state.y), as_float(state.z), (int)state.w);
+  kd_spec_run_group(&s.tree, &ray, stack, votes);
+  if (i >= count) return;
+  if (active) hits[slot] = ray.hit;
+  steps[i] = ray.visited;
+}

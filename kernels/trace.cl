@@ -42,3 +42,27 @@ __kernel void trace_rays_pth(__global const KdNode* nodes, __global const uint* 
   hits[i] = hit;
   pth_bits[i] = bits;
 }
+
+#include "common/kdtree_speculative.h"
+
+/* kd_trace with speculative traversal, for a buffer of rays: the test that it finds exactly the
+ * hit of kd_trace. Every work item runs the group loop; items past `count` join as finished. */
+__kernel void trace_rays_speculative(__global const KdNode* nodes, __global const uint* leaf_triangles,
+                                     __global const Triangle* triangles, float4 scene_min, float4 scene_max,
+                                     __global const RayIn* rays, __global HitOut* hits, uint count,
+                                     __global uint* steps) {
+  __local uint votes[3];
+  uint i = get_global_id(0);
+  KdTreeView tree = make_tree_view(nodes, leaf_triangles, triangles, scene_min, scene_max);
+  RayIn r = i < count ? rays[i] : rays[0];
+  co_vec3 org = v3_from4(r.origin), dir = v3_from4(r.dir);
+  float t0, t1;
+  int active = i < count && kd_begin(&tree, org, kd_inverse(dir), r.origin.w, r.dir.w, &t0, &t1);
+  KdStackEntry stack[KD_MAX_DEPTH];
+  KdSpeculativeRay ray;
+  kd_spec_start(&ray, active, org, dir, r.origin.w, r.dir.w, 0u, t0, t1, 0);
+  kd_spec_run_group(&tree, &ray, stack, votes);
+  if (i >= count) return;
+  hits[i] = ray.hit;
+  steps[i] = ray.visited;
+}

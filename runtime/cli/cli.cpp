@@ -33,6 +33,8 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
   cmd.add_option("--pth-levels", r.settings.pth_levels,
                  "KD-tree levels pth walks in local memory (default: 10, fewer if the tree or local memory is smaller)")
       ->check(CLI::Range(1, 16));
+  cmd.add_flag("--speculative", r.settings.speculative,
+               "hash/pth: speculative resumed traversal (leaf tests wait until the SIMD group agrees)");
   cmd.add_option("--time", r.settings.time_limit, "Stop after this many seconds of rendering")
       ->check(CLI::NonNegativeNumber);
   cmd.add_option("--env", r.environment, "Constant environment radiance: R,G,B or one value");

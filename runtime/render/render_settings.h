@@ -27,6 +27,7 @@ struct RenderSettings {
   std::uint32_t wavefront_size = 0;  // path slots of the wavefront methods; 0: chosen from the device
   std::string code;                  // coherence code layout of hash/pth; empty: the method's default
   std::uint32_t pth_levels = 0;      // subtree levels of pth; 0: chosen from the device and the tree
+  bool speculative = false;          // hash/pth: resumed traversal postpones leaf tests (Aila & Laine)
 };
 
 }  // namespace cohort

@@ -50,6 +50,7 @@ struct RenderResult {
   std::string code_layout;                       // hash and pth: the coherence code used
   std::uint32_t pth_levels = 0;                  // pth: subtree levels in local memory
   std::uint32_t pth_subtree_nodes = 0;
+  bool speculative = false;                      // hash/pth: resumed with speculative traversal
   bool interrupted = false;                      // stopped by stop_requested before the sample count
   std::uint32_t resumed_samples = 0;             // samples taken over from a checkpoint
 };

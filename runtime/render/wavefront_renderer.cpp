@@ -131,7 +131,8 @@ RenderResult render_wavefront(const Method& method, const ClContext& cl, const P
     pth_build = build_kernel_program(cl, cache, "pth.cl", scene.build_options);
     sort_stage.emplace(cl, cache, scene, method, settings, pool.slots);
     sort_stage->walk = cl::Kernel(pth_build->program, "pth_walk_and_code");
-    sort_stage->resume = cl::Kernel(pth_build->program, "pth_resume");
+    sort_stage->resume =
+        cl::Kernel(pth_build->program, settings.speculative ? "pth_resume_speculative" : "pth_resume");
   }
   const auto& sc = scene;
   std::vector<IterationStats> iterations;
@@ -176,7 +177,8 @@ RenderResult render_wavefront(const Method& method, const ClContext& cl, const P
         set_args(ss.resume, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
                  sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, o, d, ss.values, count, ss.traversal,
                  ss.traversal_stack, pool.slots, pool.hits, pool.steps);
-        log.launch(cl, ss.resume, "resume", count);
+        // the speculative kernel votes per work-group: make it one SIMD group of 32
+        log.launch(cl, ss.resume, "resume", count, settings.speculative ? 32 : 64);
       } else {
         set_args(extend, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
                  sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, o, d, t, r, pv, it, sg, st, pool.hits,
@@ -231,6 +233,7 @@ RenderResult render_wavefront(const Method& method, const ClContext& cl, const P
     result.code_layout = sort_stage->layout;
     result.pth_levels = sort_stage->code.pth_levels;
     result.pth_subtree_nodes = sort_stage->subtree.nodes;
+    result.speculative = settings.speculative;
   }
   return result;
 }

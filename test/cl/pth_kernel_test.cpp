@@ -24,9 +24,13 @@ struct DeviceTrace {
   std::vector<std::uint32_t> bits;
 };
 
-// Full traversal (levels = 0 and no subtree) or partial + resumed traversal.
+enum class Traversal { full, partial, speculative };
+
+// Full traversal, partial + resumed traversal (with subtree_nodes and levels), or full traversal
+// with speculative leaf tests.
 DeviceTrace trace(const KdTree& tree, const std::vector<TestRay>& rays, std::uint32_t subtree_nodes,
-                  std::uint32_t levels, bool partial) {
+                  std::uint32_t levels, Traversal mode) {
+  const bool partial = mode == Traversal::partial;
   const ClContext cl(select_device(""));
   const ProgramCache cache(ProgramCache::default_directory());
   const ProgramBuild build = build_kernel_program(cl, cache, "trace.cl");
@@ -41,7 +45,8 @@ DeviceTrace trace(const KdTree& tree, const std::vector<TestRay>& rays, std::uin
   auto bit_buf = cl.buffer("bits", in.size() * 4);
   const co_float4 lo{tree.bounds.lo.x, tree.bounds.lo.y, tree.bounds.lo.z, 0.f};
   const co_float4 hi{tree.bounds.hi.x, tree.bounds.hi.y, tree.bounds.hi.z, 0.f};
-  cl::Kernel k(build.program, partial ? "trace_rays_pth" : "trace_rays");
+  const char* name = partial ? "trace_rays_pth" : mode == Traversal::speculative ? "trace_rays_speculative" : "trace_rays";
+  cl::Kernel k(build.program, name);
   cl_uint a = 0;
   k.setArg(a++, nodes);
   k.setArg(a++, leaves);
@@ -56,15 +61,20 @@ DeviceTrace trace(const KdTree& tree, const std::vector<TestRay>& rays, std::uin
     k.setArg(a++, subtree_nodes);
     k.setArg(a++, levels);
     k.setArg(a++, bit_buf);
+  } else if (mode == Traversal::speculative) {
+    k.setArg(a++, bit_buf);  // nodes visited per ray
   } else {
     k.setArg(a++, cl_uint(0));
   }
-  cl.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange((in.size() + 63) / 64 * 64), cl::NDRange(64));
+  // the speculative kernel votes per work-group: one SIMD group of 32
+  const std::size_t group = mode == Traversal::speculative ? 32 : 64;
+  cl.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange((in.size() + group - 1) / group * group),
+                                cl::NDRange(group));
   DeviceTrace out;
   out.hits.resize(in.size());
   out.bits.resize(in.size());
   cl.queue.enqueueReadBuffer(hit_buf, CL_TRUE, 0, out.hits.size() * sizeof(HitOut), out.hits.data());
-  if (partial) cl.queue.enqueueReadBuffer(bit_buf, CL_TRUE, 0, out.bits.size() * 4, out.bits.data());
+  if (mode != Traversal::full) cl.queue.enqueueReadBuffer(bit_buf, CL_TRUE, 0, out.bits.size() * 4, out.bits.data());
   return out;
 }
 
@@ -127,11 +137,15 @@ void check(const fs::path& path, std::uint32_t levels) {
   const std::uint32_t walk = std::min(levels, tree_levels);
   const std::uint32_t subtree = facts.level_starts[walk];
   const auto rays = make_rays(tree.bounds, 100000, 4321);
-  const DeviceTrace full = trace(tree, rays, 0, 0, false);
-  const DeviceTrace partial = trace(tree, rays, subtree, walk, true);
-  std::size_t hit_mismatch = 0, bit_mismatch = 0, bit_mismatch_outside_margin = 0, hits = 0;
+  const DeviceTrace full = trace(tree, rays, 0, 0, Traversal::full);
+  const DeviceTrace partial = trace(tree, rays, subtree, walk, Traversal::partial);
+  const DeviceTrace speculative = trace(tree, rays, 0, 0, Traversal::speculative);
+  std::size_t hit_mismatch = 0, speculative_mismatch = 0, bit_mismatch = 0, bit_mismatch_outside_margin = 0, hits = 0;
+  std::uint64_t speculative_steps = 0;
   for (std::size_t i = 0; i < rays.size(); ++i) {
     if (std::memcmp(&full.hits[i], &partial.hits[i], sizeof(HitOut)) != 0) ++hit_mismatch;
+    if (std::memcmp(&full.hits[i], &speculative.hits[i], sizeof(HitOut)) != 0) ++speculative_mismatch;
+    speculative_steps += speculative.bits[i];
     hits += full.hits[i].triangle != HIT_NONE;
     double margin = 0;
     const std::uint32_t expected = reference_bits(tree, rays[i], walk, margin);
@@ -141,10 +155,13 @@ void check(const fs::path& path, std::uint32_t levels) {
     }
   }
   std::printf("%s: %u of %u tree levels walked (%u subtree nodes); %zu rays, %zu hits; %zu hit differences; "
-              "PTH bits differ from the reference on %zu rays (%zu beyond the widening margin)\n",
+              "PTH bits differ from the reference on %zu rays (%zu beyond the widening margin); speculative "
+              "traversal: %zu hit differences, %.1f nodes per ray\n",
               path.filename().c_str(), walk, tree_levels, subtree, rays.size(), hits, hit_mismatch, bit_mismatch,
-              bit_mismatch_outside_margin);
+              bit_mismatch_outside_margin, speculative_mismatch, double(speculative_steps) / double(rays.size()));
   EXPECT_EQ(hit_mismatch, 0u);
+  EXPECT_EQ(speculative_mismatch, 0u);
+  EXPECT_GE(speculative_steps, hits);  // the kernel did walk the tree: a hit takes at least a leaf
   EXPECT_EQ(bit_mismatch_outside_margin, 0u);
   EXPECT_LE(bit_mismatch, rays.size() / 10000);
   EXPECT_GT(hits, rays.size() / 10);

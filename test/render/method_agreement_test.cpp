@@ -18,6 +18,7 @@ namespace {
 struct AgreementCase {
   const char* method;
   std::uint32_t wavefront_size;  // 0: the device default; small odd pools force many refills
+  bool speculative = false;      // hash/pth: speculative resumed traversal
 };
 
 class MethodAgreement : public ::testing::TestWithParam<AgreementCase> {};
@@ -43,6 +44,7 @@ TEST_P(MethodAgreement, CornellBoxBitForBit) {
   const RenderResult reference = render_scene(path, s);
   s.method = GetParam().method;
   s.wavefront_size = GetParam().wavefront_size;
+  s.speculative = GetParam().speculative;
   const RenderResult other = render_scene(path, s);
   expect_bitwise_equal(reference, other, GetParam().method);
   if (GetParam().wavefront_size) EXPECT_EQ(other.wavefront_size, GetParam().wavefront_size);
@@ -63,6 +65,7 @@ TEST_P(MethodAgreement, SharedModelUnderWhiteSkyBitForBit) {
   const RenderResult reference = render(cl, cache, scene, prepared.camera, s);
   s.method = GetParam().method;
   s.wavefront_size = GetParam().wavefront_size;
+  s.speculative = GetParam().speculative;
   const RenderResult other = render(cl, cache, scene, prepared.camera, s);
   expect_bitwise_equal(reference, other, GetParam().method);
 }
@@ -73,12 +76,15 @@ INSTANTIATE_TEST_SUITE_P(Methods, MethodAgreement,
                                            AgreementCase{"wavefront", 333}, AgreementCase{"sc", 1000},
                                            AgreementCase{"rg", 97}, AgreementCase{"sc+rg", 1},
                                            AgreementCase{"hash", 0}, AgreementCase{"pth", 0},
-                                           AgreementCase{"hash", 129}, AgreementCase{"pth", 1000}),
+                                           AgreementCase{"hash", 129}, AgreementCase{"pth", 1000},
+                                           AgreementCase{"pth", 0, true}, AgreementCase{"hash", 129, true},
+                                           AgreementCase{"pth", 1000, true}),
                          [](const auto& info) {
                            std::string name = info.param.method;
                            for (char& c : name)
                              if (c == '+') c = '_';
-                           return name + "_pool" + std::to_string(info.param.wavefront_size);
+                           return name + "_pool" + std::to_string(info.param.wavefront_size) +
+                                  (info.param.speculative ? "_speculative" : "");
                          });
 
 TEST(Methods, PthWithOtherCodeLayoutsAndSubtreeDepthsStillBitForBit) {
