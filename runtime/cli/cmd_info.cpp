@@ -53,6 +53,11 @@ int run_devices() {
                d.compute_units, d.local_memory / 1024, d.local_memory_is_global ? " (global)" : "",
                d.global_memory >> 20, d.max_allocation >> 20);
     fmt::print("    {}, driver {}\n", d.version, d.driver_version);
+    // what the kernels adapt to: sub-group votes (speculative traversal) and IEEE division
+    const std::string extensions = d.device.getInfo<CL_DEVICE_EXTENSIONS>();
+    fmt::print("    sub-groups (cl_khr_subgroups): {}, correctly rounded divide/sqrt: {}\n",
+               extensions.find("cl_khr_subgroups") != std::string::npos ? "yes" : "no",
+               d.correctly_rounded_divide_sqrt ? "yes" : "no");
   }
   return 0;
 }
