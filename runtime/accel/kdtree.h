@@ -17,7 +17,7 @@ struct KdBuildOptions {
   float traversal_cost = 1.0f;     // cost of one inner-node step
   float intersection_cost = 1.5f;  // cost of one ray-triangle test
   float empty_bonus = 0.8f;        // SAH cost factor (1 - bonus) for splits that cut off empty space
-  int max_depth = 0;               // 0: 8 + 1.3 log2(N), capped at KD_MAX_DEPTH
+  int max_depth = 0;               // 0: 8 + 1.8 log2(N), capped below KD_MAX_DEPTH
   int leaf_triangles = 1;          // never split a node with this many triangles or fewer
   bool parallel = true;            // build subtrees with TBB
 };

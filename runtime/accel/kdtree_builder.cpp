@@ -156,7 +156,7 @@ int effective_max_depth(const KdBuildOptions& options, std::size_t triangle_coun
   int depth = options.max_depth;
   if (depth <= 0) {
     const double n = static_cast<double>(std::max<std::size_t>(triangle_count, 1));
-    depth = static_cast<int>(std::lround(8.0 + 1.3 * std::log2(n)));
+    depth = static_cast<int>(std::lround(8.0 + 1.8 * std::log2(n)));
   }
   return std::clamp(depth, 0, kDepthCap);
 }

@@ -39,7 +39,7 @@ TEST(KdTreeStructure, SharedModelsAreValid) {
 
 TEST(KdTreeStructure, DefaultDepthLimitFollowsTriangleCount) {
   EXPECT_EQ(kd::effective_max_depth({}, 1), 8);
-  EXPECT_EQ(kd::effective_max_depth({}, 1024), 8 + 13);
+  EXPECT_EQ(kd::effective_max_depth({}, 1024), 8 + 18);
   EXPECT_EQ(kd::effective_max_depth({}, std::size_t{1} << 29), kd::kDepthCap);
   KdBuildOptions deep;
   deep.max_depth = 100;
