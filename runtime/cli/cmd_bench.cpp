@@ -64,16 +64,16 @@ void print_view(const SceneFigures& s, const ViewFigures& v) {
                mrays(v.primary->rays_per_second), v.primary->hits, v.primary->rays, mrays(v.diffuse->rays_per_second),
                v.diffuse->rays);
   if (v.methods.empty()) return;
-  fmt::print("  | method | path-tracing Mrays/s (best) | M samples/s | SIMD eff. | stages (s): walk / sort / resume / "
+  fmt::print("  | method | path-tracing Mrays/s (best) | M samples/s | SIMD eff. | stages (ms): walk / sort / resume / "
              "traversal / shadow / shading / other |\n");
   for (const MethodFigures& m : v.methods) {
     const auto stage = [&](const char* a, const char* b = nullptr) {
       double t = 0;
       for (const char* k : {a, b})
         if (k && m.breakdown.count(k)) t += m.breakdown.at(k);
-      return t;
+      return t * 1e3;
     };
-    fmt::print("  | {} | {} | {:.3f} | {:.3f} | {:.3f} / {:.3f} / {:.3f} / {:.3f} / {:.3f} / {:.3f} / {:.3f} |\n",
+    fmt::print("  | {} | {} | {:.3f} | {:.3f} | {:.1f} / {:.1f} / {:.1f} / {:.1f} / {:.1f} / {:.1f} / {:.1f} |\n",
                m.method, mrays(m.rays_per_second), m.samples_per_second.median() * 1e-6, m.simd_efficiency,
                stage("pth walk", "hash codes"), stage("sort"), stage("resume traversal"),
                stage("traversal", "megakernel"), stage("shadow rays"), stage("shading"), stage("other"));
