@@ -23,6 +23,7 @@ COHORT_PACKAGES=(
   libtbb-dev                        # parallel KD-tree build
   zlib1g-dev                        # .gz scenes
   libgtest-dev                      # tests
+  libembree-dev                     # Embree 3: the peer of scripts/bench on the protocol's rays
 )
 
 cohort_install_packages() {
