@@ -19,26 +19,10 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import mitsuba as mi  # noqa: E402
 import numpy as np  # noqa: E402
+from bench_data import METHODS, STAGES, load, views  # noqa: E402
 
 mi.set_variant("scalar_rgb")
-METHODS = ["naive", "wavefront", "sc", "rg", "sc+rg", "hash", "pth"]
 COLORS = dict(zip(METHODS + ["mitsuba"], plt.get_cmap("tab10").colors))
-STAGES = ["pth walk", "hash codes", "sort", "resume traversal", "traversal", "megakernel", "shadow rays", "shading",
-          "other"]
-
-
-def load(pattern):
-    out = {}
-    for path in sorted(glob.glob(pattern)):
-        with open(path) as f:
-            out[os.path.splitext(os.path.basename(path))[0]] = json.load(f)
-    return out
-
-
-def views(doc):
-    for scene in doc["scenes"]:
-        for v in scene["views"]:
-            yield scene, v
 
 
 def read_exr(path):
@@ -55,46 +39,42 @@ def device_label(cohort):
     return f"{doc['device']['name']}, {s['res']}x{s['res']} {s['spp']} spp white sky, median of {s['reps']}"
 
 
-def rays_per_method(cohort, out):
+def method_bars(cohort, methods, value, whisker, ylabel, title, path, ylim=None):
+    """Grouped bars: one group per scene and view, one bar per method; whisker(pt, m) adds an
+    upward whisker (the best repetition) when given."""
     rows = [(f"{name}\n{v['view']}", v["path_tracing"]) for name, doc in cohort.items() for _, v in views(doc)
             if v["path_tracing"]]
     if not rows:
         return
     fig, ax = plt.subplots(figsize=(max(8, 1.3 * len(rows)), 4.5))
-    width = 0.8 / len(METHODS)
-    for i, m in enumerate(METHODS):
-        med = [pt[m]["mrays_per_second"]["median"] if m in pt else 0 for _, pt in rows]
-        best = [pt[m]["mrays_per_second"]["best"] if m in pt else 0 for _, pt in rows]
-        x = np.arange(len(rows)) + (i - len(METHODS) / 2 + 0.5) * width
-        ax.bar(x, med, width, label=m, color=COLORS[m])
-        ax.errorbar(x, med, yerr=[np.zeros(len(med)), np.array(best) - np.array(med)], fmt="none", ecolor="k",
-                    lw=0.6)
+    width = 0.8 / len(methods)
+    for i, m in enumerate(methods):
+        heights = np.array([value(pt, m) if m in pt else 0 for _, pt in rows])
+        x = np.arange(len(rows)) + (i - len(methods) / 2 + 0.5) * width
+        ax.bar(x, heights, width, label=m, color=COLORS[m])
+        if whisker:
+            tops = np.array([whisker(pt, m) if m in pt else 0 for _, pt in rows])
+            ax.errorbar(x, heights, yerr=[np.zeros(len(rows)), tops - heights], fmt="none", ecolor="k", lw=0.6)
     ax.set_xticks(np.arange(len(rows)), [r[0] for r in rows], fontsize=8)
-    ax.set_ylabel("path-tracing Mrays/s (median, whisker to best)")
-    ax.set_title(f"Rays/s per method ({device_label(cohort)})", fontsize=9)
-    ax.legend(ncol=len(METHODS), fontsize=7)
+    if ylim:
+        ax.set_ylim(*ylim)
+    ax.set_ylabel(ylabel)
+    ax.set_title(f"{title} ({device_label(cohort)})", fontsize=9)
+    ax.legend(ncol=len(methods), fontsize=7)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "bench-rays-per-method.png"), dpi=120)
+    fig.savefig(path, dpi=120)
+
+
+def rays_per_method(cohort, out):
+    method_bars(cohort, METHODS, lambda pt, m: pt[m]["mrays_per_second"]["median"],
+                lambda pt, m: pt[m]["mrays_per_second"]["best"], "path-tracing Mrays/s (median, whisker to best)",
+                "Rays/s per method", os.path.join(out, "bench-rays-per-method.png"))
 
 
 def simd(cohort, out):
-    rows = [(f"{name}\n{v['view']}", v["path_tracing"]) for name, doc in cohort.items() for _, v in views(doc)
-            if v["path_tracing"]]
-    wavefront = [m for m in METHODS if m != "naive"]
-    if not rows:
-        return
-    fig, ax = plt.subplots(figsize=(max(8, 1.3 * len(rows)), 4))
-    width = 0.8 / len(wavefront)
-    for i, m in enumerate(wavefront):
-        x = np.arange(len(rows)) + (i - len(wavefront) / 2 + 0.5) * width
-        ax.bar(x, [pt[m]["simd_efficiency"] if m in pt else 0 for _, pt in rows], width, label=m, color=COLORS[m])
-    ax.set_xticks(np.arange(len(rows)), [r[0] for r in rows], fontsize=8)
-    ax.set_ylim(0, 1)
-    ax.set_ylabel("SIMD efficiency of traversal\n(mean / max steps per 32 rays)")
-    ax.set_title(f"SIMD efficiency per method ({device_label(cohort)}; naive not instrumented)", fontsize=9)
-    ax.legend(ncol=len(wavefront), fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "bench-simd.png"), dpi=120)
+    method_bars(cohort, [m for m in METHODS if m != "naive"], lambda pt, m: pt[m]["simd_efficiency"], None,
+                "SIMD efficiency of traversal\n(mean / max steps per 32 rays)",
+                "SIMD efficiency per method; naive not instrumented", os.path.join(out, "bench-simd.png"), (0, 1))
 
 
 def error_vs_time(root, out):

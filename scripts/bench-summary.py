@@ -1,28 +1,12 @@
 #!/usr/bin/env python3
 """Medians and ratios from a scripts/bench output directory, as Markdown tables (standard library
 only, so it runs wherever python3 does). Usage: scripts/bench-summary.py DIR"""
-import glob
-import json
 import os
 import sys
 
+from bench_data import STAGES, load, views
+
 OTHERS = ["naive", "sc", "rg", "sc+rg", "hash"]
-STAGES = ["pth walk", "hash codes", "sort", "resume traversal", "traversal", "megakernel", "shadow rays", "shading",
-          "other"]
-
-
-def load(pattern):
-    out = {}
-    for path in sorted(glob.glob(pattern)):
-        with open(path) as f:
-            out[os.path.splitext(os.path.basename(path))[0]] = json.load(f)
-    return out
-
-
-def views(doc):
-    for scene in doc["scenes"]:
-        for v in scene["views"]:
-            yield scene, v
 
 
 def fig(x):

@@ -18,6 +18,7 @@ cohort_venv() {
   if ! "$COHORT_VENV/bin/python" -c "import $imports" 2>/dev/null; then
     echo "installing $* into $COHORT_VENV" >&2
     "$COHORT_VENV/bin/pip" install --quiet --upgrade pip >/dev/null 2>&1 || true
-    "$COHORT_VENV/bin/pip" install --quiet "$@" || return 1
+    # few retries: a machine without network (a GPU box) should skip quickly, not hang
+    "$COHORT_VENV/bin/pip" install --quiet --retries 1 --timeout 15 "$@" || return 1
   fi
 }

@@ -4,6 +4,22 @@
 
 namespace cohort {
 
+void set_trace_rays_args(cl::Kernel& k, const cl::Buffer& nodes, const cl::Buffer& leaf_triangles,
+                         const cl::Buffer& triangles, const Bounds& bounds, const cl::Buffer& rays,
+                         const cl::Buffer& hits, std::size_t count, bool any_hit) {
+  const co_float4 lo{bounds.lo.x, bounds.lo.y, bounds.lo.z, 0.f};
+  const co_float4 hi{bounds.hi.x, bounds.hi.y, bounds.hi.z, 0.f};
+  k.setArg(0, nodes);
+  k.setArg(1, leaf_triangles);
+  k.setArg(2, triangles);
+  k.setArg(3, sizeof(lo), &lo);
+  k.setArg(4, sizeof(hi), &hi);
+  k.setArg(5, rays);
+  k.setArg(6, hits);
+  k.setArg(7, static_cast<cl_uint>(count));
+  k.setArg(8, static_cast<cl_uint>(any_hit));
+}
+
 TraceBench::TraceBench(const ClContext& cl, const ProgramCache& cache, const KdTree& tree) : cl_(cl), tree_(tree) {
   const ProgramBuild build = build_kernel_program(cl, cache, "trace.cl");
   program_ = build.program;
@@ -22,17 +38,7 @@ TraceFigures TraceBench::trace(std::span<const RayIn> rays, unsigned reps, std::
   auto ray_buf = cl_.buffer("rays", rays.size() * sizeof(RayIn), rays.data(), CL_MEM_READ_ONLY);
   auto hit_buf = cl_.buffer("hits", rays.size() * sizeof(HitOut));
   cl::Kernel k(program_, "trace_rays");
-  const co_float4 lo{tree_.bounds.lo.x, tree_.bounds.lo.y, tree_.bounds.lo.z, 0.f};
-  const co_float4 hi{tree_.bounds.hi.x, tree_.bounds.hi.y, tree_.bounds.hi.z, 0.f};
-  k.setArg(0, nodes_);
-  k.setArg(1, leaves_);
-  k.setArg(2, triangles_);
-  k.setArg(3, sizeof(lo), &lo);
-  k.setArg(4, sizeof(hi), &hi);
-  k.setArg(5, ray_buf);
-  k.setArg(6, hit_buf);
-  k.setArg(7, static_cast<cl_uint>(rays.size()));
-  k.setArg(8, cl_uint(0));  // closest hit
+  set_trace_rays_args(k, nodes_, leaves_, triangles_, tree_.bounds, ray_buf, hit_buf, rays.size(), false);
   const std::size_t global = (rays.size() + group_size - 1) / group_size * group_size;
   for (unsigned r = 0; r < std::max(reps, 1u); ++r) {
     cl::Event event;

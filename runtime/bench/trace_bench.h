@@ -13,6 +13,12 @@
 
 namespace cohort {
 
+// The arguments of kernels/trace.cl's trace_rays: the tree's buffers and bounds, count rays in,
+// hits out, closest or any hit.
+void set_trace_rays_args(cl::Kernel& kernel, const cl::Buffer& nodes, const cl::Buffer& leaf_triangles,
+                         const cl::Buffer& triangles, const Bounds& bounds, const cl::Buffer& rays,
+                         const cl::Buffer& hits, std::size_t count, bool any_hit);
+
 class TraceBench {
  public:
   // The tree's buffers go to the device once; every trace() reuses them.
