@@ -24,18 +24,34 @@ COHORT_PACKAGES=(
   zlib1g-dev                        # .gz scenes
   libgtest-dev                      # tests
 )
+# Wanted but not needed to build and test: installed when apt can, else the feature is skipped.
+COHORT_OPTIONAL_PACKAGES=(
+  libembree-dev                     # Embree 3: the peer of scripts/bench on the protocol's rays
+)
+
+cohort_missing_packages() {
+  for p in "$@"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || echo "$p"
+  done
+}
 
 cohort_install_packages() {
-  local missing=()
-  for p in "${COHORT_PACKAGES[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-  done
-  [[ ${#missing[@]} -eq 0 ]] && return 0
-  echo "installing Debian packages: ${missing[*]}"
-  local sudo=""
+  local missing optional sudo=""
+  mapfile -t missing < <(cohort_missing_packages "${COHORT_PACKAGES[@]}")
+  mapfile -t optional < <(cohort_missing_packages "${COHORT_OPTIONAL_PACKAGES[@]}")
+  [[ ${#missing[@]} -eq 0 && ${#optional[@]} -eq 0 ]] && return 0
   [[ $(id -u) -ne 0 ]] && sudo="sudo"
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  if [[ ${#missing[@]} -gt 0 ]]; then
+    echo "installing Debian packages: ${missing[*]}"
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  fi
+  if [[ ${#optional[@]} -gt 0 ]]; then
+    echo "installing optional Debian packages: ${optional[*]}"
+    { [[ ${#missing[@]} -gt 0 ]] || $sudo apt-get update -qq; } 2>/dev/null &&
+      DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${optional[@]}" \
+        >/dev/null 2>&1 || echo "optional packages not installed (${optional[*]}): their features are skipped"
+  fi
 }
 
 cohort_build() {

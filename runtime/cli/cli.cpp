@@ -58,6 +58,31 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
   cmd.add_flag("-v,--verbose", r.verbose, "Report compile times, tree statistics and kernel times");
 }
 
+// The shipped Cornell box: from the working directory (the repository root), else from the source
+// tree this binary was built from.
+std::filesystem::path default_bench_scene() {
+  const std::filesystem::path rel = "scenes/cornell-box.gltf";
+  return std::filesystem::exists(rel) ? rel : std::filesystem::path(COHORT_SOURCE_DIR) / rel;
+}
+
+void add_bench_options(CLI::App& cmd, BenchCommand& b) {
+  cmd.add_option("scenes", b.scenes, "Scene files (default: the shipped Cornell box)");
+  cmd.add_option("--res", b.resolution, "Path tracing: image side N (N x N)")->default_val("512");
+  cmd.add_option("--trace-res", b.trace_resolution, "Protocol rays: image side N (N x N primary rays)")
+      ->default_val("1024");
+  cmd.add_option("--spp", b.spp, "Path tracing: samples per pixel")->check(CLI::Range(1, 1 << 20));
+  cmd.add_option("--reps", b.reps, "Repetitions of every figure (median and best)")->check(CLI::Range(3, 1000));
+  cmd.add_option("--methods", b.methods, "Comma list of methods, all, or none (traversal only)");
+  cmd.add_option("--view", b.views, "Comma list: exterior (the protocol camera), interior (Crytek Sponza's view)");
+  cmd.add_option("--camera-bounds", b.camera_bounds, "An extra view at fractions of the bounds: ex,ey,ez,tx,ty,tz");
+  cmd.add_option("--fov", b.fov, "Vertical field of view of the extra view")->check(CLI::Range(0.01f, 179.f));
+  cmd.add_option("--code", b.code, "Coherence code of hash/pth (see render --code)");
+  cmd.add_option("--pth-levels", b.pth_levels, "Subtree levels of pth")->check(CLI::Range(1, 16));
+  cmd.add_option("--device", b.device, "Device index or name substring");
+  cmd.add_option("--json", b.json, "Write every figure to this JSON file");
+  cmd.add_flag("--no-traversal", b.no_traversal, "Skip the primary and diffuse traversal workloads");
+}
+
 }  // namespace
 
 int run_cli(int argc, char** argv) {
@@ -73,6 +98,18 @@ int run_cli(int argc, char** argv) {
   auto* info_cmd = app.add_subcommand("info", "Print a scene's size, materials, lights and KD-tree");
   info_cmd->add_option("scene", info_scene, "Scene file")->required();
 
+  BenchCommand bench;
+  auto* bench_cmd = app.add_subcommand("bench", "Measure rays/s (protocol rays) and path tracing per method");
+  add_bench_options(*bench_cmd, bench);
+
+  ExportCommand export_args;
+  auto* export_cmd = app.add_subcommand("export", "Write a scene's world-space triangles as PLY (benchmark utility)");
+  export_cmd->group("");  // hidden: used by scripts/bench
+  export_cmd->add_option("scene", export_args.scene, "Scene file")->required();
+  export_cmd->add_option("-o,--output", export_args.output, "Output .ply")->required();
+  export_cmd->add_option("--subdivide", export_args.subdivide, "Midpoint subdivision levels (4x triangles each)")
+      ->check(CLI::Range(0, 6));
+
   auto* devices_cmd = app.add_subcommand("devices", "List OpenCL platforms and devices");
 
   try {
@@ -84,6 +121,11 @@ int run_cli(int argc, char** argv) {
   }
   try {
     if (*render_cmd) return run_render(render);
+    if (*bench_cmd) {
+      if (bench.scenes.empty()) bench.scenes.push_back(default_bench_scene());
+      return run_bench(bench);
+    }
+    if (*export_cmd) return run_export(export_args);
     if (*info_cmd) return run_info(info_scene);
     if (*devices_cmd) return run_devices();
   } catch (const InputError& e) {

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "runtime/render/render_settings.h"
 
@@ -27,7 +28,34 @@ struct RenderCommand {
   RenderSettings settings;
 };
 
+struct BenchCommand {
+  std::vector<std::filesystem::path> scenes;
+  std::string resolution = "512";        // path tracing: square image side
+  std::string trace_resolution = "1024";  // protocol rays: square image side
+  std::uint32_t spp = 4;
+  unsigned reps = 3;
+  std::string methods = "all";  // comma list, "all" or "none"
+  std::string views = "exterior";
+  std::string camera_bounds;  // an extra "custom" view
+  float fov = 0;
+  std::string code;
+  std::uint32_t pth_levels = 0;
+  std::string device;
+  std::string json;
+  bool no_traversal = false;
+};
+
+// A utility for the benchmark scripts: a scene's world-space triangles as a PLY soup, optionally
+// subdivided (each level 4x the triangles).
+struct ExportCommand {
+  std::filesystem::path scene;
+  std::filesystem::path output;
+  unsigned subdivide = 0;
+};
+
 int run_render(const RenderCommand& cmd);
+int run_bench(const BenchCommand& cmd);
+int run_export(const ExportCommand& cmd);
 int run_info(const std::filesystem::path& scene);
 int run_devices();
 

@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include "accel/ray_check.h"
+#include "runtime/bench/trace_bench.h"
 #include "runtime/cl/cl_error.h"
 #include "runtime/cl/context.h"
 #include "runtime/cl/kernel_program.h"
@@ -33,17 +34,7 @@ std::vector<HitOut> trace_on_device(const KdTree& tree, const std::vector<TestRa
   auto ray_buf = cl.buffer("rays", in.size() * sizeof(RayIn), in.data());
   auto hit_buf = cl.buffer("hits", in.size() * sizeof(HitOut));
   cl::Kernel k(build.program, "trace_rays");
-  const co_float4 lo{tree.bounds.lo.x, tree.bounds.lo.y, tree.bounds.lo.z, 0.f};
-  const co_float4 hi{tree.bounds.hi.x, tree.bounds.hi.y, tree.bounds.hi.z, 0.f};
-  k.setArg(0, nodes);
-  k.setArg(1, leaves);
-  k.setArg(2, tris);
-  k.setArg(3, sizeof(lo), &lo);
-  k.setArg(4, sizeof(hi), &hi);
-  k.setArg(5, ray_buf);
-  k.setArg(6, hit_buf);
-  k.setArg(7, static_cast<cl_uint>(in.size()));
-  k.setArg(8, static_cast<cl_uint>(any_hit));
+  set_trace_rays_args(k, nodes, leaves, tris, tree.bounds, ray_buf, hit_buf, in.size(), any_hit);
   cl.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange((in.size() + 63) / 64 * 64), cl::NDRange(64));
   std::vector<HitOut> hits(in.size());
   cl.queue.enqueueReadBuffer(hit_buf, CL_TRUE, 0, hits.size() * sizeof(HitOut), hits.data());

@@ -142,3 +142,78 @@ TEST(Cli, TimeLimitStopsTheRender) {
   EXPECT_GE(j["timings"]["render_seconds"].get<double>(), 0.5);
   EXPECT_EQ(run("render " + scene("cornell-box.gltf") + " --spp 0").code, 2);  // --spp 0 needs --time
 }
+
+// `cohort bench` at a tiny size: the JSON holds every figure the benchmark scripts and charts read.
+TEST(Cli, BenchWritesEveryFigureAsJson) {
+  TempDir dir;
+  const fs::path json = dir.path / "bench.json";
+  const CommandResult r = run("bench " + scene("cornell-box.gltf") +
+                              " --res 8 --trace-res 16 --spp 1 --reps 3 --json " + json.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("pth / naive"), std::string::npos) << r.output;
+  std::ifstream in(json);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_FALSE(j["cohort"]["git_commit"].get<std::string>().empty());
+  EXPECT_FALSE(j["cohort"]["kernel_build_options"].get<std::string>().empty());
+  EXPECT_FALSE(j["device"]["name"].get<std::string>().empty());
+  EXPECT_TRUE(j["device"].contains("driver"));
+  EXPECT_EQ(j["settings"]["reps"], 3);
+  ASSERT_EQ(j["scenes"].size(), 1u);
+  const auto& s = j["scenes"][0];
+  EXPECT_EQ(s["triangles"], 38);
+  EXPECT_GE(s["kdtree"]["build_seconds"].get<double>(), 0.0);
+  ASSERT_EQ(s["views"].size(), 1u);
+  const auto& v = s["views"][0];
+  EXPECT_EQ(v["view"], "exterior");
+  EXPECT_EQ(v["primary"]["rays"], 256);
+  EXPECT_GT(v["primary"]["hits"].get<int>(), 0);
+  EXPECT_EQ(v["diffuse"]["rays"], v["primary"]["hits"]);  // one diffuse ray per primary hit
+  EXPECT_EQ(v["primary"]["mrays_per_second"]["runs"].size(), 3u);
+  EXPECT_GT(v["primary"]["mrays_per_second"]["median"].get<double>(), 0.0);
+  for (const char* m : {"naive", "wavefront", "sc", "rg", "sc+rg", "hash", "pth"}) {
+    const auto& pt = v["path_tracing"][m];
+    EXPECT_GT(pt["rays"].get<std::uint64_t>(), 0u) << m;
+    EXPECT_GT(pt["mrays_per_second"]["median"].get<double>(), 0.0) << m;
+    EXPECT_GT(pt["msamples_per_second"]["best"].get<double>(), 0.0) << m;
+    EXPECT_TRUE(pt.contains("simd_efficiency")) << m;
+    EXPECT_FALSE(pt["breakdown_seconds"].empty()) << m;
+  }
+  // every method traces the same paths: the same ray count
+  EXPECT_EQ(v["path_tracing"]["pth"]["rays"], v["path_tracing"]["naive"]["rays"]);
+  const auto& pth = v["path_tracing"]["pth"]["breakdown_seconds"];
+  for (const char* stage : {"pth walk", "sort", "resume traversal", "shading"}) EXPECT_TRUE(pth.contains(stage)) << stage;
+}
+
+TEST(Cli, BenchInteriorViewAndTraversalOnly) {
+  TempDir dir;
+  const fs::path json = dir.path / "bench.json";
+  const CommandResult r = run("bench " + scene("cornell-box.gltf") + " --view exterior,interior --methods none " +
+                              "--trace-res 8 --json " + json.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(json);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  const auto& views = j["scenes"][0]["views"];
+  ASSERT_EQ(views.size(), 2u);
+  EXPECT_EQ(views[1]["view"], "interior");
+  EXPECT_EQ(views[1]["camera"]["vfov_degrees"], 60.0);
+  EXPECT_TRUE(views[1]["path_tracing"].empty());
+}
+
+TEST(Cli, BenchRejectsBadOptionsWithExitTwo) {
+  EXPECT_EQ(run("bench --methods naive,nonsense --trace-res 8").code, 2);
+  EXPECT_EQ(run("bench --reps 1").code, 2);  // the protocol asks for at least 3
+  EXPECT_EQ(run("bench --view sideways").code, 2);
+  const CommandResult r = run("bench /nonexistent/mesh.ply --methods none");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("mesh.ply"), std::string::npos) << r.output;
+}
+
+TEST(Cli, ExportWritesSubdividedTriangles) {
+  TempDir dir;
+  const fs::path ply = dir.path / "box.ply";
+  const CommandResult r = run("export " + scene("cornell-box.gltf") + " -o " + ply.string() + " --subdivide 1");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const CommandResult info = run("info " + ply.string());
+  ASSERT_EQ(info.code, 0) << info.output;
+  EXPECT_NE(info.output.find("triangles: 152 "), std::string::npos) << info.output;  // 38 x 4
+}

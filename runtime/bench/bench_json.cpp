@@ -1,0 +1,86 @@
+#include "runtime/bench/bench_json.h"
+
+#include "runtime/bench/build_info.h"
+#include "runtime/cl/kernel_program.h"
+
+namespace cohort {
+namespace {
+
+nlohmann::json vec3_json(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+
+nlohmann::json trace_json(const TraceFigures& f) {
+  return {{"rays", f.rays}, {"hits", f.hits}, {"mrays_per_second", rate_json(f.rays_per_second)}};
+}
+
+nlohmann::json method_json(const MethodFigures& m) {
+  nlohmann::json j = {{"rays", m.rays},
+                      {"mrays_per_second", rate_json(m.rays_per_second)},
+                      {"msamples_per_second", rate_json(m.samples_per_second)},
+                      {"simd_efficiency", m.simd_efficiency},
+                      {"render_seconds", m.render_seconds},
+                      {"breakdown_seconds", m.breakdown},
+                      {"kernel_seconds", m.kernel_seconds}};
+  if (!m.code_layout.empty()) j["coherence"] = {{"code", m.code_layout}, {"pth_levels", m.pth_levels}};
+  return j;
+}
+
+nlohmann::json view_json(const ViewFigures& v) {
+  nlohmann::json j = {{"view", v.view.name},
+                      {"camera", {{"eye", vec3_json(v.camera.eye)}, {"target", vec3_json(v.camera.target)},
+                                  {"up", {0, 1, 0}}, {"vfov_degrees", v.camera.vfov_degrees}}}};
+  if (v.view.camera_bounds) j["camera_bounds"] = *v.view.camera_bounds;
+  if (v.primary) j["primary"] = trace_json(*v.primary);
+  if (v.diffuse) j["diffuse"] = trace_json(*v.diffuse);
+  nlohmann::json methods = nlohmann::json::object();
+  for (const auto& m : v.methods) methods[m.method] = method_json(m);
+  j["path_tracing"] = methods;
+  return j;
+}
+
+}  // namespace
+
+nlohmann::json rate_json(const RateFigure& f, double scale) {
+  nlohmann::json runs = nlohmann::json::array();
+  for (double r : f.runs) runs.push_back(r * scale);
+  return {{"median", f.median() * scale}, {"best", f.best() * scale}, {"runs", runs}};
+}
+
+nlohmann::json scenes_json(const std::vector<SceneFigures>& scenes, const std::string& accel_key) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const SceneFigures& s : scenes) {
+    const auto& t = s.kdtree;
+    nlohmann::json views = nlohmann::json::array();
+    for (const auto& v : s.views) views.push_back(view_json(v));
+    list.push_back({{"path", s.path.string()},
+                    {"name", s.path.filename().string()},
+                    {"triangles", s.triangles},
+                    {"load_seconds", s.load_seconds},
+                    {"bounds", {{"lo", vec3_json(s.bounds.lo)}, {"hi", vec3_json(s.bounds.hi)}}},
+                    {accel_key, accel_key != "kdtree"
+                                    ? nlohmann::json{{"build_seconds", t.build_seconds}}
+                                    : nlohmann::json{{"build_seconds", t.build_seconds}, {"depth", t.depth},
+                                                     {"nodes", t.node_count}, {"leaves", t.leaf_count},
+                                                     {"average_leaf_triangles", t.average_leaf_triangles},
+                                                     {"sah_cost", t.sah_cost}, {"bytes", t.bytes},
+                                                     {"dropped_triangles", t.dropped_triangles}}},
+                    {"views", views}});
+  }
+  return list;
+}
+
+nlohmann::json bench_json(const DeviceInfo& device, const BenchOptions& o, const std::vector<SceneFigures>& scenes) {
+  const BuildInfo b = build_info();
+  nlohmann::json j;
+  j["cohort"] = {{"git_commit", b.git_commit}, {"build_type", b.build_type}, {"compiler", b.compiler},
+                 {"cxx_flags", b.cxx_flags}, {"kernel_build_options", base_build_options(device)}};
+  j["device"] = {{"name", device.name}, {"platform", device.platform_name}, {"vendor", device.vendor},
+                 {"version", device.version}, {"driver", device.driver_version}, {"is_gpu", device.is_gpu},
+                 {"compute_units", device.compute_units}};
+  j["settings"] = {{"trace_res", o.trace_res}, {"res", o.res}, {"spp", o.spp}, {"reps", o.reps},
+                   {"methods", o.methods}, {"code", o.code}, {"pth_levels", o.pth_levels},
+                   {"workload", "white sky (bench-protocol.md)"}, {"max_depth", 5}};
+  j["scenes"] = scenes_json(scenes);
+  return j;
+}
+
+}  // namespace cohort

@@ -1,0 +1,42 @@
+// The rays of ../shared/bench-protocol.md, generated on the host. One implementation, used by
+// `cohort bench` and by the Embree harness (runtime/peers), so both sides trace the same rays.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "kernels/common/types.h"
+#include "runtime/scene/bounds.h"
+#include "runtime/scene/scene.h"
+
+namespace cohort {
+
+// The protocol's hash: pcg(v) of 32-bit unsigned arithmetic.
+std::uint32_t protocol_pcg(std::uint32_t v);
+
+// A uniform number in [0, 1) from a hash: (h >> 8) / 2^24.
+float protocol_unit(std::uint32_t h);
+
+// res x res rays through the pixel centres of a pinhole at camera.eye looking at camera.target,
+// +Y up, vertical field of view camera.vfov_degrees; pixel index i = y * res + x, y = 0 at the top.
+// tnear 0 (origin.w), tfar infinity (dir.w).
+std::vector<RayIn> protocol_primary_rays(const SceneCamera& camera, std::uint32_t res);
+
+// One closest hit per primary ray: t, and the hit triangle as an index into `positions` / 3
+// (HIT_NONE on a miss).
+struct ProtocolHit {
+  float t = 0;
+  std::uint32_t triangle = HIT_NONE;
+};
+
+// The diffuse workload: for each primary ray that hit, in pixel order, a ray from the hit point
+// offset by 1e-4 * diag along the geometric normal facing the incoming ray, in a cosine-weighted
+// direction drawn with h1 = pcg(2i + 1), h2 = pcg(h1). positions: 3 per triangle (Scene::positions);
+// diag: the diagonal of the bounds of all vertices.
+std::vector<RayIn> protocol_diffuse_rays(std::span<const RayIn> primary, std::span<const ProtocolHit> hits,
+                                         std::span<const glm::vec3> positions, float diag);
+
+}  // namespace cohort

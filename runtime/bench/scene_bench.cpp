@@ -1,0 +1,131 @@
+#include "runtime/bench/scene_bench.h"
+
+#include <fmt/format.h>
+
+#include "runtime/bench/trace_bench.h"
+#include "runtime/render/prepared_scene.h"
+#include "runtime/render/renderer.h"
+#include "runtime/render/workloads.h"
+
+namespace cohort {
+
+BenchView interior_view() { return BenchView{"interior", std::array<float, 6>{0.25f, 0.2f, 0.5f, 0.75f, 0.35f, 0.5f}, 60.f}; }
+
+SceneCamera view_camera(const Bounds& bounds, const BenchView& view) {
+  SceneCamera c = framing_camera(bounds);
+  if (view.camera_bounds) c = camera_from_bounds(bounds, *view.camera_bounds, c.vfov_degrees);
+  if (view.fov > 0) c.vfov_degrees = view.fov;
+  return c;
+}
+
+std::map<std::string, double> time_breakdown(const std::map<std::string, double>& kernel_seconds) {
+  std::map<std::string, double> stages;
+  for (const auto& [name, s] : kernel_seconds) {
+    std::string stage = "other";
+    if (name == "pth") stage = "pth walk";
+    else if (name == "hash") stage = "hash codes";
+    else if (name.starts_with("sort")) stage = "sort";
+    else if (name == "resume") stage = "resume traversal";
+    else if (name == "extend") stage = "traversal";
+    else if (name == "shadow") stage = "shadow rays";
+    else if (name == "shade") stage = "shading";
+    else if (name == "render_naive") stage = "megakernel";
+    stages[stage] += s;
+  }
+  return stages;
+}
+
+namespace {
+
+MethodFigures bench_method(const ClContext& cl, const ProgramCache& cache, const DeviceScene& scene,
+                           const SceneCamera& camera, RenderSettings settings, const std::string& method,
+                           unsigned reps) {
+  settings.method = method;
+  MethodFigures f;
+  f.method = method;
+  std::vector<RenderResult> runs;
+  for (unsigned r = 0; r < std::max(reps, 1u); ++r) {
+    RenderResult result = render(cl, cache, scene, camera, settings);
+    result.image = Image{};  // keep the figures only
+    const double s = result.render_seconds;
+    f.rays_per_second.runs.push_back(s > 0 ? double(result.rays) / s : 0.0);
+    f.samples_per_second.runs.push_back(s > 0 ? double(settings.width) * settings.height * result.samples / s : 0.0);
+    runs.push_back(std::move(result));
+  }
+  // the repetition whose rate is the median (the upper one of an even count) gives the breakdown
+  std::vector<std::size_t> order(runs.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return f.rays_per_second.runs[a] < f.rays_per_second.runs[b]; });
+  const RenderResult& m = runs[order[order.size() / 2]];
+  f.rays = m.rays;
+  f.simd_efficiency = m.simd_efficiency;
+  f.code_layout = m.code_layout;
+  f.pth_levels = m.pth_levels;
+  f.kernel_seconds = m.kernel_seconds;
+  f.breakdown = time_breakdown(m.kernel_seconds);
+  f.render_seconds = m.render_seconds;
+  return f;
+}
+
+}  // namespace
+
+SceneFigures bench_scene(const ClContext& cl, const ProgramCache& cache, const std::filesystem::path& path,
+                         const std::vector<BenchView>& views, const BenchOptions& options,
+                         const std::function<void(const std::string&)>& log_line) {
+  const auto log = [&](const std::string& s) {
+    if (log_line) log_line(s);
+  };
+  PreparedScene prepared = prepare_scene(path);
+  RenderSettings settings;
+  apply_white_sky(prepared, settings);
+  settings.width = settings.height = options.res;
+  settings.spp = options.spp;
+  settings.code = options.code;
+  settings.pth_levels = options.pth_levels;
+
+  SceneFigures out;
+  out.path = path;
+  out.triangles = prepared.scene.triangle_count();
+  out.load_seconds = prepared.load_seconds;
+  out.kdtree = prepared.tree.stats;
+  out.bounds = prepared.scene.bounds();
+  log(fmt::format("{}: {} triangles, KD-tree built in {:.3f}s", path.string(), out.triangles,
+                  out.kdtree.build_seconds));
+
+  std::optional<TraceBench> tracer;
+  if (options.traversal) tracer.emplace(cl, cache, prepared.tree);
+  std::optional<DeviceScene> device_scene;
+  if (!options.methods.empty()) device_scene.emplace(upload_scene(cl, prepared.tree, prepared.tables));
+
+  for (const BenchView& view : views) {
+    ViewFigures vf;
+    vf.view = view;
+    vf.camera = view_camera(out.bounds, view);
+    if (tracer) {
+      const auto primary = protocol_primary_rays(vf.camera, options.trace_res);
+      vf.primary = tracer->trace(primary, options.reps);
+      log(fmt::format("  {} primary: {:.2f} Mrays/s median, {:.2f} best, {} hits", view.name,
+                      vf.primary->rays_per_second.median() * 1e-6, vf.primary->rays_per_second.best() * 1e-6,
+                      vf.primary->hits));
+      const auto diffuse =
+          protocol_diffuse_rays(primary, vf.primary->closest, prepared.scene.positions, out.bounds.diagonal());
+      vf.primary->closest.clear();
+      vf.diffuse = tracer->trace(diffuse, options.reps);
+      vf.diffuse->closest.clear();
+      log(fmt::format("  {} diffuse: {:.2f} Mrays/s median, {:.2f} best, {} rays", view.name,
+                      vf.diffuse->rays_per_second.median() * 1e-6, vf.diffuse->rays_per_second.best() * 1e-6,
+                      vf.diffuse->rays));
+    }
+    for (const std::string& method : options.methods) {
+      vf.methods.push_back(bench_method(cl, cache, *device_scene, vf.camera, settings, method, options.reps));
+      const MethodFigures& m = vf.methods.back();
+      log(fmt::format("  {} {}: {:.2f} Mrays/s, {:.3f} M samples/s median", view.name, method,
+                      m.rays_per_second.median() * 1e-6, m.samples_per_second.median() * 1e-6));
+    }
+    out.views.push_back(std::move(vf));
+  }
+  return out;
+}
+
+}  // namespace cohort

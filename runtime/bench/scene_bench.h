@@ -1,0 +1,86 @@
+// `cohort bench` for one scene: the protocol's traversal workloads and white-sky path tracing per
+// method, from each requested view (bench-protocol.md, DECISIONS.md "Figures").
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "runtime/accel/kdtree.h"
+#include "runtime/bench/figures.h"
+#include "runtime/cl/context.h"
+#include "runtime/cl/program_cache.h"
+#include "runtime/scene/scene.h"
+
+namespace cohort {
+
+struct BenchView {
+  std::string name = "exterior";                    // "exterior": the protocol camera
+  std::optional<std::array<float, 6>> camera_bounds;  // eye and target as fractions of the bounds
+  float fov = 0;                                     // vertical degrees; 0: the protocol's 45
+};
+
+// The protocol's interior view of Crytek Sponza.
+BenchView interior_view();
+
+// The view's camera: the protocol camera of the bounds, or the view's fractions of them.
+SceneCamera view_camera(const Bounds& bounds, const BenchView& view);
+
+struct BenchOptions {
+  std::uint32_t trace_res = 1024;  // protocol rays: trace_res x trace_res primary rays
+  std::uint32_t res = 512;         // path tracing image size (square)
+  std::uint32_t spp = 4;
+  unsigned reps = 3;
+  bool traversal = true;              // the primary and diffuse workloads
+  std::vector<std::string> methods;   // white-sky path tracing; empty: none
+  std::string code;                   // coherence code of hash/pth; empty: default
+  std::uint32_t pth_levels = 0;       // 0: chosen from the device and the tree
+};
+
+struct MethodFigures {
+  std::string method;
+  RateFigure rays_per_second;     // path-tracing rays/s: every ray over the render loop's wall time
+  RateFigure samples_per_second;  // res * res * spp over the same time
+  std::uint64_t rays = 0;         // per render
+  double simd_efficiency = 0;     // wavefront methods: traversal, mean over max steps per 32 rays
+  std::string code_layout;        // hash and pth
+  std::uint32_t pth_levels = 0;
+  // device seconds per stage (time_breakdown) and per kernel, of the repetition with the median rate
+  std::map<std::string, double> breakdown;
+  std::map<std::string, double> kernel_seconds;
+  double render_seconds = 0;      // of the same repetition
+};
+
+struct ViewFigures {
+  BenchView view;
+  SceneCamera camera;
+  std::optional<TraceFigures> primary, diffuse;
+  std::vector<MethodFigures> methods;
+};
+
+struct SceneFigures {
+  std::filesystem::path path;
+  std::size_t triangles = 0;
+  double load_seconds = 0;
+  KdTreeStats kdtree;
+  Bounds bounds;
+  std::vector<ViewFigures> views;
+};
+
+// Device seconds per kernel name grouped into the stages of a method: "pth walk" (or "hash codes"),
+// "sort", "resume traversal" (which reads the rays in sorted order, the reorder), "traversal",
+// "shadow rays", "shading", "megakernel" (naive) and "other" (generate, finish, accumulate, counters).
+std::map<std::string, double> time_breakdown(const std::map<std::string, double>& kernel_seconds);
+
+// Loads and builds the scene, then measures every view. `log` receives one line per figure as it
+// is measured (progress on a slow device); may be empty.
+SceneFigures bench_scene(const ClContext& cl, const ProgramCache& cache, const std::filesystem::path& path,
+                         const std::vector<BenchView>& views, const BenchOptions& options,
+                         const std::function<void(const std::string&)>& log = {});
+
+}  // namespace cohort

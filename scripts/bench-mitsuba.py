@@ -1,0 +1,111 @@
+#!/usr/bin/env python3
+"""Mitsuba 3 (scalar_rgb) on the white-sky workload of ../shared/bench-protocol.md, beside `cohort bench`.
+
+The mesh is the world-space triangle soup that `cohort export` writes (binary PLY; the protocol names
+Mitsuba's `obj` shape, the `ply` shape with `face_normals` is the same geometry with flat normals),
+and the camera is read from the `cohort bench` JSON of the same scene, so both renderers use one
+definition of each. Samples/s = res * res * spp / seconds of mi.render (scene loading excluded),
+median of --reps renders; the last image is saved as EXR. --ladder renders once at each spp given
+(the error-against-time chart) and records their times and images.
+
+Run inside the venv of scripts/venv.sh (scripts/bench does):
+  python bench-mitsuba.py --ply MESH.ply --camera-json COHORT.json [--view exterior] [--res 512]
+                          [--spp 4] [--reps 3] [--ladder 1,2,4,8] --out DIR --name NAME [--json OUT.json]"""
+import argparse
+import json
+import os
+import statistics
+import time
+
+import drjit as dr
+import mitsuba as mi
+
+mi.set_variant("scalar_rgb")
+
+
+def camera_from(path, view):
+    with open(path) as f:
+        data = json.load(f)
+    for scene in data["scenes"]:
+        for v in scene["views"]:
+            if v["view"] == view:
+                return v["camera"]
+    raise SystemExit(f"{path}: no view '{view}'")
+
+
+def white_sky_scene(ply, camera, res, spp):
+    return {
+        "type": "scene",
+        "integrator": {"type": "path", "max_depth": 5, "rr_depth": 1 << 30},
+        "sensor": {
+            "type": "perspective",
+            "fov": camera["vfov_degrees"],
+            "fov_axis": "y",
+            "to_world": mi.ScalarTransform4f().look_at(origin=camera["eye"], target=camera["target"], up=[0, 1, 0]),
+            "film": {"type": "hdrfilm", "width": res, "height": res, "rfilter": {"type": "box"},
+                     "pixel_format": "rgb"},
+            "sampler": {"type": "independent", "sample_count": spp},
+        },
+        "sky": {"type": "constant", "radiance": {"type": "rgb", "value": 1.0}},
+        "mesh": {
+            "type": "ply",
+            "filename": ply,
+            "face_normals": True,
+            "bsdf": {"type": "twosided", "material": {"type": "diffuse", "reflectance": {"type": "rgb", "value": 0.5}}},
+        },
+    }
+
+
+def timed_render(scene, spp, seed):
+    start = time.perf_counter()
+    image = mi.render(scene, spp=spp, seed=seed)
+    return image, time.perf_counter() - start
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--ply", required=True)
+    ap.add_argument("--camera-json", required=True)
+    ap.add_argument("--view", default="exterior")
+    ap.add_argument("--res", type=int, default=512)
+    ap.add_argument("--spp", type=int, default=4)
+    ap.add_argument("--reps", type=int, default=3)
+    ap.add_argument("--ladder", default="")
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--name", required=True)
+    ap.add_argument("--json", default="")
+    args = ap.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    camera = camera_from(args.camera_json, args.view)
+    start = time.perf_counter()
+    scene = mi.load_dict(white_sky_scene(args.ply, camera, args.res, args.spp))
+    load_seconds = time.perf_counter() - start
+    rates, image = [], None
+    for rep in range(args.reps):
+        image, seconds = timed_render(scene, args.spp, rep)
+        rates.append(args.res * args.res * args.spp / seconds * 1e-6)
+    exr = os.path.join(args.out, f"{args.name}-mitsuba.exr")
+    mi.util.write_bitmap(exr, image)
+    report = {"peer": "mitsuba", "mitsuba": {"version": mi.__version__, "variant": mi.variant(),
+                                             "threads": dr.thread_count()},
+              "scene": args.ply, "view": args.view, "camera": camera, "res": args.res, "spp": args.spp,
+              "reps": args.reps, "load_seconds": load_seconds,
+              "msamples_per_second": {"median": statistics.median(rates), "best": max(rates), "runs": rates},
+              "exr": exr, "ladder": []}
+    for spp in [int(s) for s in args.ladder.split(",") if s]:
+        image, seconds = timed_render(scene, spp, 1000 + spp)
+        path = os.path.join(args.out, f"{args.name}-mitsuba-{spp}spp.exr")
+        mi.util.write_bitmap(path, image)
+        report["ladder"].append({"spp": spp, "seconds": seconds, "exr": path})
+    print(f"mitsuba {mi.__version__} scalar_rgb, {report['mitsuba']['threads']} threads: {args.name} [{args.view}] "
+          f"{args.res}x{args.res} {args.spp} spp: {statistics.median(rates):.3f} M samples/s median "
+          f"({max(rates):.3f} best), load {load_seconds:.2f}s")
+    if args.json:
+        tmp = args.json + ".tmp"
+        with open(tmp, "w") as f:
+            json.dump(report, f, indent=2)
+        os.replace(tmp, args.json)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,150 @@
+// The protocol's rays (bench-protocol.md) as `cohort bench` and the Embree harness generate them,
+// and the traversal path of `cohort bench` that turns kernel hits into the protocol's triangle ids.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "runtime/bench/protocol_rays.h"
+#include "runtime/bench/scene_bench.h"
+#include "runtime/bench/trace_bench.h"
+#include "runtime/cl/devices.h"
+
+using namespace cohort;
+
+namespace {
+
+glm::vec3 org_of(const RayIn& r) { return {r.origin.x, r.origin.y, r.origin.z}; }
+glm::vec3 dir_of(const RayIn& r) { return {r.dir.x, r.dir.y, r.dir.z}; }
+
+}  // namespace
+
+TEST(ProtocolRays, PcgMatchesTheProtocolFormula) {
+  // values of the protocol's formula computed independently (Python, arbitrary precision masked to 32 bits)
+  EXPECT_EQ(protocol_pcg(0u), 129708002u);
+  EXPECT_EQ(protocol_pcg(1u), 2831084092u);
+  EXPECT_EQ(protocol_pcg(3u), 2131687100u);
+  EXPECT_EQ(protocol_pcg(12345u), 4099845390u);
+  EXPECT_EQ(protocol_pcg(0xffffffffu), 3861530882u);
+  EXPECT_EQ(protocol_unit(0xffffffffu), 16777215.f / 16777216.f);
+  EXPECT_EQ(protocol_unit(0xffu), 0.f);  // the low 8 bits are dropped
+}
+
+TEST(ProtocolRays, PrimaryRaysThroughPixelCentresFromTheEye) {
+  SceneCamera cam;
+  cam.eye = {1.f, 2.f, 10.f};
+  cam.target = {1.f, 2.f, 0.f};
+  cam.vfov_degrees = 45.f;
+  const std::uint32_t res = 5;
+  const auto rays = protocol_primary_rays(cam, res);
+  ASSERT_EQ(rays.size(), 25u);
+  for (const RayIn& r : rays) {
+    EXPECT_EQ(org_of(r), cam.eye);
+    EXPECT_EQ(r.origin.w, 0.f);
+    EXPECT_TRUE(std::isinf(r.dir.w));
+    EXPECT_NEAR(glm::length(dir_of(r)), 1.f, 1e-6f);
+  }
+  // the centre pixel looks at the target; pixel (0, 0) is top-left: up (+Y) and left (-X when looking -Z)
+  const glm::vec3 centre = dir_of(rays[2 * res + 2]);
+  EXPECT_NEAR(centre.z, -1.f, 1e-6f);
+  const glm::vec3 top_left = dir_of(rays[0]);
+  EXPECT_GT(top_left.y, 0.f);
+  EXPECT_LT(top_left.x, 0.f);
+  // its direction: px = py magnitudes (0.5/5*2 - 1 = -0.8) times tan(22.5 deg), normalised
+  const float t = 0.8f * std::tan(glm::radians(22.5f));
+  const glm::vec3 expected = glm::normalize(glm::vec3(-t, t, -1.f));
+  EXPECT_NEAR(top_left.x, expected.x, 1e-6f);
+  EXPECT_NEAR(top_left.y, expected.y, 1e-6f);
+}
+
+TEST(ProtocolRays, DiffuseRaysLeaveTheHitFacingTheIncomingRay) {
+  // one triangle in z = 0; each winding gives a normal of opposite sign, the ray comes from +z
+  for (const bool flip : {false, true}) {
+    std::vector<glm::vec3> positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
+    if (flip) std::swap(positions[1], positions[2]);
+    const float inf = INFINITY;
+    std::vector<RayIn> primary;
+    std::vector<ProtocolHit> hits;
+    for (int i = 0; i < 64; ++i) {
+      const float x = -0.3f + 0.01f * float(i);
+      primary.push_back(RayIn{{x, 0.f, 2.f, 0.f}, {0.f, 0.f, -1.f, inf}});
+      hits.push_back(i % 4 == 3 ? ProtocolHit{} : ProtocolHit{2.f, 0u});  // every 4th ray misses
+    }
+    const float diag = 3.f;
+    const auto diffuse = protocol_diffuse_rays(primary, hits, positions, diag);
+    ASSERT_EQ(diffuse.size(), 48u);
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < primary.size(); ++i) {
+      if (hits[i].triangle == HIT_NONE) continue;
+      const RayIn& r = diffuse[k++];
+      EXPECT_EQ(r.origin.x, primary[i].origin.x);
+      EXPECT_FLOAT_EQ(r.origin.z, 1e-4f * diag);  // offset towards +z whatever the winding
+      EXPECT_EQ(r.origin.w, 0.f);
+      EXPECT_TRUE(std::isinf(r.dir.w));
+      const glm::vec3 d = dir_of(r);
+      EXPECT_NEAR(glm::length(d), 1.f, 1e-6f);
+      // cosine-weighted: cos(theta) = sqrt(1 - u1) with u1 from pcg(2i + 1) of the pixel index
+      const float u1 = protocol_unit(protocol_pcg(2u * std::uint32_t(i) + 1u));
+      EXPECT_NEAR(d.z, std::sqrt(1.f - u1), 2e-6f);
+    }
+  }
+}
+
+TEST(ProtocolRays, DiffuseDirectionsAreCosineDistributed) {
+  // the mean of cos(theta) over a cosine-weighted hemisphere is 2/3
+  const std::vector<glm::vec3> positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
+  std::vector<RayIn> primary(20000, RayIn{{0.f, 0.f, 1.f, 0.f}, {0.f, 0.f, -1.f, INFINITY}});
+  std::vector<ProtocolHit> hits(primary.size(), ProtocolHit{1.f, 0u});
+  const auto diffuse = protocol_diffuse_rays(primary, hits, positions, 1.f);
+  double sum = 0, sum_x = 0;
+  for (const RayIn& r : diffuse) sum += r.dir.z, sum_x += r.dir.x;
+  EXPECT_NEAR(sum / double(diffuse.size()), 2.0 / 3.0, 0.01);
+  EXPECT_NEAR(sum_x / double(diffuse.size()), 0.0, 0.01);
+}
+
+TEST(ProtocolRays, ViewCamerasFollowTheProtocol) {
+  Bounds b;
+  b.extend(glm::vec3(0.f));
+  b.extend(glm::vec3(2.f, 4.f, 4.f));
+  const SceneCamera ext = view_camera(b, BenchView{});
+  EXPECT_EQ(ext.eye, b.center() + glm::vec3(0.f, 0.f, b.diagonal()));
+  EXPECT_EQ(ext.target, b.center());
+  EXPECT_EQ(ext.vfov_degrees, 45.f);
+  const SceneCamera in = view_camera(b, interior_view());
+  EXPECT_EQ(in.eye, glm::vec3(0.5f, 0.8f, 2.f));
+  EXPECT_EQ(in.target, glm::vec3(1.5f, 1.4f, 2.f));
+  EXPECT_EQ(in.vfov_degrees, 60.f);
+}
+
+// The kernel path of `cohort bench` reports hits by Scene::positions index, as Embree's primID
+// does, even when the KD-tree dropped a degenerate triangle before them (kept indices shift).
+TEST(ProtocolRays, BenchTraceReportsSceneTriangleIndices) {
+  Scene scene;
+  scene.positions = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0},           // 0: degenerate, dropped by the builder
+                     {-1, -1, 0}, {1, -1, 0}, {1, 1, 0},         // 1 and 2: a square in z = 0
+                     {-1, -1, 0}, {1, 1, 0}, {-1, 1, 0},
+                     {-0.2f, -0.2f, 0.5f}, {0.2f, -0.2f, 0.5f}, {0.f, 0.2f, 0.5f}};  // 3: in front, z = 0.5
+  const KdTree tree = build_kdtree(scene.positions);
+  ASSERT_EQ(tree.stats.dropped_triangles, 1u);
+  const Bounds bounds = scene.bounds();
+  const ClContext cl(select_device(""));
+  const ProgramCache cache(ProgramCache::default_directory());
+  const TraceBench bench(cl, cache, tree);
+  const auto primary = protocol_primary_rays(view_camera(bounds, BenchView{}), 32);
+  const TraceFigures f = bench.trace(primary, 3);
+  EXPECT_EQ(f.rays_per_second.runs.size(), 3u);
+  ASSERT_GT(f.hits, 100u);
+  std::size_t front = 0;
+  for (std::size_t i = 0; i < primary.size(); ++i) {
+    const ProtocolHit& h = f.closest[i];
+    if (h.triangle == HIT_NONE) continue;
+    ASSERT_GE(h.triangle, 1u);
+    ASSERT_LE(h.triangle, 3u);
+    const glm::vec3 p = org_of(primary[i]) + h.t * dir_of(primary[i]);
+    EXPECT_NEAR(p.z, h.triangle == 3 ? 0.5f : 0.f, 1e-5f);
+    front += h.triangle == 3;
+  }
+  EXPECT_GT(front, 10u);
+  const auto diffuse = protocol_diffuse_rays(primary, f.closest, scene.positions, bounds.diagonal());
+  EXPECT_EQ(diffuse.size(), f.hits);
+  for (const RayIn& r : diffuse) EXPECT_GT(r.dir.z, 0.f);  // every hit faces the camera at +z
+}
