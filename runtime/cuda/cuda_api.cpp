@@ -19,8 +19,8 @@ namespace {
 void* open_library(const std::vector<std::string>& names, std::string& tried) {
   for (const auto& name : names) {
     if (void* h = dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL)) return h;
-    const char* err = dlerror();
-    tried += fmt::format("\n  {}: {}", name, err ? err : "not found");
+    const char* err = dlerror();  // names the library already
+    tried += fmt::format("\n  {}", err ? err : name + ": not found");
   }
   return nullptr;
 }
