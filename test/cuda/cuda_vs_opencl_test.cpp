@@ -13,13 +13,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <memory>
 #include <numeric>
 #include <random>
 
+#include "host/scene_paths.h"
 #include "host/trace_on_device.h"
 #include "runtime/backend/open_device.h"
 #include "runtime/cl/context.h"
@@ -72,15 +72,6 @@ std::size_t count_differences(const std::vector<T>& a, const std::vector<T>& b) 
   for (std::size_t i = 0; i < a.size(); ++i) n += std::memcmp(&a[i], &b[i], sizeof(T)) != 0;
   return n;
 }
-
-// The GPU machine runs binaries built elsewhere: $COHORT_SOURCE_DIR and $COHORT_SHARED_SCENES, when
-// set, say where the checkout and ../shared/scenes are there.
-fs::path env_or(const char* var, const char* built_in) {
-  const char* v = std::getenv(var);
-  return v && *v ? fs::path(v) : fs::path(built_in);
-}
-fs::path shipped(const char* name) { return env_or("COHORT_SOURCE_DIR", COHORT_SOURCE_DIR) / "scenes" / name; }
-fs::path shared(const char* rel) { return env_or("COHORT_SHARED_SCENES", COHORT_SHARED_SCENES) / rel; }
 
 // Rays from inside and around the scene box, as the traversal tests make them.
 std::vector<RayIn> random_rays(const Bounds& b, std::size_t n, std::uint32_t seed) {

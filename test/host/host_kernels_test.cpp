@@ -12,6 +12,7 @@
 
 #include "accel/ray_check.h"
 #include "host/host_device.h"
+#include "host/scene_paths.h"
 #include "host/trace_on_device.h"
 #include "runtime/cl/context.h"
 #include "runtime/render/prepared_scene.h"
@@ -33,8 +34,6 @@ const ClContext& opencl() {
   static const ClContext cl(select_device(""));
   return cl;
 }
-
-fs::path shipped(const char* name) { return fs::path(COHORT_SOURCE_DIR) / "scenes" / name; }
 
 template <class T>
 std::size_t count_differences(const std::vector<T>& a, const std::vector<T>& b) {
@@ -68,7 +67,7 @@ void check_traversal(const fs::path& path, std::uint32_t levels) {
 TEST(HostKernels, TraversalAndPthWalkEqualOpenCl) {
   check_traversal(shipped("cornell-box.gltf"), 10);
   check_traversal(shipped("quad-light.obj"), 16);
-  const fs::path bunny = fs::path(COHORT_SHARED_SCENES) / "bunny/bun_zipper_res2.ply";
+  const fs::path bunny = shared("bunny/bun_zipper_res2.ply");
   if (fs::exists(bunny)) check_traversal(bunny, 10);
 }
 
