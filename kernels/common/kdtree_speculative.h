@@ -9,9 +9,10 @@
  * ends the walk exactly where kd_resume would stop. So the hit is bit for bit kd_resume's; only
  * the inner-node steps taken ahead of time (and counted in `visited`) differ.
  *
- * The group vote: a sub-group `any` where the device offers cl_khr_subgroups; otherwise the whole
- * work-group votes through three words of __local memory, one barrier per step, in control flow
- * that every work item of the group follows (DECISIONS.md: never a barrier in divergent code). */
+ * The group vote: a warp vote in CUDA, a sub-group `any` where an OpenCL device offers
+ * cl_khr_subgroups; otherwise the whole work-group votes through three words of __local memory, one
+ * barrier per step, in control flow that every work item of the group follows (DECISIONS.md: never
+ * a barrier in divergent code). */
 #ifndef COHORT_KDTREE_SPECULATIVE_H
 #define COHORT_KDTREE_SPECULATIVE_H
 
@@ -102,32 +103,39 @@ CO_INLINE void kd_spec_start(KdSpeculativeRay* r, int active, co_vec3 org, co_ve
   r->hit.t = tmax; r->hit.u = 0.0f; r->hit.v = 0.0f; r->hit.triangle = HIT_NONE;
 }
 
-#ifdef __OPENCL_VERSION__
-#if defined(cl_khr_subgroups)
+#if defined(__OPENCL_VERSION__) && defined(cl_khr_subgroups)
 #pragma OPENCL EXTENSION cl_khr_subgroups : enable
 #endif
 
-/* OR of every work item's bits (see the header comment). `votes` holds 3 words; words 0 and 1 are
- * zero before step 0. Word k % 3 collects step k; word (k + 2) % 3 is cleared after step k's
- * barrier: its last readers (step k - 1) have all passed that barrier, and its next writers
- * (step k + 2) come after the next one. */
+/* OR of every work item's bits over the group (see the header comment). CUDA votes per warp with
+ * __any_sync, OpenCL per sub-group where the device has them, else per work-group through `votes`:
+ * 3 words, words 0 and 1 zero before step 0; word k % 3 collects step k, and word (k + 2) % 3 is
+ * cleared after step k's barrier: its last readers (step k - 1) have all passed that barrier, and
+ * its next writers (step k + 2) come after the next one. The host runs one work item per group. */
 CO_INLINE uint32_t kd_group_vote(CO_LOCAL uint32_t* votes, uint32_t step, uint32_t bits) {
-#if defined(cl_khr_subgroups)
+#if defined(__CUDACC__)
+  (void)votes; (void)step;
+  return (__any_sync(0xffffffffu, (int)(bits & KD_VOTE_SEARCHING)) ? KD_VOTE_SEARCHING : 0u) |
+         (__any_sync(0xffffffffu, (int)(bits & KD_VOTE_ACTIVE)) ? KD_VOTE_ACTIVE : 0u);
+#elif defined(__OPENCL_VERSION__) && defined(cl_khr_subgroups)
   (void)votes; (void)step;
   return (sub_group_any((int)(bits & KD_VOTE_SEARCHING)) ? KD_VOTE_SEARCHING : 0u) |
          (sub_group_any((int)(bits & KD_VOTE_ACTIVE)) ? KD_VOTE_ACTIVE : 0u);
-#else
+#elif defined(__OPENCL_VERSION__)
   if (bits) atomic_or(&votes[step % 3u], bits);
-  barrier(CLK_LOCAL_MEM_FENCE);
+  co_barrier();
   uint32_t all = votes[step % 3u];
-  if (get_local_id(0) == 0u) votes[(step + 2u) % 3u] = 0u;
+  if (co_local_id() == 0u) votes[(step + 2u) % 3u] = 0u;
   return all;
+#else
+  (void)votes; (void)step;
+  return bits;
 #endif
 }
 
 CO_INLINE void kd_group_vote_init(CO_LOCAL uint32_t* votes) {
-  if (get_local_id(0) < 3u) votes[get_local_id(0)] = 0u;
-  barrier(CLK_LOCAL_MEM_FENCE);
+  if (co_local_id() < 3u) votes[co_local_id()] = 0u;
+  co_barrier();
 }
 
 /* Runs every ray of the work group to its closest hit. Called by every work item of the group
@@ -144,6 +152,5 @@ CO_INLINE void kd_spec_run_group(const KdTreeView* tree, KdSpeculativeRay* r, Kd
       kd_spec_leaf_phase(tree, r);
   }
 }
-#endif
 
 #endif

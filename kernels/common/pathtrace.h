@@ -225,4 +225,13 @@ CO_INLINE PathResult trace_path(const SceneView* s, const RenderParams* p, uint3
   return result;
 }
 
+/* A sample added to a film pixel's running sum (rgb; w stays 0), component by component as
+ * OpenCL's float4 addition does. */
+CO_INLINE co_float4 film_add(co_float4 acc, co_vec3 r) {
+  acc.x = acc.x + r.x;
+  acc.y = acc.y + r.y;
+  acc.z = acc.z + r.z;
+  return acc;
+}
+
 #endif

@@ -1,9 +1,23 @@
-/* Portability layer: lets the plain-C device headers compile as OpenCL C 1.2 and as host C++
- * (and later CUDA C++). Only what the shared headers need lives here. */
+/* Portability layer: lets the plain-C device headers compile as OpenCL C 1.2, as CUDA C++ (nvcc and
+ * NVRTC) and as host C++. Only what the shared headers need lives here.
+ *
+ * Kernels are written once, in the *_kernels.h headers next to this one, with these macros; the
+ * .cl files under kernels/ and the .cu files under kernels/cuda/ only include them:
+ *   CO_KERNEL / CO_KERNEL_WG(n)  a kernel entry point (with a required work-group size)
+ *   CO_LOCAL_PARAM(T, name)      a kernel's one dynamically sized local (shared) array: an argument in
+ *                                OpenCL and on the host, the launch's dynamic shared memory in CUDA;
+ *                                CO_LOCAL_BIND(T, name) at the top of the body makes it visible
+ *   CO_SHARED                    a fixed-size local array declared in a kernel body
+ *   co_global_id() ...           work-item indices in dimension 0; co_barrier(): a work-group barrier
+ *   co_atomic_add / co_atomic_inc on 32-bit global counters (return the old value)
+ * Rounding: OpenCL is built without contraction (the pragma below) and, where the device offers
+ * it, with correctly rounded division and sqrt; CUDA with -fmad=false -prec-div=true
+ * -prec-sqrt=true; the host never contracts. Then +, -, *, / and sqrt round identically on every
+ * side, and the shared code uses nothing else (see microfacet.h for sin and cos). */
 #ifndef COHORT_PORT_H
 #define COHORT_PORT_H
 
-#ifdef __OPENCL_VERSION__
+#if defined(__OPENCL_VERSION__)
 /* No a*b+c -> fma contraction: the host build does not contract either, so host and device
  * traversal agree bit for bit, and every kernel rounds the shared code the same way. */
 #pragma OPENCL FP_CONTRACT OFF
@@ -12,13 +26,70 @@ typedef int int32_t;
 typedef ulong uint64_t;
 #define CO_GLOBAL __global
 #define CO_CONSTANT __constant
+#define CO_CONSTANT_DATA __constant
 #define CO_LOCAL __local
+#define CO_SHARED __local
 #define CO_INLINE inline
 #define CO_ALIGN(n) __attribute__((aligned(n)))
 #define CO_STATIC_ASSERT(cond, msg)
+#define CO_KERNEL __kernel void
+#define CO_KERNEL_WG(n) __kernel __attribute__((reqd_work_group_size(n, 1, 1))) void
+#define CO_LOCAL_PARAM(T, name) __local T* name,
+#define CO_LOCAL_BIND(T, name)
 typedef float4 co_float4;
+typedef uint4 co_uint4;
+#define co_make_float4(x, y, z, w) ((float4)((x), (y), (z), (w)))
+#define co_make_uint4(x, y, z, w) ((uint4)((x), (y), (z), (w)))
 #define co_as_float(u) as_float(u)
 #define co_as_uint(f) as_uint(f)
+#define co_global_id() ((uint32_t)get_global_id(0))
+#define co_local_id() ((uint32_t)get_local_id(0))
+#define co_local_size() ((uint32_t)get_local_size(0))
+#define co_group_id() ((uint32_t)get_group_id(0))
+#define co_barrier() barrier(CLK_LOCAL_MEM_FENCE)
+#define co_atomic_add(p, v) atomic_add((p), (v))
+#define co_atomic_inc(p) atomic_inc(p)
+
+#elif defined(__CUDACC__)
+#if defined(__CUDACC_RTC__)
+/* NVRTC has no standard headers; these are glibc's LP64 types, so nvcc and NVRTC agree. */
+typedef unsigned int uint32_t;
+typedef int int32_t;
+typedef unsigned long uint64_t;
+#else
+#include <cstdint>
+#endif
+#ifndef INFINITY
+#define INFINITY __int_as_float(0x7f800000)
+#endif
+#define CO_GLOBAL
+#define CO_CONSTANT
+#define CO_CONSTANT_DATA static __constant__ const
+#define CO_LOCAL
+#define CO_SHARED __shared__
+#define CO_INLINE __device__ inline
+#define CO_ALIGN(n) __align__(n)
+#define CO_STATIC_ASSERT(cond, msg) static_assert(cond, msg)
+#define CO_KERNEL extern "C" __global__ void
+#define CO_KERNEL_WG(n) extern "C" __global__ void __launch_bounds__(n)
+#define CO_LOCAL_PARAM(T, name)
+#define CO_LOCAL_BIND(T, name)                             \
+  extern __shared__ __align__(16) unsigned char co_dynamic_shared[]; \
+  T* name = (T*)co_dynamic_shared;
+typedef float4 co_float4; /* 16 bytes, 16-aligned: cl_float4's layout */
+typedef uint4 co_uint4;
+#define co_make_float4(x, y, z, w) make_float4((x), (y), (z), (w))
+#define co_make_uint4(x, y, z, w) make_uint4((x), (y), (z), (w))
+#define co_as_float(u) __uint_as_float(u)
+#define co_as_uint(f) __float_as_uint(f)
+#define co_global_id() (blockIdx.x * blockDim.x + threadIdx.x)
+#define co_local_id() (threadIdx.x)
+#define co_local_size() (blockDim.x)
+#define co_group_id() (blockIdx.x)
+#define co_barrier() __syncthreads()
+#define co_atomic_add(p, v) atomicAdd((p), (v))
+#define co_atomic_inc(p) atomicAdd((p), 1u)
+
 #else
 #include <cmath>
 #include <cstdint>
@@ -29,7 +100,9 @@ using std::fmin;
 using std::sqrt;
 #define CO_GLOBAL
 #define CO_CONSTANT
+#define CO_CONSTANT_DATA static const
 #define CO_LOCAL
+#define CO_SHARED
 #define CO_INLINE inline
 #define CO_ALIGN(n) alignas(n)
 #define CO_STATIC_ASSERT(cond, msg) static_assert(cond, msg)
@@ -37,8 +110,35 @@ using std::sqrt;
 typedef struct CO_ALIGN(16) co_float4 {
   float x, y, z, w;
 } co_float4;
+typedef struct CO_ALIGN(16) co_uint4 {
+  uint32_t x, y, z, w;
+} co_uint4;
+inline co_float4 co_make_float4(float x, float y, float z, float w) { return co_float4{x, y, z, w}; }
+inline co_uint4 co_make_uint4(uint32_t x, uint32_t y, uint32_t z, uint32_t w) { return co_uint4{x, y, z, w}; }
 inline float co_as_float(uint32_t u) { float f; std::memcpy(&f, &u, 4); return f; }
 inline uint32_t co_as_uint(float f) { uint32_t u; std::memcpy(&u, &f, 4); return u; }
+
+/* Kernels run on the host (tests of the shared kernel code) one work item at a time, in work-group
+ * order; the runner sets the indices here. Barriers are no-ops, so only kernels whose work-groups
+ * have one work item, or that never share local memory, run correctly this way. */
+struct CoHostWorkItem {
+  uint32_t global_id, local_id, local_size, group_id;
+};
+inline thread_local CoHostWorkItem co_host_item{};
+#define CO_KERNEL inline void
+#define CO_KERNEL_WG(n) inline void
+#define CO_LOCAL_PARAM(T, name) T* name,
+#define CO_LOCAL_BIND(T, name)
+#define co_global_id() (co_host_item.global_id)
+#define co_local_id() (co_host_item.local_id)
+#define co_local_size() (co_host_item.local_size)
+#define co_group_id() (co_host_item.group_id)
+#define co_barrier() ((void)0)
+inline uint32_t co_atomic_add(uint32_t* p, uint32_t v) { uint32_t old = *p; *p = old + v; return old; }
+inline uint32_t co_atomic_inc(uint32_t* p) { return co_atomic_add(p, 1u); }
 #endif
+
+CO_INLINE uint32_t co_umin(uint32_t a, uint32_t b) { return a < b ? a : b; }
+CO_INLINE uint32_t co_umax(uint32_t a, uint32_t b) { return a > b ? a : b; }
 
 #endif

@@ -10,12 +10,10 @@
 #include "common/types.h"
 #include "common/vec.h"
 
-#ifdef __OPENCL_VERSION__
-__constant float co_srgb_to_linear[256] = {
-#else
+#if !defined(__OPENCL_VERSION__) && !defined(__CUDACC__)
 using std::floor;
-static const float co_srgb_to_linear[256] = {
 #endif
+CO_CONSTANT_DATA float co_srgb_to_linear[256] = {
     0.0f, 0.000303526991f, 0.000607053982f, 0.000910580973f, 0.00121410796f, 0.00151763496f,
     0.00182116195f, 0.00212468882f, 0.00242821593f, 0.0027317428f, 0.00303526991f, 0.00334653584f,
     0.00367650739f, 0.00402471703f, 0.00439144205f, 0.00477695325f, 0.00518151652f, 0.00560539169f,

@@ -6,15 +6,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "runtime/util/error.h"
+
 namespace cohort {
 
 const char* cl_error_name(cl_int code);
-
-// An OpenCL call failed; what() reads like
-// "clEnqueueNDRangeKernel failed (render_naive pass): CL_OUT_OF_RESOURCES (-5)".
-struct DeviceError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 std::string describe(const cl::Error& e, const std::string& context = {});
 

@@ -1,4 +1,4 @@
-// One device with its context and an in-order, profiling command queue.
+// One device with its context and an in-order, profiling command queue: the OpenCL backend.
 #pragma once
 
 #include <CL/opencl.hpp>
@@ -6,11 +6,12 @@
 #include <cstddef>
 #include <string>
 
+#include "runtime/backend/device.h"
 #include "runtime/cl/devices.h"
 
 namespace cohort {
 
-struct ClContext {
+struct ClContext : Device {
   DeviceInfo device;
   cl::Context context;
   cl::CommandQueue queue;
@@ -21,7 +22,26 @@ struct ClContext {
   // `what` and the sizes when the device cannot hold it.
   cl::Buffer buffer(const std::string& what, std::size_t bytes, const void* data = nullptr,
                     cl_mem_flags flags = CL_MEM_READ_WRITE) const;
+
+  // The backend interface (runtime/backend/device.h).
+  Backend backend() const override { return Backend::opencl; }
+  const DeviceInfo& info() const override { return device; }
+  DeviceBuffer allocate(const std::string& what, std::size_t bytes, const void* data = nullptr,
+                        Access access = Access::read_write) const override;
+  DeviceProgram build_program(const ProgramCache& cache, const std::string& name,
+                              const std::string& defines = {}) const override;
+  DeviceEvent launch(const DeviceKernel& kernel, std::size_t items, std::size_t group) const override;
+  void write(const DeviceBuffer& to, std::size_t offset, std::size_t bytes, const void* data,
+             bool blocking = true) const override;
+  void read(const DeviceBuffer& from, std::size_t offset, std::size_t bytes, void* data) const override;
+  DeviceEvent copy(const DeviceBuffer& from, const DeviceBuffer& to, std::size_t bytes) const override;
+  void fill(const DeviceBuffer& to, std::uint32_t value, std::size_t count) const override;
+  void finish() const override { queue.finish(); }
 };
+
+// The OpenCL buffer behind a buffer of the OpenCL backend, and the other way round.
+const cl::Buffer& cl_buffer(const DeviceBuffer& b);
+DeviceBuffer wrap_buffer(const cl::Buffer& b);
 
 // Seconds a finished kernel ran, from its profiling event.
 double event_seconds(const cl::Event& event);

@@ -82,14 +82,34 @@ std::string ProgramCache::key(const DeviceInfo& device, const std::string& sourc
                      fnv1a64(source), source.size());
 }
 
+std::optional<std::filesystem::path> ProgramCache::entry_file(const std::string& key) const {
+  if (!directory_) return std::nullopt;
+  return *directory_ / fmt::format("{:016x}.bin", fnv1a64(key));
+}
+
+std::optional<std::string> ProgramCache::load(const std::string& key) const {
+  const auto file = entry_file(key);
+  return file ? read_entry(*file, key) : std::nullopt;
+}
+
+void ProgramCache::store(const std::string& key, const std::string& binary) const {
+  const auto file = entry_file(key);
+  if (!file) return;
+  try {
+    std::filesystem::create_directories(*directory_);
+    write_file_atomically(*file, make_entry(key, binary));
+  } catch (const std::exception&) {
+  }
+}
+
 ProgramBuild ProgramCache::build(const cl::Context& context, const DeviceInfo& device, const std::string& source,
                                  const std::string& options) const {
   const auto t0 = std::chrono::steady_clock::now();
   const std::string entry_key = key(device, source, options);
   ProgramBuild result;
   if (directory_) {
-    result.cache_file = (*directory_ / fmt::format("{:016x}.bin", fnv1a64(entry_key))).string();
-    if (auto binary = read_entry(result.cache_file, entry_key)) {
+    result.cache_file = entry_file(entry_key)->string();
+    if (auto binary = load(entry_key)) {
       try {
         cl::Program::Binaries binaries{std::vector<unsigned char>(binary->begin(), binary->end())};
         cl::Program program(context, {device.device}, binaries);
@@ -114,13 +134,10 @@ ProgramBuild ProgramCache::build(const cl::Context& context, const DeviceInfo& d
   if (directory_) {
     try {
       const auto binaries = program.getInfo<CL_PROGRAM_BINARIES>();
-      if (!binaries.empty() && !binaries.front().empty()) {
-        std::filesystem::create_directories(*directory_);
-        const std::string bytes(binaries.front().begin(), binaries.front().end());
-        write_file_atomically(result.cache_file, make_entry(entry_key, bytes));
-      }
-    } catch (const std::exception&) {
-      // a read-only or full cache directory costs speed, not correctness
+      if (!binaries.empty() && !binaries.front().empty())
+        store(entry_key, std::string(binaries.front().begin(), binaries.front().end()));
+    } catch (const cl::Error&) {
+      // a driver that cannot return its binary costs speed, not correctness
     }
   }
   return result;

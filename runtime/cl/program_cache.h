@@ -35,7 +35,14 @@ class ProgramCache {
   // The cache key text: device, driver, options and a hash of the source.
   static std::string key(const DeviceInfo& device, const std::string& source, const std::string& options);
 
+  // Any backend's binaries: the entry stored under `key`, or nothing when the cache is off or the
+  // entry is absent, damaged or of another key; store() never fails (a read-only or full cache
+  // directory costs speed, not correctness).
+  std::optional<std::string> load(const std::string& key) const;
+  void store(const std::string& key, const std::string& binary) const;
+
  private:
+  std::optional<std::filesystem::path> entry_file(const std::string& key) const;
   std::optional<std::filesystem::path> directory_;
 };
 

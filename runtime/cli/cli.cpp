@@ -24,6 +24,8 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
   cmd.add_option("--rr-depth", r.settings.rr_depth, "First segment where Russian roulette may end a path");
   cmd.add_option("--seed", r.settings.seed, "Random seed: the same seed gives the same image");
   cmd.add_option("--device", r.device, "Device index or name substring (see `cohort devices`)");
+  cmd.add_option("--backend", r.backend, "Device backend: opencl or cuda (the same kernels either way)")
+      ->check(CLI::IsMember({"opencl", "cuda"}));
   cmd.add_option("--method", r.settings.method, "Rendering method: " + fmt::format("{}", fmt::join(method_names(), ", ")))
       ->check(CLI::IsMember(method_names()));
   cmd.add_option("--wavefront-size", r.settings.wavefront_size,

@@ -1,8 +1,10 @@
 #include <fmt/format.h>
 
+#include "runtime/backend/open_device.h"
 #include "runtime/cl/devices.h"
 #include "runtime/cli/commands.h"
 #include "runtime/render/prepared_scene.h"
+#include "runtime/util/error.h"
 
 namespace cohort {
 
@@ -58,6 +60,15 @@ int run_devices() {
     fmt::print("    sub-groups (cl_khr_subgroups): {}, correctly rounded divide/sqrt: {}\n",
                extensions.find("cl_khr_subgroups") != std::string::npos ? "yes" : "no",
                d.correctly_rounded_divide_sqrt ? "yes" : "no");
+  }
+  if (cuda_backend_built()) {
+    try {
+      for (const auto& d : list_backend_devices(Backend::cuda))
+        fmt::print("[cuda {}] {} | {}, {} SMs, {} KiB shared memory per block, {} MiB | {}\n", d.device_index, d.name,
+                   d.version, d.compute_units, d.local_memory / 1024, d.global_memory >> 20, d.driver_version);
+    } catch (const InputError& e) {
+      fmt::print("CUDA backend: {}\n", e.what());
+    }
   }
   return 0;
 }

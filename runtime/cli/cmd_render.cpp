@@ -4,7 +4,7 @@
 
 #include <fstream>
 
-#include "runtime/cl/devices.h"
+#include "runtime/backend/open_device.h"
 #include "runtime/cli/commands.h"
 #include "runtime/cli/output_paths.h"
 #include "runtime/cli/parse_values.h"
@@ -27,7 +27,7 @@ nlohmann::json stats_json(const RenderCommand& cmd, const DeviceInfo& device, co
   nlohmann::json j;
   j["scene"] = cmd.scene.string();
   j["method"] = cmd.settings.method;
-  j["device"] = {{"name", device.name}, {"platform", device.platform_name}, {"driver", device.driver_version},
+  j["device"] = {{"backend", cmd.backend}, {"name", device.name}, {"platform", device.platform_name}, {"driver", device.driver_version},
                  {"compute_units", device.compute_units}};
   j["image"] = {{"width", cmd.settings.width}, {"height", cmd.settings.height}, {"spp", r.samples},
                 {"exr", out.exr.string()}, {"png", out.png.string()}};
@@ -94,12 +94,11 @@ int run_render(const RenderCommand& cmd_in) {
   // check where the outputs go before spending time on the render
   const OutputPaths out = output_paths(cmd.output, cmd.scene);
 
-  DeviceInfo device = select_device(cmd.device);
-  if (cmd.memory_limit_mib > 0) {
-    const auto limit = static_cast<std::uint64_t>(cmd.memory_limit_mib * 1048576.0);
-    device.global_memory = std::min(device.global_memory, limit);
-    device.max_allocation = std::min(device.max_allocation, limit);
-  }
+  const auto memory_limit =
+      cmd.memory_limit_mib > 0 ? static_cast<std::uint64_t>(cmd.memory_limit_mib * 1048576.0) : std::uint64_t(0);
+  const std::unique_ptr<Device> opened = open_device(parse_backend(cmd.backend), cmd.device, memory_limit);
+  const Device& cl = *opened;
+  const DeviceInfo& device = cl.info();
   PreparedScene prepared = prepare_scene(cmd.scene);
   if (cmd.white_sky) apply_white_sky(prepared, cmd.settings);
   if (!cmd.camera_bounds.empty())
@@ -111,7 +110,6 @@ int run_render(const RenderCommand& cmd_in) {
     fmt::print(stderr, "warning: {}: dropped {} degenerate or non-finite triangles\n", cmd.scene.string(),
                prepared.tree.stats.dropped_triangles);
 
-  const ClContext cl(device);
   const ProgramCache cache(cmd.no_cache ? std::nullopt : std::optional(ProgramCache::default_directory()));
   const DeviceScene device_scene = upload_scene(cl, prepared.tree, prepared.tables);
   const std::uint64_t fingerprint = render_fingerprint(cmd, prepared);

@@ -14,6 +14,7 @@ struct RenderCommand {
   std::string output;  // base name or .exr/.png path; empty: the scene's stem in the current directory
   std::string resolution = "512x512";
   std::string device;
+  std::string backend = "opencl";  // opencl | cuda
   std::string stats_file;
   std::string environment;  // "R,G,B" or one value
   std::string camera_bounds;  // "ex,ey,ez,tx,ty,tz": fractions of the scene bounds

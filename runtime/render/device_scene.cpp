@@ -175,25 +175,25 @@ SceneTables make_scene_tables(const Scene& scene, const KdTree& tree) {
   return t;
 }
 
-DeviceScene upload_scene(const ClContext& cl, const KdTree& tree, const SceneTables& tables) {
+DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables& tables) {
   DeviceScene d;
   d.bytes = bytes_of(tree.nodes) + bytes_of(tree.leaf_triangles) + bytes_of(tree.triangles) +
             bytes_of(tables.triangle_material) + bytes_of(tables.materials) + bytes_of(tables.emitters.entries) +
             bytes_of(tables.triangle_uvs) + bytes_of(tables.textures) + bytes_of(tables.texels);
-  if (d.bytes > cl.device.global_memory)
+  if (d.bytes > cl.info().global_memory)
     throw DeviceError(fmt::format("the scene needs {} bytes of device memory; {} has {} bytes", d.bytes,
-                                  cl.device.name, cl.device.global_memory));
-  const auto ro = CL_MEM_READ_ONLY;
-  d.nodes = cl.buffer("KD-tree nodes", bytes_of(tree.nodes), tree.nodes.data(), ro);
-  d.leaf_triangles = cl.buffer("KD-tree leaf lists", bytes_of(tree.leaf_triangles), tree.leaf_triangles.data(), ro);
-  d.triangles = cl.buffer("triangles", bytes_of(tree.triangles), tree.triangles.data(), ro);
+                                  cl.info().name, cl.info().global_memory));
+  const auto ro = Access::read_only;
+  d.nodes = cl.allocate("KD-tree nodes", bytes_of(tree.nodes), tree.nodes.data(), ro);
+  d.leaf_triangles = cl.allocate("KD-tree leaf lists", bytes_of(tree.leaf_triangles), tree.leaf_triangles.data(), ro);
+  d.triangles = cl.allocate("triangles", bytes_of(tree.triangles), tree.triangles.data(), ro);
   d.triangle_material =
-      cl.buffer("triangle materials", bytes_of(tables.triangle_material), tables.triangle_material.data(), ro);
-  d.materials = cl.buffer("materials", bytes_of(tables.materials), tables.materials.data(), ro);
-  d.emitters = cl.buffer("emitters", bytes_of(tables.emitters.entries), tables.emitters.entries.data(), ro);
+      cl.allocate("triangle materials", bytes_of(tables.triangle_material), tables.triangle_material.data(), ro);
+  d.materials = cl.allocate("materials", bytes_of(tables.materials), tables.materials.data(), ro);
+  d.emitters = cl.allocate("emitters", bytes_of(tables.emitters.entries), tables.emitters.entries.data(), ro);
   // without textures the kernels never read these; they take one-element placeholders
   auto upload = [&](const char* what, const auto& v) {
-    return cl.buffer(what, bytes_of(v), v.empty() ? nullptr : v.data(), ro);
+    return cl.allocate(what, bytes_of(v), v.empty() ? nullptr : v.data(), ro);
   };
   d.triangle_uvs = upload("texture coordinates", tables.triangle_uvs);
   d.textures = upload("texture descriptors", tables.textures);

@@ -1,8 +1,6 @@
 // A scene and its KD-tree uploaded to one device.
 #pragma once
 
-#include <CL/opencl.hpp>
-
 #include <array>
 #include <cstddef>
 #include <string>
@@ -10,7 +8,7 @@
 
 #include "kernels/common/types.h"
 #include "runtime/accel/kdtree.h"
-#include "runtime/cl/context.h"
+#include "runtime/backend/device.h"
 #include "runtime/render/emitters.h"
 #include "runtime/scene/scene.h"
 
@@ -50,8 +48,8 @@ Material to_device_material(const SceneMaterial& m);
 SceneTables make_scene_tables(const Scene& scene, const KdTree& tree);
 
 struct DeviceScene {
-  cl::Buffer nodes, leaf_triangles, triangles, triangle_material, materials, emitters;
-  cl::Buffer triangle_uvs, textures, texels;  // one-element placeholders without textures
+  DeviceBuffer nodes, leaf_triangles, triangles, triangle_material, materials, emitters;
+  DeviceBuffer triangle_uvs, textures, texels;  // one-element placeholders without textures
   SceneFeatures features;
   std::string build_options;  // features.build_options(): every rendering program gets them
   std::uint32_t emitter_count = 0;
@@ -63,6 +61,6 @@ struct DeviceScene {
   std::array<std::vector<float>, 3> centroid_samples;  // sorted triangle centroids per axis (subsampled)
 };
 
-DeviceScene upload_scene(const ClContext& cl, const KdTree& tree, const SceneTables& tables);
+DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables& tables);
 
 }  // namespace cohort

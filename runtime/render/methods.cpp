@@ -36,7 +36,7 @@ const Method& find_method(const std::string& name) {
   throw InputError(fmt::format("--method {}: unknown method (choose from {})", name, fmt::join(method_names(), ", ")));
 }
 
-RenderResult render(const ClContext& cl, const ProgramCache& cache, const DeviceScene& scene, const SceneCamera& camera,
+RenderResult render(const Device& cl, const ProgramCache& cache, const DeviceScene& scene, const SceneCamera& camera,
                     const RenderSettings& settings, const ProgressCallback& progress, const RenderControl& control) {
   const Method& method = find_method(settings.method);
   const RenderParams params = make_render_params(scene, camera, settings);

@@ -29,10 +29,10 @@ const std::vector<Method>& methods();
 std::vector<std::string> method_names();
 const Method& find_method(const std::string& name);  // throws InputError for an unknown name
 
-RenderResult render_naive(const ClContext& cl, const ProgramCache& cache, const DeviceScene& scene,
+RenderResult render_naive(const Device& cl, const ProgramCache& cache, const DeviceScene& scene,
                           const RenderParams& params, const RenderSettings& settings, const ProgressCallback& progress,
                           const RenderControl& control);
-RenderResult render_wavefront(const Method& method, const ClContext& cl, const ProgramCache& cache,
+RenderResult render_wavefront(const Method& method, const Device& cl, const ProgramCache& cache,
                               const DeviceScene& scene, const RenderParams& params, const RenderSettings& settings,
                               const ProgressCallback& progress, const RenderControl& control);
 

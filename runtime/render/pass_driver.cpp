@@ -13,15 +13,15 @@
 namespace cohort {
 namespace {
 
-FilmState read_film(const ClContext& cl, const PassBuffers& b, const RenderSettings& s, std::uint32_t samples) {
+FilmState read_film(const Device& cl, const PassBuffers& b, const RenderSettings& s, std::uint32_t samples) {
   FilmState film;
   film.width = s.width;
   film.height = s.height;
   film.samples = samples;
   film.sums.resize(std::size_t(s.width) * s.height);
-  cl.queue.enqueueReadBuffer(b.film, CL_TRUE, 0, film.sums.size() * sizeof(co_float4), film.sums.data());
+  cl.read(b.film, 0, film.sums.size() * sizeof(co_float4), film.sums.data());
   std::uint32_t dropped = 0;
-  cl.queue.enqueueReadBuffer(b.dropped, CL_TRUE, 0, sizeof(dropped), &dropped);
+  cl.read(b.dropped, 0, sizeof(dropped), &dropped);
   film.dropped_samples = dropped;
   return film;
 }
@@ -39,14 +39,14 @@ Image to_image(const FilmState& film) {
 
 }  // namespace
 
-RenderResult drive_passes(const ClContext& cl, const RenderParams& base_params, const RenderSettings& settings,
+RenderResult drive_passes(const Device& cl, const RenderParams& base_params, const RenderSettings& settings,
                           std::uint32_t max_samples_per_pass, const ProgressCallback& progress,
                           const RenderControl& control, const PassFunction& pass) {
   using Clock = std::chrono::steady_clock;
   RenderResult result;
   const std::uint32_t pixels = settings.width * settings.height;
   PassBuffers buffers;
-  buffers.params = cl.buffer("render parameters", sizeof(RenderParams), nullptr, CL_MEM_READ_ONLY);
+  buffers.params = cl.allocate("render parameters", sizeof(RenderParams), nullptr, Access::read_only);
   std::vector<co_float4> start(pixels, co_float4{0, 0, 0, 0});
   std::uint32_t start_dropped = 0;
   if (control.resume_from) {
@@ -58,8 +58,8 @@ RenderResult drive_passes(const ClContext& cl, const RenderParams& base_params, 
     start_dropped = static_cast<std::uint32_t>(f.dropped_samples);
     result.samples = result.resumed_samples = f.samples;
   }
-  buffers.film = cl.buffer("film", start.size() * sizeof(co_float4), start.data());
-  buffers.dropped = cl.buffer("dropped-sample counter", sizeof(start_dropped), &start_dropped);
+  buffers.film = cl.allocate("film", start.size() * sizeof(co_float4), start.data());
+  buffers.dropped = cl.allocate("dropped-sample counter", sizeof(start_dropped), &start_dropped);
 
   RenderParams params = base_params;
   const bool unbounded = settings.time_limit > 0 && settings.spp == 0;
@@ -70,7 +70,7 @@ RenderResult drive_passes(const ClContext& cl, const RenderParams& base_params, 
     const std::uint32_t count = unbounded ? per_pass : std::min(per_pass, settings.spp - result.samples);
     params.sample_offset = result.samples;
     params.samples_per_pass = count;
-    cl.queue.enqueueWriteBuffer(buffers.params, CL_TRUE, 0, sizeof(params), &params);
+    cl.write(buffers.params, 0, sizeof(params), &params);
     const PassOutput out = pass(buffers, params);
     result.rays += out.rays;
     add_seconds(result.kernel_seconds, out.kernel_seconds);

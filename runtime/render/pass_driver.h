@@ -8,15 +8,15 @@
 #include <map>
 #include <string>
 
-#include "runtime/cl/context.h"
+#include "runtime/backend/device.h"
 #include "runtime/render/renderer.h"
 
 namespace cohort {
 
 struct PassBuffers {
-  cl::Buffer params;   // RenderParams, sample_offset and samples_per_pass set for this pass
-  cl::Buffer film;     // float4 per pixel: the running sum of samples
-  cl::Buffer dropped;  // uint: NaN or infinite samples
+  DeviceBuffer params;   // RenderParams, sample_offset and samples_per_pass set for this pass
+  DeviceBuffer film;     // float4 per pixel: the running sum of samples
+  DeviceBuffer dropped;  // uint: NaN or infinite samples
 };
 
 struct PassOutput {
@@ -28,7 +28,7 @@ struct PassOutput {
 using PassFunction = std::function<PassOutput(const PassBuffers&, const RenderParams&)>;
 
 // max_samples_per_pass bounds what one pass may hold (a method's per-pass buffers).
-RenderResult drive_passes(const ClContext& cl, const RenderParams& params, const RenderSettings& settings,
+RenderResult drive_passes(const Device& cl, const RenderParams& params, const RenderSettings& settings,
                           std::uint32_t max_samples_per_pass, const ProgressCallback& progress,
                           const RenderControl& control, const PassFunction& pass);
 

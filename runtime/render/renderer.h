@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "runtime/accel/kdtree.h"
-#include "runtime/cl/context.h"
+#include "runtime/backend/device.h"
 #include "runtime/cl/program_cache.h"
 #include "runtime/image/image.h"
 #include "runtime/render/checkpoint.h"
@@ -66,7 +66,7 @@ struct RenderControl {
 };
 
 // Renders with settings.method (see methods.h).
-RenderResult render(const ClContext& cl, const ProgramCache& cache, const DeviceScene& scene,
+RenderResult render(const Device& cl, const ProgramCache& cache, const DeviceScene& scene,
                     const SceneCamera& camera, const RenderSettings& settings, const ProgressCallback& progress = {},
                     const RenderControl& control = {});
 

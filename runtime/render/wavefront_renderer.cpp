@@ -1,12 +1,11 @@
 // The wavefront scheduler: a pool of path slots and one loop of small kernels per bounce
-// (kernels/wavefront.cl). `compact`, `regenerate` and the ray sort are the only differences
+// (kernels/common/wavefront_kernels.h). `compact`, `regenerate` and the ray sort are the only differences
 // between methods; with a sort, the extend stage becomes walk + code, device sort, and resumed
-// traversal in sorted order (kernels/pth.cl).
+// traversal in sorted order (kernels/common/pth_kernels.h).
 #include <algorithm>
 #include <array>
 #include <optional>
 
-#include "runtime/cl/kernel_program.h"
 #include "runtime/render/coherence.h"
 #include "runtime/render/launch_log.h"
 #include "runtime/render/methods.h"
@@ -21,7 +20,7 @@ enum Counter { kNextItem = 0, kQueue, kShadow, kSimdSum, kSimdGroups, kCounterCo
 // Source of the non-blocking counter resets: the host memory of a non-blocking write must outlive
 // the command, so it cannot be a local of the loop.
 constexpr std::array<std::uint32_t, kCounterCount> kZeros{};
-constexpr std::uint32_t kPthMaxLevels = 16;  // PTH_MAX_LEVELS in kernels/pth.cl
+constexpr std::uint32_t kPthMaxLevels = 16;  // PTH_MAX_LEVELS in kernels/common/pth_kernels.h
 
 // Device bytes per slot: path state (5 float4 + 3 uint), hit, shadow ray (3 float4), two queues,
 // traversal steps.
@@ -31,13 +30,13 @@ constexpr std::size_t kSortBytes = 2 * (8 + 4) + 16;
 
 // Enough paths in flight to fill the device: a few thousand per compute unit on a GPU, more on a
 // CPU whose "compute units" are cores; never more than a quarter of the device memory.
-std::uint32_t choose_pool_size(const ClContext& cl, const RenderSettings& s, std::uint64_t items,
+std::uint32_t choose_pool_size(const Device& cl, const RenderSettings& s, std::uint64_t items,
                                std::size_t bytes_per_slot) {
   std::uint64_t slots = s.wavefront_size;
   if (slots == 0) {
-    const std::uint64_t per_cu = cl.device.is_gpu ? 8192 : 32768;
-    slots = std::clamp<std::uint64_t>(per_cu * cl.device.compute_units, 65536, 1u << 21);
-    slots = std::min<std::uint64_t>(slots, cl.device.global_memory / 4 / bytes_per_slot);
+    const std::uint64_t per_cu = cl.info().is_gpu ? 8192 : 32768;
+    slots = std::clamp<std::uint64_t>(per_cu * cl.info().compute_units, 65536, 1u << 21);
+    slots = std::min<std::uint64_t>(slots, cl.info().global_memory / 4 / bytes_per_slot);
   }
   slots = std::min<std::uint64_t>(slots, items);
   return static_cast<std::uint32_t>(std::max<std::uint64_t>(slots, 1));
@@ -45,29 +44,29 @@ std::uint32_t choose_pool_size(const ClContext& cl, const RenderSettings& s, std
 
 struct Pool {
   std::uint32_t slots = 0;
-  cl::Buffer org, dir, throughput, radiance, prev, item, segment, status, hits, steps;
-  cl::Buffer shadow_org, shadow_dir, shadow_contribution, shadow_queue, queue, counters;
+  DeviceBuffer org, dir, throughput, radiance, prev, item, segment, status, hits, steps;
+  DeviceBuffer shadow_org, shadow_dir, shadow_contribution, shadow_queue, queue, counters;
 
-  Pool(const ClContext& cl, std::uint32_t n) : slots(n) {
+  Pool(const Device& cl, std::uint32_t n) : slots(n) {
     const std::size_t f4 = std::size_t(n) * 16, u = std::size_t(n) * 4;
-    org = cl.buffer("path origins", f4);
-    dir = cl.buffer("path directions", f4);
-    throughput = cl.buffer("path throughput", f4);
-    radiance = cl.buffer("path radiance", f4);
-    prev = cl.buffer("path previous vertex", f4);
+    org = cl.allocate("path origins", f4);
+    dir = cl.allocate("path directions", f4);
+    throughput = cl.allocate("path throughput", f4);
+    radiance = cl.allocate("path radiance", f4);
+    prev = cl.allocate("path previous vertex", f4);
     const std::vector<std::uint32_t> free_slots(n, kItemNone);
-    item = cl.buffer("path work items", u, free_slots.data());
-    segment = cl.buffer("path segments", u);
-    status = cl.buffer("path status", u);
-    hits = cl.buffer("hits", std::size_t(n) * sizeof(HitOut));
-    steps = cl.buffer("traversal steps", u);
-    shadow_org = cl.buffer("shadow origins", f4);
-    shadow_dir = cl.buffer("shadow directions", f4);
-    shadow_contribution = cl.buffer("shadow contributions", f4);
-    shadow_queue = cl.buffer("shadow queue", u);
-    queue = cl.buffer("path queue", u);
+    item = cl.allocate("path work items", u, free_slots.data());
+    segment = cl.allocate("path segments", u);
+    status = cl.allocate("path status", u);
+    hits = cl.allocate("hits", std::size_t(n) * sizeof(HitOut));
+    steps = cl.allocate("traversal steps", u);
+    shadow_org = cl.allocate("shadow origins", f4);
+    shadow_dir = cl.allocate("shadow directions", f4);
+    shadow_contribution = cl.allocate("shadow contributions", f4);
+    shadow_queue = cl.allocate("shadow queue", u);
+    queue = cl.allocate("path queue", u);
     const std::array<std::uint32_t, kCounterCount> zero{};
-    counters = cl.buffer("queue counters", sizeof(zero), zero.data());
+    counters = cl.allocate("queue counters", sizeof(zero), zero.data());
   }
 };
 
@@ -76,63 +75,57 @@ struct SortStage {
   CodeParams code{};
   SubtreeChoice subtree;
   std::string layout;
-  cl::Buffer code_params, origin_bounds, keys, values, traversal, traversal_stack;
+  DeviceBuffer code_params, origin_bounds, keys, values, traversal, traversal_stack;
   std::optional<RadixSort> sort;
-  cl::Kernel walk, resume;
+  DeviceKernel walk, resume;
 
-  SortStage(const ClContext& cl, const ProgramCache& cache, const DeviceScene& scene, const Method& method,
+  SortStage(const Device& cl, const ProgramCache& cache, const DeviceScene& scene, const Method& method,
             const RenderSettings& s, std::uint32_t slots) {
     const bool pth = method.sort == RaySort::pth;
-    subtree = pth ? choose_subtree(cl.device, scene, s.pth_levels) : SubtreeChoice{};
+    subtree = pth ? choose_subtree(cl.info(), scene, s.pth_levels) : SubtreeChoice{};
     layout = s.code.empty() ? default_code_layout(pth) : s.code;
     code = parse_code_layout(layout, subtree.levels, scene.bounds);
     if (!pth) code.pth_levels = 0;  // the hash sort never walks the subtree
     if (code.pth_levels > kPthMaxLevels) code.pth_levels = kPthMaxLevels;
-    code_params = cl.buffer("code parameters", sizeof(code), &code, CL_MEM_READ_ONLY);
+    code_params = cl.allocate("code parameters", sizeof(code), &code, Access::read_only);
     const auto bounds = origin_boundaries(scene, code.origin_bits);
-    origin_bounds = cl.buffer("origin grid", bounds.size() * sizeof(float), bounds.data(), CL_MEM_READ_ONLY);
-    keys = cl.buffer("coherence codes", std::size_t(slots) * 8);
-    values = cl.buffer("sorted slots", std::size_t(slots) * 4);
-    traversal = cl.buffer("traversal states", std::size_t(slots) * 16);
-    traversal_stack = cl.buffer("traversal stacks", std::size_t(slots) * 16 * std::max<std::uint32_t>(code.pth_levels, 1));
+    origin_bounds = cl.allocate("origin grid", bounds.size() * sizeof(float), bounds.data(), Access::read_only);
+    keys = cl.allocate("coherence codes", std::size_t(slots) * 8);
+    values = cl.allocate("sorted slots", std::size_t(slots) * 4);
+    traversal = cl.allocate("traversal states", std::size_t(slots) * 16);
+    traversal_stack = cl.allocate("traversal stacks", std::size_t(slots) * 16 * std::max<std::uint32_t>(code.pth_levels, 1));
     sort.emplace(cl, cache, slots);
   }
 };
 
-template <class... Args>
-void set_args(cl::Kernel& k, const Args&... args) {
-  cl_uint i = 0;
-  (k.setArg(i++, args), ...);
-}
-
 }  // namespace
 
-RenderResult render_wavefront(const Method& method, const ClContext& cl, const ProgramCache& cache,
+RenderResult render_wavefront(const Method& method, const Device& cl, const ProgramCache& cache,
                               const DeviceScene& scene, const RenderParams& params, const RenderSettings& settings,
                               const ProgressCallback& progress, const RenderControl& control) {
   // the scene's feature options go to every program that shades or traces, so all methods compile
   // the shared code identically
-  const ProgramBuild build = build_kernel_program(cl, cache, "wavefront.cl", scene.build_options);
+  const DeviceProgram build = cl.build_program(cache, "wavefront", scene.build_options);
   const std::uint32_t pixels = settings.width * settings.height;
   // a pass holds one result per (pixel, sample): bound it to ~64 MiB of results
   const std::uint32_t max_per_pass = std::max<std::uint32_t>(1, (1u << 22) / std::max<std::uint32_t>(pixels, 1));
   const std::uint64_t max_items = std::uint64_t(pixels) * std::min(max_per_pass, std::max<std::uint32_t>(settings.spp, 1));
   const bool sorting = method.sort != RaySort::none;
   Pool pool(cl, choose_pool_size(cl, settings, max_items, kPathStateBytes + (sorting ? kSortBytes : 0)));
-  cl::Buffer results = cl.buffer("pass results", std::size_t(pixels) * max_per_pass * 16);
-  const cl_uint use_queue = method.compact ? 1 : 0;
+  DeviceBuffer results = cl.allocate("pass results", std::size_t(pixels) * max_per_pass * 16);
+  const std::uint32_t use_queue = method.compact ? 1 : 0;
 
-  cl::Kernel generate(build.program, "wf_generate"), extend(build.program, "wf_extend"),
-      shade(build.program, "wf_shade"), shadow(build.program, "wf_shadow"), finish(build.program, "wf_finish"),
-      accumulate(build.program, "wf_accumulate"), simd(build.program, "wf_simd_efficiency");
+  DeviceKernel generate = build.kernel("wf_generate"), extend = build.kernel("wf_extend"),
+               shade = build.kernel("wf_shade"), shadow = build.kernel("wf_shadow"),
+               finish = build.kernel("wf_finish"), accumulate = build.kernel("wf_accumulate"),
+               simd = build.kernel("wf_simd_efficiency");
   std::optional<SortStage> sort_stage;
-  std::optional<ProgramBuild> pth_build;
+  std::optional<DeviceProgram> pth_build;
   if (sorting) {
-    pth_build = build_kernel_program(cl, cache, "pth.cl", scene.build_options);
+    pth_build = cl.build_program(cache, "pth", scene.build_options);
     sort_stage.emplace(cl, cache, scene, method, settings, pool.slots);
-    sort_stage->walk = cl::Kernel(pth_build->program, "pth_walk_and_code");
-    sort_stage->resume =
-        cl::Kernel(pth_build->program, settings.speculative ? "pth_resume_speculative" : "pth_resume");
+    sort_stage->walk = pth_build->kernel("pth_walk_and_code");
+    sort_stage->resume = pth_build->kernel(settings.speculative ? "pth_resume_speculative" : "pth_resume");
   }
   const auto& sc = scene;
   std::vector<IterationStats> iterations;
@@ -141,15 +134,15 @@ RenderResult render_wavefront(const Method& method, const ClContext& cl, const P
     const std::uint32_t items = pixels * p.samples_per_pass;
     const auto& [o, d, t, r, pv, it, sg, st] =
         std::tie(pool.org, pool.dir, pool.throughput, pool.radiance, pool.prev, pool.item, pool.segment, pool.status);
-    set_args(generate, b.params, o, d, t, r, pv, it, sg, st, pool.counters, pool.queue, use_queue, pool.slots, items);
-    set_args(finish, o, d, t, r, pv, it, sg, st, results, pool.counters, pool.queue, use_queue, pool.slots);
-    set_args(shadow, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
+    generate.set_args(b.params, o, d, t, r, pv, it, sg, st, pool.counters, pool.queue, use_queue, pool.slots, items);
+    finish.set_args(o, d, t, r, pv, it, sg, st, results, pool.counters, pool.queue, use_queue, pool.slots);
+    shadow.set_args(b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
              sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, r, pool.shadow_org, pool.shadow_dir,
              pool.shadow_contribution, pool.shadow_queue, pool.counters);
-    set_args(accumulate, b.params, results, b.film, b.dropped);
+    accumulate.set_args(b.params, results, b.film, b.dropped);
 
     std::array<std::uint32_t, kCounterCount> counters{};
-    cl.queue.enqueueWriteBuffer(pool.counters, CL_FALSE, 0, sizeof(kZeros), kZeros.data());
+    cl.write(pool.counters, 0, sizeof(kZeros), kZeros.data(), false);
     PassOutput out;
     LaunchLog log;
     std::map<std::string, double> sort_seconds;
@@ -164,39 +157,39 @@ RenderResult render_wavefront(const Method& method, const ClContext& cl, const P
         live += static_cast<std::uint32_t>(started);
       }
       if (live == 0) break;
-      const cl_uint count = method.compact ? live : pool.slots;
+      const std::uint32_t count = method.compact ? live : pool.slots;
       if (sort_stage) {
         SortStage& ss = *sort_stage;
-        set_args(ss.walk, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
+        ss.walk.set_args(b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
                  sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, o, d, it, st, pool.queue, use_queue, count,
-                 cl::Local(std::max<std::size_t>(ss.subtree.local_bytes, sizeof(KdNode))), ss.subtree.nodes,
+                 LocalMemory{std::max<std::size_t>(ss.subtree.local_bytes, sizeof(KdNode))}, ss.subtree.nodes,
                  ss.code_params, ss.origin_bounds, ss.keys, ss.values, ss.traversal, ss.traversal_stack, pool.slots,
                  pool.hits);
         log.launch(cl, ss.walk, method.sort == RaySort::pth ? "pth" : "hash", count);
         ss.sort->sort(ss.keys, ss.values, count, ss.code.key_bits, &sort_seconds);
-        set_args(ss.resume, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
+        ss.resume.set_args(b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
                  sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, o, d, ss.values, count, ss.traversal,
                  ss.traversal_stack, pool.slots, pool.hits, pool.steps);
         // the speculative kernel votes per work-group: make it one SIMD group of 32
         log.launch(cl, ss.resume, "resume", count, settings.speculative ? 32 : 64);
       } else {
-        set_args(extend, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
+        extend.set_args(b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
                  sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, o, d, t, r, pv, it, sg, st, pool.hits,
                  pool.queue, use_queue, count, pool.steps);
         log.launch(cl, extend, "extend", count);
       }
-      set_args(simd, pool.steps, count, pool.counters);
+      simd.set_args(pool.steps, count, pool.counters);
       log.launch(cl, simd, "simd efficiency", (count + 31) / 32);
-      set_args(shade, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
+      shade.set_args(b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
                sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, o, d, t, r, pv, it, sg, st, pool.hits, pool.queue,
                use_queue, count, pool.shadow_org, pool.shadow_dir, pool.shadow_contribution, pool.shadow_queue,
                pool.counters);
       log.launch(cl, shade, "shade", count);
       log.launch(cl, shadow, "shadow", live);  // at most one shadow ray per live path
-      cl.queue.enqueueWriteBuffer(pool.counters, CL_FALSE, kQueue * 4, 4, kZeros.data());
+      cl.write(pool.counters, kQueue * 4, 4, kZeros.data(), false);
       log.launch(cl, finish, "finish", pool.slots);
-      cl.queue.enqueueReadBuffer(pool.counters, CL_TRUE, 0, sizeof(counters), counters.data());
-      cl.queue.enqueueWriteBuffer(pool.counters, CL_FALSE, kShadow * 4, 3 * 4, kZeros.data());
+      cl.read(pool.counters, 0, sizeof(counters), counters.data());
+      cl.write(pool.counters, kShadow * 4, 3 * 4, kZeros.data(), false);
 
       if (iterations.size() <= iteration) iterations.resize(iteration + 1);
       IterationStats& stats = iterations[iteration];

@@ -1,4 +1,4 @@
-// Host side of the device radix sort (kernels/radix_sort.cl): tiling, buffers and the pass loop.
+// Host side of the device radix sort (kernels/common/radix_sort_kernels.h): tiling, buffers and the pass loop.
 #include "runtime/sort/radix_sort.h"
 
 #include <fmt/format.h>
@@ -6,8 +6,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "runtime/cl/cl_error.h"
-#include "runtime/cl/kernel_program.h"
+#include "runtime/util/error.h"
 
 namespace cohort {
 namespace {
@@ -25,7 +24,7 @@ std::uint32_t floor_pow2(std::size_t x) {
   return p;
 }
 
-// Local memory of sort_scatter and sort_scan_segments as kernels/radix_sort.cl declares it.
+// Local memory of sort_scatter and sort_scan_segments as the kernels declare it.
 std::size_t scatter_local_bytes(std::uint32_t group, std::uint32_t items, bool local_exchange) {
   const std::size_t table = std::size_t(kRadix) * group;
   const std::size_t tile = local_exchange ? std::size_t(group) * items * (8 + 4) : 0;
@@ -65,13 +64,13 @@ RadixSort::Tiling RadixSort::choose_tiling(const DeviceInfo& device) {
   return {group, items, scan_group, true};
 }
 
-RadixSort::RadixSort(const ClContext& cl, const ProgramCache& cache, std::uint32_t capacity)
+RadixSort::RadixSort(const Device& cl, const ProgramCache& cache, std::uint32_t capacity)
     : RadixSort(cl, cache, capacity, Tiling{}) {}
 
-RadixSort::RadixSort(const ClContext& cl, const ProgramCache& cache, std::uint32_t capacity, Tiling tiling)
+RadixSort::RadixSort(const Device& cl, const ProgramCache& cache, std::uint32_t capacity, Tiling tiling)
     : cl_(cl), capacity_(capacity) {
   const bool chosen = tiling.group == 0;
-  if (chosen) tiling = choose_tiling(cl.device);
+  if (chosen) tiling = choose_tiling(cl.info());
   if (tiling.group == 0 || tiling.items == 0 || tiling.scan_group == 0 ||
       std::uint64_t(tiling.group) * tiling.items > (1u << 24))
     throw std::invalid_argument(fmt::format("radix sort tiling {} x {} (scan {}) is invalid", tiling.group,
@@ -79,21 +78,21 @@ RadixSort::RadixSort(const ClContext& cl, const ProgramCache& cache, std::uint32
   // A kernel may allow fewer work items than the device (registers, local memory): halve the
   // work-groups until every kernel accepts its size.
   for (;;) {
-    const ProgramBuild build = build_kernel_program(
-        cl, cache, "radix_sort.cl",
+    const DeviceProgram build = cl.build_program(
+        cache, "radix_sort",
         fmt::format("-DSORT_WG={} -DSORT_ITEMS={} -DSCAN_WG={} -DSORT_LOCAL_EXCHANGE={}", tiling.group, tiling.items,
                     tiling.scan_group, tiling.local_exchange ? 1 : 0));
-    histogram_ = cl::Kernel(build.program, "sort_histogram");
-    scan_segments_ = cl::Kernel(build.program, "sort_scan_segments");
-    scan_add_ = cl::Kernel(build.program, "sort_scan_add");
-    scatter_ = cl::Kernel(build.program, "sort_scatter");
-    auto allowed = [&](const cl::Kernel& k) { return k.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(cl.device.device); };
+    histogram_ = build.kernel("sort_histogram");
+    scan_segments_ = build.kernel("sort_scan_segments");
+    scan_add_ = build.kernel("sort_scan_add");
+    scatter_ = build.kernel("sort_scatter");
+    auto allowed = [](const DeviceKernel& k) { return k.max_group(); };
     const std::size_t sort_allowed = std::min(allowed(histogram_), allowed(scatter_));
     const std::size_t scan_allowed = std::min(allowed(scan_segments_), allowed(scan_add_));
     if (sort_allowed >= tiling.group && scan_allowed >= tiling.scan_group) break;
     if (!chosen || (sort_allowed == 0 || scan_allowed == 0))
       throw DeviceError(fmt::format("{} runs the radix sort kernels with at most {} and {} work items, not {} and {}",
-                                    cl.device.name, sort_allowed, scan_allowed, tiling.group, tiling.scan_group));
+                                    cl.info().name, sort_allowed, scan_allowed, tiling.group, tiling.scan_group));
     tiling.group = std::min(tiling.group, floor_pow2(sort_allowed));
     tiling.scan_group = std::min(tiling.scan_group, floor_pow2(scan_allowed));
   }
@@ -101,26 +100,19 @@ RadixSort::RadixSort(const ClContext& cl, const ProgramCache& cache, std::uint32
 
   const std::uint32_t tile = tiling.group * tiling.items;
   const std::uint32_t scan_tile = kScanItems * tiling.scan_group;
-  scratch_keys_ = cl.buffer("radix sort scratch keys", std::size_t(capacity) * 8);
-  scratch_values_ = cl.buffer("radix sort scratch values", std::size_t(capacity) * 4);
+  scratch_keys_ = cl.allocate("radix sort scratch keys", std::size_t(capacity) * 8);
+  scratch_values_ = cl.allocate("radix sort scratch values", std::size_t(capacity) * 4);
   std::uint32_t entries = kRadix * std::max<std::uint32_t>(div_up(capacity, tile), 1);
   for (;;) {
-    scan_levels_.push_back(cl.buffer("radix sort scan level", std::size_t(entries) * 4));
+    scan_levels_.push_back(cl.allocate("radix sort scan level", std::size_t(entries) * 4));
     if (entries == 1) break;
     entries = div_up(entries, scan_tile);
   }
 }
 
-void RadixSort::launch(cl::Kernel& kernel, const char* name, std::size_t items, std::size_t group,
+void RadixSort::launch(const DeviceKernel& kernel, const char* name, std::size_t items, std::size_t group,
                        Launches& launches) {
-  cl::Event event;
-  try {
-    cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange((items + group - 1) / group * group),
-                                   cl::NDRange(group), nullptr, &event);
-  } catch (const cl::Error& e) {
-    throw DeviceError(describe(e, name));
-  }
-  launches.emplace_back(name, event);
+  launches.emplace_back(name, cl_.launch(kernel, items, group));
 }
 
 // Exclusive scan of the first n entries of scan_levels_[level], in place: scan each segment and
@@ -129,88 +121,61 @@ void RadixSort::launch(cl::Kernel& kernel, const char* name, std::size_t items, 
 void RadixSort::scan(std::size_t level, std::uint32_t n, Launches& launches) {
   const std::uint32_t scan_tile = kScanItems * tiling_.scan_group;
   const std::uint32_t segments = div_up(n, scan_tile);
-  const cl::Buffer& data = scan_levels_[level];
-  const cl::Buffer& sums = scan_levels_[level + 1];
-  scan_segments_.setArg(0, data);
-  scan_segments_.setArg(1, n);
-  scan_segments_.setArg(2, sums);
+  const DeviceBuffer& data = scan_levels_[level];
+  const DeviceBuffer& sums = scan_levels_[level + 1];
+  scan_segments_.set_args(data, n, sums);
   launch(scan_segments_, "sort scan", std::size_t(segments) * tiling_.scan_group, tiling_.scan_group, launches);
   if (segments == 1) return;
   scan(level + 1, segments, launches);
-  scan_add_.setArg(0, data);
-  scan_add_.setArg(1, n);
-  scan_add_.setArg(2, sums);
+  scan_add_.set_args(data, n, sums);
   launch(scan_add_, "sort scan", n, tiling_.scan_group, launches);
 }
 
-void RadixSort::sort(const cl::Buffer& keys, const cl::Buffer& values, std::uint32_t count, unsigned key_bits,
+void RadixSort::sort(const DeviceBuffer& keys, const DeviceBuffer& values, std::uint32_t count, unsigned key_bits,
                      std::map<std::string, double>* seconds) {
   if (count > capacity_)
     throw std::invalid_argument(fmt::format("radix sort of {} pairs exceeds its capacity of {}", count, capacity_));
   if (key_bits > kMaxKeyBits)
     throw std::invalid_argument(fmt::format("radix sort keys have at most 64 bits, not {}", key_bits));
   if (count < 2 || key_bits == 0) return;
-  if (keys.getInfo<CL_MEM_SIZE>() < std::size_t(count) * 8 || values.getInfo<CL_MEM_SIZE>() < std::size_t(count) * 4)
+  if (keys.size() < std::size_t(count) * 8 || values.size() < std::size_t(count) * 4)
     throw std::invalid_argument(fmt::format("radix sort buffers are smaller than {} pairs", count));
 
   const std::uint32_t blocks = div_up(count, tiling_.group * tiling_.items);
   const std::uint32_t passes = div_up(key_bits, kDigitBits);
-  const cl::Buffer& table = scan_levels_[0];
+  const DeviceBuffer& table = scan_levels_[0];
   Launches launches;
   for (std::uint32_t pass = 0; pass < passes; ++pass) {
     // even passes read the caller's buffers, odd passes the scratch buffers
     const bool from_caller = pass % 2 == 0;
-    const cl::Buffer& keys_in = from_caller ? keys : scratch_keys_;
-    const cl::Buffer& values_in = from_caller ? values : scratch_values_;
-    const cl::Buffer& keys_out = from_caller ? scratch_keys_ : keys;
-    const cl::Buffer& values_out = from_caller ? scratch_values_ : values;
-    const cl_uint shift = pass * kDigitBits;
+    const DeviceBuffer& keys_in = from_caller ? keys : scratch_keys_;
+    const DeviceBuffer& values_in = from_caller ? values : scratch_values_;
+    const DeviceBuffer& keys_out = from_caller ? scratch_keys_ : keys;
+    const DeviceBuffer& values_out = from_caller ? scratch_values_ : values;
+    const std::uint32_t shift = pass * kDigitBits;
     // the last digit is narrower when key_bits is not a multiple of 4: bits above are ignored
-    const cl_uint digit_mask = (1u << std::min(kDigitBits, key_bits - shift)) - 1;
+    const std::uint32_t digit_mask = (1u << std::min(kDigitBits, key_bits - shift)) - 1;
 
-    histogram_.setArg(0, keys_in);
-    histogram_.setArg(1, count);
-    histogram_.setArg(2, shift);
-    histogram_.setArg(3, digit_mask);
-    histogram_.setArg(4, blocks);
-    histogram_.setArg(5, table);
+    histogram_.set_args(keys_in, count, shift, digit_mask, blocks, table);
     launch(histogram_, "sort histogram", std::size_t(blocks) * tiling_.group, tiling_.group, launches);
 
     scan(0, kRadix * blocks, launches);
 
-    scatter_.setArg(0, keys_in);
-    scatter_.setArg(1, values_in);
-    scatter_.setArg(2, keys_out);
-    scatter_.setArg(3, values_out);
-    scatter_.setArg(4, count);
-    scatter_.setArg(5, shift);
-    scatter_.setArg(6, digit_mask);
-    scatter_.setArg(7, blocks);
-    scatter_.setArg(8, table);
+    scatter_.set_args(keys_in, values_in, keys_out, values_out, count, shift, digit_mask, blocks, table);
     launch(scatter_, "sort scatter", std::size_t(blocks) * tiling_.group, tiling_.group, launches);
   }
   if (passes % 2 == 1) {
     // An odd pass count leaves the result in scratch. Copying it back moves 24 bytes per pair,
     // less than a pass (32); a third buffer pair would avoid it but double the scratch memory. Its
     // time counts as scatter: it is the last step of placing the pairs.
-    try {
-      cl::Event k, v;
-      cl_.queue.enqueueCopyBuffer(scratch_keys_, keys, 0, 0, std::size_t(count) * 8, nullptr, &k);
-      cl_.queue.enqueueCopyBuffer(scratch_values_, values, 0, 0, std::size_t(count) * 4, nullptr, &v);
-      launches.emplace_back("sort scatter", k);
-      launches.emplace_back("sort scatter", v);
-    } catch (const cl::Error& e) {
-      throw DeviceError(describe(e, "sort copy back"));
-    }
+    launches.emplace_back("sort scatter", cl_.copy(scratch_keys_, keys, std::size_t(count) * 8));
+    launches.emplace_back("sort scatter", cl_.copy(scratch_values_, values, std::size_t(count) * 4));
   }
   // Without `seconds` the sort stays asynchronous: the queue is in order, so whatever the caller
   // enqueues next sees the sorted pairs. (The kernels' arguments live in this object: one sort at
   // a time per RadixSort.)
   if (seconds)
-    for (auto& [name, event] : launches) {
-      event.wait();
-      (*seconds)[name] += event_seconds(event);
-    }
+    for (auto& [name, event] : launches) (*seconds)[name] += event.seconds();
 }
 
 }  // namespace cohort

@@ -11,4 +11,10 @@ struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A device call failed; what() names the call, the error and the context, e.g.
+// "clEnqueueNDRangeKernel failed (render_naive pass): CL_OUT_OF_RESOURCES (-5)".
+struct DeviceError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 }  // namespace cohort

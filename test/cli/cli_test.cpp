@@ -75,6 +75,17 @@ TEST(Cli, UnknownMethodAndMissingCommandAreExitTwo) {
   EXPECT_EQ(run("").code, 2);
 }
 
+TEST(Cli, BackendCudaWithoutAGpuIsExitTwoSayingWhy) {
+  EXPECT_EQ(run("render " + scene("cornell-box.gltf") + " --backend metal").code, 2);
+  TempDir dir;
+  const CommandResult r =
+      run("render " + scene("cornell-box.gltf") + " --backend cuda --res 8x8 --spp 1 -o " + (dir.path / "box").string());
+  if (r.code == 0) GTEST_SKIP() << "this machine has a CUDA GPU: it rendered";
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("--backend cuda"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir.path / "box.exr"));
+}
+
 TEST(Cli, RenderWritesExrPngAndStats) {
   TempDir dir;
   const CommandResult r = run("render " + scene("cornell-box.gltf") + " --res 24x16 --spp 2 -o " + (dir.path / "box").string() +

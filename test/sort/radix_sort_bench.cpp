@@ -51,18 +51,18 @@ void bench(const ClContext& cl, RadixSort& sort, const std::string& label, std::
   for (auto& k : keys) k = rng() & mask;
   std::vector<std::uint32_t> values(n);
   std::iota(values.begin(), values.end(), 0u);
-  cl::Buffer k = cl.buffer("bench keys", n * 8ull), v = cl.buffer("bench values", n * 4ull);
+  DeviceBuffer k = cl.allocate("bench keys", n * 8ull), v = cl.allocate("bench values", n * 4ull);
   std::vector<double> wall;
   std::map<std::string, double> device;
   double cpu = 0;
   for (int rep = 0; rep <= reps; ++rep) {
-    cl.queue.enqueueWriteBuffer(k, CL_FALSE, 0, n * 8ull, keys.data());
-    cl.queue.enqueueWriteBuffer(v, CL_TRUE, 0, n * 4ull, values.data());
+    cl.write(k, 0, n * 8ull, keys.data(), false);
+    cl.write(v, 0, n * 4ull, values.data());
     std::map<std::string, double> seconds;
     const double cpu_start = cpu_seconds();
     const auto start = std::chrono::steady_clock::now();
     sort.sort(k, v, n, bits, &seconds);
-    cl.queue.finish();
+    cl.finish();
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (rep == 0) continue;  // warm-up
     cpu += (cpu_seconds() - cpu_start) / reps;

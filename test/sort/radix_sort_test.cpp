@@ -55,12 +55,12 @@ Pairs device_sort(RadixSort& sort, const std::vector<std::uint64_t>& keys, unsig
   std::iota(in.values.begin(), in.values.end(), 0u);
   in.keys.resize(n + kGuard, kGuardKey);
   in.values.resize(n + kGuard, 0xdeadbeefu);
-  cl::Buffer k = cl.buffer("test keys", in.keys.size() * 8, in.keys.data());
-  cl::Buffer v = cl.buffer("test values", in.values.size() * 4, in.values.data());
+  DeviceBuffer k = cl.allocate("test keys", in.keys.size() * 8, in.keys.data());
+  DeviceBuffer v = cl.allocate("test values", in.values.size() * 4, in.values.data());
   sort.sort(k, v, static_cast<std::uint32_t>(n), key_bits, seconds);
   Pairs out{std::vector<std::uint64_t>(n + kGuard), std::vector<std::uint32_t>(n + kGuard)};
-  cl.queue.enqueueReadBuffer(k, CL_FALSE, 0, out.keys.size() * 8, out.keys.data());
-  cl.queue.enqueueReadBuffer(v, CL_TRUE, 0, out.values.size() * 4, out.values.data());
+  cl.read(k, 0, out.keys.size() * 8, out.keys.data());
+  cl.read(v, 0, out.values.size() * 4, out.values.data());
   for (std::size_t i = n; i < n + kGuard; ++i) {
     EXPECT_EQ(out.keys[i], kGuardKey) << "key past count changed at " << i;
     EXPECT_EQ(out.values[i], 0xdeadbeefu) << "value past count changed at " << i;
@@ -175,7 +175,7 @@ TEST(RadixSort, RejectsCountAboveCapacityAndWideKeys) {
   const ClContext& cl = device().cl;
   RadixSort small(cl, device().cache, 100);
   EXPECT_EQ(small.capacity(), 100u);
-  cl::Buffer k = cl.buffer("keys", 101 * 8), v = cl.buffer("values", 101 * 4);
+  DeviceBuffer k = cl.allocate("keys", 101 * 8), v = cl.allocate("values", 101 * 4);
   EXPECT_THROW(small.sort(k, v, 101, 64), std::invalid_argument);
   EXPECT_THROW(small.sort(k, v, 100, 65), std::invalid_argument);
   EXPECT_NO_THROW(small.sort(k, v, 100, 64));
@@ -184,7 +184,7 @@ TEST(RadixSort, RejectsCountAboveCapacityAndWideKeys) {
   EXPECT_NO_THROW(empty.sort(k, v, 0, 64));
   EXPECT_THROW(empty.sort(k, v, 1, 64), std::invalid_argument);
   // buffers too small for `count`
-  cl::Buffer tiny = cl.buffer("tiny", 8);
+  DeviceBuffer tiny = cl.allocate("tiny", 8);
   EXPECT_THROW(small.sort(tiny, v, 2, 64), std::invalid_argument);
 }
 
@@ -233,16 +233,16 @@ TEST(RadixSort, Rate) {
   for (auto& k : keys) k &= mask_of(44);
   std::vector<std::uint32_t> values(n);
   std::iota(values.begin(), values.end(), 0u);
-  cl::Buffer k = cl.buffer("rate keys", n * 8ull), v = cl.buffer("rate values", n * 4ull);
+  DeviceBuffer k = cl.allocate("rate keys", n * 8ull), v = cl.allocate("rate values", n * 4ull);
   std::vector<double> wall;
   std::map<std::string, double> last;
   for (int rep = 0; rep < 6; ++rep) {
-    cl.queue.enqueueWriteBuffer(k, CL_FALSE, 0, n * 8ull, keys.data());
-    cl.queue.enqueueWriteBuffer(v, CL_TRUE, 0, n * 4ull, values.data());
+    cl.write(k, 0, n * 8ull, keys.data(), false);
+    cl.write(v, 0, n * 4ull, values.data());
     std::map<std::string, double> seconds;
     const auto start = std::chrono::steady_clock::now();
     device().sort.sort(k, v, n, 44, &seconds);
-    cl.queue.finish();
+    cl.finish();
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (rep > 0) wall.push_back(s);  // the first run warms caches and the driver
     last = seconds;

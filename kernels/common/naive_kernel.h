@@ -1,0 +1,32 @@
+/* NAIVE: the reference megakernel. One work item per pixel traces this pass's samples of its
+ * pixel in sample order and adds each to the film in that order, so the film is the same sum
+ * whatever the work-group size or device scheduling. */
+#ifndef COHORT_NAIVE_KERNEL_H
+#define COHORT_NAIVE_KERNEL_H
+
+#include "common/pathtrace.h"
+
+CO_KERNEL render_naive(SCENE_KERNEL_PARAMS, CO_GLOBAL co_float4* film, CO_GLOBAL uint32_t* ray_counter,
+                       CO_GLOBAL uint32_t* dropped_samples) {
+  uint32_t pixel = co_global_id();
+  RenderParams p = *params;
+  if (pixel >= p.width * p.height) return;
+  SceneView s = SCENE_VIEW(p);
+
+  co_float4 acc = film[pixel];
+  uint32_t rays = 0u, dropped = 0u;
+  for (uint32_t i = 0u; i < p.samples_per_pass; ++i) {
+    PathResult r = trace_path(&s, &p, pixel, p.sample_offset + i);
+    rays += r.rays;
+    /* a NaN or infinite sample never reaches the image; it counts as a zero sample */
+    if (v3_is_finite(r.radiance))
+      acc = film_add(acc, r.radiance);
+    else
+      ++dropped;
+  }
+  film[pixel] = acc;
+  co_atomic_add(ray_counter, rays);
+  if (dropped) co_atomic_add(dropped_samples, dropped);
+}
+
+#endif

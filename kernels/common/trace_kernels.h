@@ -1,0 +1,78 @@
+/* Traversal only: closest or any hit for a buffer of rays. Used by tests and the ray benchmarks. */
+#ifndef COHORT_TRACE_KERNELS_H
+#define COHORT_TRACE_KERNELS_H
+
+#include "common/kdtree_traverse.h"
+
+CO_KERNEL trace_rays(CO_GLOBAL const KdNode* nodes, CO_GLOBAL const uint32_t* leaf_triangles,
+                     CO_GLOBAL const Triangle* triangles, co_float4 scene_min, co_float4 scene_max,
+                     CO_GLOBAL const RayIn* rays, CO_GLOBAL HitOut* hits, uint32_t count, uint32_t any_hit) {
+  uint32_t i = co_global_id();
+  if (i >= count) return;
+  KdTreeView tree = make_tree_view(nodes, leaf_triangles, triangles, scene_min, scene_max);
+  RayIn r = rays[i];
+  hits[i] = kd_trace(&tree, v3_from4(r.origin), v3_from4(r.dir), r.origin.w, r.dir.w, (int)any_hit);
+}
+
+#include "common/coherence.h"
+
+/* Partial traversal of the top `levels` (subtree in local memory) then resumed traversal, for a
+ * buffer of rays: the test that PTH + resume finds exactly the hit of kd_trace, and that the PTH
+ * bits match a reference walk. */
+CO_KERNEL trace_rays_pth(CO_GLOBAL const KdNode* nodes, CO_GLOBAL const uint32_t* leaf_triangles,
+                         CO_GLOBAL const Triangle* triangles, co_float4 scene_min, co_float4 scene_max,
+                         CO_GLOBAL const RayIn* rays, CO_GLOBAL HitOut* hits, uint32_t count,
+                         CO_LOCAL_PARAM(KdNode, subtree) uint32_t subtree_nodes, uint32_t levels,
+                         CO_GLOBAL uint32_t* pth_bits) {
+  CO_LOCAL_BIND(KdNode, subtree)
+  for (uint32_t k = co_local_id(); k < subtree_nodes; k += co_local_size()) subtree[k] = nodes[k];
+  co_barrier();
+  uint32_t i = co_global_id();
+  if (i >= count) return;
+  KdTreeView tree = make_tree_view(nodes, leaf_triangles, triangles, scene_min, scene_max);
+  RayIn r = rays[i];
+  co_vec3 org = v3_from4(r.origin), dir = v3_from4(r.dir);
+  co_vec3 inv_dir = kd_inverse(dir);
+  float t0, t1;
+  HitOut hit;
+  hit.t = r.dir.w;
+  hit.u = 0.0f;
+  hit.v = 0.0f;
+  hit.triangle = HIT_NONE;
+  uint32_t bits = 0u;
+  if (kd_begin(&tree, org, inv_dir, r.origin.w, r.dir.w, &t0, &t1)) {
+    KdStackEntry stack[KD_MAX_DEPTH];
+    int sp = 0;
+    uint32_t node = 0u;
+    bits = pth_walk(subtree, subtree_nodes, levels, org, dir, inv_dir, &node, &t0, &t1, stack, &sp);
+    hit = kd_resume(&tree, org, dir, r.origin.w, r.dir.w, 0, node, t0, t1, stack, sp, 0);
+  }
+  hits[i] = hit;
+  pth_bits[i] = bits;
+}
+
+#include "common/kdtree_speculative.h"
+
+/* kd_trace with speculative traversal, for a buffer of rays: the test that it finds exactly the
+ * hit of kd_trace. Every work item runs the group loop; items past `count` join as finished. */
+CO_KERNEL trace_rays_speculative(CO_GLOBAL const KdNode* nodes, CO_GLOBAL const uint32_t* leaf_triangles,
+                                 CO_GLOBAL const Triangle* triangles, co_float4 scene_min, co_float4 scene_max,
+                                 CO_GLOBAL const RayIn* rays, CO_GLOBAL HitOut* hits, uint32_t count,
+                                 CO_GLOBAL uint32_t* steps) {
+  CO_SHARED uint32_t votes[3];
+  uint32_t i = co_global_id();
+  KdTreeView tree = make_tree_view(nodes, leaf_triangles, triangles, scene_min, scene_max);
+  RayIn r = i < count ? rays[i] : rays[0];
+  co_vec3 org = v3_from4(r.origin), dir = v3_from4(r.dir);
+  float t0 = 0.0f, t1 = 0.0f;
+  int active = i < count && kd_begin(&tree, org, kd_inverse(dir), r.origin.w, r.dir.w, &t0, &t1);
+  KdStackEntry stack[KD_MAX_DEPTH];
+  KdSpeculativeRay ray;
+  kd_spec_start(&ray, active, org, dir, r.origin.w, r.dir.w, 0u, t0, t1, 0);
+  kd_spec_run_group(&tree, &ray, stack, votes);
+  if (i >= count) return;
+  hits[i] = ray.hit;
+  steps[i] = ray.visited;
+}
+
+#endif

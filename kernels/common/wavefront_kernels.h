@@ -1,0 +1,140 @@
+/* Wavefront path tracing (Laine, Karras & Aila 2013): a pool of path slots in structure-of-arrays
+ * buffers and one small kernel per stage. The methods differ only in which slots a launch covers
+ * (all slots, or a compacted queue of live ones: stream compaction) and in when free slots take
+ * new paths (when the whole pool is idle, or after every bounce: path regeneration). Every stage
+ * calls the functions the NAIVE megakernel calls, in the same order per path, so every method
+ * computes the reference radiance bit for bit; results land per work item and are added to the
+ * film in sample order by wf_accumulate. */
+#ifndef COHORT_WAVEFRONT_KERNELS_H
+#define COHORT_WAVEFRONT_KERNELS_H
+
+#include "common/wavefront_path.h"
+
+/* Free slots take the next work items (pixel, sample) of the pass; in queue mode they join the
+ * queue of live slots. */
+CO_KERNEL wf_generate(CO_CONSTANT RenderParams* params, PATH_PARAMS, CO_GLOBAL uint32_t* counters,
+                      CO_GLOBAL uint32_t* queue, uint32_t use_queue, uint32_t slot_count, uint32_t item_end) {
+  uint32_t slot = co_global_id();
+  if (slot >= slot_count || path_item[slot] != ITEM_NONE) return;
+  uint32_t item = co_atomic_inc(&counters[COUNTER_NEXT_ITEM]);
+  if (item >= item_end) return;
+  RenderParams p = *params;
+  PathState st = path_start(&p, pixel_of(item, &p), sample_of(item, &p));
+  path_item[slot] = item;
+  store_path(PATH_ARGS, slot, &st);
+  if (use_queue) queue[co_atomic_inc(&counters[COUNTER_QUEUE])] = slot;
+}
+
+/* Closest hit of every live path's next ray. */
+CO_KERNEL wf_extend(SCENE_KERNEL_PARAMS, PATH_PARAMS, CO_GLOBAL HitOut* hits, CO_GLOBAL const uint32_t* queue,
+                    uint32_t use_queue, uint32_t count, CO_GLOBAL uint32_t* steps) {
+  uint32_t i = co_global_id();
+  if (i >= count) return;
+  uint32_t slot = slot_of(i, queue, use_queue);
+  uint32_t visited = 0u;
+  if (path_item[slot] != ITEM_NONE && path_status[slot] == PATH_ALIVE) {
+    RenderParams p = *params;
+    SceneView s = SCENE_VIEW(p);
+    hits[slot] =
+        kd_trace_steps(&s.tree, v3_from4(path_org[slot]), v3_from4(path_dir[slot]), 0.0f, INFINITY, 0, &visited);
+  }
+  steps[i] = visited; /* nodes visited per launch index: the SIMD efficiency figure */
+}
+
+/* Emission, light sample (queued as a shadow ray), Russian roulette and the next direction. */
+CO_KERNEL wf_shade(SCENE_KERNEL_PARAMS, PATH_PARAMS, CO_GLOBAL const HitOut* hits, CO_GLOBAL const uint32_t* queue,
+                   uint32_t use_queue, uint32_t count, CO_GLOBAL co_float4* shadow_org, CO_GLOBAL co_float4* shadow_dir,
+                   CO_GLOBAL co_float4* shadow_contribution, CO_GLOBAL uint32_t* shadow_queue,
+                   CO_GLOBAL uint32_t* counters) {
+  uint32_t i = co_global_id();
+  if (i >= count) return;
+  uint32_t slot = slot_of(i, queue, use_queue);
+  uint32_t item = path_item[slot];
+  if (item == ITEM_NONE || path_status[slot] != PATH_ALIVE) return;
+  RenderParams p = *params;
+  SceneView s = SCENE_VIEW(p);
+  PathState st = load_path(PATH_ARGS, slot);
+  ShadowRay sr = path_shade(&s, &p, &st, hits[slot], pixel_of(item, &p), sample_of(item, &p));
+  store_path(PATH_ARGS, slot, &st);
+  if (sr.valid) {
+    shadow_org[slot] = to4(sr.org, 0.0f);
+    shadow_dir[slot] = to4(sr.dir, sr.tmax);
+    shadow_contribution[slot] = to4(sr.contribution, 0.0f);
+    shadow_queue[co_atomic_inc(&counters[COUNTER_SHADOW])] = slot;
+  }
+}
+
+/* Any hit for each queued shadow ray; unoccluded light joins the path's radiance. */
+CO_KERNEL wf_shadow(SCENE_KERNEL_PARAMS, CO_GLOBAL co_float4* path_radiance, CO_GLOBAL const co_float4* shadow_org,
+                    CO_GLOBAL const co_float4* shadow_dir, CO_GLOBAL const co_float4* shadow_contribution,
+                    CO_GLOBAL const uint32_t* shadow_queue, CO_GLOBAL const uint32_t* counters) {
+  uint32_t i = co_global_id();
+  if (i >= counters[COUNTER_SHADOW]) return;
+  uint32_t slot = shadow_queue[i];
+  RenderParams p = *params;
+  SceneView s = SCENE_VIEW(p);
+  co_float4 dir = shadow_dir[slot];
+  HitOut occ = kd_trace(&s.tree, v3_from4(shadow_org[slot]), v3_from4(dir), 0.0f, dir.w, 1);
+  ShadowRay sr;
+  sr.contribution = v3_from4(shadow_contribution[slot]);
+  PathState st;
+  st.radiance = v3_from4(path_radiance[slot]);
+  path_resolve_shadow(&st, &sr, occ);
+  path_radiance[slot] = to4(st.radiance, 0.0f);
+}
+
+/* Finished paths hand their radiance to the pass's result buffer and free their slot; live
+ * paths are counted and, in queue mode, compacted into the queue (Wald 2011). */
+CO_KERNEL wf_finish(PATH_PARAMS, CO_GLOBAL co_float4* results, CO_GLOBAL uint32_t* counters, CO_GLOBAL uint32_t* queue,
+                    uint32_t use_queue, uint32_t slot_count) {
+  uint32_t slot = co_global_id();
+  if (slot >= slot_count) return;
+  uint32_t item = path_item[slot];
+  if (item == ITEM_NONE) return;
+  if (path_status[slot] == PATH_TERMINATED) {
+    results[item] = path_radiance[slot];
+    path_item[slot] = ITEM_NONE;
+    return;
+  }
+  uint32_t index = co_atomic_inc(&counters[COUNTER_QUEUE]);
+  if (use_queue) queue[index] = slot;
+}
+
+/* Adds the pass's samples to the film in sample order, as the megakernel does. */
+CO_KERNEL wf_accumulate(CO_CONSTANT RenderParams* params, CO_GLOBAL const co_float4* results, CO_GLOBAL co_float4* film,
+                        CO_GLOBAL uint32_t* dropped_samples) {
+  uint32_t pixel = co_global_id();
+  RenderParams p = *params;
+  uint32_t pixels = p.width * p.height;
+  if (pixel >= pixels) return;
+  co_float4 acc = film[pixel];
+  uint32_t dropped = 0u;
+  for (uint32_t i = 0u; i < p.samples_per_pass; ++i) {
+    co_vec3 r = v3_from4(results[i * pixels + pixel]);
+    if (v3_is_finite(r))
+      acc = film_add(acc, r);
+    else
+      ++dropped;
+  }
+  film[pixel] = acc;
+  if (dropped) co_atomic_add(dropped_samples, dropped);
+}
+
+/* SIMD efficiency of a traversal launch (Aila & Laine 2009): for each group of 32 consecutive
+ * launch indices, mean over max of the nodes each visited; summed in units of 1e-4 with the
+ * number of groups, so the host reads two counters instead of every step count. */
+CO_KERNEL wf_simd_efficiency(CO_GLOBAL const uint32_t* steps, uint32_t count, CO_GLOBAL uint32_t* counters) {
+  uint32_t group = co_global_id();
+  uint32_t first = group * 32u;
+  if (first >= count) return;
+  uint32_t last = co_umin(first + 32u, count), sum = 0u, most = 0u;
+  for (uint32_t i = first; i < last; ++i) {
+    sum += steps[i];
+    most = co_umax(most, steps[i]);
+  }
+  if (most == 0u) return;
+  co_atomic_add(&counters[COUNTER_SIMD_SUM], (uint32_t)(10000.0f * (float)sum / (float)(most * (last - first)) + 0.5f));
+  co_atomic_inc(&counters[COUNTER_SIMD_GROUPS]);
+}
+
+#endif

@@ -1,0 +1,60 @@
+/* Path slots of the wavefront kernels: the structure-of-arrays layout, its kernel
+ * parameters, and loads and stores of a PathState. Shared by wavefront_kernels.h and pth_kernels.h. */
+#ifndef COHORT_WAVEFRONT_PATH_H
+#define COHORT_WAVEFRONT_PATH_H
+
+#include "common/pathtrace.h"
+
+#define ITEM_NONE 0xffffffffu
+
+/* counters[] */
+#define COUNTER_NEXT_ITEM 0
+#define COUNTER_QUEUE 1  /* live slots (and the length of the compacted queue) */
+#define COUNTER_SHADOW 2 /* shadow rays queued this bounce */
+#define COUNTER_SIMD_SUM 3
+#define COUNTER_SIMD_GROUPS 4
+
+#define PATH_PARAMS                                                                                      \
+  CO_GLOBAL co_float4 *path_org, CO_GLOBAL co_float4 *path_dir, CO_GLOBAL co_float4 *path_throughput,    \
+      CO_GLOBAL co_float4 *path_radiance, CO_GLOBAL co_float4 *path_prev, CO_GLOBAL uint32_t *path_item, \
+      CO_GLOBAL uint32_t *path_segment, CO_GLOBAL uint32_t *path_status
+
+CO_INLINE PathState load_path(PATH_PARAMS, uint32_t slot) {
+  PathState st;
+  st.org = v3_from4(path_org[slot]);
+  st.dir = v3_from4(path_dir[slot]);
+  st.throughput = v3_from4(path_throughput[slot]);
+  st.radiance = v3_from4(path_radiance[slot]);
+  co_float4 prev = path_prev[slot];
+  st.prev_pos = v3_from4(prev);
+  st.prev_bsdf_pdf = prev.w;
+  st.segment = path_segment[slot];
+  st.status = path_status[slot];
+  return st;
+}
+
+CO_INLINE co_float4 to4(co_vec3 v, float w) { return co_make_float4(v.x, v.y, v.z, w); }
+
+CO_INLINE void store_path(PATH_PARAMS, uint32_t slot, const PathState *st) {
+  path_org[slot] = to4(st->org, 0.0f);
+  path_dir[slot] = to4(st->dir, 0.0f);
+  path_throughput[slot] = to4(st->throughput, 0.0f);
+  path_radiance[slot] = to4(st->radiance, 0.0f);
+  path_prev[slot] = to4(st->prev_pos, st->prev_bsdf_pdf);
+  path_segment[slot] = st->segment;
+  path_status[slot] = st->status;
+}
+
+#define PATH_ARGS path_org, path_dir, path_throughput, path_radiance, path_prev, path_item, path_segment, path_status
+
+/* The slot a launch index stands for: the compacted queue's entry, or the index itself. */
+CO_INLINE uint32_t slot_of(uint32_t i, CO_GLOBAL const uint32_t *queue, uint32_t use_queue) {
+  return use_queue ? queue[i] : i;
+}
+
+CO_INLINE uint32_t pixel_of(uint32_t item, const RenderParams *p) { return item % (p->width * p->height); }
+CO_INLINE uint32_t sample_of(uint32_t item, const RenderParams *p) {
+  return p->sample_offset + item / (p->width * p->height);
+}
+
+#endif

@@ -1,0 +1,56 @@
+// Every CUDA program compiles with NVRTC as the CUDA backend compiles it at run time (same sources,
+// defines and rounding flags), for the H100's architecture. NVRTC needs no GPU, so this runs in CI.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "runtime/cl/embedded_sources.h"
+#include "runtime/cuda/nvrtc_compile.h"
+#include "runtime/util/error.h"
+
+using namespace cohort;
+
+namespace {
+
+// Compiles `name` for sm_90, or skips when NVRTC cannot be loaded here.
+void compile(const std::string& name, const std::string& defines) {
+  const auto options = nvrtc_options(9, 0, defines);
+  std::string cubin;
+  try {
+    cubin = nvrtc_compile(name, expand_kernel_source("cuda/" + name + ".cu"), options);
+  } catch (const InputError& e) {
+    GTEST_SKIP() << "NVRTC is not available: " << e.what();
+  }
+  EXPECT_GT(cubin.size(), 1000u) << name;
+  EXPECT_EQ(cubin.substr(0, 4), "\x7f" "ELF") << name << ": a CUBIN is an ELF image";
+}
+
+const char* kAllFeatures =
+    "-DCOHORT_FEATURE_TEXTURES -DCOHORT_FEATURE_CONDUCTOR -DCOHORT_FEATURE_DIELECTRIC -DCOHORT_FEATURE_PLASTIC";
+
+}  // namespace
+
+TEST(NvrtcCompile, RenderingProgramsWithEveryFeatureSet) {
+  for (const char* name : {"naive", "wavefront", "pth"}) {
+    compile(name, "");  // a diffuse-only scene
+    compile(name, kAllFeatures);
+  }
+}
+
+TEST(NvrtcCompile, TracingAndTestPrograms) {
+  compile("trace", "");
+  compile("bsdf_test", kAllFeatures);
+}
+
+TEST(NvrtcCompile, RadixSortTilings) {
+  // the GPU tiling the sort picks on a 48 KiB device, and a one-item tiling without local exchange
+  compile("radix_sort", "-DSORT_WG=256 -DSORT_ITEMS=9 -DSCAN_WG=256 -DSORT_LOCAL_EXCHANGE=1");
+  compile("radix_sort", "-DSORT_WG=1 -DSORT_ITEMS=64 -DSCAN_WG=1 -DSORT_LOCAL_EXCHANGE=0");
+}
+
+TEST(NvrtcCompile, OptionsCarryTheRoundingOfOpenCl) {
+  const auto o = nvrtc_options(9, 0, "-DA -DB=2");
+  const std::vector<std::string> want = {"--gpu-architecture=sm_90", "--std=c++17", "--fmad=false", "--prec-div=true",
+                                         "--prec-sqrt=true", "--ftz=false", "-DA", "-DB=2"};
+  EXPECT_EQ(o, want);
+}
