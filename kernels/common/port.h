@@ -23,7 +23,10 @@ typedef float4 co_float4;
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+using std::acos;
+using std::atan2;
 using std::fabs;
+using std::floor;
 using std::fmax;
 using std::fmin;
 using std::sqrt;

@@ -20,12 +20,9 @@ RenderResult render_naive(const ClContext& cl, const ProgramCache& cache, const 
   RenderResult result = drive_passes(cl, params, settings, max_per_pass, progress, control,
                                      [&](const PassBuffers& b, const RenderParams&) {
     if (!args_set) {
-      int arg = 0;
-      for (const cl::Buffer* buf : std::initializer_list<const cl::Buffer*>{
-               &b.params, &scene.nodes, &scene.leaf_triangles, &scene.triangles, &scene.triangle_material,
-               &scene.materials, &scene.emitters, &scene.triangle_uvs, &scene.textures, &scene.texels, &b.film,
-               &ray_counter, &b.dropped})
-        kernel.setArg(arg++, *buf);
+      kernel.setArg(0, b.params);
+      cl_uint arg = set_scene_args(kernel, 1, scene);
+      for (const cl::Buffer* buf : std::initializer_list<const cl::Buffer*>{&b.film, &ray_counter, &b.dropped}) kernel.setArg(arg++, *buf);
       args_set = true;
     }
     LaunchLog log;

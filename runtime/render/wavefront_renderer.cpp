@@ -99,10 +99,17 @@ struct SortStage {
   }
 };
 
+template <class Arg>
+void set_arg(cl::Kernel& k, cl_uint& i, const Arg& arg) {
+  k.setArg(i++, arg);
+}
+// the scene stands for all the buffers of SCENE_KERNEL_PARAMS
+void set_arg(cl::Kernel& k, cl_uint& i, const DeviceScene& scene) { i = set_scene_args(k, i, scene); }
+
 template <class... Args>
 void set_args(cl::Kernel& k, const Args&... args) {
   cl_uint i = 0;
-  (k.setArg(i++, args), ...);
+  (set_arg(k, i, args), ...);
 }
 
 }  // namespace
@@ -142,8 +149,7 @@ RenderResult render_wavefront(const Method& method, const ClContext& cl, const P
         std::tie(pool.org, pool.dir, pool.throughput, pool.radiance, pool.prev, pool.item, pool.segment, pool.status);
     set_args(generate, b.params, o, d, t, r, pv, it, sg, st, pool.counters, pool.queue, use_queue, pool.slots, items);
     set_args(finish, o, d, t, r, pv, it, sg, st, results, pool.counters, pool.queue, use_queue, pool.slots);
-    set_args(shadow, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
-             sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, r, pool.shadow_org, pool.shadow_dir,
+    set_args(shadow, b.params, sc, r, pool.shadow_org, pool.shadow_dir,
              pool.shadow_contribution, pool.shadow_queue, pool.counters);
     set_args(accumulate, b.params, results, b.film, b.dropped);
 
@@ -166,27 +172,23 @@ RenderResult render_wavefront(const Method& method, const ClContext& cl, const P
       const cl_uint count = method.compact ? live : pool.slots;
       if (sort_stage) {
         SortStage& ss = *sort_stage;
-        set_args(ss.walk, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
-                 sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, o, d, it, st, pool.queue, use_queue, count,
+        set_args(ss.walk, b.params, sc, o, d, it, st, pool.queue, use_queue, count,
                  cl::Local(std::max<std::size_t>(ss.subtree.local_bytes, sizeof(KdNode))), ss.subtree.nodes,
                  ss.code_params, ss.origin_bounds, ss.keys, ss.values, ss.traversal, ss.traversal_stack, pool.slots,
                  pool.hits);
         log.launch(cl, ss.walk, method.sort == RaySort::pth ? "pth" : "hash", count);
         ss.sort->sort(ss.keys, ss.values, count, ss.code.key_bits, &sort_seconds);
-        set_args(ss.resume, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
-                 sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, o, d, ss.values, count, ss.traversal,
+        set_args(ss.resume, b.params, sc, o, d, ss.values, count, ss.traversal,
                  ss.traversal_stack, pool.slots, pool.hits, pool.steps);
         log.launch(cl, ss.resume, "resume", count);
       } else {
-        set_args(extend, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
-                 sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, o, d, t, r, pv, it, sg, st, pool.hits,
+        set_args(extend, b.params, sc, o, d, t, r, pv, it, sg, st, pool.hits,
                  pool.queue, use_queue, count, pool.steps);
         log.launch(cl, extend, "extend", count);
       }
       set_args(simd, pool.steps, count, pool.counters);
       log.launch(cl, simd, "simd efficiency", (count + 31) / 32);
-      set_args(shade, b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
-               sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, o, d, t, r, pv, it, sg, st, pool.hits, pool.queue,
+      set_args(shade, b.params, sc, o, d, t, r, pv, it, sg, st, pool.hits, pool.queue,
                use_queue, count, pool.shadow_org, pool.shadow_dir, pool.shadow_contribution, pool.shadow_queue,
                pool.counters);
       log.launch(cl, shade, "shade", count);
