@@ -146,7 +146,7 @@ def scene_list():
                                 {"type": "spot", "position": [2.0, 3.5, 1.0], "direction": [-0.5, -1.0, -0.3],
                                  "intensity": [20.0, 14.0, 8.0],
                                  # a narrow transition: glTF's falloff and Mitsuba's differ only there
-                                 "inner_cone": math.radians(29.0), "outer_cone": math.radians(30.0)}]},
+                                 "inner_cone": math.radians(29.8), "outer_cone": math.radians(30.0)}]},
     }
 
 
