@@ -19,11 +19,14 @@ import json
 import math
 import os
 import platform
+import sys
 import tempfile
-import time
 
 import mitsuba as mi
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from reference_common import accumulate_passes  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENES = os.path.join(ROOT, "scenes", "reference")
@@ -293,17 +296,10 @@ def mitsuba_scene(desc, tmp):
 def render(name, desc, args):
     with tempfile.TemporaryDirectory() as tmp:
         scene = mitsuba_scene(desc, tmp)
-        start, total, spp, passes = time.time(), None, 0, 0
-        while spp + args.pass_spp <= args.max_spp:
-            img = np.array(mi.render(scene, spp=args.pass_spp, seed=passes), dtype=np.float64)
-            total = img if total is None else total + img
-            spp += args.pass_spp
-            passes += 1
-            elapsed = time.time() - start
-            if elapsed * (passes + 1) / passes > args.seconds:
-                break
-    elapsed = time.time() - start
-    mean = (total / passes).astype(np.float32)[:, :, :3]
+        mean, spp, passes, elapsed = accumulate_passes(
+            lambda seed: np.array(mi.render(scene, spp=args.pass_spp, seed=seed), dtype=np.float64),
+            args.pass_spp, args.max_spp, args.seconds)
+    mean = mean.astype(np.float32)
     out = os.path.join(REFERENCES, f"reference-{name}.exr")
     mi.Bitmap(mean, pixel_format=mi.Bitmap.PixelFormat.RGB).write(out)
     meta = {"scene": f"scenes/reference/{name}.gltf", "mitsuba_version": mi.__version__, "variant": "scalar_rgb",

@@ -1,8 +1,10 @@
-"""What scripts/reference-check.py and scripts/convergence.py share: the stored Mitsuba references
-(test/reference/*.json) and how to render the matching image with Cohort's CLI."""
+"""What the reference scripts share: Mitsuba's pass loop (reference-cbox.py, reference-scenes.py),
+the stored references (test/reference/*.json) and how to render the matching image with Cohort's
+CLI (reference-check.py, convergence.py). Imports neither mitsuba nor numpy itself."""
 import json
 import os
 import subprocess
+import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 REFERENCES = os.path.join(ROOT, "test", "reference")
@@ -33,3 +35,19 @@ def render_cohort(cohort, scene, meta, spp, seed, out_exr):
     if "environment_map" in meta:
         cmd += ["--env", os.path.join(ROOT, meta["environment_map"])]
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+
+
+def accumulate_passes(render_pass, pass_spp, max_spp, seconds):
+    """Calls render_pass(seed) (an image of pass_spp samples per pixel, float64) with seeds 0, 1, ...
+    until max_spp or until the next pass would overrun `seconds`; each pass is an unbiased estimate,
+    so their mean is too. Returns (mean RGB image, spp, passes, elapsed seconds)."""
+    start, total, spp, passes = time.time(), None, 0, 0
+    while spp + pass_spp <= max_spp:
+        img = render_pass(passes)
+        total = img if total is None else total + img
+        spp += pass_spp
+        passes += 1
+        # stop before a pass that would overrun the budget
+        if (time.time() - start) * (passes + 1) / passes > seconds:
+            break
+    return (total / passes)[:, :, :3], spp, passes, time.time() - start
