@@ -37,7 +37,9 @@ nlohmann::json stats_json(const RenderCommand& cmd, const DeviceInfo& device, co
                    {"russian_roulette", cmd.settings.russian_roulette}};
   const auto& ts = prepared.tree.stats;
   j["scene_stats"] = {{"triangles", prepared.scene.triangle_count()}, {"dropped_triangles", ts.dropped_triangles},
-                      {"emitters", prepared.tables.emitters.entries.size()}};
+                      {"emitters", prepared.tables.emitters.entries.size()},
+                      {"punctual_lights", prepared.tables.punctual.lights.size()}};
+  if (prepared.tables.environment) j["scene_stats"]["environment_map"] = prepared.tables.environment->source.string();
   j["kdtree"] = {{"depth", ts.depth}, {"nodes", ts.node_count}, {"leaves", ts.leaf_count},
                  {"average_leaf_triangles", ts.average_leaf_triangles}, {"sah_cost", ts.sah_cost},
                  {"bytes", ts.bytes}};
