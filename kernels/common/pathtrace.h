@@ -56,6 +56,17 @@ CO_INLINE PathState path_start(const RenderParams* p, uint32_t pixel, uint32_t s
   return st;
 }
 
+/* Unit direction *dir and distance from `from` to `to`; 0 when they are not farther apart than
+ * min_dist (or NaN). */
+CO_INLINE int direction_to(co_vec3 from, co_vec3 to, float min_dist, co_vec3* dir, float* dist, float* dist2) {
+  co_vec3 d = v3_sub(to, from);
+  *dist2 = v3_dot(d, d);
+  *dist = sqrt(*dist2);
+  if (!(*dist > min_dist)) return 0;
+  *dir = v3_scale(d, 1.0f / *dist);
+  return 1;
+}
+
 /* Next-event estimation towards an emissive triangle picked by power with u_pick (the emitter
  * table's cdf). Returns the shadow ray with the MIS-weighted contribution it adds when unoccluded
  * (already times the throughput); see sample_direct_light. */
@@ -84,11 +95,9 @@ CO_INLINE ShadowRay nee_triangle(const SceneView* s, const RenderParams* p, floa
   float side = v3_dot(v3_sub(pl, pos), frame->n);
   if (!(side > 0.0f) && !(side < 0.0f)) return sr; /* in the plane, or NaN */
   co_vec3 origin = v3_madd(pos, frame->n, side > 0.0f ? p->ray_epsilon : -p->ray_epsilon);
-  co_vec3 to_light = v3_sub(pl, origin);
-  float dist2 = v3_dot(to_light, to_light);
-  float dist = sqrt(dist2);
-  if (!(dist > 2.0f * p->ray_epsilon)) return sr;
-  co_vec3 wl = v3_scale(to_light, 1.0f / dist);
+  co_vec3 wl;
+  float dist, dist2;
+  if (!direction_to(origin, pl, 2.0f * p->ray_epsilon, &wl, &dist, &dist2)) return sr;
   co_vec3 wl_local = frame_to_local(frame, wl);
   if (!(wl_local.z * side > 0.0f)) return sr; /* a light within epsilon of the tangent plane */
   co_vec3 f = bsdf_eval(b, wi, wl_local); /* f |cos|; 0 on the wrong side of a reflector */
@@ -163,11 +172,9 @@ CO_INLINE ShadowRay nee_punctual(const SceneView* s, const RenderParams* p, floa
   /* No MIS pairs this strategy with another, so the irradiance I cos / r^2 is measured from the
    * shading point itself: measured from the offset origin, r^2 would be short by 2 epsilon / r
    * (0.2% in the inverse-square test). The shadow ray leaves from the offset origin. */
-  co_vec3 to_light = v3_sub(pl, pos);
-  float dist2 = v3_dot(to_light, to_light);
-  float dist = sqrt(dist2);
-  if (!(dist > 2.0f * p->ray_epsilon)) return sr;
-  co_vec3 wl = v3_scale(to_light, 1.0f / dist);
+  co_vec3 wl;
+  float dist, dist2;
+  if (!direction_to(pos, pl, 2.0f * p->ray_epsilon, &wl, &dist, &dist2)) return sr;
   co_vec3 wl_local = frame_to_local(frame, wl);
   co_vec3 origin;
   if (!nee_origin(p, pos, frame, wl_local, &origin)) return sr;
