@@ -11,10 +11,13 @@ import argparse
 import json
 import os
 import platform
-import time
+import sys
 
 import mitsuba as mi
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from reference_common import accumulate_passes  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENE = os.path.join(os.path.dirname(ROOT), "shared", "scenes", "cornell-box-mitsuba", "cbox-rgb.xml")
@@ -32,21 +35,10 @@ def main():
 
     mi.set_variant("scalar_rgb")
     scene = mi.load_file(SCENE, res=args.res, spp=args.pass_spp, max_depth=args.max_depth)
-    start = time.time()
-    total = None
-    spp = 0
-    passes = 0
-    while spp + args.pass_spp <= args.max_spp:
-        img = np.array(mi.render(scene, spp=args.pass_spp, seed=passes), dtype=np.float64)
-        total = img if total is None else total + img
-        spp += args.pass_spp
-        passes += 1
-        elapsed = time.time() - start
-        # stop before a pass that would overrun the budget
-        if elapsed * (passes + 1) / passes > args.seconds:
-            break
-    elapsed = time.time() - start
-    mean = (total / passes).astype(np.float32)[:, :, :3]
+    mean, spp, passes, elapsed = accumulate_passes(
+        lambda seed: np.array(mi.render(scene, spp=args.pass_spp, seed=seed), dtype=np.float64), args.pass_spp,
+        args.max_spp, args.seconds)
+    mean = mean.astype(np.float32)
     os.makedirs(os.path.dirname(args.out), exist_ok=True)
     mi.Bitmap(mean, pixel_format=mi.Bitmap.PixelFormat.RGB).write(args.out)
     settings = {

@@ -23,6 +23,7 @@ COHORT_PACKAGES=(
   libtbb-dev                        # parallel KD-tree build
   zlib1g-dev                        # .gz scenes
   libgtest-dev                      # tests
+  python3-venv                      # the venv of scripts/reference (Mitsuba, FLIP, matplotlib from PyPI)
 )
 # Wanted but not needed to build and test: installed when apt can, else the feature is skipped.
 COHORT_OPTIONAL_PACKAGES=(

@@ -1,5 +1,6 @@
 /* The reference estimator: unidirectional path tracing with next-event estimation on emissive
- * triangles and multiple importance sampling (power heuristic), Russian roulette, and a depth
+ * triangles, the environment map and punctual lights, and multiple importance sampling (power
+ * heuristic; docs/lights.md), Russian roulette, and a depth
  * counted in path segments as Mitsuba's max_depth (1 = emitters seen directly). Surfaces shade
  * with the BSDFs of bsdf.h, mapped from the glTF material (docs/bsdf.md). The program is built
  * with the COHORT_FEATURE_* options of its scene, so only the BSDF families and the texture
@@ -55,15 +56,25 @@ CO_INLINE PathState path_start(const RenderParams* p, uint32_t pixel, uint32_t s
   return st;
 }
 
-/* Next-event estimation at `pos` for the BSDF `b` chosen there (never a delta BSDF): picks an
- * emitter point and returns the shadow ray towards it with the MIS-weighted contribution it adds
- * when unoccluded (already times the throughput). `frame` is the shading frame of the stored
- * geometric normal and `wi` the local direction towards the previous vertex. */
-CO_INLINE ShadowRay sample_direct_light(const SceneView* s, const RenderParams* p, Rng* rng, co_vec3 pos,
-                                        const ShadingFrame* frame, const Bsdf* b, co_vec3 wi, co_vec3 throughput) {
+/* Unit direction *dir and distance from `from` to `to`; 0 when they are not farther apart than
+ * min_dist (or NaN). */
+CO_INLINE int direction_to(co_vec3 from, co_vec3 to, float min_dist, co_vec3* dir, float* dist, float* dist2) {
+  co_vec3 d = v3_sub(to, from);
+  *dist2 = v3_dot(d, d);
+  *dist = sqrt(*dist2);
+  if (!(*dist > min_dist)) return 0;
+  *dir = v3_scale(d, 1.0f / *dist);
+  return 1;
+}
+
+/* Next-event estimation towards an emissive triangle picked by power with u_pick (the emitter
+ * table's cdf). Returns the shadow ray with the MIS-weighted contribution it adds when unoccluded
+ * (already times the throughput); see sample_direct_light. */
+CO_INLINE ShadowRay nee_triangle(const SceneView* s, const RenderParams* p, float u_pick, float u1, float u2,
+                                 co_vec3 pos, const ShadingFrame* frame, const Bsdf* b, co_vec3 wi,
+                                 co_vec3 throughput) {
   ShadowRay sr;
   sr.valid = 0;
-  float u_pick = rng_next(rng), u1 = rng_next(rng), u2 = rng_next(rng);
   uint32_t e = pick_emitter(s, u_pick);
   EmitterEntry entry = s->emitters[e];
   CO_GLOBAL const Triangle* tri = &s->tree.triangles[entry.triangle];
@@ -84,11 +95,9 @@ CO_INLINE ShadowRay sample_direct_light(const SceneView* s, const RenderParams* 
   float side = v3_dot(v3_sub(pl, pos), frame->n);
   if (!(side > 0.0f) && !(side < 0.0f)) return sr; /* in the plane, or NaN */
   co_vec3 origin = v3_madd(pos, frame->n, side > 0.0f ? p->ray_epsilon : -p->ray_epsilon);
-  co_vec3 to_light = v3_sub(pl, origin);
-  float dist2 = v3_dot(to_light, to_light);
-  float dist = sqrt(dist2);
-  if (!(dist > 2.0f * p->ray_epsilon)) return sr;
-  co_vec3 wl = v3_scale(to_light, 1.0f / dist);
+  co_vec3 wl;
+  float dist, dist2;
+  if (!direction_to(origin, pl, 2.0f * p->ray_epsilon, &wl, &dist, &dist2)) return sr;
   co_vec3 wl_local = frame_to_local(frame, wl);
   if (!(wl_local.z * side > 0.0f)) return sr; /* a light within epsilon of the tangent plane */
   co_vec3 f = bsdf_eval(b, wi, wl_local); /* f |cos|; 0 on the wrong side of a reflector */
@@ -100,8 +109,9 @@ CO_INLINE ShadowRay sample_direct_light(const SceneView* s, const RenderParams* 
    * emitter (the untextured power table), so the two weights sum to 1 */
   float pdf_light = light_pdf_solid_angle(s, m, entry.area, origin, pl, nl);
   float weight = (p->flags & RENDER_FLAG_MIS) ? mis_power(pdf_light, bsdf_pdf(b, wi, wl_local)) : 1.0f;
-  /* estimator divides by the probability the table actually used to pick this triangle */
-  float pdf_pick = entry.pmf * dist2 / (entry.area * fabs(v3_dot(nl, wl)));
+  /* estimator divides by the probability the table actually used to pick this triangle (times
+   * the probability of picking a triangle at all, exactly 1 when they are the only lights) */
+  float pdf_pick = entry.pmf * s->pick_triangles * dist2 / (entry.area * fabs(v3_dot(nl, wl)));
   float scale = weight / pdf_pick;
   sr.org = origin;
   sr.dir = wl;
@@ -109,6 +119,141 @@ CO_INLINE ShadowRay sample_direct_light(const SceneView* s, const RenderParams* 
   sr.contribution = v3_mul(throughput, v3_scale(v3_mul(f, le), scale));
   sr.valid = 1;
   return sr;
+}
+
+/* The shadow ray's origin for a light in the unit direction wl: `pos` offset along the normal to
+ * the side wl leaves from (the side path_shade offsets a BSDF sample in that direction to). Returns
+ * 0 when wl lies in the tangent plane. */
+CO_INLINE int nee_origin(const RenderParams* p, co_vec3 pos, const ShadingFrame* frame, co_vec3 wl_local,
+                         co_vec3* origin) {
+  if (!(wl_local.z > 0.0f) && !(wl_local.z < 0.0f)) return 0;
+  *origin = v3_madd(pos, frame->n, wl_local.z > 0.0f ? p->ray_epsilon : -p->ray_epsilon);
+  return 1;
+}
+
+#ifdef COHORT_FEATURE_ENVMAP
+/* Next-event estimation towards the environment map (environment.h), MIS-weighted against the
+ * BSDF; pdf_pick is the probability of having chosen the environment. */
+CO_INLINE ShadowRay nee_environment(const SceneView* s, const RenderParams* p, float pdf_pick, float u1, float u2,
+                                    co_vec3 pos, const ShadingFrame* frame, const Bsdf* b, co_vec3 wi,
+                                    co_vec3 throughput) {
+  ShadowRay sr;
+  sr.valid = 0;
+  float pdf_env;
+  co_vec3 wl = env_sample(&s->env, u1, u2, &pdf_env);
+  if (!(pdf_env > 0.0f)) return sr;
+  co_vec3 wl_local = frame_to_local(frame, wl);
+  co_vec3 origin;
+  if (!nee_origin(p, pos, frame, wl_local, &origin)) return sr;
+  co_vec3 f = bsdf_eval(b, wi, wl_local);
+  if (!(v3_max_component(f) > 0.0f)) return sr;
+  co_vec3 le = env_eval(&s->env, wl);
+  float pdf_light = pdf_pick * pdf_env;
+  float weight = (p->flags & RENDER_FLAG_MIS) ? mis_power(pdf_light, bsdf_pdf(b, wi, wl_local)) : 1.0f;
+  sr.org = origin;
+  sr.dir = wl;
+  sr.tmax = INFINITY;
+  sr.contribution = v3_mul(throughput, v3_scale(v3_mul(f, le), weight / pdf_light));
+  sr.valid = 1;
+  return sr;
+}
+#endif
+
+#ifdef COHORT_FEATURE_PUNCTUAL
+/* Next-event estimation towards a point or spot light picked by power with u_pick: a delta
+ * light, so no MIS (no BSDF sample can reach it); pdf_pick is the probability of having chosen
+ * the punctual lights. */
+CO_INLINE ShadowRay nee_punctual(const SceneView* s, const RenderParams* p, float pdf_pick, float u_pick, co_vec3 pos,
+                                 const ShadingFrame* frame, const Bsdf* b, co_vec3 wi, co_vec3 throughput) {
+  ShadowRay sr;
+  sr.valid = 0;
+  const CO_GLOBAL PunctualLight* l = &s->punctual_lights[pick_punctual(s->punctual_lights, s->punctual_count, u_pick)];
+  co_vec3 pl = v3_from4(l->position);
+  /* No MIS pairs this strategy with another, so the irradiance I cos / r^2 is measured from the
+   * shading point itself: measured from the offset origin, r^2 would be short by 2 epsilon / r
+   * (0.2% in the inverse-square test). The shadow ray leaves from the offset origin. */
+  co_vec3 wl;
+  float dist, dist2;
+  if (!direction_to(pos, pl, 2.0f * p->ray_epsilon, &wl, &dist, &dist2)) return sr;
+  co_vec3 wl_local = frame_to_local(frame, wl);
+  co_vec3 origin;
+  if (!nee_origin(p, pos, frame, wl_local, &origin)) return sr;
+  co_vec3 f = bsdf_eval(b, wi, wl_local);
+  if (!(v3_max_component(f) > 0.0f)) return sr;
+  co_vec3 intensity = punctual_intensity(l, v3_neg(wl));
+  if (!(v3_max_component(intensity) > 0.0f)) return sr;
+  /* irradiance I / r^2 from the light's point; bsdf_eval already holds the cosine */
+  float scale = 1.0f / (pdf_pick * l->pmf * dist2);
+  sr.org = origin;
+  sr.dir = wl;
+  sr.tmax = dist - 2.0f * p->ray_epsilon;
+  sr.contribution = v3_mul(throughput, v3_scale(v3_mul(f, intensity), scale));
+  sr.valid = 1;
+  return sr;
+}
+#endif
+
+/* u in [lo, lo + width) mapped to [0, 1): the rest of a random number after a discrete choice. */
+CO_INLINE float remap_unit(float u, float lo, float width) {
+  return fmin(fmax((u - lo) / width, 0.0f), 0x1.fffffep-1f);
+}
+
+/* Next-event estimation at `pos` for the BSDF `b` chosen there (never a delta BSDF): picks a kind
+ * of light (the environment map, the punctual lights or the emissive triangles, with the
+ * host's pick_* probabilities; only triangles without those features, and then u_pick is used
+ * as is) and one sample of it, and returns the shadow ray with the contribution it adds when
+ * unoccluded (already times the throughput). `frame` is the shading frame of the stored
+ * geometric normal and `wi` the local direction towards the previous vertex. */
+CO_INLINE ShadowRay sample_direct_light(const SceneView* s, const RenderParams* p, Rng* rng, co_vec3 pos,
+                                        const ShadingFrame* frame, const Bsdf* b, co_vec3 wi, co_vec3 throughput) {
+  float u_pick = rng_next(rng), u1 = rng_next(rng), u2 = rng_next(rng);
+#ifdef COHORT_FEATURE_ENVMAP
+  if (u_pick < s->pick_environment)
+    return nee_environment(s, p, s->pick_environment, u1, u2, pos, frame, b, wi, throughput);
+#endif
+#ifdef COHORT_FEATURE_PUNCTUAL
+  if (u_pick < s->pick_environment + s->pick_punctual)
+    return nee_punctual(s, p, s->pick_punctual, remap_unit(u_pick, s->pick_environment, s->pick_punctual), pos,
+                        frame, b, wi, throughput);
+#endif
+#if defined(COHORT_FEATURE_ENVMAP) || defined(COHORT_FEATURE_PUNCTUAL)
+  u_pick = remap_unit(u_pick, 1.0f - s->pick_triangles, s->pick_triangles);
+#endif
+  return nee_triangle(s, p, u_pick, u1, u2, pos, frame, b, wi, throughput);
+}
+
+/* Whether NEE has a light to sample. */
+CO_INLINE int nee_enabled(const SceneView* s, const RenderParams* p) {
+  if (!(p->flags & RENDER_FLAG_NEE)) return 0;
+  int lights = s->emitter_count > 0u;
+#ifdef COHORT_FEATURE_ENVMAP
+  lights |= s->pick_environment > 0.0f;
+#endif
+#ifdef COHORT_FEATURE_PUNCTUAL
+  lights |= s->pick_punctual > 0.0f;
+#endif
+  return lights;
+}
+
+/* Light from the environment along an escaped ray: the map, MIS-weighted against NEE after a
+ * non-delta vertex, or the constant radiance. */
+CO_INLINE void path_escape(const SceneView* s, const RenderParams* p, PathState* st) {
+#ifdef COHORT_FEATURE_ENVMAP
+  if (p->flags & RENDER_FLAG_ENVIRONMENT_MAP) {
+    co_vec3 le = env_eval(&s->env, st->dir);
+    float w = 1.0f;
+    if (st->prev_bsdf_pdf > 0.0f && nee_enabled(s, p) && s->pick_environment > 0.0f) {
+      w = (p->flags & RENDER_FLAG_MIS)
+              ? mis_power(st->prev_bsdf_pdf, s->pick_environment * env_pdf(&s->env, st->dir))
+              : 0.0f;
+    }
+    st->radiance = v3_add(st->radiance, v3_scale(v3_mul(st->throughput, le), w));
+    return;
+  }
+#endif
+  (void)s;
+  if (p->flags & RENDER_FLAG_ENVIRONMENT)
+    st->radiance = v3_add(st->radiance, v3_mul(st->throughput, v3_from4(p->environment)));
 }
 
 /* Everything that happens at the end of the segment `st->segment` given its closest hit:
@@ -125,13 +270,12 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
   ShadowRay none;
   none.valid = 0;
   if (hit.triangle == HIT_NONE) {
-    if (p->flags & RENDER_FLAG_ENVIRONMENT)
-      st->radiance = v3_add(st->radiance, v3_mul(st->throughput, v3_from4(p->environment)));
+    path_escape(s, p, st);
     st->status = PATH_TERMINATED;
     return none;
   }
   uint32_t segment = st->segment;
-  int nee = (p->flags & RENDER_FLAG_NEE) && s->emitter_count > 0u;
+  int nee = nee_enabled(s, p);
   CO_GLOBAL const Triangle* tri = &s->tree.triangles[hit.triangle];
   const CO_GLOBAL Material* m = &s->materials[s->triangle_material[hit.triangle]];
   co_vec3 cross_n = triangle_cross(tri);

@@ -94,7 +94,10 @@ typedef uint4 co_uint4;
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+using std::acos;
+using std::atan2;
 using std::fabs;
+using std::floor;
 using std::fmax;
 using std::fmin;
 using std::sqrt;

@@ -1,10 +1,14 @@
-/* Device view of a loaded scene: the KD-tree, per-triangle materials, the emitter table and the
+/* Device view of a loaded scene: the KD-tree, per-triangle materials, the emitter table, the
  * textures (texture coordinates per triangle, descriptors, texels; read only when the program is
- * built with COHORT_FEATURE_TEXTURES, and one-element placeholders otherwise). */
+ * built with COHORT_FEATURE_TEXTURES, and one-element placeholders otherwise), the environment map
+ * (COHORT_FEATURE_ENVMAP) and the punctual lights (COHORT_FEATURE_PUNCTUAL), placeholders
+ * likewise. */
 #ifndef COHORT_SCENE_VIEW_H
 #define COHORT_SCENE_VIEW_H
 
+#include "common/environment.h"
 #include "common/kdtree_traverse.h"
+#include "common/punctual.h"
 #include "common/sampling.h"
 #include "common/texture.h"
 
@@ -16,8 +20,12 @@ typedef struct SceneView {
   const CO_GLOBAL TriangleUv* triangle_uvs;   /* per kept triangle */
   const CO_GLOBAL TextureDesc* textures;
   const CO_GLOBAL uint32_t* texels;           /* RGBA8, sRGB-encoded */
+  EnvironmentView env;
+  const CO_GLOBAL PunctualLight* punctual_lights;
   uint32_t emitter_count;
   float emitter_power_total;
+  uint32_t punctual_count;
+  float pick_triangles, pick_environment, pick_punctual; /* NEE's choice of a kind of light */
 } SceneView;
 
 /* The kernel arguments every rendering kernel takes, and the view they make. */
@@ -26,13 +34,16 @@ typedef struct SceneView {
       CO_GLOBAL const Triangle *triangles, CO_GLOBAL const uint32_t *triangle_material,              \
       CO_GLOBAL const Material *materials, CO_GLOBAL const EmitterEntry *emitters,                    \
       CO_GLOBAL const TriangleUv *triangle_uvs, CO_GLOBAL const TextureDesc *textures,                \
-      CO_GLOBAL const uint32_t *texels
+      CO_GLOBAL const uint32_t *texels, CO_GLOBAL const co_float4 *env_texels,                       \
+      CO_GLOBAL const float *env_tables, CO_GLOBAL const PunctualLight *punctual_lights
 
 CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNode* nodes,
                                     const CO_GLOBAL uint32_t* leaf_triangles, const CO_GLOBAL Triangle* triangles,
                                     const CO_GLOBAL uint32_t* triangle_material, const CO_GLOBAL Material* materials,
                                     const CO_GLOBAL EmitterEntry* emitters, const CO_GLOBAL TriangleUv* triangle_uvs,
-                                    const CO_GLOBAL TextureDesc* textures, const CO_GLOBAL uint32_t* texels) {
+                                    const CO_GLOBAL TextureDesc* textures, const CO_GLOBAL uint32_t* texels,
+                                    const CO_GLOBAL co_float4* env_texels, const CO_GLOBAL float* env_tables,
+                                    const CO_GLOBAL PunctualLight* punctual_lights) {
   SceneView s;
   s.tree = make_tree_view(nodes, leaf_triangles, triangles, p->scene_min, p->scene_max);
   s.triangle_material = triangle_material;
@@ -41,13 +52,22 @@ CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNod
   s.triangle_uvs = triangle_uvs;
   s.textures = textures;
   s.texels = texels;
+  s.env.texels = env_texels;
+  s.env.tables = env_tables;
+  s.env.width = p->env_width;
+  s.env.height = p->env_height;
+  s.punctual_lights = punctual_lights;
   s.emitter_count = p->emitter_count;
   s.emitter_power_total = p->emitter_power_total;
+  s.punctual_count = p->punctual_count;
+  s.pick_triangles = p->pick_triangles;
+  s.pick_environment = p->pick_environment;
+  s.pick_punctual = p->pick_punctual;
   return s;
 }
 #define SCENE_VIEW(p)                                                                                \
   make_scene_view(&(p), nodes, leaf_triangles, triangles, triangle_material, materials, emitters, triangle_uvs, \
-                  textures, texels)
+                  textures, texels, env_texels, env_tables, punctual_lights)
 
 CO_INLINE float luminance(co_vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
@@ -119,7 +139,8 @@ CO_INLINE float light_pdf_solid_angle(const SceneView* s, const CO_GLOBAL Materi
   float dist2 = v3_dot(d, d);
   float cos_l = fabs(v3_dot(n_light, d)) / sqrt(dist2);
   float pmf = emitter_power(v3_from4(m->emission), area, material_two_sided_emission(m)) / s->emitter_power_total;
-  return pmf * dist2 / (area * cos_l);
+  /* pick_triangles is exactly 1 when emissive triangles are the only lights */
+  return pmf * s->pick_triangles * dist2 / (area * cos_l);
 }
 
 /* Index of the emitter whose cdf interval holds u (binary search). */

@@ -92,7 +92,8 @@ CO_STATIC_ASSERT(sizeof(CameraParams) == 64, "CameraParams must stay 64 bytes");
 #define RENDER_FLAG_NEE 1u
 #define RENDER_FLAG_MIS 2u
 #define RENDER_FLAG_RUSSIAN_ROULETTE 4u
-#define RENDER_FLAG_ENVIRONMENT 8u
+#define RENDER_FLAG_ENVIRONMENT 8u       /* constant environment `environment` on escaped rays */
+#define RENDER_FLAG_ENVIRONMENT_MAP 16u  /* the environment map (COHORT_FEATURE_ENVMAP); replaces the constant */
 typedef struct RenderParams {
   CameraParams camera;
   co_float4 environment;   /* constant environment radiance, rgb */
@@ -109,9 +110,30 @@ typedef struct RenderParams {
   uint32_t samples_per_pass;
   float emitter_power_total; /* sum of emitter_power() over emissive triangles */
   float ray_epsilon;         /* offset of secondary ray origins along the normal */
-  uint32_t pad0;
+  uint32_t env_width;        /* environment map texels per row (the grid has one more column) */
+  uint32_t env_height;       /* rows, pole to pole; 0 without an environment map */
+  uint32_t punctual_count;   /* KHR_lights_punctual lights */
+  /* NEE first picks a kind of light with these probabilities (they sum to 1; see docs/lights.md) */
+  float pick_triangles;
+  float pick_environment;
+  float pick_punctual;
+  uint32_t pad0, pad1, pad2;
 } RenderParams;
-CO_STATIC_ASSERT(sizeof(RenderParams) == 160, "RenderParams must stay 160 bytes");
+CO_STATIC_ASSERT(sizeof(RenderParams) == 192, "RenderParams must stay 192 bytes");
+
+/* ---- KHR_lights_punctual: point and spot lights (delta lights, NEE only) ---------------------- */
+#define PUNCTUAL_POINT 0u
+#define PUNCTUAL_SPOT 1u
+typedef struct PunctualLight {
+  co_float4 position;   /* world; w unused */
+  co_float4 direction;  /* spot: unit direction the light shines in; w = cos(outer cone angle) */
+  co_float4 intensity;  /* rgb candela (colour x intensity); w = cos(inner cone angle) */
+  uint32_t type;        /* PUNCTUAL_POINT or PUNCTUAL_SPOT */
+  float cdf;            /* inclusive running sum of power, 1 at the last light */
+  float pmf;            /* probability NEE picks this light among the punctual lights */
+  float pad0;
+} PunctualLight;
+CO_STATIC_ASSERT(sizeof(PunctualLight) == 64, "PunctualLight must stay 64 bytes");
 
 /* ---- Coherence code (Wang & Deng, section 3) -------------------------------------------------
  * A 64-bit sort key packing three parts; each part's width and position are set on the host

@@ -39,7 +39,7 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
                "hash/pth: speculative resumed traversal (leaf tests wait until the SIMD group agrees)");
   cmd.add_option("--time", r.settings.time_limit, "Stop after this many seconds of rendering")
       ->check(CLI::NonNegativeNumber);
-  cmd.add_option("--env", r.environment, "Constant environment radiance: R,G,B or one value");
+  cmd.add_option("--env", r.environment, "Environment: constant radiance R,G,B (or one value), or an equirectangular map FILE.exr");
   cmd.add_flag("--white-sky", r.white_sky,
                "Benchmark workload: albedo 0.5 everywhere, constant sky 1, protocol camera, 5 segments, no RR");
   cmd.add_option("--camera-bounds", r.camera_bounds,

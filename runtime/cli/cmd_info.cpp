@@ -23,8 +23,10 @@ int run_info(const std::filesystem::path& path) {
                m.emission.y, m.emission.z, m.base_color_texture >= 0 ? ", textured" : "");
   }
   fmt::print("textures: {}\n", p.scene.textures.size());
-  fmt::print("lights: {} emissive triangles, total power {:.4g}\n", p.tables.emitters.entries.size(),
-             p.tables.emitters.total_power);
+  std::size_t spots = 0;
+  for (const auto& l : p.scene.lights) spots += l.type == SceneLight::Type::spot;
+  fmt::print("lights: {} emissive triangles, total power {:.4g}; {} point, {} spot (KHR_lights_punctual)\n",
+             p.tables.emitters.entries.size(), p.tables.emitters.total_power, p.scene.lights.size() - spots, spots);
   fmt::print("bounds: ({:.4g}, {:.4g}, {:.4g}) - ({:.4g}, {:.4g}, {:.4g}), diagonal {:.4g}\n", b.lo.x, b.lo.y, b.lo.z,
              b.hi.x, b.hi.y, b.hi.z, b.diagonal());
   fmt::print("camera: {}, eye ({:.4g}, {:.4g}, {:.4g}), target ({:.4g}, {:.4g}, {:.4g}), vfov {:.4g} deg\n",

@@ -9,6 +9,7 @@
 #include "runtime/cli/output_paths.h"
 #include "runtime/cli/parse_values.h"
 #include "runtime/cli/progress.h"
+#include "runtime/render/environment_map.h"
 #include "runtime/render/prepared_scene.h"
 #include "runtime/render/methods.h"
 #include "runtime/render/renderer.h"
@@ -36,7 +37,9 @@ nlohmann::json stats_json(const RenderCommand& cmd, const DeviceInfo& device, co
                    {"russian_roulette", cmd.settings.russian_roulette}};
   const auto& ts = prepared.tree.stats;
   j["scene_stats"] = {{"triangles", prepared.scene.triangle_count()}, {"dropped_triangles", ts.dropped_triangles},
-                      {"emitters", prepared.tables.emitters.entries.size()}};
+                      {"emitters", prepared.tables.emitters.entries.size()},
+                      {"punctual_lights", prepared.tables.punctual.lights.size()}};
+  if (prepared.tables.environment) j["scene_stats"]["environment_map"] = prepared.tables.environment->source.string();
   j["kdtree"] = {{"depth", ts.depth}, {"nodes", ts.node_count}, {"leaves", ts.leaf_count},
                  {"average_leaf_triangles", ts.average_leaf_triangles}, {"sah_cost", ts.sah_cost},
                  {"bytes", ts.bytes}};
@@ -80,6 +83,9 @@ std::uint64_t render_fingerprint(const RenderCommand& cmd, const PreparedScene& 
                                                                s.environment->z)
                                                : "none",
       c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z, c.vfov_degrees, p.tree.triangles.size());
+  // an environment map is named by its file (older checkpoints, without one, keep their fingerprint)
+  if (p.tables.environment)
+    return fnv1a64(text + "|envmap " + std::filesystem::weakly_canonical(p.tables.environment->source).string());
   return fnv1a64(text);
 }
 
@@ -88,7 +94,8 @@ std::uint64_t render_fingerprint(const RenderCommand& cmd, const PreparedScene& 
 int run_render(const RenderCommand& cmd_in) {
   RenderCommand cmd = cmd_in;
   std::tie(cmd.settings.width, cmd.settings.height) = parse_resolution(cmd.resolution);
-  if (!cmd.environment.empty()) cmd.settings.environment = parse_rgb("--env", cmd.environment);
+  const bool env_map = is_environment_map_path(cmd.environment);
+  if (!cmd.environment.empty() && !env_map) cmd.settings.environment = parse_rgb("--env", cmd.environment);
   if (cmd.settings.spp == 0 && cmd.settings.time_limit <= 0)
     throw InputError("--spp 0 needs --time SECONDS to say when to stop");
   // check where the outputs go before spending time on the render
@@ -100,6 +107,7 @@ int run_render(const RenderCommand& cmd_in) {
   const Device& cl = *opened;
   const DeviceInfo& device = cl.info();
   PreparedScene prepared = prepare_scene(cmd.scene);
+  if (env_map) set_environment_map(prepared.tables, load_environment_map(cmd.environment));
   if (cmd.white_sky) apply_white_sky(prepared, cmd.settings);
   if (!cmd.camera_bounds.empty())
     prepared.camera = camera_from_bounds(prepared.scene.bounds(), parse_six("--camera-bounds", cmd.camera_bounds),
@@ -133,8 +141,12 @@ int run_render(const RenderCommand& cmd_in) {
   if (cmd.verbose) {
     const auto& ts = prepared.tree.stats;
     fmt::print("device: {} ({})\n", device.name, device.platform_name);
-    fmt::print("scene: {} triangles, {} emissive, loaded in {:.3f}s\n", prepared.scene.triangle_count(),
-               prepared.tables.emitters.entries.size(), prepared.load_seconds);
+    fmt::print("scene: {} triangles, {} emissive, {} punctual lights, loaded in {:.3f}s\n",
+               prepared.scene.triangle_count(), prepared.tables.emitters.entries.size(),
+               prepared.tables.punctual.lights.size(), prepared.load_seconds);
+    if (prepared.tables.environment)
+      fmt::print("environment map: {}, {}x{}\n", prepared.tables.environment->source.string(),
+                 prepared.tables.environment->width, prepared.tables.environment->height);
     fmt::print("kd-tree: depth {}, {} nodes, {} leaves, {:.2f} triangles per leaf, SAH cost {:.2f}, built in {:.3f}s\n",
                ts.depth, ts.node_count, ts.leaf_count, ts.average_leaf_triangles, ts.sah_cost, ts.build_seconds);
     fmt::print("kernel compile: {:.3f}s ({})\n", result.compile_seconds, result.compile_from_cache ? "warm, from cache" : "cold");

@@ -1,5 +1,6 @@
 #include "runtime/cli/parse_values.h"
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <vector>
@@ -67,6 +68,13 @@ std::array<float, 6> parse_six(const std::string& option, const std::string& tex
   std::array<float, 6> out{};
   std::copy(values.begin(), values.end(), out.begin());
   return out;
+}
+
+bool is_environment_map_path(const std::string& text) {
+  if (text.size() < 4) return false;
+  std::string ext = text.substr(text.size() - 4);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".exr";
 }
 
 }  // namespace cohort

@@ -14,6 +14,10 @@ std::pair<std::uint32_t, std::uint32_t> parse_resolution(const std::string& text
 // "R,G,B" or one value for all three, each finite and >= 0.
 glm::vec3 parse_rgb(const std::string& option, const std::string& text);
 
+// Whether an --env value names an environment map file (it ends in .exr, any case) rather than
+// a radiance.
+bool is_environment_map_path(const std::string& text);
+
 // "a,b,c,d,e,f": six finite numbers (fractions for --camera-bounds).
 std::array<float, 6> parse_six(const std::string& option, const std::string& text);
 

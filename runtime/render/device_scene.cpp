@@ -69,6 +69,8 @@ std::vector<std::string> SceneFeatures::names() const {
   if (conductor) out.push_back("conductor");
   if (dielectric) out.push_back("dielectric");
   if (plastic) out.push_back("plastic");
+  if (envmap) out.push_back("envmap");
+  if (punctual) out.push_back("punctual");
   return out;
 }
 
@@ -172,14 +174,55 @@ SceneTables make_scene_tables(const Scene& scene, const KdTree& tree) {
   }
   add_textures(scene, tree, used, t);
   t.emitters = build_emitter_table(tree, t.materials, t.triangle_material);
+  t.punctual = make_punctual_table(scene.lights);
+  t.features.punctual = !t.punctual.lights.empty();
   return t;
+}
+
+void set_environment_map(SceneTables& tables, EnvironmentMap map) {
+  tables.environment = std::move(map);
+  tables.features.envmap = true;
+}
+
+LightPick light_pick(const SceneTables& t, float radius) {
+  // fluxes: pi L A per emitting side, 4 pi I per point light, pi r^2 E for the environment
+  const double triangles = M_PI * t.emitters.total_power;
+  const double environment =
+      t.environment ? M_PI * double(radius) * radius * t.environment->luminance_integral : 0.0;
+  const double punctual = t.punctual.power;
+  const double total = triangles + environment + punctual;
+  LightPick pick;
+  if (!(total > 0)) return pick;
+  // only triangles: exactly 1, so the estimator is the one without the other lights bit for bit
+  if (environment == 0 && punctual == 0) {
+    pick.triangles = 1.f;
+    return pick;
+  }
+  pick.environment = static_cast<float>(environment / total);
+  pick.punctual = static_cast<float>(punctual / total);
+  pick.triangles = triangles > 0 ? 1.f - pick.environment - pick.punctual : 0.f;
+  if (triangles == 0 && punctual == 0) pick.environment = 1.f;
+  if (triangles == 0 && environment == 0) pick.punctual = 1.f;
+  return pick;
+}
+
+std::vector<const DeviceBuffer*> DeviceScene::kernel_buffers() const {
+  return {&nodes,        &leaf_triangles, &triangles, &triangle_material, &materials, &emitters,
+          &triangle_uvs, &textures,       &texels,    &env_texels,        &env_tables, &punctual_lights};
+}
+
+std::size_t set_scene_args(DeviceKernel& kernel, std::size_t first, const DeviceScene& scene) {
+  for (const DeviceBuffer* b : scene.kernel_buffers()) kernel.set_arg(first++, *b);
+  return first;
 }
 
 DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables& tables) {
   DeviceScene d;
   d.bytes = bytes_of(tree.nodes) + bytes_of(tree.leaf_triangles) + bytes_of(tree.triangles) +
             bytes_of(tables.triangle_material) + bytes_of(tables.materials) + bytes_of(tables.emitters.entries) +
-            bytes_of(tables.triangle_uvs) + bytes_of(tables.textures) + bytes_of(tables.texels);
+            bytes_of(tables.triangle_uvs) + bytes_of(tables.textures) + bytes_of(tables.texels) +
+            bytes_of(tables.punctual.lights) +
+            (tables.environment ? bytes_of(tables.environment->texels) + bytes_of(tables.environment->tables) : 0);
   if (d.bytes > cl.info().global_memory)
     throw DeviceError(fmt::format("the scene needs {} bytes of device memory; {} has {} bytes", d.bytes,
                                   cl.info().name, cl.info().global_memory));
@@ -198,6 +241,18 @@ DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables
   d.triangle_uvs = upload("texture coordinates", tables.triangle_uvs);
   d.textures = upload("texture descriptors", tables.textures);
   d.texels = upload("texels", tables.texels);
+  d.punctual_lights = upload("punctual lights", tables.punctual.lights);
+  d.punctual_count = static_cast<std::uint32_t>(tables.punctual.lights.size());
+  if (tables.environment) {
+    d.env_texels = upload("environment map", tables.environment->texels);
+    d.env_tables = upload("environment sampling tables", tables.environment->tables);
+    d.env_width = tables.environment->width;
+    d.env_height = tables.environment->height;
+  } else {
+    d.env_texels = upload("environment map", std::vector<co_float4>{});
+    d.env_tables = upload("environment sampling tables", std::vector<float>{});
+  }
+  d.pick = light_pick(tables, 0.5f * tree.bounds.diagonal());
   d.features = tables.features;
   d.build_options = tables.features.build_options();
   d.emitter_count = static_cast<std::uint32_t>(tables.emitters.entries.size());

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,18 +11,23 @@
 #include "runtime/accel/kdtree.h"
 #include "runtime/backend/device.h"
 #include "runtime/render/emitters.h"
+#include "runtime/render/environment_map.h"
+#include "runtime/render/punctual_lights.h"
 #include "runtime/scene/scene.h"
 
 namespace cohort {
 
 // What the shading code of a scene needs compiled: the BSDF families its materials can select
-// (bsdf_from_gltf's rules; the Lambertian is always there) and texture lookups. Every rendering
-// program of a render is built with the same options, so the methods still agree bit for bit.
+// (bsdf_from_gltf's rules; the Lambertian is always there), texture lookups, and the lights
+// beyond emissive triangles and the constant environment. Every rendering program of a render is
+// built with the same options, so the methods still agree bit for bit.
 struct SceneFeatures {
   bool textures = false;
   bool conductor = false;
   bool dielectric = false;
   bool plastic = false;
+  bool envmap = false;    // an environment map (--env FILE.exr)
+  bool punctual = false;  // KHR_lights_punctual point or spot lights
 
   std::vector<std::string> names() const;  // "textures", "conductor", ...; empty for diffuse only
   std::string build_options() const;       // "-DCOHORT_FEATURE_TEXTURES ..."; empty for diffuse only
@@ -41,25 +47,47 @@ struct SceneTables {
   std::vector<TriangleUv> triangle_uvs;  // per kept triangle
   std::vector<TextureDesc> textures;     // the textures used, renumbered in order of first use
   std::vector<std::uint32_t> texels;     // RGBA8 words, r in the low byte, sRGB-encoded
-  SceneFeatures features;                // of the materials the kept triangles use
+  PunctualTable punctual;                // point and spot lights
+  std::optional<EnvironmentMap> environment;
+  SceneFeatures features;                // of the materials the kept triangles use, and the lights
 };
 
 Material to_device_material(const SceneMaterial& m);
 SceneTables make_scene_tables(const Scene& scene, const KdTree& tree);
+// Lights the scene with an environment map (it replaces any constant environment).
+void set_environment_map(SceneTables& tables, EnvironmentMap map);
+
+// Probabilities with which NEE picks each kind of light: proportional to an estimate of the
+// power each sends into the scene (docs/lights.md); all 0 without lights. `radius` bounds the
+// scene, for the power of the environment (pi r^2 times its luminance integral).
+struct LightPick {
+  float triangles = 0, environment = 0, punctual = 0;
+};
+LightPick light_pick(const SceneTables& tables, float radius);
 
 struct DeviceScene {
   DeviceBuffer nodes, leaf_triangles, triangles, triangle_material, materials, emitters;
   DeviceBuffer triangle_uvs, textures, texels;  // one-element placeholders without textures
+  DeviceBuffer env_texels, env_tables, punctual_lights;  // placeholders without those lights
   SceneFeatures features;
   std::string build_options;  // features.build_options(): every rendering program gets them
   std::uint32_t emitter_count = 0;
   float emitter_power_total = 0;
+  std::uint32_t env_width = 0, env_height = 0;  // 0 x 0 without an environment map
+  std::uint32_t punctual_count = 0;
+  LightPick pick;
   Bounds bounds;
   std::size_t bytes = 0;
   // host-side facts the PTH method sizes itself from
   std::vector<std::uint32_t> level_starts;  // first node of each depth, then the node count
   std::array<std::vector<float>, 3> centroid_samples;  // sorted triangle centroids per axis (subsampled)
+
+  // The buffers of SCENE_KERNEL_PARAMS after `params`, in order: the one place that lists them.
+  std::vector<const DeviceBuffer*> kernel_buffers() const;
 };
+
+// Sets the scene's buffers as arguments first, first + 1, ... of `kernel`; returns the next index.
+std::size_t set_scene_args(DeviceKernel& kernel, std::size_t first, const DeviceScene& scene);
 
 DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables& tables);
 

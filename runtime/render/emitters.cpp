@@ -1,6 +1,7 @@
 #include "runtime/render/emitters.h"
 
 #include "kernels/common/scene_view.h"
+#include "runtime/render/discrete_cdf.h"
 
 namespace cohort {
 
@@ -17,18 +18,13 @@ EmitterTable build_emitter_table(const KdTree& tree, const std::vector<Material>
     table.entries.push_back(EmitterEntry{i, 0.f, 0.f, area});
     power.push_back(p);
   }
+  const std::vector<float> cdf = discrete_cdf(power);
   double total = 0;
   for (double p : power) total += p;
-  double running = 0;
-  for (std::size_t i = 0; i < power.size(); ++i) {
-    running += power[i];
-    table.entries[i].cdf = static_cast<float>(running / total);
-    table.entries[i].pmf = static_cast<float>(power[i] / total);
+  for (std::size_t i = 0; i < cdf.size(); ++i) {
+    table.entries[i].cdf = cdf[i];
+    table.entries[i].pmf = cdf_step(cdf, i);  // the pmf the estimator divides by
   }
-  if (!table.entries.empty()) table.entries.back().cdf = 1.f;  // no rounding gap at the top
-  // the pmf the estimator divides by must be the cdf step the search really uses
-  for (std::size_t i = 0; i < table.entries.size(); ++i)
-    table.entries[i].pmf = table.entries[i].cdf - (i == 0 ? 0.f : table.entries[i - 1].cdf);
   table.total_power = static_cast<float>(total);
   return table;
 }

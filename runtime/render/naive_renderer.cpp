@@ -19,11 +19,9 @@ RenderResult render_naive(const Device& cl, const ProgramCache& cache, const Dev
   RenderResult result = drive_passes(cl, params, settings, max_per_pass, progress, control,
                                      [&](const PassBuffers& b, const RenderParams&) {
     if (!args_set) {
-      int arg = 0;
-      for (const DeviceBuffer* buf : std::initializer_list<const DeviceBuffer*>{
-               &b.params, &scene.nodes, &scene.leaf_triangles, &scene.triangles, &scene.triangle_material,
-               &scene.materials, &scene.emitters, &scene.triangle_uvs, &scene.textures, &scene.texels, &b.film,
-               &ray_counter, &b.dropped})
+      kernel.set_arg(0, b.params);
+      std::size_t arg = set_scene_args(kernel, 1, scene);
+      for (const DeviceBuffer* buf : std::initializer_list<const DeviceBuffer*>{&b.film, &ray_counter, &b.dropped})
         kernel.set_arg(arg++, *buf);
       args_set = true;
     }

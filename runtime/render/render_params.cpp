@@ -20,8 +20,15 @@ RenderParams make_render_params(const DeviceScene& scene, const SceneCamera& cam
   p.flags = (s.nee ? RENDER_FLAG_NEE : 0u) | (s.mis ? RENDER_FLAG_MIS : 0u) |
             (s.russian_roulette ? RENDER_FLAG_RUSSIAN_ROULETTE : 0u) |
             (s.environment ? RENDER_FLAG_ENVIRONMENT : 0u);
+  if (scene.env_height > 0) p.flags = (p.flags & ~RENDER_FLAG_ENVIRONMENT) | RENDER_FLAG_ENVIRONMENT_MAP;
   p.emitter_count = scene.emitter_count;
   p.emitter_power_total = scene.emitter_power_total;
+  p.env_width = scene.env_width;
+  p.env_height = scene.env_height;
+  p.punctual_count = scene.punctual_count;
+  p.pick_triangles = scene.pick.triangles;
+  p.pick_environment = scene.pick.environment;
+  p.pick_punctual = scene.pick.punctual;
   // offsets scale with the scene so that neither a millimetre nor a kilometre scene self-intersects
   p.ray_epsilon = 1e-4f * std::max(scene.bounds.diagonal(), 1e-6f);
   return p;

@@ -98,6 +98,19 @@ struct SortStage {
   }
 };
 
+template <class Arg>
+void set_arg(DeviceKernel& k, std::size_t& i, const Arg& arg) {
+  k.set_arg(i++, arg);
+}
+// the scene stands for all the buffers of SCENE_KERNEL_PARAMS
+void set_arg(DeviceKernel& k, std::size_t& i, const DeviceScene& scene) { i = set_scene_args(k, i, scene); }
+
+template <class... Args>
+void set_args(DeviceKernel& k, const Args&... args) {
+  std::size_t i = 0;
+  (set_arg(k, i, args), ...);
+}
+
 }  // namespace
 
 RenderResult render_wavefront(const Method& method, const Device& cl, const ProgramCache& cache,
@@ -134,10 +147,9 @@ RenderResult render_wavefront(const Method& method, const Device& cl, const Prog
     const std::uint32_t items = pixels * p.samples_per_pass;
     const auto& [o, d, t, r, pv, it, sg, st] =
         std::tie(pool.org, pool.dir, pool.throughput, pool.radiance, pool.prev, pool.item, pool.segment, pool.status);
-    generate.set_args(b.params, o, d, t, r, pv, it, sg, st, pool.counters, pool.queue, use_queue, pool.slots, items);
-    finish.set_args(o, d, t, r, pv, it, sg, st, results, pool.counters, pool.queue, use_queue, pool.slots);
-    shadow.set_args(b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
-             sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, r, pool.shadow_org, pool.shadow_dir,
+    set_args(generate, b.params, o, d, t, r, pv, it, sg, st, pool.counters, pool.queue, use_queue, pool.slots, items);
+    set_args(finish, o, d, t, r, pv, it, sg, st, results, pool.counters, pool.queue, use_queue, pool.slots);
+    set_args(shadow, b.params, sc, r, pool.shadow_org, pool.shadow_dir,
              pool.shadow_contribution, pool.shadow_queue, pool.counters);
     accumulate.set_args(b.params, results, b.film, b.dropped);
 
@@ -160,28 +172,24 @@ RenderResult render_wavefront(const Method& method, const Device& cl, const Prog
       const std::uint32_t count = method.compact ? live : pool.slots;
       if (sort_stage) {
         SortStage& ss = *sort_stage;
-        ss.walk.set_args(b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
-                 sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, o, d, it, st, pool.queue, use_queue, count,
+        set_args(ss.walk, b.params, sc, o, d, it, st, pool.queue, use_queue, count,
                  LocalMemory{std::max<std::size_t>(ss.subtree.local_bytes, sizeof(KdNode))}, ss.subtree.nodes,
                  ss.code_params, ss.origin_bounds, ss.keys, ss.values, ss.traversal, ss.traversal_stack, pool.slots,
                  pool.hits);
         log.launch(cl, ss.walk, method.sort == RaySort::pth ? "pth" : "hash", count);
         ss.sort->sort(ss.keys, ss.values, count, ss.code.key_bits, &sort_seconds);
-        ss.resume.set_args(b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
-                 sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, o, d, ss.values, count, ss.traversal,
+        set_args(ss.resume, b.params, sc, o, d, ss.values, count, ss.traversal,
                  ss.traversal_stack, pool.slots, pool.hits, pool.steps);
         // the speculative kernel votes per work-group: make it one SIMD group of 32
         log.launch(cl, ss.resume, "resume", count, settings.speculative ? 32 : 64);
       } else {
-        extend.set_args(b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
-                 sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, o, d, t, r, pv, it, sg, st, pool.hits,
+        set_args(extend, b.params, sc, o, d, t, r, pv, it, sg, st, pool.hits,
                  pool.queue, use_queue, count, pool.steps);
         log.launch(cl, extend, "extend", count);
       }
       simd.set_args(pool.steps, count, pool.counters);
       log.launch(cl, simd, "simd efficiency", (count + 31) / 32);
-      shade.set_args(b.params, sc.nodes, sc.leaf_triangles, sc.triangles, sc.triangle_material, sc.materials,
-               sc.emitters, sc.triangle_uvs, sc.textures, sc.texels, o, d, t, r, pv, it, sg, st, pool.hits, pool.queue,
+      set_args(shade, b.params, sc, o, d, t, r, pv, it, sg, st, pool.hits, pool.queue,
                use_queue, count, pool.shadow_org, pool.shadow_dir, pool.shadow_contribution, pool.shadow_queue,
                pool.counters);
       log.launch(cl, shade, "shade", count);

@@ -89,6 +89,7 @@ class NodeWalker {
     const glm::dmat4 world = parent * local_transform(node);
     if (node.mesh >= 0) emitter_.emit_mesh(node.mesh, world);
     if (node.camera >= 0 && !scene_.camera) take_camera(node.camera, world);
+    take_light(node, world);
     on_path_[i] = true;
     for (int child : node.children) visit(child, world, depth + 1);
     on_path_[i] = false;
@@ -130,6 +131,50 @@ class NodeWalker {
                                 .target = glm::vec3(eye + glm::normalize(forward)),
                                 .up = glm::vec3(glm::normalize(up)),
                                 .vfov_degrees = static_cast<float>(glm::degrees(yfov))};
+  }
+
+  // KHR_lights_punctual: {"extensions": {"KHR_lights_punctual": {"light": index}}} on the node;
+  // the light sits at the node's origin and a spot shines down its local -Z.
+  void take_light(const tinygltf::Node& node, const glm::dmat4& world) {
+    const auto ext = node.extensions.find("KHR_lights_punctual");
+    if (ext == node.extensions.end() || !ext->second.Has("light")) return;
+    const tinygltf::Value& index_value = ext->second.Get("light");
+    const int index = index_value.IsInt() ? index_value.GetNumberAsInt() : -1;
+    if (index < 0 || static_cast<std::size_t>(index) >= model_.lights.size())
+      throw InputError(fmt::format("{}: KHR_lights_punctual light {} does not exist ({} lights)", file_, index,
+                                   model_.lights.size()));
+    const tinygltf::Light& l = model_.lights[static_cast<std::size_t>(index)];
+    SceneLight light;
+    light.name = l.name;
+    if (l.type == "spot") {
+      light.type = SceneLight::Type::spot;
+    } else if (l.type != "point") {
+      scene_.warnings.push_back(fmt::format("{}: {} light {} ignored (only point and spot)", file_, l.type, index));
+      return;
+    }
+    glm::dvec3 color(1.0);
+    if (l.color.size() == 3) color = glm::dvec3(l.color[0], l.color[1], l.color[2]);
+    const glm::dvec3 intensity = color * l.intensity;
+    const glm::dvec3 position(world * glm::dvec4(0, 0, 0, 1));
+    const glm::dvec3 direction(world * glm::dvec4(0, 0, -1, 0));
+    const double inner = l.spot.innerConeAngle, outer = l.spot.outerConeAngle;
+    const bool cone_ok = !(light.type == SceneLight::Type::spot) ||
+                         (inner >= 0.0 && inner < outer && outer <= glm::half_pi<double>());
+    if (!std::isfinite(position.x + position.y + position.z) || !usable_direction(direction) ||
+        !(intensity.x >= 0.0 && intensity.y >= 0.0 && intensity.z >= 0.0) ||
+        !std::isfinite(intensity.x + intensity.y + intensity.z) || !cone_ok)
+      throw InputError(fmt::format("{}: KHR_lights_punctual light {} has a non-finite or negative intensity, a "
+                                   "degenerate transform or cone angles outside 0 <= inner < outer <= pi/2",
+                                   file_, index));
+    if (l.range > 0.0)
+      scene_.warnings.push_back(fmt::format("{}: light {}: range {} ignored (inverse-square falloff everywhere)",
+                                            file_, index, l.range));
+    light.position = glm::vec3(position);
+    light.direction = glm::vec3(glm::normalize(direction));
+    light.intensity = glm::vec3(intensity);
+    light.inner_cone = static_cast<float>(inner);
+    light.outer_cone = static_cast<float>(outer);
+    scene_.lights.push_back(light);
   }
 
   const tinygltf::Model& model_;

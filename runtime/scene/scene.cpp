@@ -87,7 +87,7 @@ Scene load_scene(const std::filesystem::path& path) {
   Scene scene = read_format(path, format_extension(path));
   scene.source = path;
   check_loaded(scene, path);
-  if (scene.emissive_triangle_count() == 0)
+  if (scene.emissive_triangle_count() == 0 && scene.lights.empty())
     scene.warnings.push_back("no light: the image will be black unless an environment is set");
   return scene;
 }

@@ -45,6 +45,18 @@ struct SceneCamera {
   float vfov_degrees = 45.f;
 };
 
+// A glTF KHR_lights_punctual point or spot light placed in the world (docs/lights.md).
+struct SceneLight {
+  enum class Type { point, spot };
+  Type type = Type::point;
+  std::string name;
+  glm::vec3 position{0.f};
+  glm::vec3 direction{0.f, 0.f, -1.f};  // spot: unit, the direction it shines in (its node's -Z)
+  glm::vec3 intensity{1.f};             // colour x intensity, candela
+  float inner_cone = 0.f;               // radians, spot only
+  float outer_cone = 0.7853981634f;     // radians, spot only
+};
+
 struct Scene {
   std::filesystem::path source;
   std::vector<glm::vec3> positions;        // 3 per triangle, world space, counter-clockwise front
@@ -53,6 +65,7 @@ struct Scene {
   std::vector<SceneMaterial> materials;    // never empty once loaded
   std::vector<Texture> textures;
   std::optional<SceneCamera> camera;       // from the file, when it has one
+  std::vector<SceneLight> lights;          // punctual lights (glTF KHR_lights_punctual)
   std::vector<std::string> warnings;       // legal but odd input (no light, skipped primitives)
 
   std::size_t triangle_count() const { return positions.size() / 3; }

@@ -127,6 +127,31 @@ TEST(Cli, InfoPrintsSceneAndTree) {
     EXPECT_NE(r.output.find(word), std::string::npos) << word << "\n" << r.output;
 }
 
+TEST(Cli, BadEnvironmentMapIsExitTwoNamingTheFile) {
+  TempDir dir;
+  const fs::path garbage = dir.path / "not-really.exr";
+  std::ofstream(garbage) << "this is not an OpenEXR file";
+  for (const std::string& env : {garbage.string(), std::string("/nonexistent/sky.exr")}) {
+    const CommandResult r =
+        run("render " + scene("cornell-box.gltf") + " --res 8x8 --spp 1 --env " + env + " -o " + (dir.path / "o").string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find(fs::path(env).filename().string()), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir.path / "o.exr"));
+  }
+}
+
+TEST(Cli, EnvironmentMapRendersAndInfoCountsPunctualLights) {
+  TempDir dir;
+  const std::string sky = std::string(COHORT_SOURCE_DIR) + "/scenes/reference/sky.exr";
+  const CommandResult r = run("render " + scene("reference/envmap.gltf") + " --res 16x16 --spp 2 -v --env " + sky +
+                              " -o " + (dir.path / "o").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("kernel features: envmap"), std::string::npos) << r.output;
+  const CommandResult info = run("info " + scene("reference/punctual.gltf"));
+  ASSERT_EQ(info.code, 0) << info.output;
+  EXPECT_NE(info.output.find("1 point, 1 spot"), std::string::npos) << info.output;
+}
+
 TEST(Cli, DevicesListsPocl) {
   const CommandResult r = run("devices");
   ASSERT_EQ(r.code, 0) << r.output;

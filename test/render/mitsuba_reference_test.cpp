@@ -11,30 +11,6 @@
 using namespace cohort;
 using namespace cohort::test;
 
-namespace {
-
-struct Difference {
-  double mean = 0, standard_error = 0, reference_mean = 0;
-};
-
-// Mean difference (cohort - reference) over a block of pixels of one channel, with the standard
-// error of that mean (pixels are independent estimates).
-Difference block_difference(const Image& a, const Image& b, int x0, int y0, int w, int h, int channel) {
-  double sum = 0, sum2 = 0, ref = 0;
-  for (int y = y0; y < y0 + h; ++y)
-    for (int x = x0; x < x0 + w; ++x) {
-      const double d = double(a.pixel(x, y)[channel]) - b.pixel(x, y)[channel];
-      sum += d;
-      sum2 += d * d;
-      ref += b.pixel(x, y)[channel];
-    }
-  const double n = double(w) * h;
-  const double mean = sum / n;
-  return {mean, std::sqrt(std::max(0.0, sum2 / n - mean * mean) / (n - 1)), ref / n};
-}
-
-}  // namespace
-
 TEST(MitsubaReference, CornellBoxMatchesMitsuba3) {
   const Image reference = read_exr(std::filesystem::path(COHORT_SOURCE_DIR) / "test/reference/cornell-box-mitsuba-rgb.exr");
   ASSERT_EQ(reference.width, 128);
@@ -48,12 +24,12 @@ TEST(MitsubaReference, CornellBoxMatchesMitsuba3) {
   // the whole image, then 8 x 8 blocks: 5 standard errors each (a false alarm about once in
   // 10^4 runs over all 195 checks), plus 0.2% of the value for the reference's own noise
   for (int c = 0; c < 3; ++c) {
-    const Difference all = block_difference(r.image, reference, 0, 0, 128, 128, c);
+    const BlockDifference all = block_difference(r.image, reference, 0, 0, 128, 128, c);
     EXPECT_LT(std::abs(all.mean), 5 * all.standard_error + 2e-3 * all.reference_mean)
         << "channel " << c << ": cohort - mitsuba = " << all.mean << " of " << all.reference_mean;
     for (int by = 0; by < 8; ++by)
       for (int bx = 0; bx < 8; ++bx) {
-        const Difference d = block_difference(r.image, reference, bx * 16, by * 16, 16, 16, c);
+        const BlockDifference d = block_difference(r.image, reference, bx * 16, by * 16, 16, 16, c);
         EXPECT_LT(std::abs(d.mean), 5 * d.standard_error + 2e-3 * d.reference_mean + 1e-6)
             << "block (" << bx << ", " << by << ") channel " << c << ": " << d.mean << " of " << d.reference_mean;
       }

@@ -17,6 +17,13 @@ inline std::filesystem::path shipped_scene(const std::string& name) {
   return std::filesystem::path(COHORT_SOURCE_DIR) / "scenes" / name;
 }
 
+inline RenderResult render_prepared(const PreparedScene& prepared, const RenderSettings& settings) {
+  const ClContext cl(select_device(""));
+  const ProgramCache cache(ProgramCache::default_directory());
+  const DeviceScene scene = upload_scene(cl, prepared.tree, prepared.tables);
+  return render(cl, cache, scene, prepared.camera, settings);
+}
+
 inline RenderResult render_scene(const std::filesystem::path& path, const RenderSettings& settings) {
   const PreparedScene prepared = prepare_scene(path);
   const ClContext cl(select_device(""));
@@ -43,6 +50,27 @@ inline PixelStats channel_stats(const Image& image, int channel) {
   const double mean = sum / n;
   const double variance = std::max(0.0, (sum2 / n - mean * mean) * n / (n - 1));
   return {mean, std::sqrt(variance / n)};
+}
+
+// Mean difference (a - b) over a block of pixels of one channel, with the standard error of that
+// mean from the per-pixel spread of the difference (pixels are independent estimates), and the
+// mean of b there.
+struct BlockDifference {
+  double mean = 0, standard_error = 0, reference_mean = 0;
+};
+
+inline BlockDifference block_difference(const Image& a, const Image& b, int x0, int y0, int w, int h, int channel) {
+  double sum = 0, sum2 = 0, ref = 0;
+  for (int y = y0; y < y0 + h; ++y)
+    for (int x = x0; x < x0 + w; ++x) {
+      const double d = double(a.pixel(x, y)[channel]) - b.pixel(x, y)[channel];
+      sum += d;
+      sum2 += d * d;
+      ref += b.pixel(x, y)[channel];
+    }
+  const double n = double(w) * h;
+  const double mean = sum / n;
+  return {mean, std::sqrt(std::max(0.0, sum2 / n - mean * mean) / (n - 1)), ref / n};
 }
 
 }  // namespace cohort::test

@@ -245,5 +245,51 @@ TEST(Gltf, FirstPerspectiveCameraInNodeOrder) {
   EXPECT_NEAR(s.camera->up.y, 1.f, 1e-5f);
 }
 
+TEST(Gltf, PunctualLightsArePlacedByTheirNodes) {
+  TempDir dir;
+  GltfWriter g;
+  g.doc()["extensionsUsed"] = {"KHR_lights_punctual"};
+  g.doc()["extensions"]["KHR_lights_punctual"]["lights"] = {
+      {{"type", "point"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 8.0}},
+      {{"type", "spot"}, {"intensity", 3.0}, {"range", 10.0},
+       {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.5}}}},
+      {{"type", "directional"}}};
+  const glm::quat down = glm::angleAxis(glm::radians(-90.f), glm::vec3(1, 0, 0));  // -Z turns to -Y
+  const int point = g.node({{"translation", {1.0, 2.0, 3.0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+  const int spot = g.node({{"translation", {0.0, 5.0, 0.0}},
+                           {"rotation", {down.x, down.y, down.z, down.w}},
+                           {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+  const int sun = g.node({{"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}});
+  g.roots({point, spot, sun, g.node({{"mesh", g.mesh(g.positions(kQuad), g.indices(kQuadIndices))}})});
+  const Scene s = load_scene(g.write_gltf(dir.path(), "lights"));
+  ASSERT_EQ(s.lights.size(), 2u);
+  EXPECT_EQ(s.lights[0].type, SceneLight::Type::point);
+  EXPECT_EQ(s.lights[0].position, glm::vec3(1, 2, 3));
+  EXPECT_EQ(s.lights[0].intensity, glm::vec3(8, 4, 2));
+  EXPECT_EQ(s.lights[1].type, SceneLight::Type::spot);
+  EXPECT_NEAR(s.lights[1].direction.y, -1.f, 1e-6f);
+  EXPECT_NEAR(s.lights[1].position.y, 5.f, 1e-6f);
+  EXPECT_FLOAT_EQ(s.lights[1].inner_cone, 0.2f);
+  EXPECT_FLOAT_EQ(s.lights[1].outer_cone, 0.5f);
+  // the directional light and the range are reported, not silently dropped
+  int warnings = 0;
+  for (const auto& w : s.warnings) warnings += w.find("directional") != std::string::npos || w.find("range") != std::string::npos;
+  EXPECT_EQ(warnings, 2);
+}
+
+TEST(Gltf, BadPunctualLightsAreInputErrors) {
+  TempDir dir;
+  for (const auto& [stem, light, index] :
+       {std::tuple<std::string, json, int>{"missing", {{"type", "point"}}, 3},
+        {"cone", {{"type", "spot"}, {"spot", {{"innerConeAngle", 0.6}, {"outerConeAngle", 0.5}}}}, 0},
+        {"negative", {{"type", "point"}, {"intensity", -1.0}}, 0}}) {
+    GltfWriter g;
+    g.doc()["extensions"]["KHR_lights_punctual"]["lights"] = {light};
+    g.roots({g.node({{"extensions", {{"KHR_lights_punctual", {{"light", index}}}}}}),
+             g.node({{"mesh", g.mesh(g.positions(kQuad), g.indices(kQuadIndices))}})});
+    test::expect_input_error(g.write_gltf(dir.path(), stem), "light");
+  }
+}
+
 }  // namespace
 }  // namespace cohort
