@@ -51,7 +51,12 @@ DeviceInfo describe(const cl::Platform& platform, const cl::Device& device, std:
 std::vector<DeviceInfo> list_devices() {
   std::vector<cl::Platform> platforms;
   // The ICD loader reports CL_PLATFORM_NOT_FOUND_KHR when nothing is installed: that is "no devices".
-  if (cl::Platform::get(&platforms) != CL_SUCCESS) return {};
+  // (returned or, with CL_HPP_ENABLE_EXCEPTIONS, thrown)
+  try {
+    if (cl::Platform::get(&platforms) != CL_SUCCESS) return {};
+  } catch (const cl::Error&) {
+    return {};
+  }
   std::vector<DeviceInfo> out;
   for (std::size_t pi = 0; pi < platforms.size(); ++pi) {
     std::vector<cl::Device> devices;

@@ -200,7 +200,7 @@ int render_job(const RenderCommand& cmd_in, const MpiSession* mpi) {
   const std::size_t ranks = 1;
 #endif
   PassJob job(cmd.settings, [&](const Progress& p) { reporter.update(p); }, control,
-              pass_window(devices.size() * ranks, pixels * sizeof(co_float4)));
+              pass_window(devices.size() * ranks, pixels * sizeof(co_float4)), devices.size());
   std::vector<DeviceRun> runs;
   {
     DeviceWorkers workers(devices, cache, prepared, cmd.settings, job);

@@ -19,7 +19,7 @@ RenderResult drive_passes(const ClContext& cl, const RenderParams& base_params, 
   using Clock = std::chrono::steady_clock;
   RenderResult result;
   std::optional<PassJob> own_job;
-  PassSource& source = control.passes ? *control.passes : own_job.emplace(settings, progress, control, 1);
+  PassSource& source = control.passes ? *control.passes : own_job.emplace(settings, progress, control, 1, 1);
   const std::uint32_t pixels = settings.width * settings.height;
   PassBuffers buffers;
   buffers.params = cl.buffer("render parameters", sizeof(RenderParams), nullptr, CL_MEM_READ_ONLY);
@@ -29,6 +29,7 @@ RenderResult drive_passes(const ClContext& cl, const RenderParams& base_params, 
   RenderParams params = base_params;
   const auto t0 = Clock::now();
   std::uint32_t per_launch = 1;
+  source.device_ready();
   while (const auto sample_pass = source.next()) {
     const auto pass_start = Clock::now();
     // every pass sums from zero, so its partial film is the same on any device (pass_schedule.h)

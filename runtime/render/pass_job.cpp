@@ -34,9 +34,9 @@ std::size_t pass_window(std::size_t devices, std::size_t film_bytes) {
 }
 
 PassJob::PassJob(const RenderSettings& settings, const ProgressCallback& progress, const RenderControl& control,
-                 std::size_t window)
+                 std::size_t window, std::size_t devices)
     : settings_(settings), progress_(progress), control_(control), schedule_(make_schedule(settings, control)),
-      window_(std::max<std::size_t>(window, 1)) {
+      window_(std::max<std::size_t>(window, 1)), devices_(devices) {
   const std::size_t pixels = std::size_t(settings.width) * settings.height;
   film_.width = settings.width;
   film_.height = settings.height;
@@ -53,7 +53,14 @@ PassJob::PassJob(const RenderSettings& settings, const ProgressCallback& progres
   }
 }
 
+void PassJob::device_ready() {
+  const std::lock_guard lock(mutex_);
+  ++ready_;
+  changed_.notify_all();
+}
+
 PassJob::Offer PassJob::offer(SamplePass& pass) {
+  if (!ended_ && !aborted_ && ready_ < devices_) return Offer::wait;
   if (!ended_) {
     if (!start_) start_ = Clock::now();  // the render clock starts with the first pass, after compiling
     const double elapsed = seconds_since_start();

@@ -17,10 +17,13 @@ namespace cohort {
 
 class PassJob final : public PassSource {
  public:
-  // window: passes that may be handed out but not yet combined (bounds the partial films held)
+  // window: passes that may be handed out but not yet combined (bounds the partial films held).
+  // devices: the hand-out starts once this many devices of this process are ready, so they start
+  // together and the render clock (and --time) measures rendering, not compiling.
   PassJob(const RenderSettings& settings, const ProgressCallback& progress, const RenderControl& control,
-          std::size_t window);
+          std::size_t window, std::size_t devices);
 
+  void device_ready() override;
   std::optional<SamplePass> next() override;  // blocks while the window is full
   void deliver(PassFilm film) override;
 
@@ -49,6 +52,7 @@ class PassJob final : public PassSource {
   const RenderControl control_;
   const PassSchedule schedule_;
   const std::size_t window_;
+  const std::size_t devices_;
   std::uint32_t resumed_samples_ = 0;
 
   mutable std::mutex mutex_;
@@ -56,6 +60,7 @@ class PassJob final : public PassSource {
   std::condition_variable changed_;
   FilmState film_;
   std::map<std::uint32_t, PassFilm> waiting_;  // finished passes that wait for an earlier one
+  std::size_t ready_ = 0;                      // devices ready to render
   std::uint32_t handed_out_ = 0;               // passes [0, handed_out_) are handed out
   std::uint32_t combined_ = 0;                 // passes [0, combined_) are in film_
   bool ended_ = false;

@@ -22,6 +22,8 @@ struct PassFilm {
 class PassSource {
  public:
   virtual ~PassSource() = default;
+  // The device has its scene and programs and is about to ask for passes.
+  virtual void device_ready() {}
   // Blocks until a pass may start; nullopt when this device is done.
   virtual std::optional<SamplePass> next() = 0;
   virtual void deliver(PassFilm film) = 0;
