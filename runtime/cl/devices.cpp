@@ -113,14 +113,16 @@ DeviceInfo select_device(const std::string& spec) {
   return pick(devices, spec, std::vector<bool>(devices.size(), false));
 }
 
-std::vector<DeviceInfo> select_devices(const std::string& spec) {
+std::vector<DeviceInfo> select_devices(const std::string& spec, int local_rank) {
   const auto devices = installed_devices();
-  if (spec == "all" || spec.starts_with("all:")) {
-    const std::string needle = lower(spec.size() > 4 ? spec.substr(4) : "");
+  if (spec == "all" || spec.starts_with("all:") || spec.starts_with("rank:")) {
+    const std::size_t colon = spec.find(':');
+    const std::string needle = lower(colon == std::string::npos ? "" : spec.substr(colon + 1));
     std::vector<DeviceInfo> chosen;
     for (const auto& d : devices)
       if (name_matches(d, needle)) chosen.push_back(d);
     if (chosen.empty()) throw InputError(fmt::format("--device {}: no device name matches (see `cohort devices`)", spec));
+    if (spec.starts_with("rank:")) return {chosen[static_cast<std::size_t>(std::max(local_rank, 0)) % chosen.size()]};
     return chosen;
   }
   std::vector<bool> taken(devices.size(), false);

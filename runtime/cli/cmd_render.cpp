@@ -137,15 +137,16 @@ int render_job(const RenderCommand& cmd_in, const MpiSession* mpi) {
     throw InputError("--spp 0 needs --time SECONDS to say when to stop");
 #ifdef COHORT_HAVE_MPI
   const int rank = mpi ? mpi->rank() : 0;
+  const int local_rank = mpi ? mpi->local_rank() : 0;
   const std::string host = mpi ? mpi->host() : std::string();
 #else
-  const int rank = 0;
+  const int rank = 0, local_rank = 0;
   const std::string host;
 #endif
   // check where the outputs go before spending time on the render; only rank 0 writes
   const OutputPaths out = output_paths(rank == 0 ? cmd.output : std::string("unused"), cmd.scene);
 
-  std::vector<DeviceInfo> devices = select_devices(cmd.device);
+  std::vector<DeviceInfo> devices = select_devices(cmd.device, local_rank);
   if (cmd.memory_limit_mib > 0) {
     const auto limit = static_cast<std::uint64_t>(cmd.memory_limit_mib * 1048576.0);
     for (auto& device : devices) {

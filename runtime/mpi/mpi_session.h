@@ -18,6 +18,7 @@ class MpiSession {
 
   int rank() const { return rank_; }
   int size() const { return size_; }
+  int local_rank() const { return local_rank_; }  // among the ranks on this machine
   const std::string& host() const { return host_; }
 
   // Prints "cohort: rank R of N on HOST: message" and ends every rank of the job with `code`.
@@ -29,6 +30,7 @@ class MpiSession {
  private:
   int rank_ = 0;
   int size_ = 1;
+  int local_rank_ = 0;
   std::string host_;
 };
 

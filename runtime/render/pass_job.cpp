@@ -11,8 +11,13 @@ namespace cohort {
 namespace {
 
 PassSchedule make_schedule(const RenderSettings& s, const RenderControl& control) {
-  if (control.resume_from) return {control.resume_from->pass_samples, control.resume_from->samples, s.spp};
-  return {default_pass_samples(s.width, s.height, s.spp), 0, s.spp};
+  if (control.resume_from) {
+    if (s.pass_samples && s.pass_samples != control.resume_from->pass_samples)
+      throw InputError(fmt::format("--pass-spp {}: the checkpoint was rendered in passes of {} spp", s.pass_samples,
+                                   control.resume_from->pass_samples));
+    return {control.resume_from->pass_samples, control.resume_from->samples, s.spp};
+  }
+  return {s.pass_samples ? s.pass_samples : default_pass_samples(s.width, s.height, s.spp), 0, s.spp};
 }
 
 }  // namespace

@@ -5,12 +5,13 @@
 namespace cohort {
 
 std::uint32_t default_pass_samples(std::uint32_t width, std::uint32_t height, std::uint32_t spp) {
-  constexpr std::uint64_t kMaxPassSamples = 1u << 24;
-  constexpr std::uint32_t kMinPasses = 64;
+  constexpr std::uint64_t kFullLaunch = 1u << 20, kMostPerPass = 1u << 22, kTimed = 1u << 18;
+  constexpr std::uint32_t kPasses = 16;
   const std::uint64_t pixels = std::max<std::uint64_t>(std::uint64_t(width) * height, 1);
-  const auto cap = static_cast<std::uint32_t>(std::max<std::uint64_t>(kMaxPassSamples / pixels, 1));
-  if (spp == 0) return cap;
-  return std::clamp((spp + kMinPasses - 1) / kMinPasses, 1u, cap);
+  const auto least = static_cast<std::uint32_t>(std::max<std::uint64_t>((kFullLaunch + pixels - 1) / pixels, 1));
+  const auto most = static_cast<std::uint32_t>(std::max<std::uint64_t>(kMostPerPass / pixels, 1));
+  if (spp == 0) return static_cast<std::uint32_t>(std::max<std::uint64_t>(kTimed / pixels, 1));
+  return std::clamp((spp + kPasses - 1) / kPasses, std::min(least, most), most);
 }
 
 PassSchedule::PassSchedule(std::uint32_t pass_samples, std::uint32_t first_sample, std::uint32_t spp)

@@ -16,8 +16,10 @@ struct SamplePass {
   std::uint32_t samples = 0;
 };
 
-// At least 64 passes when the sample count allows it (load balance over devices and ranks), at
-// most 2^24 samples per pass (a transfer of the partial film per pass stays cheap next to it).
+// Passes of 1-4 M samples: at least 16 passes when that keeps each above ~1 M samples (load
+// balance over devices and ranks), never more than ~4 M samples (a wavefront launch's result
+// buffer, and where per-pass overhead is already negligible), at least one sample per pixel.
+// spp 0 (a time limit ends the render): ~256 K samples, so the limit is not overshot by much.
 std::uint32_t default_pass_samples(std::uint32_t width, std::uint32_t height, std::uint32_t spp);
 
 class PassSchedule {

@@ -13,7 +13,8 @@ int run_cohort(const std::vector<std::string>& args) { return wait_exit(spawn(CO
 
 std::vector<std::string> render_args(const fs::path& out, const char* method) {
   return {"render", std::string(COHORT_SOURCE_DIR) + "/scenes/cornell-box.gltf", "--res", "64x64", "--spp", "256",
-          "--seed", "9", "--method", method, "-o", out.string()};
+          "--seed", "9", "--method", method, "-o", out.string(),
+          "--pass-spp", "4"};  // 64 passes: an interrupt lands between two
 }
 
 }  // namespace

@@ -16,7 +16,7 @@ const std::string kTwoDevices = "POCL_DEVICES=pthread pthread";
 
 std::string render_line(const fs::path& out, const std::string& method, const std::string& extra = "") {
   return std::string(COHORT_BINARY) + " render " + shipped_scene("cornell-box.gltf") +
-         " --res 32x32 --spp 64 --seed 5 --max-depth 6 --method " + method + " -o " + out.string() + " " + extra;
+         " --res 32x32 --spp 64 --pass-spp 1 --seed 5 --max-depth 6 --method " + method + " -o " + out.string() + " " + extra;
 }
 
 // Skips (returns false) where the OpenCL platform does not give two devices for POCL_DEVICES.
@@ -60,10 +60,10 @@ TEST(TwoDevicesCheckpoint, InterruptedAndResumedEqualsOneDevice) {
   if (!two_devices_present()) GTEST_SKIP() << "POCL_DEVICES=\"pthread pthread\" does not give two devices here";
   TempDir dir("cohort-multi-");
   const std::vector<std::string> args = {"render", shipped_scene("cornell-box.gltf"), "--res", "64x64", "--spp",
-                                         "256", "--seed", "9", "--device", "all", "-o", (dir.path / "part").string(),
+                                         "256", "--pass-spp", "4", "--seed", "9", "--device", "all", "-o", (dir.path / "part").string(),
                                          "--checkpoint", "0.05"};
   const CommandResult one = run_shell(std::string(COHORT_BINARY) + " render " + shipped_scene("cornell-box.gltf") +
-                                      " --res 64x64 --spp 256 --seed 9 -o " + (dir.path / "one").string());
+                                      " --res 64x64 --spp 256 --pass-spp 4 --seed 9 -o " + (dir.path / "one").string());
   ASSERT_EQ(one.code, 0) << one.output;
   const pid_t pid = spawn(COHORT_BINARY, args, "", {kTwoDevices});
   wait_for_file(dir.path / "part.checkpoint");

@@ -32,9 +32,11 @@ std::vector<std::string> mpirun_args(const std::vector<std::string>& cohort_args
   return a;
 }
 
-std::vector<std::string> render_args(const fs::path& out, const std::string& method, const std::string& spp) {
-  return {"render", shipped_scene("cornell-box.gltf"), "--res", "64x64", "--spp", spp, "--seed", "9", "--method",
-          method, "-o", out.string()};
+// Passes of `pass_spp` samples per pixel: many passes, so both ranks take some and a kill lands between two.
+std::vector<std::string> render_args(const fs::path& out, const std::string& method, const std::string& spp,
+                                     const std::string& pass_spp = "1") {
+  return {"render", shipped_scene("cornell-box.gltf"), "--res", "64x64", "--spp", spp, "--pass-spp", pass_spp,
+          "--seed", "9", "--method", method, "-o", out.string()};
 }
 
 std::string host_name() {
@@ -82,6 +84,8 @@ TEST_P(MpiRender, TwoRanksGiveTheSingleProcessImageBitForBit) {
     for (const auto& d : rank["devices"]) passes += d["passes"].get<std::uint64_t>();
   }
   EXPECT_EQ(passes, 32u) << "every pass rendered once, by one rank";
+  for (const auto& rank : stats["ranks"])
+    EXPECT_GT(rank["devices"][0]["passes"].get<int>(), 0) << "both ranks take passes";
   EXPECT_FALSE(fs::exists(dir.path / "two.exr.tmp"));
 }
 
@@ -90,9 +94,9 @@ INSTANTIATE_TEST_SUITE_P(Methods, MpiRender, ::testing::Values("naive", "pth"));
 TEST(MpiFailure, AKilledRankEndsTheJobAndTheResumedJobGivesTheSameImage) {
   if (const auto why = skip_reason(); !why.empty()) GTEST_SKIP() << why;
   TempDir dir("cohort-mpi-");
-  ASSERT_EQ(wait_exit(spawn(COHORT_BINARY, render_args(dir.path / "one", "naive", "512"))).value_or(-1), 0);
+  ASSERT_EQ(wait_exit(spawn(COHORT_BINARY, render_args(dir.path / "one", "naive", "512", "8"))).value_or(-1), 0);
 
-  auto args = render_args(dir.path / "job", "naive", "512");
+  auto args = render_args(dir.path / "job", "naive", "512", "8");
   args.insert(args.end(), {"--checkpoint", "0.05"});
   const std::string log = (dir.path / "killed.log").string();
   const pid_t mpirun = spawn("mpirun", mpirun_args(args), log);
