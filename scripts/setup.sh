@@ -23,6 +23,7 @@ COHORT_PACKAGES=(
   libtbb-dev                        # parallel KD-tree build
   zlib1g-dev                        # .gz scenes
   libgtest-dev                      # tests
+  openmpi-bin libopenmpi-dev        # mpirun cohort render: several machines (optional at build time)
 )
 
 cohort_install_packages() {

@@ -57,8 +57,9 @@ nlohmann::json rank_json(int rank, const std::string& host, const PreparedScene&
 }
 
 nlohmann::json stats_json(const RenderCommand& cmd, const nlohmann::json& ranks, const PreparedScene& prepared,
-                          const RenderResult& r, const OutputPaths& out) {
+                          const RenderResult& r, const OutputPaths& out, const PassJob::ImageMean& mean) {
   nlohmann::json j;
+  j["image_mean"] = {{"rgb", mean.mean}, {"standard_error", mean.standard_error}};
   j["scene"] = cmd.scene.string();
   j["method"] = cmd.settings.method;
   nlohmann::json devices = nlohmann::json::array();
@@ -284,7 +285,7 @@ int render_job(const RenderCommand& cmd_in, const MpiSession* mpi) {
   fmt::print("wrote {}\nwrote {}\n", out.exr.string(), out.png.string());
   if (cmd.checkpoint || cmd.resume) fmt::print("wrote {}\n", out.checkpoint.string());
   if (!cmd.stats_file.empty()) {
-    write_file_atomically(cmd.stats_file, stats_json(cmd, rank_figures, prepared, result, out).dump(2) + "\n");
+    write_file_atomically(cmd.stats_file, stats_json(cmd, rank_figures, prepared, result, out, job.image_mean()).dump(2) + "\n");
     fmt::print("wrote {}\n", cmd.stats_file);
   }
   if (result.interrupted) {

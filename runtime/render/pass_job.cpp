@@ -1,6 +1,7 @@
 #include "runtime/render/pass_job.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 
@@ -105,12 +106,18 @@ PassJob::Offer PassJob::try_next(SamplePass& pass) {
 
 void PassJob::combine(const PassFilm& f) {
   // the same float additions whichever device or rank rendered the pass: this order is the image
+  std::array<double, 4> mean{0, 0, 0, double(f.pass.samples)};
   for (std::size_t i = 0; i < film_.sums.size(); ++i) {
     film_.sums[i].x += f.sums[i].x;
     film_.sums[i].y += f.sums[i].y;
     film_.sums[i].z += f.sums[i].z;
     film_.sums[i].w += f.sums[i].w;
+    mean[0] += f.sums[i].x;
+    mean[1] += f.sums[i].y;
+    mean[2] += f.sums[i].z;
   }
+  for (int c = 0; c < 3; ++c) mean[c] /= std::max(1.0, double(f.sums.size()) * f.pass.samples);
+  pass_means_.push_back(mean);
   film_.samples = f.pass.first_sample + f.pass.samples;
   film_.dropped_samples += f.dropped;
 }
@@ -161,6 +168,23 @@ FilmState PassJob::finish() {
   if (aborted_) throw DeviceError("the render was aborted");
   if (control_.checkpoint) control_.checkpoint(film_);
   return film_;
+}
+
+PassJob::ImageMean PassJob::image_mean() const {
+  const std::lock_guard lock(mutex_);
+  ImageMean result;
+  double samples = 0;
+  for (const auto& m : pass_means_) samples += m[3];
+  if (samples <= 0) return result;
+  for (int c = 0; c < 3; ++c) {
+    for (const auto& m : pass_means_) result.mean[c] += m[c] * m[3] / samples;
+    if (pass_means_.size() < 2) continue;
+    double spread = 0;
+    for (const auto& m : pass_means_) spread += m[3] / samples * (m[c] - result.mean[c]) * (m[c] - result.mean[c]);
+    const double k = double(pass_means_.size());
+    result.standard_error[c] = std::sqrt(spread * k / (k - 1) / k);
+  }
+  return result;
 }
 
 bool PassJob::interrupted() const {

@@ -4,6 +4,7 @@
 // so every pass handed out is combined and the film always ends at a pass boundary.
 #pragma once
 
+#include <array>
 #include <chrono>
 #include <condition_variable>
 #include <cstddef>
@@ -36,6 +37,13 @@ class PassJob final : public PassSource {
   bool finished() const;  // nothing more will be handed out and everything handed out is combined
   FilmState finish();     // waits until finished (after next() said no more), saves the final checkpoint
 
+  // The image's mean radiance and its standard error from the spread of the passes' means (batch
+  // means): the yardstick for renders that cannot agree bit for bit (different kinds of device).
+  struct ImageMean {
+    std::array<double, 3> mean{}, standard_error{};
+  };
+  ImageMean image_mean() const;  // over the passes of this run (not those of a resumed checkpoint)
+
   std::uint32_t resumed_samples() const { return resumed_samples_; }
   bool interrupted() const;
   std::uint64_t rays() const;
@@ -67,6 +75,7 @@ class PassJob final : public PassSource {
   bool aborted_ = false;
   bool interrupted_ = false;
   std::uint64_t rays_ = 0;
+  std::vector<std::array<double, 4>> pass_means_;  // per combined pass: mean r, g, b and its samples
   double last_checkpoint_ = 0;
 };
 

@@ -1,6 +1,7 @@
 // The pass schedule and the job that shares passes out and adds their films in pass order.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <thread>
 
@@ -118,4 +119,17 @@ TEST(PassJob, AResumedJobContinuesTheCheckpointsSchedule) {
   EXPECT_EQ(p->first_sample, 6u);
   EXPECT_EQ(p->samples, 3u);
   EXPECT_THROW(PassJob(settings(2, 2, 12, 2), {}, control, 8, 0), std::exception) << "other --pass-spp";
+}
+
+TEST(PassJob, TheImageMeanAndItsStandardErrorComeFromThePassMeans) {
+  PassJob job(settings(1, 1, 4, 1), {}, {}, 8, 0);
+  for (const float v : {1.f, 3.f, 1.f, 3.f}) {
+    const auto p = job.next();
+    job.deliver(PassFilm{*p, {co_float4{v, 2 * v, 0, 0}}, 0, 0});
+  }
+  const auto m = job.image_mean();
+  EXPECT_DOUBLE_EQ(m.mean[0], 2.0);
+  EXPECT_DOUBLE_EQ(m.mean[1], 4.0);
+  EXPECT_DOUBLE_EQ(m.standard_error[0], std::sqrt(4.0 / 3.0 / 4.0));  // sample sd of {1,3,1,3} over sqrt(4)
+  EXPECT_DOUBLE_EQ(m.standard_error[2], 0.0);
 }
