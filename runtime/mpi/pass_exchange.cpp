@@ -136,7 +136,7 @@ void run_assigned_passes(AssignedPasses& passes, std::size_t pixels) {
   for (;;) {
     std::unique_lock lock(passes.mutex_);
     if (passes.aborted_) return;  // the failing device's exception is rethrown by DeviceWorkers::join
-    if (ended && passes.rendering_ == 0 && passes.finished_.empty()) return;
+    if (ended && passes.assigned_.empty() && passes.rendering_ == 0 && passes.finished_.empty()) return;
     // one pass waiting per device keeps each busy across the round trip to rank 0
     const bool want = !ended && !asked && passes.assigned_.size() < passes.devices_;
     std::deque<PassFilm> to_send;
