@@ -125,12 +125,8 @@ std::uint64_t render_fingerprint(const RenderCommand& cmd, const PreparedScene& 
   return fnv1a64(text);
 }
 
-}  // namespace
-
-namespace {
-
 // The render of one process: alone, or one rank of an MPI job when `mpi` is given.
-int render_job(const RenderCommand& cmd_in, const MpiSession* mpi) {
+int render_job(const RenderCommand& cmd_in, [[maybe_unused]] const MpiSession* mpi) {
   RenderCommand cmd = cmd_in;
   std::tie(cmd.settings.width, cmd.settings.height) = parse_resolution(cmd.resolution);
   if (!cmd.environment.empty()) cmd.settings.environment = parse_rgb("--env", cmd.environment);
