@@ -5,9 +5,6 @@
 #include <optional>
 #include <vector>
 
-#include <fmt/format.h>
-
-#include "runtime/cl/cl_error.h"
 #include "runtime/render/launch_log.h"
 #include "runtime/render/pass_job.h"
 
