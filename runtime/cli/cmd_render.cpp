@@ -2,6 +2,9 @@
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+
+#include <array>
 #include <fstream>
 
 #include "runtime/cl/devices.h"
@@ -30,6 +33,11 @@ namespace {
 #ifndef COHORT_HAVE_MPI
 class MpiSession {};  // never made: without MPI every render is one process
 #endif
+
+std::string this_host() {
+  std::array<char, 256> name{};
+  return gethostname(name.data(), name.size() - 1) == 0 ? std::string(name.data()) : std::string();
+}
 
 // One device's share of the render: passes, rays, rays/s while busy, busy time.
 nlohmann::json device_json(const DeviceRun& run) {
@@ -135,10 +143,10 @@ int render_job(const RenderCommand& cmd_in, [[maybe_unused]] const MpiSession* m
 #ifdef COHORT_HAVE_MPI
   const int rank = mpi ? mpi->rank() : 0;
   const int local_rank = mpi ? mpi->local_rank() : 0;
-  const std::string host = mpi ? mpi->host() : std::string();
+  const std::string host = mpi ? mpi->host() : this_host();
 #else
   const int rank = 0, local_rank = 0;
-  const std::string host;
+  const std::string host = this_host();
 #endif
   // check where the outputs go before spending time on the render; only rank 0 writes
   const OutputPaths out = output_paths(rank == 0 ? cmd.output : std::string("unused"), cmd.scene);
