@@ -24,6 +24,7 @@ COHORT_PACKAGES=(
   zlib1g-dev                        # .gz scenes
   libgtest-dev                      # tests
   python3-venv                      # the venv of scripts/reference (Mitsuba, FLIP, matplotlib from PyPI)
+  openmpi-bin libopenmpi-dev        # mpirun cohort render: several machines (optional at build time)
 )
 # Wanted but not needed to build and test: installed when apt can, else the feature is skipped.
 COHORT_OPTIONAL_PACKAGES=(

@@ -51,7 +51,12 @@ DeviceInfo describe(const cl::Platform& platform, const cl::Device& device, std:
 std::vector<DeviceInfo> list_devices() {
   std::vector<cl::Platform> platforms;
   // The ICD loader reports CL_PLATFORM_NOT_FOUND_KHR when nothing is installed: that is "no devices".
-  if (cl::Platform::get(&platforms) != CL_SUCCESS) return {};
+  // (returned or, with CL_HPP_ENABLE_EXCEPTIONS, thrown)
+  try {
+    if (cl::Platform::get(&platforms) != CL_SUCCESS) return {};
+  } catch (const cl::Error&) {
+    return {};
+  }
   std::vector<DeviceInfo> out;
   for (std::size_t pi = 0; pi < platforms.size(); ++pi) {
     std::vector<cl::Device> devices;
@@ -65,10 +70,21 @@ std::vector<DeviceInfo> list_devices() {
   return out;
 }
 
-DeviceInfo select_device(const std::string& spec) {
+namespace {
+
+bool name_matches(const DeviceInfo& d, const std::string& needle) {
+  return lower(d.name).find(needle) != std::string::npos || lower(d.platform_name).find(needle) != std::string::npos;
+}
+
+std::vector<DeviceInfo> installed_devices() {
   auto devices = list_devices();
   if (devices.empty())
     throw InputError("no OpenCL device found: install an OpenCL driver (Debian: pocl-opencl-icd)");
+  return devices;
+}
+
+// select_device's rule over `devices`, skipping those already `taken`.
+DeviceInfo pick(const std::vector<DeviceInfo>& devices, const std::string& spec, const std::vector<bool>& taken) {
   if (spec.empty()) {
     for (const auto& d : devices)
       if (d.is_gpu) return d;
@@ -85,9 +101,45 @@ DeviceInfo select_device(const std::string& spec) {
   }
   const auto needle = lower(spec);
   for (const auto& d : devices)
-    if (lower(d.name).find(needle) != std::string::npos || lower(d.platform_name).find(needle) != std::string::npos)
-      return d;
-  throw InputError(fmt::format("--device {}: no device name matches (see `cohort devices`)", spec));
+    if (!taken[d.device_index] && name_matches(d, needle)) return d;
+  throw InputError(fmt::format("--device {}: no {}device name matches (see `cohort devices`)", spec,
+                               std::count(taken.begin(), taken.end(), true) ? "other " : ""));
+}
+
+}  // namespace
+
+DeviceInfo select_device(const std::string& spec) {
+  const auto devices = installed_devices();
+  return pick(devices, spec, std::vector<bool>(devices.size(), false));
+}
+
+std::vector<DeviceInfo> select_devices(const std::string& spec, int local_rank) {
+  const auto devices = installed_devices();
+  if (spec == "all" || spec.starts_with("all:") || spec.starts_with("rank:")) {
+    const std::size_t colon = spec.find(':');
+    const std::string needle = lower(colon == std::string::npos ? "" : spec.substr(colon + 1));
+    std::vector<DeviceInfo> chosen;
+    for (const auto& d : devices)
+      if (name_matches(d, needle)) chosen.push_back(d);
+    if (chosen.empty()) throw InputError(fmt::format("--device {}: no device name matches (see `cohort devices`)", spec));
+    if (spec.starts_with("rank:")) return {chosen[static_cast<std::size_t>(std::max(local_rank, 0)) % chosen.size()]};
+    return chosen;
+  }
+  std::vector<bool> taken(devices.size(), false);
+  std::vector<DeviceInfo> chosen;
+  std::size_t start = 0;
+  do {
+    const std::size_t comma = spec.find(',', start);
+    const std::string item = spec.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (item.empty() && spec.find(',') != std::string::npos)
+      throw InputError(fmt::format("--device {}: an empty item in the list", spec));
+    DeviceInfo d = pick(devices, item, taken);
+    if (taken[d.device_index]) throw InputError(fmt::format("--device {}: device {} is listed twice", spec, item));
+    taken[d.device_index] = true;
+    chosen.push_back(std::move(d));
+    start = comma == std::string::npos ? std::string::npos : comma + 1;
+  } while (start != std::string::npos);
+  return chosen;
 }
 
 }  // namespace cohort

@@ -36,4 +36,12 @@ std::vector<DeviceInfo> list_devices();
 // case-insensitive substring of the device or platform name. Throws InputError when nothing matches.
 DeviceInfo select_device(const std::string& spec);
 
+// Several devices: "all" (every device), "all:NAME" (every device whose device or platform name
+// contains NAME), "rank:NAME" (of the devices matching NAME, the one at this process's rank among
+// the MPI ranks of its machine, modulo their count: one GPU per rank), or a comma list of single
+// specs as select_device takes them, each naming a different device (a repeated name picks the
+// next device that matches). One spec without a comma is select_device's choice. Throws
+// InputError when an item matches nothing new.
+std::vector<DeviceInfo> select_devices(const std::string& spec, int local_rank = 0);
+
 }  // namespace cohort

@@ -23,7 +23,9 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
                  "Path segments, as Mitsuba's max_depth (1 = emitters seen directly); 0 = unbounded");
   cmd.add_option("--rr-depth", r.settings.rr_depth, "First segment where Russian roulette may end a path");
   cmd.add_option("--seed", r.settings.seed, "Random seed: the same seed gives the same image");
-  cmd.add_option("--device", r.device, "Device index or name substring (see `cohort devices`)");
+  cmd.add_option("--device", r.device,
+                 "Device index or name substring (see `cohort devices`); several: all, all:NAME, a comma list, or "
+                 "rank:NAME (under MPI, one matching device per rank of a machine)");
   cmd.add_option("--backend", r.backend, "Device backend: opencl or cuda (the same kernels either way)")
       ->check(CLI::IsMember({"opencl", "cuda"}));
   cmd.add_option("--method", r.settings.method, "Rendering method: " + fmt::format("{}", fmt::join(method_names(), ", ")))
@@ -37,6 +39,10 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
       ->check(CLI::Range(1, 16));
   cmd.add_flag("--speculative", r.settings.speculative,
                "hash/pth: speculative resumed traversal (leaf tests wait until the SIMD group agrees)");
+  cmd.add_option("--pass-spp", r.settings.pass_samples,
+                 "Samples per pixel in one pass, the unit devices and ranks share (default: 1-4 M samples a pass); "
+                 "the image depends on it, never on the devices")
+      ->check(CLI::PositiveNumber);
   cmd.add_option("--time", r.settings.time_limit, "Stop after this many seconds of rendering")
       ->check(CLI::NonNegativeNumber);
   cmd.add_option("--env", r.environment, "Environment: constant radiance R,G,B (or one value), or an equirectangular map FILE.exr");

@@ -2,6 +2,9 @@
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+
+#include <array>
 #include <fstream>
 
 #include "runtime/backend/open_device.h"
@@ -19,17 +22,66 @@
 #include "runtime/util/hash.h"
 #include "runtime/cli/interrupt.h"
 #include "runtime/render/checkpoint.h"
+#include "runtime/render/multi_device.h"
+#include "runtime/render/pass_job.h"
+#ifdef COHORT_HAVE_MPI
+#include "runtime/mpi/pass_exchange.h"
+#endif
 
 namespace cohort {
 namespace {
 
-nlohmann::json stats_json(const RenderCommand& cmd, const DeviceInfo& device, const PreparedScene& prepared,
-                          const RenderResult& r, const OutputPaths& out) {
+#ifndef COHORT_HAVE_MPI
+class MpiSession {};  // never made: without MPI every render is one process
+#endif
+
+std::string this_host() {
+  std::array<char, 256> name{};
+  return gethostname(name.data(), name.size() - 1) == 0 ? std::string(name.data()) : std::string();
+}
+
+// One device's share of the render: passes, rays, rays/s while busy, busy time.
+nlohmann::json device_json(const DeviceRun& run) {
+  const RenderResult& r = run.result;
+  return {{"name", run.device.name}, {"platform", run.device.platform_name}, {"driver", run.device.driver_version},
+          {"compute_units", run.device.compute_units}, {"passes", r.passes}, {"samples", r.samples},
+          {"rays", r.rays}, {"rays_per_second", r.busy_seconds > 0 ? double(r.rays) / r.busy_seconds : 0.0},
+          {"busy_seconds", r.busy_seconds}, {"upload_seconds", run.upload_seconds},
+          {"compile_seconds", r.compile_seconds}};
+}
+
+// One process's serial part (load, build) beside its render time, so scaling losses are visible.
+nlohmann::json rank_json(int rank, const std::string& host, const PreparedScene& prepared,
+                         const std::vector<DeviceRun>& runs) {
+  nlohmann::json devices = nlohmann::json::array();
+  double render_seconds = 0, compile_seconds = 0;
+  for (const auto& run : runs) {
+    devices.push_back(device_json(run));
+    render_seconds = std::max(render_seconds, run.result.render_seconds);
+    compile_seconds = std::max(compile_seconds, run.result.compile_seconds);
+  }
+  return {{"rank", rank}, {"host", host}, {"load_seconds", prepared.load_seconds},
+          {"build_seconds", prepared.tree.stats.build_seconds}, {"compile_seconds", compile_seconds},
+          {"render_seconds", render_seconds}, {"devices", devices}};
+}
+
+nlohmann::json stats_json(const RenderCommand& cmd, const nlohmann::json& ranks, const PreparedScene& prepared,
+                          const RenderResult& r, const OutputPaths& out, const PassJob::ImageMean& mean) {
   nlohmann::json j;
+  j["image_mean"] = {{"rgb", mean.mean}, {"standard_error", mean.standard_error}};
   j["scene"] = cmd.scene.string();
   j["method"] = cmd.settings.method;
-  j["device"] = {{"backend", cmd.backend}, {"name", device.name}, {"platform", device.platform_name}, {"driver", device.driver_version},
-                 {"compute_units", device.compute_units}};
+  nlohmann::json devices = nlohmann::json::array();
+  for (const auto& rank : ranks)
+    for (auto d : rank["devices"]) {
+      d["rank"] = rank["rank"];
+      devices.push_back(d);
+    }
+  j["backend"] = cmd.backend;
+  j["device"] = devices.at(0);  // the first device, as before several devices
+  j["devices"] = devices;
+  j["ranks"] = ranks;
+  j["passes"] = r.passes;
   j["image"] = {{"width", cmd.settings.width}, {"height", cmd.settings.height}, {"spp", r.samples},
                 {"exr", out.exr.string()}, {"png", out.png.string()}};
   j["settings"] = {{"max_depth", cmd.settings.max_depth}, {"rr_depth", cmd.settings.rr_depth},
@@ -89,23 +141,47 @@ std::uint64_t render_fingerprint(const RenderCommand& cmd, const PreparedScene& 
   return fnv1a64(text);
 }
 
-}  // namespace
-
-int run_render(const RenderCommand& cmd_in) {
+// The render of one process: alone, or one rank of an MPI job when `mpi` is given.
+int render_job(const RenderCommand& cmd_in, [[maybe_unused]] const MpiSession* mpi) {
   RenderCommand cmd = cmd_in;
   std::tie(cmd.settings.width, cmd.settings.height) = parse_resolution(cmd.resolution);
   const bool env_map = is_environment_map_path(cmd.environment);
   if (!cmd.environment.empty() && !env_map) cmd.settings.environment = parse_rgb("--env", cmd.environment);
   if (cmd.settings.spp == 0 && cmd.settings.time_limit <= 0)
     throw InputError("--spp 0 needs --time SECONDS to say when to stop");
-  // check where the outputs go before spending time on the render
-  const OutputPaths out = output_paths(cmd.output, cmd.scene);
+#ifdef COHORT_HAVE_MPI
+  const int rank = mpi ? mpi->rank() : 0;
+  const int local_rank = mpi ? mpi->local_rank() : 0;
+  const std::string host = mpi ? mpi->host() : this_host();
+#else
+  const int rank = 0, local_rank = 0;
+  const std::string host = this_host();
+#endif
+  // check where the outputs go before spending time on the render; only rank 0 writes
+  const OutputPaths out = output_paths(rank == 0 ? cmd.output : std::string("unused"), cmd.scene);
 
   const auto memory_limit =
       cmd.memory_limit_mib > 0 ? static_cast<std::uint64_t>(cmd.memory_limit_mib * 1048576.0) : std::uint64_t(0);
-  const std::unique_ptr<Device> opened = open_device(parse_backend(cmd.backend), cmd.device, memory_limit);
-  const Device& cl = *opened;
-  const DeviceInfo& device = cl.info();
+  const Backend backend = parse_backend(cmd.backend);
+  std::vector<DeviceInfo> devices;
+  DeviceOpener open_devices;
+  if (backend == Backend::opencl) {
+    devices = select_devices(cmd.device, local_rank);
+    if (memory_limit) {
+      for (auto& device : devices) {
+        device.global_memory = std::min(device.global_memory, memory_limit);
+        device.max_allocation = std::min(device.max_allocation, memory_limit);
+      }
+    }
+    open_devices = opencl_opener(devices);
+  } else {
+    // CUDA renders on one GPU per process (several through MPI ranks); opened here once so a
+    // missing GPU is an error before the scene loads, and again on the worker thread that uses it
+    devices.push_back(open_device(backend, cmd.device, memory_limit)->info());
+    open_devices = [backend, spec = cmd.device, memory_limit](std::size_t) {
+      return open_device(backend, spec, memory_limit);
+    };
+  }
   PreparedScene prepared = prepare_scene(cmd.scene);
   if (env_map) set_environment_map(prepared.tables, load_environment_map(cmd.environment));
   if (cmd.white_sky) apply_white_sky(prepared, cmd.settings);
@@ -113,13 +189,31 @@ int run_render(const RenderCommand& cmd_in) {
     prepared.camera = camera_from_bounds(prepared.scene.bounds(), parse_six("--camera-bounds", cmd.camera_bounds),
                                          prepared.camera.vfov_degrees);
   if (cmd.fov > 0) prepared.camera.vfov_degrees = cmd.fov;
-  for (const auto& w : prepared.scene.warnings) fmt::print(stderr, "warning: {}: {}\n", cmd.scene.string(), w);
-  if (prepared.tree.stats.dropped_triangles)
-    fmt::print(stderr, "warning: {}: dropped {} degenerate or non-finite triangles\n", cmd.scene.string(),
-               prepared.tree.stats.dropped_triangles);
+  if (rank == 0) {
+    for (const auto& w : prepared.scene.warnings) fmt::print(stderr, "warning: {}: {}\n", cmd.scene.string(), w);
+    if (prepared.tree.stats.dropped_triangles)
+      fmt::print(stderr, "warning: {}: dropped {} degenerate or non-finite triangles\n", cmd.scene.string(),
+                 prepared.tree.stats.dropped_triangles);
+  }
 
   const ProgramCache cache(cmd.no_cache ? std::nullopt : std::optional(ProgramCache::default_directory()));
-  const DeviceScene device_scene = upload_scene(cl, prepared.tree, prepared.tables);
+  const std::size_t pixels = std::size_t(cmd.settings.width) * cmd.settings.height;
+  const InterruptGuard interrupt;  // on every rank: rank 0 decides when to stop, the others finish their passes
+#ifdef COHORT_HAVE_MPI
+  if (rank != 0) {
+    AssignedPasses passes(devices.size());
+    DeviceWorkers workers(devices, open_devices, cache, prepared, cmd.settings, passes);
+    try {
+      run_assigned_passes(passes, pixels);
+    } catch (...) {
+      passes.abort();
+      throw;
+    }
+    mpi->gather(rank_json(rank, host, prepared, workers.join()).dump());
+    return 0;
+  }
+#endif
+
   const std::uint64_t fingerprint = render_fingerprint(cmd, prepared);
   RenderControl control;
   if (cmd.resume) control.resume_from = load_checkpoint(out.checkpoint, fingerprint);
@@ -128,19 +222,69 @@ int run_render(const RenderCommand& cmd_in) {
     control.checkpoint_seconds = cmd.checkpoint_seconds;
     control.checkpoint = [&](const FilmState& film) { save_checkpoint(out.checkpoint, fingerprint, film); };
   }
-  const InterruptGuard interrupt;
   control.stop_requested = [&] { return interrupt.requested(); };
   ProgressReporter reporter(stderr);
-  const RenderResult result = render(cl, cache, device_scene, prepared.camera, cmd.settings,
-                                     [&](const Progress& p) { reporter.update(p); }, control);
+#ifdef COHORT_HAVE_MPI
+  const std::size_t ranks = mpi ? static_cast<std::size_t>(mpi->size()) : 1;
+#else
+  const std::size_t ranks = 1;
+#endif
+  PassJob job(cmd.settings, [&](const Progress& p) { reporter.update(p); }, control,
+              pass_window(devices.size() * ranks, pixels * sizeof(co_float4)), devices.size());
+  std::vector<DeviceRun> runs;
+  {
+    DeviceWorkers workers(devices, open_devices, cache, prepared, cmd.settings, job);
+#ifdef COHORT_HAVE_MPI
+    if (mpi) {
+      try {
+        serve_passes(*mpi, job, pixels);
+      } catch (...) {
+        job.abort();
+        throw;
+      }
+    }
+#endif
+    runs = workers.join();
+  }
+  const FilmState film = job.finish();
   reporter.finish();
+  RenderResult result = merge_device_results(runs);
+  result.image = film_image(film);
+  result.samples = film.samples;
+  result.resumed_samples = job.resumed_samples();
+  result.dropped_samples = film.dropped_samples;
+  result.interrupted = job.interrupted();
+  result.render_seconds = job.seconds();
+  result.rays = job.rays();  // every rank's rays
+
+  nlohmann::json rank_figures = nlohmann::json::array();
+  rank_figures.push_back(rank_json(0, host, prepared, runs));
+#ifdef COHORT_HAVE_MPI
+  if (mpi) {
+    const auto texts = mpi->gather(rank_figures[0].dump());
+    for (std::size_t r = 1; r < texts.size(); ++r) rank_figures.push_back(nlohmann::json::parse(texts[r]));
+  }
+#endif
+
+  std::size_t device_count = 0;
+  result.passes = 0;
+  for (const auto& rank_entry : rank_figures)
+    for (const auto& d : rank_entry["devices"]) {
+      ++device_count;
+      result.passes += d["passes"].get<std::uint32_t>();
+    }
 
   write_exr(out.exr, result.image);
   write_png(out.png, result.image);
   const double mrays = result.render_seconds > 0 ? double(result.rays) / result.render_seconds * 1e-6 : 0;
   if (cmd.verbose) {
     const auto& ts = prepared.tree.stats;
-    fmt::print("device: {} ({})\n", device.name, device.platform_name);
+    for (const auto& rank_entry : rank_figures)
+      for (const auto& d : rank_entry["devices"])
+        fmt::print("device{}: {} ({}): {} passes, {:.3f}s busy, {:.2f} Mrays/s\n",
+                   ranks > 1 ? fmt::format(" (rank {})", rank_entry["rank"].get<int>()) : std::string(),
+                   d["name"].get<std::string>(), d["platform"].get<std::string>(), d["passes"].get<std::uint32_t>(),
+                   d["busy_seconds"].get<double>(), d["rays_per_second"].get<double>() * 1e-6);
     fmt::print("scene: {} triangles, {} emissive, {} punctual lights, loaded in {:.3f}s\n",
                prepared.scene.triangle_count(), prepared.tables.emitters.entries.size(),
                prepared.tables.punctual.lights.size(), prepared.load_seconds);
@@ -150,9 +294,10 @@ int run_render(const RenderCommand& cmd_in) {
     fmt::print("kd-tree: depth {}, {} nodes, {} leaves, {:.2f} triangles per leaf, SAH cost {:.2f}, built in {:.3f}s\n",
                ts.depth, ts.node_count, ts.leaf_count, ts.average_leaf_triangles, ts.sah_cost, ts.build_seconds);
     fmt::print("kernel compile: {:.3f}s ({})\n", result.compile_seconds, result.compile_from_cache ? "warm, from cache" : "cold");
-    const auto features = device_scene.features.names();
+    const auto features = prepared.tables.features.names();
     fmt::print("kernel features: {}\n", features.empty() ? std::string("none (Lambertian only)")
                                                          : fmt::format("{}", fmt::join(features, " ")));
+    fmt::print("passes: {} of {} spp\n", result.passes, film.pass_samples);
     for (const auto& [name, seconds] : result.kernel_seconds) fmt::print("kernel {}: {:.3f}s\n", name, seconds);
     if (result.wavefront_size)
       fmt::print("wavefront: {} path slots x {} bytes = {:.1f} MiB, {} bounces, SIMD efficiency {:.3f}\n",
@@ -165,12 +310,14 @@ int run_render(const RenderCommand& cmd_in) {
   }
   if (result.dropped_samples)
     fmt::print(stderr, "warning: {} NaN or infinite samples were dropped\n", result.dropped_samples);
-  fmt::print("rendered {}x{} at {} spp in {:.2f}s ({:.2f} Mrays/s)\n", cmd.settings.width, cmd.settings.height,
-             result.samples, result.render_seconds, mrays);
+  fmt::print("rendered {}x{} at {} spp in {:.2f}s ({:.2f} Mrays/s{})\n", cmd.settings.width, cmd.settings.height,
+             result.samples, result.render_seconds, mrays,
+             device_count > 1 ? fmt::format(", {} devices in {} rank{}", device_count, ranks, ranks > 1 ? "s" : "")
+                              : std::string());
   fmt::print("wrote {}\nwrote {}\n", out.exr.string(), out.png.string());
   if (cmd.checkpoint || cmd.resume) fmt::print("wrote {}\n", out.checkpoint.string());
   if (!cmd.stats_file.empty()) {
-    write_file_atomically(cmd.stats_file, stats_json(cmd, device, prepared, result, out).dump(2) + "\n");
+    write_file_atomically(cmd.stats_file, stats_json(cmd, rank_figures, prepared, result, out, job.image_mean()).dump(2) + "\n");
     fmt::print("wrote {}\n", cmd.stats_file);
   }
   if (result.interrupted) {
@@ -179,6 +326,28 @@ int run_render(const RenderCommand& cmd_in) {
     return 128 + interrupt.signal_number();
   }
   return 0;
+}
+
+}  // namespace
+
+int run_render(const RenderCommand& cmd) {
+#ifdef COHORT_HAVE_MPI
+  if (MpiSession::launched_by_mpi()) {
+    const MpiSession mpi;
+    if (mpi.size() > 1) {
+      // a failing rank ends the whole job with its rank and host, never leaves the others waiting
+      try {
+        return render_job(cmd, &mpi);
+      } catch (const InputError& e) {
+        mpi.abort(e.what(), 2);
+      } catch (const std::exception& e) {
+        mpi.abort(e.what(), 1);
+      }
+    }
+    return render_job(cmd, nullptr);
+  }
+#endif
+  return render_job(cmd, nullptr);
 }
 
 }  // namespace cohort

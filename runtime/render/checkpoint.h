@@ -1,6 +1,7 @@
 // Saved render progress: the film sums, the samples done and a fingerprint of what was rendered,
-// so `--resume` continues exactly where a run stopped (the film is a per-pixel sum in sample
-// order, so a resumed render equals an uninterrupted one bit for bit).
+// so `--resume` continues exactly where a run stopped (the film is the pass-ordered sum of
+// pass_schedule.h and stops at a pass boundary, so a resumed render equals an uninterrupted one bit
+// for bit). Version 2 adds the pass size; version-1 films were one running sum and are refused.
 #pragma once
 
 #include <cstdint>
@@ -17,8 +18,9 @@ struct FilmState {
   std::uint32_t width = 0;
   std::uint32_t height = 0;
   std::uint32_t samples = 0;
+  std::uint32_t pass_samples = 0;  // the pass size of the schedule (pass_schedule.h) a resume continues
   std::uint64_t dropped_samples = 0;
-  std::vector<co_float4> sums;  // width * height
+  std::vector<co_float4> sums;  // width * height: the sum of the partial films of the passes, in pass order
 };
 
 // Written atomically: a crash while saving leaves the previous checkpoint.

@@ -2,100 +2,73 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <vector>
 
-#include <fmt/format.h>
-
-#include "runtime/cl/cl_error.h"
 #include "runtime/render/launch_log.h"
-#include "runtime/util/error.h"
+#include "runtime/render/pass_job.h"
 
 namespace cohort {
-namespace {
-
-FilmState read_film(const Device& cl, const PassBuffers& b, const RenderSettings& s, std::uint32_t samples) {
-  FilmState film;
-  film.width = s.width;
-  film.height = s.height;
-  film.samples = samples;
-  film.sums.resize(std::size_t(s.width) * s.height);
-  cl.read(b.film, 0, film.sums.size() * sizeof(co_float4), film.sums.data());
-  std::uint32_t dropped = 0;
-  cl.read(b.dropped, 0, sizeof(dropped), &dropped);
-  film.dropped_samples = dropped;
-  return film;
-}
-
-Image to_image(const FilmState& film) {
-  Image image(static_cast<int>(film.width), static_cast<int>(film.height));
-  const float inv = film.samples ? 1.f / static_cast<float>(film.samples) : 0.f;
-  for (std::size_t i = 0; i < film.sums.size(); ++i) {
-    image.rgb[3 * i + 0] = film.sums[i].x * inv;
-    image.rgb[3 * i + 1] = film.sums[i].y * inv;
-    image.rgb[3 * i + 2] = film.sums[i].z * inv;
-  }
-  return image;
-}
-
-}  // namespace
 
 RenderResult drive_passes(const Device& cl, const RenderParams& base_params, const RenderSettings& settings,
                           std::uint32_t max_samples_per_pass, const ProgressCallback& progress,
                           const RenderControl& control, const PassFunction& pass) {
   using Clock = std::chrono::steady_clock;
   RenderResult result;
+  std::optional<PassJob> own_job;
+  PassSource& source = control.passes ? *control.passes : own_job.emplace(settings, progress, control, 1, 1);
   const std::uint32_t pixels = settings.width * settings.height;
   PassBuffers buffers;
   buffers.params = cl.allocate("render parameters", sizeof(RenderParams), nullptr, Access::read_only);
-  std::vector<co_float4> start(pixels, co_float4{0, 0, 0, 0});
-  std::uint32_t start_dropped = 0;
-  if (control.resume_from) {
-    const FilmState& f = *control.resume_from;
-    if (f.width != settings.width || f.height != settings.height || f.sums.size() != pixels)
-      throw InputError(fmt::format("the checkpoint is {}x{}, the render {}x{}", f.width, f.height, settings.width,
-                                   settings.height));
-    start = f.sums;
-    start_dropped = static_cast<std::uint32_t>(f.dropped_samples);
-    result.samples = result.resumed_samples = f.samples;
-  }
-  buffers.film = cl.allocate("film", start.size() * sizeof(co_float4), start.data());
-  buffers.dropped = cl.allocate("dropped-sample counter", sizeof(start_dropped), &start_dropped);
+  buffers.film = cl.allocate("film", std::size_t(pixels) * sizeof(co_float4));
+  buffers.dropped = cl.allocate("dropped-sample counter", sizeof(std::uint32_t));
 
   RenderParams params = base_params;
-  const bool unbounded = settings.time_limit > 0 && settings.spp == 0;
   const auto t0 = Clock::now();
-  double last_checkpoint = 0;
-  std::uint32_t per_pass = 1;
-  while (unbounded || result.samples < settings.spp) {
-    const std::uint32_t count = unbounded ? per_pass : std::min(per_pass, settings.spp - result.samples);
-    params.sample_offset = result.samples;
-    params.samples_per_pass = count;
-    cl.write(buffers.params, 0, sizeof(params), &params);
-    const PassOutput out = pass(buffers, params);
-    result.rays += out.rays;
-    add_seconds(result.kernel_seconds, out.kernel_seconds);
-    result.samples += count;
-    result.render_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    if (progress) progress({result.samples, unbounded ? 0u : settings.spp, result.rays, result.render_seconds});
-    if (control.stop_requested && control.stop_requested()) {
-      result.interrupted = true;
-      break;
+  std::uint32_t per_launch = 1;
+  source.device_ready();
+  while (const auto sample_pass = source.next()) {
+    const auto pass_start = Clock::now();
+    // every pass sums from zero, so its partial film is the same on any device (pass_schedule.h)
+    cl.fill(buffers.film, 0u, std::size_t(pixels) * 4);  // 4 words per pixel; all-zero bits are 0.0f
+    cl.fill(buffers.dropped, 0u, 1);
+    PassFilm film{*sample_pass, {}, 0, 0};
+    for (std::uint32_t done = 0; done < sample_pass->samples;) {
+      const std::uint32_t count = std::min(per_launch, sample_pass->samples - done);
+      params.sample_offset = sample_pass->first_sample + done;
+      params.samples_per_pass = count;
+      cl.write(buffers.params, 0, sizeof(params), &params);
+      const PassOutput out = pass(buffers, params);
+      film.rays += out.rays;
+      add_seconds(result.kernel_seconds, out.kernel_seconds);
+      done += count;
+      // within a pass the film is a running sum, so launch sizes do not change the image: grow
+      // them while they are short, keeping per-launch overhead small
+      double launch_seconds = 0;
+      for (const auto& [name, s] : out.kernel_seconds) launch_seconds += s;
+      if (launch_seconds < 0.25 && per_launch * 2 <= max_samples_per_pass) per_launch *= 2;
     }
-    if (settings.time_limit > 0 && result.render_seconds >= settings.time_limit) break;
-    if (control.checkpoint && control.checkpoint_seconds > 0 &&
-        result.render_seconds - last_checkpoint >= control.checkpoint_seconds) {
-      control.checkpoint(read_film(cl, buffers, settings, result.samples));
-      last_checkpoint = result.render_seconds;
-    }
-    // grow passes while they are short, so progress stays live without per-pass overhead
-    double pass_seconds = 0;
-    for (const auto& [name, s] : out.kernel_seconds) pass_seconds += s;
-    if (pass_seconds < 0.25 && per_pass * 2 <= max_samples_per_pass) per_pass *= 2;
+    film.sums.resize(pixels);
+    cl.read(buffers.film, 0, film.sums.size() * sizeof(co_float4), film.sums.data());
+    std::uint32_t dropped = 0;
+    cl.read(buffers.dropped, 0, sizeof(dropped), &dropped);
+    film.dropped = dropped;
+    result.rays += film.rays;
+    result.samples += sample_pass->samples;
+    ++result.passes;
+    result.busy_seconds += std::chrono::duration<double>(Clock::now() - pass_start).count();
+    source.deliver(std::move(film));
   }
-  const FilmState film = read_film(cl, buffers, settings, result.samples);
-  if (control.checkpoint) control.checkpoint(film);
-  result.dropped_samples = film.dropped_samples;
-  result.image = to_image(film);
+  result.render_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  if (own_job) {
+    const FilmState film = own_job->finish();
+    result.image = film_image(film);
+    result.samples = film.samples;
+    result.resumed_samples = own_job->resumed_samples();
+    result.dropped_samples = film.dropped_samples;
+    result.interrupted = own_job->interrupted();
+    result.render_seconds = own_job->seconds();
+  }
   return result;
 }
 

@@ -1,6 +1,7 @@
-// The loop every method shares: passes of samples over the whole image until the sample count
-// or the time limit is reached, a film that each pass adds to in sample order, progress, and the
-// final image.
+// The loop every method shares: takes sample passes (pass_schedule.h) from control.passes, or
+// from a job of its own when it renders the image alone, renders each into a film zeroed for the
+// pass (in launches of growing size, each adding in sample order) and hands the partial film back.
+// With a job of its own it returns the image; with shared passes, only this device's figures.
 #pragma once
 
 #include <cstdint>
@@ -15,7 +16,7 @@ namespace cohort {
 
 struct PassBuffers {
   DeviceBuffer params;   // RenderParams, sample_offset and samples_per_pass set for this pass
-  DeviceBuffer film;     // float4 per pixel: the running sum of samples
+  DeviceBuffer film;     // float4 per pixel: the running sum of the pass's samples
   DeviceBuffer dropped;  // uint: NaN or infinite samples
 };
 
@@ -25,9 +26,10 @@ struct PassOutput {
 };
 
 // Renders samples [params.sample_offset, + params.samples_per_pass) of every pixel into the film.
+// (One launch of a pass: a pass may take several.)
 using PassFunction = std::function<PassOutput(const PassBuffers&, const RenderParams&)>;
 
-// max_samples_per_pass bounds what one pass may hold (a method's per-pass buffers).
+// max_samples_per_pass bounds what one launch may hold (a method's per-launch buffers).
 RenderResult drive_passes(const Device& cl, const RenderParams& params, const RenderSettings& settings,
                           std::uint32_t max_samples_per_pass, const ProgressCallback& progress,
                           const RenderControl& control, const PassFunction& pass);

@@ -18,6 +18,7 @@ struct RenderSettings {
   std::uint32_t max_depth = 0;  // path segments, as Mitsuba's max_depth; 0 = until Russian roulette
   std::uint32_t rr_depth = 5;   // first segment at which Russian roulette may end a path
   std::uint32_t seed = 0;
+  std::uint32_t pass_samples = 0;  // samples per pixel in one pass (pass_schedule.h); 0: the default
   double time_limit = 0;        // seconds; 0 = none. Stops after the pass that crosses it.
   bool nee = true;
   bool mis = true;

@@ -14,6 +14,7 @@
 #include "runtime/image/image.h"
 #include "runtime/render/checkpoint.h"
 #include "runtime/render/device_scene.h"
+#include "runtime/render/pass_source.h"
 #include "runtime/render/render_settings.h"
 
 namespace cohort {
@@ -53,6 +54,8 @@ struct RenderResult {
   bool speculative = false;                      // hash/pth: resumed with speculative traversal
   bool interrupted = false;                      // stopped by stop_requested before the sample count
   std::uint32_t resumed_samples = 0;             // samples taken over from a checkpoint
+  std::uint32_t passes = 0;                      // sample passes this device rendered
+  double busy_seconds = 0;                       // wall time inside those passes
 };
 
 using ProgressCallback = std::function<void(const Progress&)>;
@@ -63,6 +66,9 @@ struct RenderControl {
   std::function<bool()> stop_requested;                // checked after every pass
   double checkpoint_seconds = 0;                       // save every this many seconds; 0: only at the end
   std::function<void(const FilmState&)> checkpoint;    // saves the film; also called when the render ends
+  // Shared work of several devices (runtime/render/multi_device.h): the device takes its passes
+  // there and the caller combines the image. Null: this render owns all passes of the image.
+  PassSource* passes = nullptr;
 };
 
 // Renders with settings.method (see methods.h).

@@ -1,45 +1,22 @@
 // Runs the cohort binary as a user would and checks exit codes, messages and outputs.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <memory>
-#include <random>
 
 #include <nlohmann/json.hpp>
 
+#include "cli/cli_helpers.h"
+
 namespace fs = std::filesystem;
+using cohort_test::CommandResult;
+using cohort_test::TempDir;
 
 namespace {
 
-struct CommandResult {
-  int code = -1;
-  std::string output;  // stdout and stderr
-};
+CommandResult run(const std::string& args) { return cohort_test::run_shell(std::string(COHORT_BINARY) + " " + args); }
 
-CommandResult run(const std::string& args) {
-  const std::string cmd = std::string(COHORT_BINARY) + " " + args + " 2>&1";
-  CommandResult r;
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-  std::array<char, 4096> buf{};
-  std::size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe.get())) > 0) r.output.append(buf.data(), n);
-  const int status = pclose(pipe.release());
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("cohort-cli-" + std::to_string(std::random_device{}()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() { fs::remove_all(path); }
-};
-
-std::string scene(const std::string& name) { return std::string(COHORT_SOURCE_DIR) + "/scenes/" + name; }
+std::string scene(const std::string& name) { return cohort_test::shipped_scene(name); }
 
 }  // namespace
 

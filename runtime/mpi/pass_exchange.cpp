@@ -1,0 +1,178 @@
+#include "runtime/mpi/pass_exchange.h"
+
+#include <mpi.h>
+
+#include <chrono>
+#include <climits>
+#include <cstring>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "runtime/cl/cl_error.h"
+#include "runtime/util/error.h"
+
+namespace cohort {
+namespace {
+
+enum Tag : int { kRequest = 1, kAssign = 2, kFilm = 3 };
+
+// The fixed part of a film message; the per-pixel sums follow it.
+struct FilmHeader {
+  std::uint32_t index, first_sample, samples, pad;
+  std::uint64_t dropped, rays;
+};
+
+constexpr auto kIdle = std::chrono::microseconds(500);
+
+void check(int code, const char* what) {
+  if (code != MPI_SUCCESS) {
+    char text[MPI_MAX_ERROR_STRING] = {};
+    int length = 0;
+    MPI_Error_string(code, text, &length);
+    throw DeviceError(fmt::format("{} failed: {}", what, std::string(text, static_cast<std::size_t>(length))));
+  }
+}
+
+int film_message_bytes(std::size_t pixels) {
+  const std::size_t bytes = sizeof(FilmHeader) + pixels * sizeof(co_float4);
+  if (bytes > std::size_t(INT_MAX))
+    throw InputError(fmt::format("{} pixels: a partial film is over the 2 GiB of one MPI message", pixels));
+  return static_cast<int>(bytes);
+}
+
+void send_assignment(int rank, const SamplePass* pass) {
+  // samples 0: no more passes for this rank
+  const std::uint32_t message[3] = {pass ? pass->index : 0, pass ? pass->first_sample : 0, pass ? pass->samples : 0};
+  check(MPI_Send(message, 3, MPI_UINT32_T, rank, kAssign, MPI_COMM_WORLD), "MPI_Send of a pass assignment");
+}
+
+PassFilm receive_film(int rank, std::size_t pixels) {
+  std::vector<char> bytes(static_cast<std::size_t>(film_message_bytes(pixels)));
+  MPI_Status status;
+  check(MPI_Recv(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, rank, kFilm, MPI_COMM_WORLD, &status),
+        "MPI_Recv of a partial film");
+  FilmHeader h;
+  std::memcpy(&h, bytes.data(), sizeof(h));
+  PassFilm film{{h.index, h.first_sample, h.samples}, std::vector<co_float4>(pixels), h.dropped, h.rays};
+  std::memcpy(film.sums.data(), bytes.data() + sizeof(h), pixels * sizeof(co_float4));
+  return film;
+}
+
+void send_film(const PassFilm& film, std::size_t pixels) {
+  if (film.sums.size() != pixels) throw DeviceError("a partial film of the wrong size");
+  std::vector<char> bytes(static_cast<std::size_t>(film_message_bytes(pixels)));
+  const FilmHeader h{film.pass.index, film.pass.first_sample, film.pass.samples, 0, film.dropped, film.rays};
+  std::memcpy(bytes.data(), &h, sizeof(h));
+  std::memcpy(bytes.data() + sizeof(h), film.sums.data(), pixels * sizeof(co_float4));
+  check(MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, 0, kFilm, MPI_COMM_WORLD),
+        "MPI_Send of a partial film");
+}
+
+}  // namespace
+
+void serve_passes(const MpiSession& mpi, PassJob& job, std::size_t pixels) {
+  std::deque<int> waiting;  // ranks whose request waits for the window to open
+  int told_to_stop = 0;
+  while (!job.aborted() && !(told_to_stop == mpi.size() - 1 && job.finished())) {
+    bool busy = false;
+    int flag = 0;
+    MPI_Status status;
+    check(MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status), "MPI_Iprobe");
+    if (flag) {
+      busy = true;
+      if (status.MPI_TAG == kRequest) {
+        int unused = 0;
+        check(MPI_Recv(&unused, 1, MPI_INT, status.MPI_SOURCE, kRequest, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+              "MPI_Recv of a pass request");
+        waiting.push_back(status.MPI_SOURCE);
+      } else if (status.MPI_TAG == kFilm) {
+        job.deliver(receive_film(status.MPI_SOURCE, pixels));
+      } else {
+        throw DeviceError(fmt::format("rank {} sent an unknown message (tag {})", status.MPI_SOURCE, status.MPI_TAG));
+      }
+    }
+    while (!waiting.empty()) {
+      SamplePass pass;
+      const PassJob::Offer offer = job.try_next(pass);
+      if (offer == PassJob::Offer::wait) break;
+      send_assignment(waiting.front(), offer == PassJob::Offer::pass ? &pass : nullptr);
+      if (offer == PassJob::Offer::end) ++told_to_stop;
+      waiting.pop_front();
+      busy = true;
+    }
+    if (!busy) std::this_thread::sleep_for(kIdle);
+  }
+}
+
+std::optional<SamplePass> AssignedPasses::next() {
+  std::unique_lock lock(mutex_);
+  changed_.wait(lock, [&] { return aborted_ || ended_ || !assigned_.empty(); });
+  if (aborted_ || assigned_.empty()) return std::nullopt;
+  const SamplePass pass = assigned_.front();
+  assigned_.pop_front();
+  ++rendering_;
+  changed_.notify_all();
+  return pass;
+}
+
+void AssignedPasses::deliver(PassFilm film) {
+  const std::lock_guard lock(mutex_);
+  finished_.push_back(std::move(film));
+  --rendering_;
+  changed_.notify_all();
+}
+
+void AssignedPasses::abort() {
+  const std::lock_guard lock(mutex_);
+  aborted_ = true;
+  changed_.notify_all();
+}
+
+void run_assigned_passes(AssignedPasses& passes, std::size_t pixels) {
+  bool asked = false, ended = false;
+  for (;;) {
+    std::unique_lock lock(passes.mutex_);
+    if (passes.aborted_) return;  // the failing device's exception is rethrown by DeviceWorkers::join
+    if (ended && passes.assigned_.empty() && passes.rendering_ == 0 && passes.finished_.empty()) return;
+    // one pass waiting per device keeps each busy across the round trip to rank 0
+    const bool want = !ended && !asked && passes.assigned_.size() < passes.devices_;
+    std::deque<PassFilm> to_send;
+    to_send.swap(passes.finished_);
+    lock.unlock();
+
+    bool busy = !to_send.empty();
+    for (const auto& film : to_send) send_film(film, pixels);
+    if (want) {
+      const int unused = 0;
+      check(MPI_Send(&unused, 1, MPI_INT, 0, kRequest, MPI_COMM_WORLD), "MPI_Send of a pass request");
+      asked = busy = true;
+    }
+    if (asked) {
+      int flag = 0;
+      check(MPI_Iprobe(0, kAssign, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE), "MPI_Iprobe");
+      if (flag) {
+        std::uint32_t message[3];
+        check(MPI_Recv(message, 3, MPI_UINT32_T, 0, kAssign, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+              "MPI_Recv of a pass assignment");
+        asked = false;
+        busy = true;
+        const std::lock_guard relock(passes.mutex_);
+        if (message[2] == 0) {
+          ended = passes.ended_ = true;
+        } else {
+          passes.assigned_.push_back({message[0], message[1], message[2]});
+        }
+        passes.changed_.notify_all();
+      }
+    }
+    if (!busy) {
+      std::unique_lock wait(passes.mutex_);
+      passes.changed_.wait_for(wait, kIdle);
+    }
+  }
+}
+
+}  // namespace cohort

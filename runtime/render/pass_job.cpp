@@ -1,0 +1,209 @@
+#include "runtime/render/pass_job.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "runtime/cl/cl_error.h"
+#include "runtime/util/error.h"
+
+namespace cohort {
+namespace {
+
+PassSchedule make_schedule(const RenderSettings& s, const RenderControl& control) {
+  if (control.resume_from) {
+    if (s.pass_samples && s.pass_samples != control.resume_from->pass_samples)
+      throw InputError(fmt::format("--pass-spp {}: the checkpoint was rendered in passes of {} spp", s.pass_samples,
+                                   control.resume_from->pass_samples));
+    return {control.resume_from->pass_samples, control.resume_from->samples, s.spp};
+  }
+  return {s.pass_samples ? s.pass_samples : default_pass_samples(s.width, s.height, s.spp), 0, s.spp};
+}
+
+}  // namespace
+
+Image film_image(const FilmState& film) {
+  Image image(static_cast<int>(film.width), static_cast<int>(film.height));
+  const float inv = film.samples ? 1.f / static_cast<float>(film.samples) : 0.f;
+  for (std::size_t i = 0; i < film.sums.size(); ++i) {
+    image.rgb[3 * i + 0] = film.sums[i].x * inv;
+    image.rgb[3 * i + 1] = film.sums[i].y * inv;
+    image.rgb[3 * i + 2] = film.sums[i].z * inv;
+  }
+  return image;
+}
+
+std::size_t pass_window(std::size_t devices, std::size_t film_bytes) {
+  const std::size_t budget = (std::size_t(2) << 30) / std::max<std::size_t>(film_bytes, 1);
+  return std::max(devices + 1, std::min(4 * devices, budget));
+}
+
+PassJob::PassJob(const RenderSettings& settings, const ProgressCallback& progress, const RenderControl& control,
+                 std::size_t window, std::size_t devices)
+    : settings_(settings), progress_(progress), control_(control), schedule_(make_schedule(settings, control)),
+      window_(std::max<std::size_t>(window, 1)), devices_(devices) {
+  const std::size_t pixels = std::size_t(settings.width) * settings.height;
+  film_.width = settings.width;
+  film_.height = settings.height;
+  film_.pass_samples = schedule_.pass_samples();
+  if (control.resume_from) {
+    const FilmState& f = *control.resume_from;
+    if (f.width != settings.width || f.height != settings.height || f.sums.size() != pixels)
+      throw InputError(fmt::format("the checkpoint is {}x{}, the render {}x{}", f.width, f.height, settings.width,
+                                   settings.height));
+    film_ = f;
+    resumed_samples_ = f.samples;
+  } else {
+    film_.sums.assign(pixels, co_float4{0, 0, 0, 0});
+  }
+}
+
+void PassJob::device_ready() {
+  const std::lock_guard lock(mutex_);
+  ++ready_;
+  changed_.notify_all();
+}
+
+PassJob::Offer PassJob::offer(SamplePass& pass) {
+  if (!ended_ && !aborted_ && ready_ < devices_) return Offer::wait;
+  if (!ended_) {
+    if (!start_) start_ = Clock::now();  // the render clock starts with the first pass, after compiling
+    const double elapsed = seconds_since_start();
+    if (aborted_ || (control_.stop_requested && control_.stop_requested())) {
+      interrupted_ = !aborted_;
+      ended_ = true;
+    } else if (settings_.time_limit > 0 && elapsed >= settings_.time_limit) {
+      ended_ = true;
+    } else if (const auto p = schedule_.pass(handed_out_)) {
+      if (handed_out_ - combined_ >= window_) return Offer::wait;
+      pass = *p;
+      ++handed_out_;
+      return Offer::pass;
+    } else {
+      ended_ = true;
+    }
+    if (ended_) changed_.notify_all();
+  }
+  return Offer::end;
+}
+
+std::optional<SamplePass> PassJob::next() {
+  std::unique_lock lock(mutex_);
+  SamplePass pass;
+  for (;;) {
+    const Offer o = offer(pass);
+    if (o == Offer::pass) return pass;
+    if (o == Offer::end) return std::nullopt;
+    changed_.wait(lock);
+  }
+}
+
+PassJob::Offer PassJob::try_next(SamplePass& pass) {
+  const std::lock_guard lock(mutex_);
+  return offer(pass);
+}
+
+void PassJob::combine(const PassFilm& f) {
+  // the same float additions whichever device or rank rendered the pass: this order is the image
+  std::array<double, 4> mean{0, 0, 0, double(f.pass.samples)};
+  for (std::size_t i = 0; i < film_.sums.size(); ++i) {
+    film_.sums[i].x += f.sums[i].x;
+    film_.sums[i].y += f.sums[i].y;
+    film_.sums[i].z += f.sums[i].z;
+    film_.sums[i].w += f.sums[i].w;
+    mean[0] += f.sums[i].x;
+    mean[1] += f.sums[i].y;
+    mean[2] += f.sums[i].z;
+  }
+  for (int c = 0; c < 3; ++c) mean[c] /= std::max(1.0, double(f.sums.size()) * f.pass.samples);
+  pass_means_.push_back(mean);
+  film_.samples = f.pass.first_sample + f.pass.samples;
+  film_.dropped_samples += f.dropped;
+}
+
+void PassJob::deliver(PassFilm film) {
+  if (film.sums.size() != film_.sums.size())
+    throw DeviceError(fmt::format("pass {}: a partial film of {} pixels for an image of {}", film.pass.index,
+                                  film.sums.size(), film_.sums.size()));
+  std::unique_lock lock(mutex_);
+  rays_ += film.rays;
+  const std::uint32_t index = film.pass.index;
+  waiting_.emplace(index, std::move(film));
+  for (auto it = waiting_.find(combined_); it != waiting_.end(); it = waiting_.find(combined_)) {
+    combine(it->second);
+    waiting_.erase(it);
+    ++combined_;
+    const double seconds = seconds_since_start();
+    if (progress_) progress_({film_.samples, settings_.time_limit > 0 && settings_.spp == 0 ? 0u : settings_.spp, rays_,
+                              seconds});
+    if (control_.checkpoint && control_.checkpoint_seconds > 0 &&
+        seconds - last_checkpoint_ >= control_.checkpoint_seconds) {
+      control_.checkpoint(film_);
+      last_checkpoint_ = seconds;
+    }
+  }
+  changed_.notify_all();
+}
+
+void PassJob::abort() {
+  const std::lock_guard lock(mutex_);
+  aborted_ = ended_ = true;
+  changed_.notify_all();
+}
+
+bool PassJob::aborted() const {
+  const std::lock_guard lock(mutex_);
+  return aborted_;
+}
+
+bool PassJob::finished() const {
+  const std::lock_guard lock(mutex_);
+  return ended_ && combined_ == handed_out_;
+}
+
+FilmState PassJob::finish() {
+  std::unique_lock lock(mutex_);
+  changed_.wait(lock, [&] { return aborted_ || (ended_ && combined_ == handed_out_); });
+  if (aborted_) throw DeviceError("the render was aborted");
+  if (control_.checkpoint) control_.checkpoint(film_);
+  return film_;
+}
+
+PassJob::ImageMean PassJob::image_mean() const {
+  const std::lock_guard lock(mutex_);
+  ImageMean result;
+  double samples = 0;
+  for (const auto& m : pass_means_) samples += m[3];
+  if (samples <= 0) return result;
+  for (int c = 0; c < 3; ++c) {
+    for (const auto& m : pass_means_) result.mean[c] += m[c] * m[3] / samples;
+    if (pass_means_.size() < 2) continue;
+    double spread = 0;
+    for (const auto& m : pass_means_) spread += m[3] / samples * (m[c] - result.mean[c]) * (m[c] - result.mean[c]);
+    const double k = double(pass_means_.size());
+    result.standard_error[c] = std::sqrt(spread * k / (k - 1) / k);
+  }
+  return result;
+}
+
+bool PassJob::interrupted() const {
+  const std::lock_guard lock(mutex_);
+  return interrupted_;
+}
+
+std::uint64_t PassJob::rays() const {
+  const std::lock_guard lock(mutex_);
+  return rays_;
+}
+
+double PassJob::seconds_since_start() const {
+  return start_ ? std::chrono::duration<double>(Clock::now() - *start_).count() : 0.0;
+}
+
+double PassJob::seconds() const {
+  const std::lock_guard lock(mutex_);
+  return seconds_since_start();
+}
+
+}  // namespace cohort

@@ -1,0 +1,40 @@
+// The canonical split of a render into sample passes. The film is the sum, in pass order, of one
+// partial film per pass (each a per-pixel sum in sample order, started from zero), so whoever
+// renders a pass (this device, another device, another MPI rank) the image has the same bits. The
+// pass size therefore depends on the image size and sample count only, never on the device, the
+// method or how many devices share the work.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+namespace cohort {
+
+struct SamplePass {
+  std::uint32_t index = 0;         // position in the schedule: partial films are added in this order
+  std::uint32_t first_sample = 0;  // samples [first_sample, first_sample + samples) of every pixel
+  std::uint32_t samples = 0;
+};
+
+// Passes of 1-4 M samples: at least 16 passes when that keeps each above ~1 M samples (load
+// balance over devices and ranks), never more than ~4 M samples (a wavefront launch's result
+// buffer, and where per-pass overhead is already negligible), at least one sample per pixel.
+// spp 0 (a time limit ends the render): ~256 K samples, so the limit is not overshot by much.
+std::uint32_t default_pass_samples(std::uint32_t width, std::uint32_t height, std::uint32_t spp);
+
+class PassSchedule {
+ public:
+  // spp 0: unbounded (a time limit ends the render)
+  PassSchedule(std::uint32_t pass_samples, std::uint32_t first_sample, std::uint32_t spp);
+
+  std::optional<SamplePass> pass(std::uint32_t index) const;  // nullopt past the last pass
+  std::uint32_t pass_samples() const { return pass_samples_; }
+  std::uint32_t first_sample() const { return first_sample_; }
+
+ private:
+  std::uint32_t pass_samples_;
+  std::uint32_t first_sample_;
+  std::uint32_t spp_;
+};
+
+}  // namespace cohort
