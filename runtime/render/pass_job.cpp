@@ -134,6 +134,7 @@ void PassJob::deliver(PassFilm film) {
     combine(it->second);
     waiting_.erase(it);
     ++combined_;
+    last_combined_ = Clock::now();
     const double seconds = seconds_since_start();
     if (progress_) progress_({film_.samples, settings_.time_limit > 0 && settings_.spp == 0 ? 0u : settings_.spp, rays_,
                               seconds});
@@ -203,7 +204,10 @@ double PassJob::seconds_since_start() const {
 
 double PassJob::seconds() const {
   const std::lock_guard lock(mutex_);
-  return seconds_since_start();
+  if (!start_) return 0.0;
+  const bool outstanding = combined_ < handed_out_;
+  const Clock::time_point end = outstanding || !last_combined_ ? Clock::now() : *last_combined_;
+  return std::chrono::duration<double>(end - *start_).count();
 }
 
 }  // namespace cohort

@@ -47,7 +47,9 @@ class PassJob final : public PassSource {
   std::uint32_t resumed_samples() const { return resumed_samples_; }
   bool interrupted() const;
   std::uint64_t rays() const;
-  double seconds() const;  // since the first pass was handed out
+  // The render loop's wall time: from the first pass handed out to the last pass added to the
+  // image (not the devices' teardown after it), or to now while passes are still out.
+  double seconds() const;
 
  private:
   Offer offer(SamplePass& pass);  // with mutex_ held
@@ -65,6 +67,7 @@ class PassJob final : public PassSource {
 
   mutable std::mutex mutex_;
   std::optional<Clock::time_point> start_;
+  std::optional<Clock::time_point> last_combined_;
   std::condition_variable changed_;
   FilmState film_;
   std::map<std::uint32_t, PassFilm> waiting_;  // finished passes that wait for an earlier one
