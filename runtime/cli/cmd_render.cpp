@@ -231,6 +231,7 @@ int render_job(const RenderCommand& cmd_in, [[maybe_unused]] const MpiSession* m
 #endif
   PassJob job(cmd.settings, [&](const Progress& p) { reporter.update(p); }, control,
               pass_window(devices.size() * ranks, pixels * sizeof(co_float4)), devices.size());
+  if (ranks > 1) job.combine_on_host();  // other ranks send partial films
   std::vector<DeviceRun> runs;
   {
     DeviceWorkers workers(devices, open_devices, cache, prepared, cmd.settings, job);

@@ -16,7 +16,7 @@ RenderResult render_naive(const Device& cl, const ProgramCache& cache, const Dev
   // each pass stays far below 2^32 rays so the 32-bit counter cannot wrap
   const std::uint32_t max_per_pass = std::max<std::uint32_t>(1, (1u << 24) / std::max<std::uint32_t>(pixels, 1));
   bool args_set = false;
-  RenderResult result = drive_passes(cl, params, settings, max_per_pass, progress, control,
+  RenderResult result = drive_passes(cl, cache, params, settings, max_per_pass, progress, control,
                                      [&](const PassBuffers& b, const RenderParams&) {
     if (!args_set) {
       kernel.set_arg(0, b.params);

@@ -10,7 +10,53 @@
 
 namespace cohort {
 
-RenderResult drive_passes(const Device& cl, const RenderParams& base_params, const RenderSettings& settings,
+namespace {
+
+constexpr std::size_t kFilmGroup = 256;  // FILM_WG in kernels/common/film_kernels.h
+
+// The image film on the device: each pass is added to it there (film_add), and only the pass's
+// per-group totals come back, instead of a partial film per pass.
+struct DeviceImage {
+  DeviceBuffer film, group_sums;
+  DeviceKernel add;
+  double compile_seconds = 0, last_seconds = 0;
+  std::vector<co_float4> groups;
+
+  DeviceImage(const Device& cl, const ProgramCache& cache, const FilmState& start, std::uint32_t pixels)
+      : groups((pixels + kFilmGroup - 1) / kFilmGroup) {
+    film = cl.allocate("image film", std::size_t(pixels) * sizeof(co_float4), start.sums.data());
+    group_sums = cl.allocate("pass totals", groups.size() * sizeof(co_float4));
+    const DeviceProgram program = cl.build_program(cache, "film");
+    compile_seconds = program.seconds;
+    add = program.kernel("film_add");
+  }
+
+  // image += pass, in one launch; returns the pass's sums added over the pixels
+  std::array<double, 3> add_pass(const Device& cl, const DeviceBuffer& pass, std::uint32_t pixels) {
+    add.set_args(film, pass, pixels, group_sums);
+    const DeviceEvent event = cl.launch(add, pixels, kFilmGroup);
+    cl.read(group_sums, 0, groups.size() * sizeof(co_float4), groups.data());
+    last_seconds = event.seconds();
+    std::array<double, 3> totals{};
+    for (const co_float4& g : groups) {
+      totals[0] += g.x;
+      totals[1] += g.y;
+      totals[2] += g.z;
+    }
+    return totals;
+  }
+
+  std::vector<co_float4> read(const Device& cl, std::uint32_t pixels) const {
+    std::vector<co_float4> sums(pixels);
+    cl.read(film, 0, sums.size() * sizeof(co_float4), sums.data());
+    return sums;
+  }
+};
+
+}  // namespace
+
+RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const RenderParams& base_params,
+                          const RenderSettings& settings,
                           std::uint32_t max_samples_per_pass, const ProgressCallback& progress,
                           const RenderControl& control, const PassFunction& pass) {
   using Clock = std::chrono::steady_clock;
@@ -22,6 +68,13 @@ RenderResult drive_passes(const Device& cl, const RenderParams& base_params, con
   buffers.params = cl.allocate("render parameters", sizeof(RenderParams), nullptr, Access::read_only);
   buffers.film = cl.allocate("film", std::size_t(pixels) * sizeof(co_float4));
   buffers.dropped = cl.allocate("dropped-sample counter", sizeof(std::uint32_t));
+
+  // one device alone keeps the image on the device: no partial film per pass crosses to the host
+  std::optional<DeviceImage> image;
+  if (const FilmState* start = source.device_keeps_image([&] { return image->read(cl, pixels); })) {
+    image.emplace(cl, cache, *start, pixels);
+    result.compile_seconds += image->compile_seconds;
+  }
 
   RenderParams params = base_params;
   const auto t0 = Clock::now();
@@ -48,8 +101,13 @@ RenderResult drive_passes(const Device& cl, const RenderParams& base_params, con
       for (const auto& [name, s] : out.kernel_seconds) launch_seconds += s;
       if (launch_seconds < 0.25 && per_launch * 2 <= max_samples_per_pass) per_launch *= 2;
     }
-    film.sums.resize(pixels);
-    cl.read(buffers.film, 0, film.sums.size() * sizeof(co_float4), film.sums.data());
+    if (image) {
+      film.totals = image->add_pass(cl, buffers.film, pixels);
+      add_seconds(result.kernel_seconds, {{"film", image->last_seconds}});
+    } else {
+      film.sums.resize(pixels);
+      cl.read(buffers.film, 0, film.sums.size() * sizeof(co_float4), film.sums.data());
+    }
     std::uint32_t dropped = 0;
     cl.read(buffers.dropped, 0, sizeof(dropped), &dropped);
     film.dropped = dropped;
@@ -59,6 +117,8 @@ RenderResult drive_passes(const Device& cl, const RenderParams& base_params, con
     result.busy_seconds += std::chrono::duration<double>(Clock::now() - pass_start).count();
     source.deliver(std::move(film));
   }
+  // the image goes to the source before this device (and its memory) goes away
+  if (image) source.deliver_image(image->read(cl, pixels));
   result.render_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   if (own_job) {
     const FilmState film = own_job->finish();

@@ -29,8 +29,10 @@ struct PassOutput {
 // (One launch of a pass: a pass may take several.)
 using PassFunction = std::function<PassOutput(const PassBuffers&, const RenderParams&)>;
 
-// max_samples_per_pass bounds what one launch may hold (a method's per-launch buffers).
-RenderResult drive_passes(const Device& cl, const RenderParams& params, const RenderSettings& settings,
+// max_samples_per_pass bounds what one launch may hold (a method's per-launch buffers). `cache`
+// builds the film program when this device keeps the image film (PassSource::device_keeps_image).
+RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const RenderParams& params,
+                          const RenderSettings& settings,
                           std::uint32_t max_samples_per_pass, const ProgressCallback& progress,
                           const RenderControl& control, const PassFunction& pass);
 

@@ -104,10 +104,34 @@ PassJob::Offer PassJob::try_next(SamplePass& pass) {
   return offer(pass);
 }
 
+const FilmState* PassJob::device_keeps_image(std::function<std::vector<co_float4>()> read_image) {
+  const std::lock_guard lock(mutex_);
+  if (devices_ != 1 || combine_on_host_ || combined_ != 0) return nullptr;
+  image_on_device_ = true;
+  read_image_ = std::move(read_image);
+  return &film_;
+}
+
+void PassJob::deliver_image(std::vector<co_float4> sums) {
+  const std::lock_guard lock(mutex_);
+  if (sums.size() != film_.sums.size())
+    throw DeviceError(fmt::format("an image film of {} pixels for an image of {}", sums.size(), film_.sums.size()));
+  film_.sums = std::move(sums);
+  image_on_device_ = false;
+  read_image_ = {};
+  changed_.notify_all();
+}
+
 void PassJob::combine(const PassFilm& f) {
-  // the same float additions whichever device or rank rendered the pass: this order is the image
   std::array<double, 4> mean{0, 0, 0, double(f.pass.samples)};
-  for (std::size_t i = 0; i < film_.sums.size(); ++i) {
+  if (image_on_device_ && f.sums.empty()) {
+    // the device added the pass to the image it keeps; only its totals come here
+    mean[0] = f.totals[0];
+    mean[1] = f.totals[1];
+    mean[2] = f.totals[2];
+  }
+  // the same float additions whichever device or rank rendered the pass: this order is the image
+  for (std::size_t i = 0; i < f.sums.size(); ++i) {
     film_.sums[i].x += f.sums[i].x;
     film_.sums[i].y += f.sums[i].y;
     film_.sums[i].z += f.sums[i].z;
@@ -116,14 +140,14 @@ void PassJob::combine(const PassFilm& f) {
     mean[1] += f.sums[i].y;
     mean[2] += f.sums[i].z;
   }
-  for (int c = 0; c < 3; ++c) mean[c] /= std::max(1.0, double(f.sums.size()) * f.pass.samples);
+  for (int c = 0; c < 3; ++c) mean[c] /= std::max(1.0, double(film_.sums.size()) * f.pass.samples);
   pass_means_.push_back(mean);
   film_.samples = f.pass.first_sample + f.pass.samples;
   film_.dropped_samples += f.dropped;
 }
 
 void PassJob::deliver(PassFilm film) {
-  if (film.sums.size() != film_.sums.size())
+  if (film.sums.size() != film_.sums.size() && !(image_on_device_ && film.sums.empty()))
     throw DeviceError(fmt::format("pass {}: a partial film of {} pixels for an image of {}", film.pass.index,
                                   film.sums.size(), film_.sums.size()));
   std::unique_lock lock(mutex_);
@@ -140,6 +164,7 @@ void PassJob::deliver(PassFilm film) {
                               seconds});
     if (control_.checkpoint && control_.checkpoint_seconds > 0 &&
         seconds - last_checkpoint_ >= control_.checkpoint_seconds) {
+      if (image_on_device_ && read_image_) film_.sums = read_image_();
       control_.checkpoint(film_);
       last_checkpoint_ = seconds;
     }
@@ -160,12 +185,12 @@ bool PassJob::aborted() const {
 
 bool PassJob::finished() const {
   const std::lock_guard lock(mutex_);
-  return ended_ && combined_ == handed_out_;
+  return ended_ && combined_ == handed_out_ && !image_on_device_;
 }
 
 FilmState PassJob::finish() {
   std::unique_lock lock(mutex_);
-  changed_.wait(lock, [&] { return aborted_ || (ended_ && combined_ == handed_out_); });
+  changed_.wait(lock, [&] { return aborted_ || (ended_ && combined_ == handed_out_ && !image_on_device_); });
   if (aborted_) throw DeviceError("the render was aborted");
   if (control_.checkpoint) control_.checkpoint(film_);
   return film_;

@@ -33,6 +33,10 @@ class PassJob final : public PassSource {
   Offer try_next(SamplePass& pass);
 
   void abort() override;
+  const FilmState* device_keeps_image(std::function<std::vector<co_float4>()> read_image) override;
+  void deliver_image(std::vector<co_float4> sums) override;
+  // Partial films come back to the host even with one device here (other MPI ranks render too).
+  void combine_on_host() { combine_on_host_ = true; }
   bool aborted() const;
   bool finished() const;  // nothing more will be handed out and everything handed out is combined
   FilmState finish();     // waits until finished (after next() said no more), saves the final checkpoint
@@ -78,6 +82,9 @@ class PassJob final : public PassSource {
   bool aborted_ = false;
   bool interrupted_ = false;
   std::uint64_t rays_ = 0;
+  bool combine_on_host_ = false;
+  bool image_on_device_ = false;       // the one device keeps film_.sums (device_keeps_image)
+  std::function<std::vector<co_float4>()> read_image_;
   std::vector<std::array<double, 4>> pass_means_;  // per combined pass: mean r, g, b and its samples
   double last_checkpoint_ = 0;
 };

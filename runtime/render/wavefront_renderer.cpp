@@ -217,7 +217,7 @@ RenderResult render_wavefront(const Method& method, const Device& cl, const Prog
     add_seconds(out.kernel_seconds, log.collect());
     return out;
   };
-  RenderResult result = drive_passes(cl, params, settings, max_per_pass, progress, control, pass);
+  RenderResult result = drive_passes(cl, cache, params, settings, max_per_pass, progress, control, pass);
   result.compile_seconds = build.seconds + (pth_build ? pth_build->seconds : 0);
   result.compile_from_cache = build.from_cache && (!pth_build || pth_build->from_cache);
   std::uint64_t groups = 0;

@@ -39,6 +39,7 @@ TEST(NvrtcCompile, RenderingProgramsWithEveryFeatureSet) {
 
 TEST(NvrtcCompile, TracingAndTestPrograms) {
   compile("trace", "");
+  compile("film", "");
   compile("bsdf_test", kAllFeatures);
 }
 
