@@ -7,9 +7,9 @@
 
 #include "common/port.h"
 
-#define FILM_WG 256
+#define FILM_WG 256 /* the most work items a group may have; the host launches a power of two */
 
-CO_KERNEL_WG(FILM_WG) film_add(CO_GLOBAL co_float4* image, CO_GLOBAL const co_float4* pass, uint32_t pixels,
+CO_KERNEL film_add(CO_GLOBAL co_float4* image, CO_GLOBAL const co_float4* pass, uint32_t pixels,
                                CO_GLOBAL co_float4* group_sums) {
   CO_SHARED float sum_x[FILM_WG];
   CO_SHARED float sum_y[FILM_WG];
@@ -29,7 +29,7 @@ CO_KERNEL_WG(FILM_WG) film_add(CO_GLOBAL co_float4* image, CO_GLOBAL const co_fl
   sum_y[l] = p.y;
   sum_z[l] = p.z;
   co_barrier();
-  for (uint32_t stride = FILM_WG / 2u; stride > 0u; stride >>= 1) {
+  for (uint32_t stride = co_local_size() / 2u; stride > 0u; stride >>= 1) {
     if (l < stride) {
       sum_x[l] += sum_x[l + stride];
       sum_y[l] += sum_y[l + stride];

@@ -12,7 +12,7 @@ namespace cohort {
 
 namespace {
 
-constexpr std::size_t kFilmGroup = 256;  // FILM_WG in kernels/common/film_kernels.h
+constexpr std::size_t kFilmGroup = 256;  // FILM_WG in kernels/common/film_kernels.h: the most per group
 
 // The image film on the device: each pass is added to it there (film_add), and only the pass's
 // per-group totals come back, instead of a partial film per pass.
@@ -22,19 +22,22 @@ struct DeviceImage {
   double compile_seconds = 0, last_seconds = 0;
   std::vector<co_float4> groups;
 
-  DeviceImage(const Device& cl, const ProgramCache& cache, const FilmState& start, std::uint32_t pixels)
-      : groups((pixels + kFilmGroup - 1) / kFilmGroup) {
-    film = cl.allocate("image film", std::size_t(pixels) * sizeof(co_float4), start.sums.data());
-    group_sums = cl.allocate("pass totals", groups.size() * sizeof(co_float4));
+  std::size_t group = 1;  // work items per group: a power of two, as the kernel's reduction needs
+
+  DeviceImage(const Device& cl, const ProgramCache& cache, const FilmState& start, std::uint32_t pixels) {
     const DeviceProgram program = cl.build_program(cache, "film");
     compile_seconds = program.seconds;
     add = program.kernel("film_add");
+    while (group * 2 <= std::min(kFilmGroup, add.max_group())) group *= 2;
+    groups.resize((pixels + group - 1) / group);
+    film = cl.allocate("image film", std::size_t(pixels) * sizeof(co_float4), start.sums.data());
+    group_sums = cl.allocate("pass totals", groups.size() * sizeof(co_float4));
   }
 
   // image += pass, in one launch; returns the pass's sums added over the pixels
   std::array<double, 3> add_pass(const Device& cl, const DeviceBuffer& pass, std::uint32_t pixels) {
     add.set_args(film, pass, pixels, group_sums);
-    const DeviceEvent event = cl.launch(add, pixels, kFilmGroup);
+    const DeviceEvent event = cl.launch(add, pixels, group);
     cl.read(group_sums, 0, groups.size() * sizeof(co_float4), groups.data());
     last_seconds = event.seconds();
     std::array<double, 3> totals{};

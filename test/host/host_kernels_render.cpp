@@ -4,6 +4,7 @@
 #define COHORT_FEATURE_CONDUCTOR
 #define COHORT_FEATURE_DIELECTRIC
 #define COHORT_FEATURE_PLASTIC
+#include "kernels/common/film_kernels.h"
 #include "kernels/common/naive_kernel.h"
 #include "kernels/common/pth_kernels.h"
 #include "kernels/common/trace_kernels.h"
@@ -27,7 +28,8 @@ const HostProgram& host_render_program() {
        {"pth_walk_and_code", host_kernel(&pth_walk_and_code)},
        {"pth_resume", host_kernel(&pth_resume)},
        {"trace_rays", host_kernel(&trace_rays)},
-       {"trace_rays_pth", host_kernel(&trace_rays_pth)}}};
+       {"trace_rays_pth", host_kernel(&trace_rays_pth)},
+       {"film_add", host_kernel(&film_add)}}};
   return program;
 }
 
