@@ -1,7 +1,8 @@
 /* The image film kept on the device when one device renders every pass (runtime/render/
  * pass_driver.cpp): each pass's partial film is added to it with the float additions, in the
  * order, that combining on the host makes, so the image is the same bits either way. Each
- * work-group also sums its pixels of the pass (for the pass's mean, a statistic only). */
+ * work-group also sums its pixels of the pass (for the pass's mean, a statistic only), and the
+ * entry after the groups' carries the pass's dropped-sample count. */
 #ifndef COHORT_FILM_KERNELS_H
 #define COHORT_FILM_KERNELS_H
 
@@ -10,7 +11,7 @@
 #define FILM_WG 256 /* the most work items a group may have; the host launches a power of two */
 
 CO_KERNEL film_add(CO_GLOBAL co_float4* image, CO_GLOBAL const co_float4* pass, uint32_t pixels,
-                               CO_GLOBAL co_float4* group_sums) {
+                   CO_GLOBAL co_float4* group_sums, CO_GLOBAL const uint32_t* dropped, uint32_t groups) {
   CO_SHARED float sum_x[FILM_WG];
   CO_SHARED float sum_y[FILM_WG];
   CO_SHARED float sum_z[FILM_WG];
@@ -38,6 +39,8 @@ CO_KERNEL film_add(CO_GLOBAL co_float4* image, CO_GLOBAL const co_float4* pass, 
     co_barrier();
   }
   if (l == 0u) group_sums[co_group_id()] = co_make_float4(sum_x[0], sum_y[0], sum_z[0], 0.0f);
+  /* the pass's dropped-sample count rides along, so the host reads the pass back in one call */
+  if (i == 0u) group_sums[groups] = co_make_float4(co_as_float(dropped[0]), 0.0f, 0.0f, 0.0f);
 }
 
 #endif

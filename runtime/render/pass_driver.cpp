@@ -29,24 +29,26 @@ struct DeviceImage {
     compile_seconds = program.seconds;
     add = program.kernel("film_add");
     while (group * 2 <= std::min(kFilmGroup, add.max_group())) group *= 2;
-    groups.resize((pixels + group - 1) / group);
+    groups.resize((pixels + group - 1) / group + 1);  // the last entry: the dropped-sample count
     film = cl.allocate("image film", std::size_t(pixels) * sizeof(co_float4), start.sums.data());
     group_sums = cl.allocate("pass totals", groups.size() * sizeof(co_float4));
   }
 
-  // image += pass, in one launch; returns the pass's sums added over the pixels
-  std::array<double, 3> add_pass(const Device& cl, const DeviceBuffer& pass, std::uint32_t pixels) {
-    add.set_args(film, pass, pixels, group_sums);
+  // image += pass in one launch, then one read: the pass's sums added over the pixels, and its
+  // dropped samples
+  void add_pass(const Device& cl, const PassBuffers& pass, std::uint32_t pixels, PassFilm& out) {
+    const auto group_count = static_cast<std::uint32_t>(groups.size() - 1);
+    add.set_args(film, pass.film, pixels, group_sums, pass.dropped, group_count);
     const DeviceEvent event = cl.launch(add, pixels, group);
     cl.read(group_sums, 0, groups.size() * sizeof(co_float4), groups.data());
     last_seconds = event.seconds();
-    std::array<double, 3> totals{};
-    for (const co_float4& g : groups) {
-      totals[0] += g.x;
-      totals[1] += g.y;
-      totals[2] += g.z;
+    out.totals = {};
+    for (std::size_t g = 0; g < group_count; ++g) {
+      out.totals[0] += groups[g].x;
+      out.totals[1] += groups[g].y;
+      out.totals[2] += groups[g].z;
     }
-    return totals;
+    out.dropped = co_as_uint(groups.back().x);
   }
 
   std::vector<co_float4> read(const Device& cl, std::uint32_t pixels) const {
@@ -93,7 +95,9 @@ RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const Ren
       const std::uint32_t count = std::min(per_launch, sample_pass->samples - done);
       params.sample_offset = sample_pass->first_sample + done;
       params.samples_per_pass = count;
-      cl.write(buffers.params, 0, sizeof(params), &params);
+      // non-blocking: every pass function waits for its launches before it returns (a blocking
+      // read of its counters, or its kernel events), so this write has run before `params` changes
+      cl.write(buffers.params, 0, sizeof(params), &params, false);
       const PassOutput out = pass(buffers, params);
       film.rays += out.rays;
       add_seconds(result.kernel_seconds, out.kernel_seconds);
@@ -105,15 +109,15 @@ RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const Ren
       if (launch_seconds < 0.25 && per_launch * 2 <= max_samples_per_pass) per_launch *= 2;
     }
     if (image) {
-      film.totals = image->add_pass(cl, buffers.film, pixels);
+      image->add_pass(cl, buffers, pixels, film);
       add_seconds(result.kernel_seconds, {{"film", image->last_seconds}});
     } else {
       film.sums.resize(pixels);
       cl.read(buffers.film, 0, film.sums.size() * sizeof(co_float4), film.sums.data());
+      std::uint32_t dropped = 0;
+      cl.read(buffers.dropped, 0, sizeof(dropped), &dropped);
+      film.dropped = dropped;
     }
-    std::uint32_t dropped = 0;
-    cl.read(buffers.dropped, 0, sizeof(dropped), &dropped);
-    film.dropped = dropped;
     result.rays += film.rays;
     result.samples += sample_pass->samples;
     ++result.passes;

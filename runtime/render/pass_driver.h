@@ -25,7 +25,8 @@ struct PassOutput {
   std::map<std::string, double> kernel_seconds;
 };
 
-// Renders samples [params.sample_offset, + params.samples_per_pass) of every pixel into the film.
+// Renders samples [params.sample_offset, + params.samples_per_pass) of every pixel into the film,
+// and waits for its launches before it returns (the parameters are written without blocking).
 // (One launch of a pass: a pass may take several.)
 using PassFunction = std::function<PassOutput(const PassBuffers&, const RenderParams&)>;
 
