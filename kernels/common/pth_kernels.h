@@ -61,6 +61,17 @@ CO_KERNEL pth_walk_and_code(SCENE_KERNEL_PARAMS, CO_GLOBAL const co_float4* path
   keys[i] = coherence_code(&c, origin_bounds, org, dir, bits);
 }
 
+/* The `depth` stack entries pth_walk_and_code saved for `slot` (entry k of every slot together). */
+CO_INLINE void load_traversal_stack(CO_GLOBAL const co_float4* traversal_stack, uint32_t stack_stride, uint32_t slot,
+                                    uint32_t depth, KdStackEntry* stack) {
+  for (uint32_t k = 0u; k < depth; ++k) {
+    co_float4 e = traversal_stack[k * stack_stride + slot];
+    stack[k].node = co_as_uint(e.x);
+    stack[k].tmin = e.y;
+    stack[k].tmax = e.z;
+  }
+}
+
 /* Continues each ray's traversal in sorted order from the state pth_walk_and_code saved. */
 CO_KERNEL pth_resume(SCENE_KERNEL_PARAMS, CO_GLOBAL const co_float4* path_org, CO_GLOBAL const co_float4* path_dir,
                      CO_GLOBAL const uint32_t* sorted_slots, uint32_t count, CO_GLOBAL const co_uint4* traversal,
@@ -75,12 +86,7 @@ CO_KERNEL pth_resume(SCENE_KERNEL_PARAMS, CO_GLOBAL const co_float4* path_org, C
     RenderParams p = *params;
     SceneView s = SCENE_VIEW(p);
     KdStackEntry stack[KD_MAX_DEPTH];
-    for (uint32_t k = 0u; k < state.w; ++k) {
-      co_float4 e = traversal_stack[k * stack_stride + slot];
-      stack[k].node = co_as_uint(e.x);
-      stack[k].tmin = e.y;
-      stack[k].tmax = e.z;
-    }
+    load_traversal_stack(traversal_stack, stack_stride, slot, state.w, stack);
     hits[slot] = kd_resume(&s.tree, v3_from4(path_org[slot]), v3_from4(path_dir[slot]), 0.0f, INFINITY, 0, state.x,
                            co_as_float(state.y), co_as_float(state.z), stack, (int)state.w, &visited);
   }
@@ -105,12 +111,7 @@ CO_KERNEL pth_resume_speculative(SCENE_KERNEL_PARAMS, CO_GLOBAL const co_float4*
   RenderParams p = *params;
   SceneView s = SCENE_VIEW(p);
   KdStackEntry stack[KD_MAX_DEPTH];
-  for (uint32_t k = 0u; active && k < state.w; ++k) {
-    co_float4 e = traversal_stack[k * stack_stride + slot];
-    stack[k].node = co_as_uint(e.x);
-    stack[k].tmin = e.y;
-    stack[k].tmax = e.z;
-  }
+  if (active) load_traversal_stack(traversal_stack, stack_stride, slot, state.w, stack);
   KdSpeculativeRay ray;
   kd_spec_start(&ray, active, active ? v3_from4(path_org[slot]) : v3(0.0f, 0.0f, 1.0f),
                 active ? v3_from4(path_dir[slot]) : v3(0.0f, 0.0f, 1.0f), 0.0f, INFINITY, state.x,

@@ -85,9 +85,6 @@ TEST_P(WhiteFurnace, EnergyConservingObjectVanishes) {
   s.materials = {object.material};
   add_sphere(s, glm::vec3(0.f), 1.f, 0);
   const PreparedScene p = prepare(s, SceneCamera{{0.f, 0.f, 3.2f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 40.f});
-  const ClContext cl(select_device(""));
-  const ProgramCache cache(ProgramCache::default_directory());
-  const DeviceScene scene = upload_scene(cl, p.tree, p.tables);
   RenderSettings rs;
   rs.width = rs.height = 32;
   rs.spp = 64;
@@ -95,7 +92,7 @@ TEST_P(WhiteFurnace, EnergyConservingObjectVanishes) {
   rs.rr_depth = 3;  // Russian roulette inside the glass, where refraction scales the throughput
   rs.environment = glm::vec3(1.f);
   rs.method = std::get<1>(GetParam());
-  const RenderResult r = render(cl, cache, scene, p.camera, rs);
+  const RenderResult r = render_prepared(p, rs);
   EXPECT_EQ(r.dropped_samples, 0u);
   for (int ch = 0; ch < 3; ++ch) {
     const PixelStats st = channel_stats(r.image, ch);
@@ -147,9 +144,6 @@ TEST_P(ObjectsInFurnace, KeepTheUniformRadiance) {
   add_sphere(s, {0.f, -0.45f, 0.2f}, 0.2f, 3, 2);
   const PreparedScene p = prepare(s, SceneCamera{{0.f, 0.3f, 0.8f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 60.f});
   ASSERT_EQ(p.tables.features, (SceneFeatures{.conductor = true, .dielectric = true}));
-  const ClContext cl(select_device(""));
-  const ProgramCache cache(ProgramCache::default_directory());
-  const DeviceScene scene = upload_scene(cl, p.tree, p.tables);
   const FurnaceMode mode = std::get<0>(GetParam());
   RenderSettings rs;
   rs.width = rs.height = 32;
@@ -159,7 +153,7 @@ TEST_P(ObjectsInFurnace, KeepTheUniformRadiance) {
   rs.nee = mode.nee;
   rs.mis = mode.mis;
   rs.method = std::get<1>(GetParam());
-  const RenderResult r = render(cl, cache, scene, p.camera, rs);
+  const RenderResult r = render_prepared(p, rs);
   EXPECT_EQ(r.dropped_samples, 0u);
   for (int ch = 0; ch < 3; ++ch) {
     const PixelStats st = channel_stats(r.image, ch);
@@ -377,15 +371,12 @@ TEST(Texture, BaseColourTextureIsTheAlbedo) {
   s.uvs.assign(s.positions.size(), glm::vec2(0.37f, 0.81f));
   const PreparedScene p = prepare(s, SceneCamera{{0.f, 0.f, 2.5f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 30.f});
   ASSERT_TRUE(p.tables.features.textures);
-  const ClContext cl(select_device(""));
-  const ProgramCache cache(ProgramCache::default_directory());
-  const DeviceScene scene = upload_scene(cl, p.tree, p.tables);
   RenderSettings rs;
   rs.width = rs.height = 8;  // the centre pixels see the sphere
   rs.spp = 4;
   rs.environment = glm::vec3(1.f);
   rs.max_depth = 2;
-  const RenderResult r = render(cl, cache, scene, p.camera, rs);
+  const RenderResult r = render_prepared(p, rs);
   const float* centre = &r.image.rgb[3 * (4 * 8 + 4)];
   EXPECT_FLOAT_EQ(centre[0], co_srgb_to_linear[128]);
   EXPECT_FLOAT_EQ(centre[1], 0.5f);
@@ -402,14 +393,11 @@ TEST(Texture, EmissionTextureMultipliesEmission) {
   s.materials = {m};
   add_quad(s, {-1, -1, 0}, {2, 0, 0}, {0, 2, 0}, 0, true);
   const PreparedScene p = prepare(s, SceneCamera{{0.f, 0.f, 2.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 20.f});
-  const ClContext cl(select_device(""));
-  const ProgramCache cache(ProgramCache::default_directory());
-  const DeviceScene scene = upload_scene(cl, p.tree, p.tables);
   RenderSettings rs;
   rs.width = rs.height = 4;
   rs.spp = 2;
   rs.max_depth = 1;
-  const RenderResult r = render(cl, cache, scene, p.camera, rs);
+  const RenderResult r = render_prepared(p, rs);
   for (std::size_t i = 0; i < r.image.rgb.size(); i += 3) {
     EXPECT_FLOAT_EQ(r.image.rgb[i], 2.f);
     EXPECT_FLOAT_EQ(r.image.rgb[i + 1], 4.f * co_srgb_to_linear[128]);
