@@ -66,8 +66,13 @@ CO_INLINE uint32_t kd_inner_step(KdNode node, co_vec3 org, co_vec3 dir, co_vec3 
   /* The plane distance and the watertight hit distance round differently, so a hit on the
    * split plane can fall just outside the cell the plane bounds. Widening the decision and
    * both intervals by a few ulps keeps such hits (on shared edges and vertices that lie in
-   * split planes) inside a visited cell. !(t_plane > 0) catches the NaN of a ray in the plane. */
-  float eps = 4e-6f * fmax(fabs(t_plane), fabs(*t1));
+   * split planes) inside a visited cell. !(t_plane > 0) catches the NaN of a ray in the plane.
+   * The widening is relative to the plane distance, capped at twice the cell's exit: past that
+   * cap the plane lies beyond the cell and every comparison below decides as without it, but a
+   * ray parallel to the plane (direction component 0 or -0, t_plane infinite) would otherwise get
+   * an infinite eps, push the far child with the whole interval at every split on that axis and
+   * walk a large part of the tree (the straggler rays of docs/design.md). */
+  float eps = 4e-6f * fmax(fmin(fabs(t_plane), 2.0f * fabs(*t1)), fabs(*t1));
   uint32_t next, pushed = 0u;
   if (t_plane > *t1 + eps || !(t_plane > 0.0f)) {
     next = near_child;

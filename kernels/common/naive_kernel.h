@@ -6,7 +6,13 @@
 
 #include "common/pathtrace.h"
 
-CO_KERNEL render_naive(SCENE_KERNEL_PARAMS, CO_GLOBAL co_float4* film, CO_GLOBAL uint32_t* ray_counter,
+/* counters: [NAIVE_COUNTER_RAYS] rays traced, [NAIVE_COUNTER_MAX_STEPS] the most KD-tree nodes one ray
+ * visited (the straggler figure of --stats). */
+#define NAIVE_COUNTER_RAYS 0
+#define NAIVE_COUNTER_MAX_STEPS 1
+#define NAIVE_COUNTER_COUNT 2
+
+CO_KERNEL render_naive(SCENE_KERNEL_PARAMS, CO_GLOBAL co_float4* film, CO_GLOBAL uint32_t* counters,
                        CO_GLOBAL uint32_t* dropped_samples) {
   uint32_t pixel = co_global_id();
   RenderParams p = *params;
@@ -14,10 +20,11 @@ CO_KERNEL render_naive(SCENE_KERNEL_PARAMS, CO_GLOBAL co_float4* film, CO_GLOBAL
   SceneView s = SCENE_VIEW(p);
 
   co_float4 acc = film[pixel];
-  uint32_t rays = 0u, dropped = 0u;
+  uint32_t rays = 0u, dropped = 0u, max_steps = 0u;
   for (uint32_t i = 0u; i < p.samples_per_pass; ++i) {
     PathResult r = trace_path(&s, &p, pixel, p.sample_offset + i);
     rays += r.rays;
+    max_steps = co_umax(max_steps, r.max_steps);
     /* a NaN or infinite sample never reaches the image; it counts as a zero sample */
     if (v3_is_finite(r.radiance))
       acc = film_add(acc, r.radiance);
@@ -25,7 +32,8 @@ CO_KERNEL render_naive(SCENE_KERNEL_PARAMS, CO_GLOBAL co_float4* film, CO_GLOBAL
       ++dropped;
   }
   film[pixel] = acc;
-  co_atomic_add(ray_counter, rays);
+  co_atomic_add(&counters[NAIVE_COUNTER_RAYS], rays);
+  co_atomic_max(&counters[NAIVE_COUNTER_MAX_STEPS], max_steps);
   if (dropped) co_atomic_add(dropped_samples, dropped);
 }
 

@@ -349,20 +349,25 @@ CO_INLINE void path_resolve_shadow(PathState* st, const ShadowRay* sr, HitOut oc
 typedef struct PathResult {
   co_vec3 radiance;
   uint32_t rays;
+  uint32_t max_steps; /* the most KD-tree nodes one of its rays visited */
 } PathResult;
 
 /* The whole path in one call: what the NAIVE megakernel runs per sample. */
 CO_INLINE PathResult trace_path(const SceneView* s, const RenderParams* p, uint32_t pixel, uint32_t sample) {
   PathResult result;
   result.rays = 0u;
+  result.max_steps = 0u;
   PathState st = path_start(p, pixel, sample);
   while (st.status == PATH_ALIVE) {
-    HitOut hit = kd_trace(&s->tree, st.org, st.dir, 0.0f, INFINITY, 0);
+    uint32_t steps = 0u;
+    HitOut hit = kd_trace_steps(&s->tree, st.org, st.dir, 0.0f, INFINITY, 0, &steps);
     result.rays += 1u;
+    result.max_steps = co_umax(result.max_steps, steps);
     ShadowRay sr = path_shade(s, p, &st, hit, pixel, sample);
     if (sr.valid) {
       result.rays += 1u;
-      path_resolve_shadow(&st, &sr, kd_trace(&s->tree, sr.org, sr.dir, 0.0f, sr.tmax, 1));
+      path_resolve_shadow(&st, &sr, kd_trace_steps(&s->tree, sr.org, sr.dir, 0.0f, sr.tmax, 1, &steps));
+      result.max_steps = co_umax(result.max_steps, steps);
     }
   }
   result.radiance = st.radiance;

@@ -14,6 +14,20 @@ CO_KERNEL trace_rays(CO_GLOBAL const KdNode* nodes, CO_GLOBAL const uint32_t* le
   hits[i] = kd_trace(&tree, v3_from4(r.origin), v3_from4(r.dir), r.origin.w, r.dir.w, (int)any_hit);
 }
 
+/* trace_rays with the nodes each ray visited: the straggler tests. */
+CO_KERNEL trace_rays_steps(CO_GLOBAL const KdNode* nodes, CO_GLOBAL const uint32_t* leaf_triangles,
+                           CO_GLOBAL const Triangle* triangles, co_float4 scene_min, co_float4 scene_max,
+                           CO_GLOBAL const RayIn* rays, CO_GLOBAL HitOut* hits, uint32_t count, uint32_t any_hit,
+                           CO_GLOBAL uint32_t* steps) {
+  uint32_t i = co_global_id();
+  if (i >= count) return;
+  KdTreeView tree = make_tree_view(nodes, leaf_triangles, triangles, scene_min, scene_max);
+  RayIn r = rays[i];
+  uint32_t visited = 0u;
+  hits[i] = kd_trace_steps(&tree, v3_from4(r.origin), v3_from4(r.dir), r.origin.w, r.dir.w, (int)any_hit, &visited);
+  steps[i] = visited;
+}
+
 #include "common/coherence.h"
 
 /* Partial traversal of the top `levels` (subtree in local memory) then resumed traversal, for a

@@ -67,14 +67,17 @@ CO_KERNEL wf_shade(SCENE_KERNEL_PARAMS, PATH_PARAMS, CO_GLOBAL const HitOut* hit
 /* Any hit for each queued shadow ray; unoccluded light joins the path's radiance. */
 CO_KERNEL wf_shadow(SCENE_KERNEL_PARAMS, CO_GLOBAL co_float4* path_radiance, CO_GLOBAL const co_float4* shadow_org,
                     CO_GLOBAL const co_float4* shadow_dir, CO_GLOBAL const co_float4* shadow_contribution,
-                    CO_GLOBAL const uint32_t* shadow_queue, CO_GLOBAL const uint32_t* counters) {
+                    CO_GLOBAL const uint32_t* shadow_queue, CO_GLOBAL const uint32_t* counters,
+                    CO_GLOBAL uint32_t* steps) {
   uint32_t i = co_global_id();
   if (i >= counters[COUNTER_SHADOW]) return;
   uint32_t slot = shadow_queue[i];
   RenderParams p = *params;
   SceneView s = SCENE_VIEW(p);
   co_float4 dir = shadow_dir[slot];
-  HitOut occ = kd_trace(&s.tree, v3_from4(shadow_org[slot]), v3_from4(dir), 0.0f, dir.w, 1);
+  uint32_t visited = 0u;
+  HitOut occ = kd_trace_steps(&s.tree, v3_from4(shadow_org[slot]), v3_from4(dir), 0.0f, dir.w, 1, &visited);
+  steps[i] = visited; /* nodes visited per queue index: read by wf_max_steps */
   ShadowRay sr;
   sr.contribution = v3_from4(shadow_contribution[slot]);
   PathState st;
@@ -120,6 +123,20 @@ CO_KERNEL wf_accumulate(CO_CONSTANT RenderParams* params, CO_GLOBAL const co_flo
   if (dropped) co_atomic_add(dropped_samples, dropped);
 }
 
+/* Most nodes visited in each group of 32 consecutive launch indices, raised into the straggler
+ * counter with one atomic per group. */
+CO_INLINE uint32_t steps_group_max(CO_GLOBAL const uint32_t* steps, uint32_t first, uint32_t last,
+                                   CO_GLOBAL uint32_t* counters, uint32_t* sum) {
+  uint32_t most = 0u;
+  *sum = 0u;
+  for (uint32_t i = first; i < last; ++i) {
+    *sum += steps[i];
+    most = co_umax(most, steps[i]);
+  }
+  if (most > 0u) co_atomic_max(&counters[COUNTER_MAX_STEPS], most);
+  return most;
+}
+
 /* SIMD efficiency of a traversal launch (Aila & Laine 2009): for each group of 32 consecutive
  * launch indices, mean over max of the nodes each visited; summed in units of 1e-4 with the
  * number of groups, so the host reads two counters instead of every step count. */
@@ -127,14 +144,18 @@ CO_KERNEL wf_simd_efficiency(CO_GLOBAL const uint32_t* steps, uint32_t count, CO
   uint32_t group = co_global_id();
   uint32_t first = group * 32u;
   if (first >= count) return;
-  uint32_t last = co_umin(first + 32u, count), sum = 0u, most = 0u;
-  for (uint32_t i = first; i < last; ++i) {
-    sum += steps[i];
-    most = co_umax(most, steps[i]);
-  }
+  uint32_t last = co_umin(first + 32u, count), sum = 0u;
+  uint32_t most = steps_group_max(steps, first, last, counters, &sum);
   if (most == 0u) return;
   co_atomic_add(&counters[COUNTER_SIMD_SUM], (uint32_t)(10000.0f * (float)sum / (float)(most * (last - first)) + 0.5f));
   co_atomic_inc(&counters[COUNTER_SIMD_GROUPS]);
+}
+
+/* The shadow rays' share of the straggler counter (their count is on the device). */
+CO_KERNEL wf_shadow_max_steps(CO_GLOBAL const uint32_t* steps, CO_GLOBAL uint32_t* counters) {
+  uint32_t first = co_global_id() * 32u, count = counters[COUNTER_SHADOW], sum = 0u;
+  if (first >= count) return;
+  steps_group_max(steps, first, co_umin(first + 32u, count), counters, &sum);
 }
 
 #endif

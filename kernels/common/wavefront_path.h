@@ -13,6 +13,8 @@
 #define COUNTER_SHADOW 2 /* shadow rays queued this bounce */
 #define COUNTER_SIMD_SUM 3
 #define COUNTER_SIMD_GROUPS 4
+#define COUNTER_MAX_STEPS 5 /* the most KD-tree nodes one ray visited (the straggler figure) */
+#define COUNTER_COUNT 6
 
 #define PATH_PARAMS                                                                                      \
   CO_GLOBAL co_float4 *path_org, CO_GLOBAL co_float4 *path_dir, CO_GLOBAL co_float4 *path_throughput,    \

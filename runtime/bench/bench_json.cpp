@@ -19,7 +19,9 @@ nlohmann::json method_json(const MethodFigures& m) {
                       {"simd_efficiency", m.simd_efficiency},
                       {"render_seconds", m.render_seconds},
                       {"breakdown_seconds", m.breakdown},
-                      {"kernel_seconds", m.kernel_seconds}};
+                      {"kernel_seconds", m.kernel_seconds},
+                      {"pass_seconds", {{"median", m.pass_seconds_median}, {"max", m.pass_seconds_max}}},
+                      {"max_nodes_per_ray", m.max_nodes_per_ray}};
   if (!m.code_layout.empty()) j["coherence"] = {{"code", m.code_layout}, {"pth_levels", m.pth_levels}};
   return j;
 }

@@ -5,19 +5,14 @@
 #include <vector>
 
 #include "runtime/bench/protocol_rays.h"
+#include "runtime/util/median.h"
 
 namespace cohort {
 
 struct RateFigure {
   std::vector<double> runs;  // one rate per repetition
 
-  double median() const {
-    if (runs.empty()) return 0;
-    std::vector<double> v = runs;
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-  }
+  double median() const { return cohort::median(runs); }
   double best() const { return runs.empty() ? 0 : *std::max_element(runs.begin(), runs.end()); }
 };
 

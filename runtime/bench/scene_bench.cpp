@@ -2,10 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "runtime/bench/trace_bench.h"
 #include "runtime/render/prepared_scene.h"
 #include "runtime/render/renderer.h"
 #include "runtime/render/workloads.h"
+#include "runtime/util/median.h"
 
 namespace cohort {
 
@@ -44,12 +47,15 @@ MethodFigures bench_method(const ClContext& cl, const ProgramCache& cache, const
   MethodFigures f;
   f.method = method;
   std::vector<RenderResult> runs;
+  std::vector<double> pass_seconds;
   for (unsigned r = 0; r < std::max(reps, 1u); ++r) {
     RenderResult result = render(cl, cache, scene, camera, settings);
     result.image = Image{};  // keep the figures only
     const double s = result.render_seconds;
     f.rays_per_second.runs.push_back(s > 0 ? double(result.rays) / s : 0.0);
     f.samples_per_second.runs.push_back(s > 0 ? double(settings.width) * settings.height * result.samples / s : 0.0);
+    pass_seconds.insert(pass_seconds.end(), result.pass_kernel_seconds.begin(), result.pass_kernel_seconds.end());
+    f.max_nodes_per_ray = std::max(f.max_nodes_per_ray, result.max_nodes_per_ray);
     runs.push_back(std::move(result));
   }
   // the repetition whose rate is the median (the upper one of an even count) gives the breakdown
@@ -65,6 +71,8 @@ MethodFigures bench_method(const ClContext& cl, const ProgramCache& cache, const
   f.kernel_seconds = m.kernel_seconds;
   f.breakdown = time_breakdown(m.kernel_seconds);
   f.render_seconds = m.render_seconds;
+  f.pass_seconds_median = median(pass_seconds);
+  if (!pass_seconds.empty()) f.pass_seconds_max = *std::max_element(pass_seconds.begin(), pass_seconds.end());
   return f;
 }
 
@@ -122,6 +130,11 @@ SceneFigures bench_scene(const ClContext& cl, const ProgramCache& cache, const s
       const MethodFigures& m = vf.methods.back();
       log(fmt::format("  {} {}: {:.2f} Mrays/s, {:.3f} M samples/s median", view.name, method,
                       m.rays_per_second.median() * 1e-6, m.samples_per_second.median() * 1e-6));
+      if (m.pass_seconds_max > 2 * m.pass_seconds_median)
+        log(fmt::format("  warning: {} {}: slowest pass {:.2f} ms is {:.1f}x the median {:.2f} ms (stragglers? "
+                        "most nodes one ray visited: {})",
+                        view.name, method, m.pass_seconds_max * 1e3, m.pass_seconds_max / m.pass_seconds_median,
+                        m.pass_seconds_median * 1e3, m.max_nodes_per_ray));
     }
     out.views.push_back(std::move(vf));
   }

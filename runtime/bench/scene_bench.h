@@ -54,6 +54,10 @@ struct MethodFigures {
   std::map<std::string, double> breakdown;
   std::map<std::string, double> kernel_seconds;
   double render_seconds = 0;      // of the same repetition
+  // device time per pass over every repetition (stragglers: a max far above the median), and the
+  // most KD-tree nodes one ray visited
+  double pass_seconds_median = 0, pass_seconds_max = 0;
+  std::uint32_t max_nodes_per_ray = 0;
 };
 
 struct ViewFigures {

@@ -21,8 +21,14 @@ cl::Buffer ClContext::buffer(const std::string& what, std::size_t bytes, const v
     throw DeviceError(fmt::format("{} needs {} bytes in one buffer; {} allows at most {} bytes per allocation", what,
                                   bytes, device.name, device.max_allocation));
   try {
-    if (data) return cl::Buffer(context, flags | CL_MEM_COPY_HOST_PTR, bytes, const_cast<void*>(data));
+    // Drivers may defer a buffer's allocation and its CL_MEM_COPY_HOST_PTR upload to the first
+    // kernel that uses it (NVIDIA's does), which put the scene's upload inside the first pass.
+    // A blocking write uploads now; a migration places a buffer without contents on the device.
     cl::Buffer b(context, flags, bytes);
+    if (data)
+      queue.enqueueWriteBuffer(b, CL_TRUE, 0, bytes, data);
+    else
+      queue.enqueueMigrateMemObjects({b}, CL_MIGRATE_MEM_OBJECT_CONTENT_UNDEFINED);
     return b;
   } catch (const cl::Error& e) {
     throw DeviceError(describe(e, fmt::format("{}, {} bytes", what, bytes)));

@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <fstream>
 
@@ -20,6 +21,7 @@
 #include "runtime/util/atomic_file.h"
 #include "runtime/util/error.h"
 #include "runtime/util/hash.h"
+#include "runtime/util/median.h"
 #include "runtime/cli/interrupt.h"
 #include "runtime/render/checkpoint.h"
 #include "runtime/render/multi_device.h"
@@ -47,7 +49,8 @@ nlohmann::json device_json(const DeviceRun& run) {
           {"compute_units", run.device.compute_units}, {"passes", r.passes}, {"samples", r.samples},
           {"rays", r.rays}, {"rays_per_second", r.busy_seconds > 0 ? double(r.rays) / r.busy_seconds : 0.0},
           {"busy_seconds", r.busy_seconds}, {"upload_seconds", run.upload_seconds},
-          {"compile_seconds", r.compile_seconds}};
+          {"compile_seconds", r.compile_seconds}, {"pass_kernel_seconds", r.pass_kernel_seconds},
+          {"max_nodes_per_ray", r.max_nodes_per_ray}};
 }
 
 // One process's serial part (load, build) beside its render time, so scaling losses are visible.
@@ -82,6 +85,16 @@ nlohmann::json stats_json(const RenderCommand& cmd, const nlohmann::json& ranks,
   j["devices"] = devices;
   j["ranks"] = ranks;
   j["passes"] = r.passes;
+  // stragglers show as passes far slower than the median, and as rays that visit much of the tree
+  std::vector<double> pass_seconds;
+  std::uint32_t max_nodes = 0;
+  for (const auto& d : devices) {
+    for (const auto& s : d["pass_kernel_seconds"]) pass_seconds.push_back(s.get<double>());
+    max_nodes = std::max(max_nodes, d["max_nodes_per_ray"].get<std::uint32_t>());
+  }
+  j["pass_seconds"] = {{"median", median(pass_seconds)},
+                       {"max", pass_seconds.empty() ? 0.0 : *std::max_element(pass_seconds.begin(), pass_seconds.end())}};
+  j["max_nodes_per_ray"] = max_nodes;
   j["image"] = {{"width", cmd.settings.width}, {"height", cmd.settings.height}, {"spp", r.samples},
                 {"exr", out.exr.string()}, {"png", out.png.string()}};
   j["settings"] = {{"max_depth", cmd.settings.max_depth}, {"rr_depth", cmd.settings.rr_depth},

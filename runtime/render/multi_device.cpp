@@ -70,6 +70,9 @@ RenderResult merge_device_results(const std::vector<DeviceRun>& runs) {
     merged.rays += r.rays;
     merged.passes += r.passes;
     merged.busy_seconds += r.busy_seconds;
+    merged.pass_kernel_seconds.insert(merged.pass_kernel_seconds.end(), r.pass_kernel_seconds.begin(),
+                                      r.pass_kernel_seconds.end());
+    merged.max_nodes_per_ray = std::max(merged.max_nodes_per_ray, r.max_nodes_per_ray);
     merged.compile_seconds = std::max(merged.compile_seconds, r.compile_seconds);
     merged.compile_from_cache = merged.compile_from_cache && r.compile_from_cache;
     add_seconds(merged.kernel_seconds, r.kernel_seconds);

@@ -1,4 +1,6 @@
 // NAIVE: the megakernel of kernels/naive.cl, one launch per pass.
+#include <array>
+
 #include "runtime/render/launch_log.h"
 #include "runtime/render/methods.h"
 #include "runtime/render/pass_driver.h"
@@ -10,8 +12,9 @@ RenderResult render_naive(const Device& cl, const ProgramCache& cache, const Dev
                           const RenderControl& control) {
   const DeviceProgram build = cl.build_program(cache, "naive", scene.build_options);
   DeviceKernel kernel = build.kernel("render_naive");
-  const std::uint32_t zero = 0;
-  DeviceBuffer ray_counter = cl.allocate("ray counter", sizeof(zero), &zero);
+  // NAIVE_COUNTER_* of kernels/common/naive_kernel.h: rays, most nodes one ray visited
+  static constexpr std::array<std::uint32_t, 2> kZeros{};
+  DeviceBuffer counters = cl.allocate("ray counters", sizeof(kZeros), kZeros.data());
   const std::uint32_t pixels = settings.width * settings.height;
   // each pass stays far below 2^32 rays so the 32-bit counter cannot wrap
   const std::uint32_t max_per_pass = std::max<std::uint32_t>(1, (1u << 24) / std::max<std::uint32_t>(pixels, 1));
@@ -21,16 +24,16 @@ RenderResult render_naive(const Device& cl, const ProgramCache& cache, const Dev
     if (!args_set) {
       kernel.set_arg(0, b.params);
       std::size_t arg = set_scene_args(kernel, 1, scene);
-      for (const DeviceBuffer* buf : std::initializer_list<const DeviceBuffer*>{&b.film, &ray_counter, &b.dropped})
+      for (const DeviceBuffer* buf : std::initializer_list<const DeviceBuffer*>{&b.film, &counters, &b.dropped})
         kernel.set_arg(arg++, *buf);
       args_set = true;
     }
     LaunchLog log;
     log.launch(cl, kernel, "render_naive", pixels);
-    std::uint32_t rays = 0;
-    cl.read(ray_counter, 0, sizeof(rays), &rays);
-    cl.write(ray_counter, 0, sizeof(zero), &zero, false);
-    return PassOutput{rays, log.collect()};
+    std::array<std::uint32_t, 2> read{};
+    cl.read(counters, 0, sizeof(read), read.data());
+    cl.write(counters, 0, sizeof(kZeros), kZeros.data(), false);
+    return PassOutput{read[0], log.collect(), read[1]};
   });
   result.compile_seconds = build.seconds;
   result.compile_from_cache = build.from_cache;

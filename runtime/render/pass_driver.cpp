@@ -82,6 +82,7 @@ RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const Ren
   }
 
   RenderParams params = base_params;
+  cl.finish();  // buffers placed on the device before the clock starts (their upload is not rendering)
   const auto t0 = Clock::now();
   std::uint32_t per_launch = 1;
   source.device_ready();
@@ -91,6 +92,7 @@ RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const Ren
     cl.fill(buffers.film, 0u, std::size_t(pixels) * 4);  // 4 words per pixel; all-zero bits are 0.0f
     cl.fill(buffers.dropped, 0u, 1);
     PassFilm film{*sample_pass, {}, 0, 0};
+    double pass_kernel_seconds = 0;
     for (std::uint32_t done = 0; done < sample_pass->samples;) {
       const std::uint32_t count = std::min(per_launch, sample_pass->samples - done);
       params.sample_offset = sample_pass->first_sample + done;
@@ -100,17 +102,20 @@ RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const Ren
       cl.write(buffers.params, 0, sizeof(params), &params, false);
       const PassOutput out = pass(buffers, params);
       film.rays += out.rays;
+      result.max_nodes_per_ray = std::max(result.max_nodes_per_ray, out.max_steps);
       add_seconds(result.kernel_seconds, out.kernel_seconds);
       done += count;
       // within a pass the film is a running sum, so launch sizes do not change the image: grow
       // them while they are short, keeping per-launch overhead small
       double launch_seconds = 0;
       for (const auto& [name, s] : out.kernel_seconds) launch_seconds += s;
+      pass_kernel_seconds += launch_seconds;
       if (launch_seconds < 0.25 && per_launch * 2 <= max_samples_per_pass) per_launch *= 2;
     }
     if (image) {
       image->add_pass(cl, buffers, pixels, film);
       add_seconds(result.kernel_seconds, {{"film", image->last_seconds}});
+      pass_kernel_seconds += image->last_seconds;
     } else {
       film.sums.resize(pixels);
       cl.read(buffers.film, 0, film.sums.size() * sizeof(co_float4), film.sums.data());
@@ -121,6 +126,7 @@ RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const Ren
     result.rays += film.rays;
     result.samples += sample_pass->samples;
     ++result.passes;
+    result.pass_kernel_seconds.push_back(pass_kernel_seconds);
     result.busy_seconds += std::chrono::duration<double>(Clock::now() - pass_start).count();
     source.deliver(std::move(film));
   }

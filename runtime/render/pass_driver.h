@@ -23,6 +23,7 @@ struct PassBuffers {
 struct PassOutput {
   std::uint64_t rays = 0;
   std::map<std::string, double> kernel_seconds;
+  std::uint32_t max_steps = 0;  // the most KD-tree nodes one ray visited
 };
 
 // Renders samples [params.sample_offset, + params.samples_per_pass) of every pixel into the film,

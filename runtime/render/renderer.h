@@ -56,6 +56,8 @@ struct RenderResult {
   std::uint32_t resumed_samples = 0;             // samples taken over from a checkpoint
   std::uint32_t passes = 0;                      // sample passes this device rendered
   double busy_seconds = 0;                       // wall time inside those passes
+  std::vector<double> pass_kernel_seconds;       // device time of each pass, in the order rendered
+  std::uint32_t max_nodes_per_ray = 0;           // the most KD-tree nodes one ray visited
 };
 
 using ProgressCallback = std::function<void(const Progress&)>;

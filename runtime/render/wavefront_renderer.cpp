@@ -16,7 +16,8 @@ namespace cohort {
 namespace {
 
 constexpr std::uint32_t kItemNone = 0xffffffffu;
-enum Counter { kNextItem = 0, kQueue, kShadow, kSimdSum, kSimdGroups, kCounterCount };
+// COUNTER_* of kernels/common/wavefront_path.h
+enum Counter { kNextItem = 0, kQueue, kShadow, kSimdSum, kSimdGroups, kMaxSteps, kCounterCount };
 // Source of the non-blocking counter resets: the host memory of a non-blocking write must outlive
 // the command, so it cannot be a local of the loop.
 constexpr std::array<std::uint32_t, kCounterCount> kZeros{};
@@ -131,7 +132,7 @@ RenderResult render_wavefront(const Method& method, const Device& cl, const Prog
   DeviceKernel generate = build.kernel("wf_generate"), extend = build.kernel("wf_extend"),
                shade = build.kernel("wf_shade"), shadow = build.kernel("wf_shadow"),
                finish = build.kernel("wf_finish"), accumulate = build.kernel("wf_accumulate"),
-               simd = build.kernel("wf_simd_efficiency");
+               simd = build.kernel("wf_simd_efficiency"), shadow_max = build.kernel("wf_shadow_max_steps");
   std::optional<SortStage> sort_stage;
   std::optional<DeviceProgram> pth_build;
   if (sorting) {
@@ -150,7 +151,8 @@ RenderResult render_wavefront(const Method& method, const Device& cl, const Prog
     set_args(generate, b.params, o, d, t, r, pv, it, sg, st, pool.counters, pool.queue, use_queue, pool.slots, items);
     set_args(finish, o, d, t, r, pv, it, sg, st, results, pool.counters, pool.queue, use_queue, pool.slots);
     set_args(shadow, b.params, sc, r, pool.shadow_org, pool.shadow_dir,
-             pool.shadow_contribution, pool.shadow_queue, pool.counters);
+             pool.shadow_contribution, pool.shadow_queue, pool.counters, pool.steps);
+    shadow_max.set_args(pool.steps, pool.counters);
     accumulate.set_args(b.params, results, b.film, b.dropped);
 
     std::array<std::uint32_t, kCounterCount> counters{};
@@ -194,6 +196,7 @@ RenderResult render_wavefront(const Method& method, const Device& cl, const Prog
                pool.counters);
       log.launch(cl, shade, "shade", count);
       log.launch(cl, shadow, "shadow", live);  // at most one shadow ray per live path
+      log.launch(cl, shadow_max, "simd efficiency", (live + 31) / 32);
       cl.write(pool.counters, kQueue * 4, 4, kZeros.data(), false);
       log.launch(cl, finish, "finish", pool.slots);
       cl.read(pool.counters, 0, sizeof(counters), counters.data());
@@ -211,6 +214,7 @@ RenderResult render_wavefront(const Method& method, const Device& cl, const Prog
       add_seconds(stats.kernel_seconds, seconds);
       add_seconds(out.kernel_seconds, seconds);
       out.rays += live + counters[kShadow];
+      out.max_steps = std::max(out.max_steps, counters[kMaxSteps]);
       live = counters[kQueue];
     }
     log.launch(cl, accumulate, "accumulate", pixels);
