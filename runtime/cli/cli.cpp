@@ -37,6 +37,10 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
   cmd.add_option("--pth-levels", r.settings.pth_levels,
                  "KD-tree levels pth walks in local memory (default: 10, fewer if the tree or local memory is smaller)")
       ->check(CLI::Range(1, 16));
+  cmd.add_option("--stragglers", r.settings.straggler_rays,
+                 "Wavefront methods: write the N extension rays that visited the most KD-tree nodes, and each "
+                 "pass's maximum and 99.99th percentile, to --stats (a diagnostic; replay with cohort replay)")
+      ->check(CLI::Range(1, 100000));
   cmd.add_flag("--speculative", r.settings.speculative,
                "hash/pth: speculative resumed traversal (leaf tests wait until the SIMD group agrees)");
   cmd.add_option("--pass-spp", r.settings.pass_samples,
@@ -120,6 +124,12 @@ int run_cli(int argc, char** argv) {
 
   auto* devices_cmd = app.add_subcommand("devices", "List OpenCL platforms and devices");
 
+  ReplayCommand replay;
+  auto* replay_cmd =
+      app.add_subcommand("replay", "Trace the rays of a --stats file's \"stragglers\" on the host, as the kernels do");
+  replay_cmd->add_option("scene", replay.scene, "The scene that was rendered")->required();
+  replay_cmd->add_option("stats", replay.stats, "A --stats JSON file of a render with --stragglers")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -136,6 +146,7 @@ int run_cli(int argc, char** argv) {
     if (*export_cmd) return run_export(export_args);
     if (*info_cmd) return run_info(info_scene);
     if (*devices_cmd) return run_devices();
+    if (*replay_cmd) return run_replay(replay);
   } catch (const InputError& e) {
     fmt::print(stderr, "cohort: {}\n", e.what());
     return 2;

@@ -95,6 +95,19 @@ nlohmann::json stats_json(const RenderCommand& cmd, const nlohmann::json& ranks,
   j["pass_seconds"] = {{"median", median(pass_seconds)},
                        {"max", pass_seconds.empty() ? 0.0 : *std::max_element(pass_seconds.begin(), pass_seconds.end())}};
   j["max_nodes_per_ray"] = max_nodes;
+  if (cmd.settings.straggler_rays) {
+    nlohmann::json per_pass = nlohmann::json::array(), worst = nlohmann::json::array();
+    for (const auto& p : r.pass_stragglers) per_pass.push_back({{"max", p.max}, {"p9999", p.p9999}});
+    // hex floats: the exact bits, so the ray replays as traced
+    const auto hex = [](const glm::vec3& v) {
+      return nlohmann::json::array({fmt::format("{:a}", v.x), fmt::format("{:a}", v.y), fmt::format("{:a}", v.z)});
+    };
+    for (const auto& w : r.worst_rays)
+      worst.push_back({{"nodes", w.nodes}, {"org", hex(w.org)}, {"dir", hex(w.dir)},
+                       {"tmin", fmt::format("{:a}", w.tmin)}, {"tmax", fmt::format("{:a}", w.tmax)}});
+    j["stragglers"] = {{"rays", "extension rays of this device (rank 0's devices under MPI)"},
+                       {"per_pass", per_pass}, {"worst", worst}};
+  }
   j["image"] = {{"width", cmd.settings.width}, {"height", cmd.settings.height}, {"spp", r.samples},
                 {"exr", out.exr.string()}, {"png", out.png.string()}};
   j["settings"] = {{"max_depth", cmd.settings.max_depth}, {"rr_depth", cmd.settings.rr_depth},
@@ -162,6 +175,12 @@ int render_job(const RenderCommand& cmd_in, [[maybe_unused]] const MpiSession* m
   if (!cmd.environment.empty() && !env_map) cmd.settings.environment = parse_rgb("--env", cmd.environment);
   if (cmd.settings.spp == 0 && cmd.settings.time_limit <= 0)
     throw InputError("--spp 0 needs --time SECONDS to say when to stop");
+  if (cmd.settings.straggler_rays && !find_method(cmd.settings.method).wavefront)
+    throw InputError(fmt::format("--stragglers reads the rays of a wavefront method's extension launches; --method {} "
+                                 "has none (every method traces the same rays: use --method wavefront)",
+                                 cmd.settings.method));
+  if (cmd.settings.straggler_rays && cmd.stats_file.empty())
+    throw InputError("--stragglers writes its rays to the --stats file: give --stats FILE.json");
 #ifdef COHORT_HAVE_MPI
   const int rank = mpi ? mpi->rank() : 0;
   const int local_rank = mpi ? mpi->local_rank() : 0;

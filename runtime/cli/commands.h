@@ -60,4 +60,11 @@ int run_export(const ExportCommand& cmd);
 int run_info(const std::filesystem::path& scene);
 int run_devices();
 
+// Straggler rays from a render's --stats (--stragglers), traced again on the host.
+struct ReplayCommand {
+  std::filesystem::path scene;
+  std::filesystem::path stats;
+};
+int run_replay(const ReplayCommand& cmd);
+
 }  // namespace cohort

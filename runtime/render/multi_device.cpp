@@ -5,6 +5,7 @@
 
 #include "runtime/cl/context.h"
 #include "runtime/render/launch_log.h"
+#include "runtime/render/pass_driver.h"
 
 namespace cohort {
 
@@ -73,6 +74,8 @@ RenderResult merge_device_results(const std::vector<DeviceRun>& runs) {
     merged.pass_kernel_seconds.insert(merged.pass_kernel_seconds.end(), r.pass_kernel_seconds.begin(),
                                       r.pass_kernel_seconds.end());
     merged.max_nodes_per_ray = std::max(merged.max_nodes_per_ray, r.max_nodes_per_ray);
+    merged.pass_stragglers.insert(merged.pass_stragglers.end(), r.pass_stragglers.begin(), r.pass_stragglers.end());
+    keep_worst(merged.worst_rays, r.worst_rays, std::max<std::size_t>(r.worst_rays.size(), merged.worst_rays.size()));
     merged.compile_seconds = std::max(merged.compile_seconds, r.compile_seconds);
     merged.compile_from_cache = merged.compile_from_cache && r.compile_from_cache;
     add_seconds(merged.kernel_seconds, r.kernel_seconds);

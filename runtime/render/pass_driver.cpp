@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
+#include <iterator>
 #include <optional>
 #include <vector>
 
@@ -60,6 +62,13 @@ struct DeviceImage {
 
 }  // namespace
 
+void keep_worst(std::vector<StragglerRay>& worst, std::vector<StragglerRay> more, std::size_t keep) {
+  worst.insert(worst.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
+  std::stable_sort(worst.begin(), worst.end(),
+                   [](const StragglerRay& a, const StragglerRay& b) { return a.nodes > b.nodes; });
+  if (worst.size() > keep) worst.resize(keep);
+}
+
 RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const RenderParams& base_params,
                           const RenderSettings& settings,
                           std::uint32_t max_samples_per_pass, const ProgressCallback& progress,
@@ -93,6 +102,7 @@ RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const Ren
     cl.fill(buffers.dropped, 0u, 1);
     PassFilm film{*sample_pass, {}, 0, 0};
     double pass_kernel_seconds = 0;
+    std::vector<std::uint32_t> extension_steps;
     for (std::uint32_t done = 0; done < sample_pass->samples;) {
       const std::uint32_t count = std::min(per_launch, sample_pass->samples - done);
       params.sample_offset = sample_pass->first_sample + done;
@@ -103,6 +113,10 @@ RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const Ren
       const PassOutput out = pass(buffers, params);
       film.rays += out.rays;
       result.max_nodes_per_ray = std::max(result.max_nodes_per_ray, out.max_steps);
+      if (settings.straggler_rays) {
+        extension_steps.insert(extension_steps.end(), out.extension_steps.begin(), out.extension_steps.end());
+        keep_worst(result.worst_rays, out.worst_rays, settings.straggler_rays);
+      }
       add_seconds(result.kernel_seconds, out.kernel_seconds);
       done += count;
       // within a pass the film is a running sum, so launch sizes do not change the image: grow
@@ -127,6 +141,10 @@ RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const Ren
     result.samples += sample_pass->samples;
     ++result.passes;
     result.pass_kernel_seconds.push_back(pass_kernel_seconds);
+    if (settings.straggler_rays && !extension_steps.empty()) {
+      std::sort(extension_steps.begin(), extension_steps.end(), std::greater<>());
+      result.pass_stragglers.push_back({extension_steps.front(), extension_steps[extension_steps.size() / 10000]});
+    }
     result.busy_seconds += std::chrono::duration<double>(Clock::now() - pass_start).count();
     source.deliver(std::move(film));
   }

@@ -24,7 +24,13 @@ struct PassOutput {
   std::uint64_t rays = 0;
   std::map<std::string, double> kernel_seconds;
   std::uint32_t max_steps = 0;  // the most KD-tree nodes one ray visited
+  // with RenderSettings::straggler_rays: nodes visited by every extension ray, and the worst rays
+  std::vector<std::uint32_t> extension_steps;
+  std::vector<StragglerRay> worst_rays;
 };
+
+// Keeps the `keep` rays that visited the most nodes (ties: the earlier), the most first.
+void keep_worst(std::vector<StragglerRay>& worst, std::vector<StragglerRay> more, std::size_t keep);
 
 // Renders samples [params.sample_offset, + params.samples_per_pass) of every pixel into the film,
 // and waits for its launches before it returns (the parameters are written without blocking).

@@ -29,6 +29,8 @@ struct RenderSettings {
   std::string code;                  // coherence code layout of hash/pth; empty: the method's default
   std::uint32_t pth_levels = 0;      // subtree levels of pth; 0: chosen from the device and the tree
   bool speculative = false;          // hash/pth: resumed traversal postpones leaf tests (Aila & Laine)
+  std::uint32_t straggler_rays = 0;  // wavefront methods: keep this many of the extension rays that
+                                     // visited the most nodes, and per-pass percentiles (a diagnostic)
 };
 
 }  // namespace cohort

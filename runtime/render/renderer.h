@@ -1,6 +1,7 @@
 // Renders a scene on one device with one method and reports what it measured.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -35,6 +36,20 @@ struct IterationStats {
   std::map<std::string, double> kernel_seconds;
 };
 
+// An extension ray that visited many KD-tree nodes, as traced: it replays on the host
+// (`cohort info SCENE --replay STATS.json`) with kd_trace_steps on [tmin, tmax].
+struct StragglerRay {
+  std::uint32_t nodes = 0;
+  glm::vec3 org{0.f}, dir{0.f};
+  float tmin = 0.f, tmax = INFINITY;
+};
+
+// Nodes visited per extension ray in one pass (RenderSettings::straggler_rays).
+struct PassStragglers {
+  std::uint32_t max = 0;
+  std::uint32_t p9999 = 0;  // 99.99th percentile
+};
+
 struct RenderResult {
   Image image;                 // mean radiance per pixel
   std::uint32_t samples = 0;   // per pixel
@@ -58,6 +73,8 @@ struct RenderResult {
   double busy_seconds = 0;                       // wall time inside those passes
   std::vector<double> pass_kernel_seconds;       // device time of each pass, in the order rendered
   std::uint32_t max_nodes_per_ray = 0;           // the most KD-tree nodes one ray visited
+  std::vector<PassStragglers> pass_stragglers;   // with settings.straggler_rays only
+  std::vector<StragglerRay> worst_rays;          // the most nodes first
 };
 
 using ProgressCallback = std::function<void(const Progress&)>;

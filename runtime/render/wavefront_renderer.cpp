@@ -4,6 +4,7 @@
 // traversal in sorted order (kernels/common/pth_kernels.h).
 #include <algorithm>
 #include <array>
+#include <numeric>
 #include <optional>
 
 #include "runtime/render/coherence.h"
@@ -99,6 +100,32 @@ struct SortStage {
   }
 };
 
+// The diagnostic of RenderSettings::straggler_rays: reads the nodes visited per launch index of an
+// extension launch, and the rays of the worst `keep`. `slots`, when given, maps launch index to
+// path slot (the compacted queue, or the sorted order).
+void collect_stragglers(const Device& cl, const Pool& pool, const DeviceBuffer* slots, std::uint32_t count,
+                        std::size_t keep, PassOutput& out) {
+  std::vector<std::uint32_t> steps(count), slot_of(count);
+  cl.read(pool.steps, 0, count * sizeof(std::uint32_t), steps.data());
+  if (slots) cl.read(*slots, 0, count * sizeof(std::uint32_t), slot_of.data());
+  else std::iota(slot_of.begin(), slot_of.end(), 0u);
+  std::vector<std::uint32_t> order(count);
+  std::iota(order.begin(), order.end(), 0u);
+  const std::size_t worst = std::min<std::size_t>(keep, count);
+  std::partial_sort(order.begin(), order.begin() + worst, order.end(),
+                    [&](std::uint32_t a, std::uint32_t b) { return steps[a] > steps[b]; });
+  std::vector<StragglerRay> rays;
+  for (std::size_t k = 0; k < worst && steps[order[k]] > 0; ++k) {
+    std::array<co_float4, 2> ray{};
+    cl.read(pool.org, std::size_t(slot_of[order[k]]) * 16, 16, &ray[0]);
+    cl.read(pool.dir, std::size_t(slot_of[order[k]]) * 16, 16, &ray[1]);
+    rays.push_back({steps[order[k]], {ray[0].x, ray[0].y, ray[0].z}, {ray[1].x, ray[1].y, ray[1].z}});
+  }
+  keep_worst(out.worst_rays, std::move(rays), keep);
+  for (std::uint32_t s : steps)
+    if (s > 0) out.extension_steps.push_back(s);  // 0: a free or finished slot, not a ray
+}
+
 template <class Arg>
 void set_arg(DeviceKernel& k, std::size_t& i, const Arg& arg) {
   k.set_arg(i++, arg);
@@ -184,10 +211,13 @@ RenderResult render_wavefront(const Method& method, const Device& cl, const Prog
                  ss.traversal_stack, pool.slots, pool.hits, pool.steps);
         // the speculative kernel votes per work-group: make it one SIMD group of 32
         log.launch(cl, ss.resume, "resume", count, settings.speculative ? 32 : 64);
+        if (settings.straggler_rays) collect_stragglers(cl, pool, &ss.values, count, settings.straggler_rays, out);
       } else {
         set_args(extend, b.params, sc, o, d, t, r, pv, it, sg, st, pool.hits,
                  pool.queue, use_queue, count, pool.steps);
         log.launch(cl, extend, "extend", count);
+        if (settings.straggler_rays)
+          collect_stragglers(cl, pool, use_queue ? &pool.queue : nullptr, count, settings.straggler_rays, out);
       }
       simd.set_args(pool.steps, count, pool.counters);
       log.launch(cl, simd, "simd efficiency", (count + 31) / 32);

@@ -1,5 +1,7 @@
 #include "accel/ray_check.h"
 
+#include "runtime/accel/host_traversal.h"
+
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -197,15 +199,7 @@ HitOut trace_tolerant(const KdTreeView& view, const TestRay& ray, float tmin, fl
   return hit;
 }
 
-KdTreeView view_of(const KdTree& tree) {
-  KdTreeView view;
-  view.nodes = tree.nodes.data();
-  view.leaf_triangles = tree.leaf_triangles.data();
-  view.triangles = tree.triangles.data();
-  view.lo = to_co(tree.bounds.lo);
-  view.hi = to_co(tree.bounds.hi);
-  return view;
-}
+KdTreeView view_of(const KdTree& tree) { return host_view(tree); }
 
 HitOut brute_force(const KdTree& tree, const TestRay& ray, float tmin, float tmax) {
   HitOut hit{tmax, 0.f, 0.f, HIT_NONE};

@@ -1,0 +1,20 @@
+// The device traversal (kernels/common/kdtree_traverse.h) over a tree in host memory: the same code,
+// compiled as C++, so a ray replays on the host exactly as a kernel traced it.
+#pragma once
+
+#include "kernels/common/kdtree_traverse.h"
+#include "runtime/accel/kdtree.h"
+
+namespace cohort {
+
+inline KdTreeView host_view(const KdTree& tree) {
+  KdTreeView view;
+  view.nodes = tree.nodes.data();
+  view.leaf_triangles = tree.leaf_triangles.data();
+  view.triangles = tree.triangles.data();
+  view.lo = v3(tree.bounds.lo.x, tree.bounds.lo.y, tree.bounds.lo.z);
+  view.hi = v3(tree.bounds.hi.x, tree.bounds.hi.y, tree.bounds.hi.z);
+  return view;
+}
+
+}  // namespace cohort

@@ -1,0 +1,64 @@
+// cohort replay: the straggler rays a render wrote (--stragglers) traced again on the host with the
+// kernels' own traversal, so a slow ray can be studied in a debugger, bit for bit as the device saw it.
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <fstream>
+
+#include "runtime/accel/host_traversal.h"
+#include "runtime/cli/commands.h"
+#include "runtime/render/prepared_scene.h"
+#include "runtime/util/error.h"
+
+namespace cohort {
+namespace {
+
+float parse_float(const nlohmann::json& value, const std::filesystem::path& file) {
+  const std::string text = value.get<std::string>();
+  char* end = nullptr;
+  const float f = std::strtof(text.c_str(), &end);  // reads C99 hex floats exactly
+  if (text.empty() || end != text.c_str() + text.size())
+    throw InputError(fmt::format("{}: \"{}\" is not a number", file.string(), text));
+  return f;
+}
+
+glm::vec3 parse_vec3(const nlohmann::json& value, const std::filesystem::path& file) {
+  if (!value.is_array() || value.size() != 3)
+    throw InputError(fmt::format("{}: a ray's org and dir are arrays of 3 numbers", file.string()));
+  return {parse_float(value[0], file), parse_float(value[1], file), parse_float(value[2], file)};
+}
+
+}  // namespace
+
+int run_replay(const ReplayCommand& cmd) {
+  std::ifstream in(cmd.stats);
+  if (!in) throw InputError(fmt::format("{}: cannot open", cmd.stats.string()));
+  nlohmann::json stats;
+  try {
+    stats = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("{}: not JSON ({})", cmd.stats.string(), e.what()));
+  }
+  if (!stats.contains("stragglers") || !stats["stragglers"].contains("worst"))
+    throw InputError(fmt::format("{}: no \"stragglers\" (render with --stragglers N --stats FILE)", cmd.stats.string()));
+  const PreparedScene p = prepare_scene(cmd.scene);
+  const KdTreeView view = host_view(p.tree);
+  fmt::print("{}: {} nodes, depth {}\n", cmd.scene.string(), p.tree.stats.node_count, p.tree.stats.depth);
+  for (const auto& ray : stats["stragglers"]["worst"]) {
+    try {
+      const glm::vec3 o = parse_vec3(ray.at("org"), cmd.stats), d = parse_vec3(ray.at("dir"), cmd.stats);
+      const float tmin = parse_float(ray.at("tmin"), cmd.stats), tmax = parse_float(ray.at("tmax"), cmd.stats);
+      std::uint32_t steps = 0;
+      const HitOut hit = kd_trace_steps(&view, v3(o.x, o.y, o.z), v3(d.x, d.y, d.z), tmin, tmax, 0, &steps);
+      fmt::print("device {} nodes, host {} nodes: org ({:a}, {:a}, {:a}) dir ({:a}, {:a}, {:a}) -> {}\n",
+                 ray.at("nodes").get<std::uint32_t>(), steps, o.x, o.y, o.z, d.x, d.y, d.z,
+                 hit.triangle == HIT_NONE ? std::string("miss") : fmt::format("triangle {} at t {:a}", hit.triangle, hit.t));
+    } catch (const nlohmann::json::exception& e) {
+      throw InputError(fmt::format("{}: a straggler ray is malformed ({})", cmd.stats.string(), e.what()));
+    }
+  }
+  return 0;
+}
+
+}  // namespace cohort
