@@ -93,6 +93,10 @@ void add_bench_options(CLI::App& cmd, BenchCommand& b) {
   cmd.add_option("--device", b.device, "Device index or name substring");
   cmd.add_option("--json", b.json, "Write every figure to this JSON file");
   cmd.add_flag("--no-traversal", b.no_traversal, "Skip the primary and diffuse traversal workloads");
+  cmd.add_flag("--gate", b.gate,
+               "Instead: trace each bounce's protocol rays (--trace-res) in several orders and time a device sort of "
+               "each order's keys: where would sorting pay on this device and scene?");
+  cmd.add_option("--bounces", b.bounces, "--gate: bounces to measure")->check(CLI::Range(1, 8));
 }
 
 }  // namespace

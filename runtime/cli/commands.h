@@ -44,6 +44,8 @@ struct BenchCommand {
   std::string device;
   std::string json;
   bool no_traversal = false;
+  bool gate = false;     // the ordering gate experiment instead of the usual figures
+  unsigned bounces = 3;  // gate: bounces to measure
 };
 
 // A utility for the benchmark scripts: a scene's world-space triangles as a PLY soup, optionally

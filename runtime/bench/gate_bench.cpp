@@ -1,0 +1,142 @@
+#include "runtime/bench/gate_bench.h"
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+
+#include "kernels/common/coherence.h"
+#include "runtime/bench/protocol_rays.h"
+#include "runtime/accel/host_traversal.h"
+#include "runtime/bench/trace_bench.h"
+#include "runtime/render/coherence.h"
+#include "runtime/sort/radix_sort.h"
+
+namespace cohort {
+namespace {
+
+co_vec3 org_of(const RayIn& r) { return v3(r.origin.x, r.origin.y, r.origin.z); }
+co_vec3 dir_of(const RayIn& r) { return v3(r.dir.x, r.dir.y, r.dir.z); }
+
+// Keys of a --code layout (uniform origin grid: the host has no centroid quantiles here); the
+// paper's PTH bits come from the same walk the kernel takes, over the whole node array.
+std::vector<std::uint64_t> layout_keys(const std::string& layout, const KdTree& tree, std::span<const RayIn> rays) {
+  const CodeParams c = parse_code_layout(layout, 10, tree.bounds);
+  const KdTreeView view = host_view(tree);
+  std::vector<std::uint64_t> keys(rays.size());
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const co_vec3 o = org_of(rays[i]), d = dir_of(rays[i]);
+    std::uint32_t bits = 0;
+    if (c.pth_levels) {
+      const co_vec3 inv = kd_inverse(d);
+      float t0, t1;
+      if (kd_begin(&view, o, inv, 0.f, INFINITY, &t0, &t1)) {
+        KdStackEntry stack[KD_MAX_DEPTH];
+        int sp = 0;
+        std::uint32_t node = 0;
+        bits = pth_walk(tree.nodes.data(), std::uint32_t(tree.nodes.size()), c.pth_levels, o, d, inv, &node, &t0,
+                        &t1, stack, &sp);
+      }
+    }
+    keys[i] = coherence_code(&c, nullptr, o, d, bits);
+  }
+  return keys;
+}
+
+// Meister et al. 2020: the origin and an estimate of the end point, each 5 bits per axis in Morton
+// order. The estimate here is the exact hit distance (an upper bound on what a real estimate buys);
+// a miss ends where the ray leaves the scene box.
+std::vector<std::uint64_t> two_point_keys(const KdTree& tree, std::span<const RayIn> rays,
+                                          std::span<const ProtocolHit> hits) {
+  const glm::vec3 lo = tree.bounds.lo, extent = glm::max(tree.bounds.hi - tree.bounds.lo, glm::vec3(1e-30f));
+  const KdTreeView view = host_view(tree);
+  auto cell = [&](glm::vec3 p) {
+    const glm::vec3 f = (p - lo) / extent;
+    return (morton_spread3(quantize(f.x, 5)) << 2) | (morton_spread3(quantize(f.y, 5)) << 1) |
+           morton_spread3(quantize(f.z, 5));
+  };
+  std::vector<std::uint64_t> keys(rays.size());
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const glm::vec3 o(rays[i].origin.x, rays[i].origin.y, rays[i].origin.z), d(rays[i].dir.x, rays[i].dir.y, rays[i].dir.z);
+    float t = hits[i].triangle == HIT_NONE ? 0.f : hits[i].t;
+    if (hits[i].triangle == HIT_NONE) {
+      float t0, t1;
+      if (kd_begin(&view, org_of(rays[i]), kd_inverse(dir_of(rays[i])), 0.f, INFINITY, &t0, &t1)) t = t1;
+    }
+    keys[i] = (cell(o) << 15) | cell(o + d * t);
+  }
+  return keys;
+}
+
+std::vector<std::uint32_t> order_by(const std::vector<std::uint64_t>& keys) {
+  std::vector<std::uint32_t> order(keys.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return keys[a] < keys[b]; });
+  return order;
+}
+
+// Median device time of sorting `count` (key, value) pairs by `key_bits` bits.
+double sort_ms(const ClContext& cl, const ProgramCache& cache, const std::vector<std::uint64_t>& keys,
+               unsigned key_bits, unsigned reps) {
+  RadixSort sort(cl, cache, std::uint32_t(keys.size()));
+  std::vector<std::uint32_t> values(keys.size());
+  std::iota(values.begin(), values.end(), 0u);
+  RateFigure ms;
+  for (unsigned r = 0; r < reps; ++r) {
+    const DeviceBuffer k = cl.allocate("gate keys", keys.size() * 8, keys.data());
+    const DeviceBuffer v = cl.allocate("gate values", values.size() * 4, values.data());
+    std::map<std::string, double> seconds;
+    sort.sort(k, v, std::uint32_t(keys.size()), key_bits, &seconds);
+    double total = 0;
+    for (const auto& [name, s] : seconds) total += s;
+    ms.runs.push_back(total * 1e3);
+  }
+  return ms.median();
+}
+
+}  // namespace
+
+std::vector<GateBounce> gate_bench(const ClContext& cl, const ProgramCache& cache, const PreparedScene& scene,
+                                   const SceneCamera& camera, const GateOptions& options) {
+  const KdTree& tree = scene.tree;
+  TraceBench tracer(cl, cache, tree);
+  std::vector<RayIn> rays = protocol_primary_rays(camera, options.res);
+  const float diag = scene.scene.bounds().diagonal();
+  std::vector<GateBounce> out;
+  for (unsigned bounce = 1; bounce <= options.bounces && !rays.empty(); ++bounce) {
+    GateBounce b;
+    b.bounce = bounce;
+    b.rays = rays.size();
+    const TraceFigures base = tracer.trace(rays, options.reps);
+    b.orders.push_back({"generation", 0, base.rays_per_second, 0});
+    struct Keyed {
+      const char* name;
+      std::vector<std::uint64_t> keys;
+      unsigned bits;
+    };
+    std::vector<Keyed> keyed;
+    keyed.push_back({"origin-first", layout_keys("origin-uniform:8,dir:4", tree, rays), 32});
+    keyed.push_back({"direction-first", layout_keys("dir:4,origin-uniform:8", tree, rays), 32});
+    keyed.push_back({"paper", layout_keys("origin-uniform:8,pth:10,dir:8", tree, rays), 60});
+    keyed.push_back({"two-point", two_point_keys(tree, rays, base.closest), 30});
+    std::vector<std::uint64_t> shuffled(rays.size());
+    std::iota(shuffled.begin(), shuffled.end(), std::uint64_t(0));
+    std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(bounce));
+    keyed.push_back({"random", std::move(shuffled), 32});
+    for (const Keyed& k : keyed) {
+      const std::vector<std::uint32_t> order = order_by(k.keys);
+      std::vector<RayIn> sorted(rays.size());
+      for (std::size_t i = 0; i < order.size(); ++i) sorted[i] = rays[order[i]];
+      const TraceFigures f = tracer.trace(sorted, options.reps);
+      for (std::size_t i = 0; i < order.size(); ++i)
+        if (f.closest[i].triangle != base.closest[order[i]].triangle || f.closest[i].t != base.closest[order[i]].t)
+          b.hits_agree = false;
+      b.orders.push_back({k.name, k.bits, f.rays_per_second, sort_ms(cl, cache, k.keys, k.bits, options.reps)});
+    }
+    out.push_back(std::move(b));
+    // the next bounce: diffuse rays from this bounce's hits (generation order)
+    rays = protocol_diffuse_rays(rays, base.closest, scene.scene.positions, diag);
+  }
+  return out;
+}
+
+}  // namespace cohort
