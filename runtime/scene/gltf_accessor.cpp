@@ -143,7 +143,8 @@ std::vector<Out> read_elements(const tinygltf::Model& model, int index, const st
   const int ict = a.sparse.indices.componentType;
   if (ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
       ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-    fail(where, fmt::format("sparse accessor {} has indices of component type {}, not unsigned integers", index, ict));
+    fail(where,
+         fmt::format("sparse accessor {} has indices of component type {}, not unsigned integers", index, ict));
   if (n > a.count)
     fail(where, fmt::format("sparse accessor {} substitutes {} of its {} elements", index, n, a.count));
   const View idx = make_view(model, a.sparse.indices.bufferView,
@@ -193,6 +194,10 @@ std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int index,
        ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
     fail(where, fmt::format("index accessor {} is not unsigned byte, short or int scalars", index));
   if (a.sparse.isSparse) fail(where, fmt::format("sparse index accessor {} is not supported", index));
+  // Index views are tightly packed by definition; a stride would pick other indices than the writer meant.
+  if (a.bufferView >= 0 && static_cast<std::size_t>(a.bufferView) < model.bufferViews.size() &&
+      model.bufferViews[static_cast<std::size_t>(a.bufferView)].byteStride != 0)
+    fail(where, fmt::format("index accessor {} reads buffer view {}, which has a byteStride", index, a.bufferView));
   const View v = make_view(model, a.bufferView, a.byteOffset, a.count, ct, 1, false, where);
   std::vector<std::uint32_t> out(v.count);
   for (std::size_t i = 0; i < v.count; ++i) out[i] = static_cast<std::uint32_t>(component(v, i, 0));

@@ -41,7 +41,8 @@ void check_transform(const tinygltf::Node& n, int index, const std::string& file
   check(n.rotation, 4, "rotation");
   check(n.scale, 3, "scale");
   // A matrix whose last row is not (0, 0, 0, 1) is a projection, not a node transform.
-  if (n.matrix.size() == 16 && (n.matrix[3] != 0.0 || n.matrix[7] != 0.0 || n.matrix[11] != 0.0 || n.matrix[15] != 1.0))
+  const auto& m = n.matrix;
+  if (m.size() == 16 && (m[3] != 0.0 || m[7] != 0.0 || m[11] != 0.0 || m[15] != 1.0))
     throw InputError(fmt::format("{}: node {} matrix is not affine (last row not 0, 0, 0, 1)", file, index));
   if (n.rotation.size() == 4) {
     const double length = glm::length(glm::dvec4(n.rotation[0], n.rotation[1], n.rotation[2], n.rotation[3]));

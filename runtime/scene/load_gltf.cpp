@@ -91,14 +91,13 @@ void add_warnings(const std::string& text, const std::string& file, Scene& scene
 // "MAJOR.MINOR" as asset.version and asset.minVersion spell it, or nullopt for anything else.
 std::optional<std::pair<int, int>> version_numbers(const std::string& text) {
   const std::size_t dot = text.find('.');
-  if (dot == std::string::npos) return std::nullopt;
+  if (dot == std::string::npos || dot == 0 || dot + 1 == text.size()) return std::nullopt;
   int major = 0, minor = 0;
   const char* end = text.data() + text.size();
   const auto a = std::from_chars(text.data(), text.data() + dot, major);
   const auto b = std::from_chars(text.data() + dot + 1, end, minor);
-  if (dot == 0 || a.ec != std::errc{} || a.ptr != text.data() + dot || dot + 1 == text.size() || b.ec != std::errc{} ||
-      b.ptr != end || major < 0 || minor < 0)
-    return std::nullopt;
+  const bool whole = a.ec == std::errc{} && a.ptr == text.data() + dot && b.ec == std::errc{} && b.ptr == end;
+  if (!whole || major < 0 || minor < 0) return std::nullopt;
   return std::pair{major, minor};
 }
 

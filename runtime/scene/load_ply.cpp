@@ -146,9 +146,9 @@ class BodyReader {
 PlyMesh read_body(const ply::Header& header, const std::string& bytes, const std::string& file) {
   const std::string_view body = std::string_view(bytes).substr(header.body_offset);
   if (header.format == ply::Format::ascii) {
-    const auto header_lines = std::count(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(header.body_offset), '\n');
-    return BodyReader<ply::AsciiReader>(ply::AsciiReader(body, file, static_cast<std::size_t>(header_lines) + 1), file)
-        .read(header);
+    const std::string_view header_text = std::string_view(bytes).substr(0, header.body_offset);
+    const auto first_line = static_cast<std::size_t>(std::count(header_text.begin(), header_text.end(), '\n')) + 1;
+    return BodyReader<ply::AsciiReader>(ply::AsciiReader(body, file, first_line), file).read(header);
   }
   const bool big = header.format == ply::Format::binary_big_endian;
   return BodyReader<ply::BinaryReader>(ply::BinaryReader(body, big, file), file).read(header);

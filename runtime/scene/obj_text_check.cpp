@@ -93,10 +93,15 @@ class Checker {
 
   void index(std::string_view field, std::string_view corner) const {
     const std::optional<long long> value = parse_integer(field);
+    // tinyobjloader's atoi would wrap an index past an int into some other, valid one.
+    const std::string_view unsigned_part = field.substr(!field.empty() && (field[0] == '-' || field[0] == '+'));
+    const bool digits =
+        !unsigned_part.empty() && unsigned_part.find_first_not_of("0123456789") == std::string_view::npos;
+    const bool too_big =
+        digits && (!value || *value > std::numeric_limits<int>::max() || *value < -std::numeric_limits<int>::max());
+    if (too_big) fail(fmt::format("face index {} is out of range", shown(field)));
     if (!value) fail(fmt::format("face corner '{}' is not made of integer indices", shown(corner)));
     if (*value == 0) fail(fmt::format("face index 0 in '{}' (OBJ indices start at 1)", shown(corner)));
-    if (*value > std::numeric_limits<int>::max() || *value < -std::numeric_limits<int>::max())
-      fail(fmt::format("face index {} is out of range", shown(field)));
   }
 
   const std::string& file_;

@@ -3,6 +3,7 @@
 // malformed-input corpus in test/data/bad-input.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -22,6 +23,12 @@ using test::GltfWriter;
 using test::TempDir;
 
 const std::string kTriangleObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+
+// Writes `text` as `name` in `dir` and expects loading it to fail with `what` in the message.
+void rejects(const TempDir& dir, const std::string& name, const std::string& text, const std::string& what) {
+  test::write_file(dir / name, text);
+  expect_input_error(dir / name, what);
+}
 
 TEST(StrictNumber, WholeTokenOrNothing) {
   EXPECT_EQ(parse_number("-1.5e3"), -1500.0);
@@ -86,16 +93,11 @@ TEST(StrictGzip, TrailerMismatchIsCorruptAndMembersConcatenate) {
 
 TEST(StrictObj, NumbersAreReadWholeAndErrorsNameTheLine) {
   TempDir dir;
-  test::write_file(dir / "suffix.obj", "v 0 0 0\nv 1 0 0\nv 0 1.5abc 0\nf 1 2 3\n");
-  expect_input_error(dir / "suffix.obj", "line 3: '1.5abc'");
-  test::write_file(dir / "short.obj", "v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n");
-  expect_input_error(dir / "short.obj", "line 2: vertex has 2 numbers");
-  test::write_file(dir / "face.obj", kTriangleObj + "# two\nf 1 2 3z\n");
-  expect_input_error(dir / "face.obj", "line 6: face corner '3z'");
-  test::write_file(dir / "zero.obj", kTriangleObj + "f 0 1 2\n");
-  expect_input_error(dir / "zero.obj", "line 5: face index 0");
-  test::write_file(dir / "vt.obj", kTriangleObj + "vt 0.5 0.5e\n");
-  expect_input_error(dir / "vt.obj", "'0.5e'");
+  rejects(dir, "suffix.obj", "v 0 0 0\nv 1 0 0\nv 0 1.5abc 0\nf 1 2 3\n", "line 3: '1.5abc'");
+  rejects(dir, "short.obj", "v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n", "line 2: vertex has 2 numbers");
+  rejects(dir, "face.obj", kTriangleObj + "# two\nf 1 2 3z\n", "line 6: face corner '3z'");
+  rejects(dir, "zero.obj", kTriangleObj + "f 0 1 2\n", "line 5: face index 0");
+  rejects(dir, "vt.obj", kTriangleObj + "vt 0.5 0.5e\n", "'0.5e'");
   // Line ends, comments, signs and v//n corners stay legal.
   test::write_file(dir / "fine.obj",
                    "v +0 0 0 # origin\r\nv 1. 0 0\rv 0 .5e1 0\nvn 0 0 1\nvt 0\nf 1/1/1 2//1 -1/1\n");
@@ -129,18 +131,13 @@ TEST(StrictPly, AsciiItemsAreOneLineOfTheDeclaredTypes) {
   const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n";
   test::write_file(dir / "ok.ply", ascii_ply(vertices + "3 0 1 2\n\n"));
   EXPECT_EQ(load_scene(dir / "ok.ply").triangle_count(), 1u);
-  test::write_file(dir / "suffix.ply", ascii_ply("0 0 0\n1 0 0x\n0 1 0\n3 0 1 2\n"));
-  expect_input_error(dir / "suffix.ply", "line 11: bad number '0x'");
-  test::write_file(dir / "extra.ply", ascii_ply("0 0 0 1\n1 0 0\n0 1 0\n3 0 1 2\n"));
-  expect_input_error(dir / "extra.ply", "line 10: more values than the header declares for a 'vertex'");
-  test::write_file(dir / "short.ply", ascii_ply("0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
-  expect_input_error(dir / "short.ply", "line 10: the line ends");
-  test::write_file(dir / "more.ply", ascii_ply(vertices + "3 0 1 2\n3 2 1 0\n"));
-  expect_input_error(dir / "more.ply", "line 14: data after the last element");
-  test::write_file(dir / "count.ply", ascii_ply(vertices + "3.0 0 1 2\n"));
-  expect_input_error(dir / "count.ply", "'3.0' is not a 1-byte unsigned integer");
-  test::write_file(dir / "index.ply", ascii_ply(vertices + "3 0 1 4294967296\n"));
-  expect_input_error(dir / "index.ply", "not a 4-byte signed integer");
+  rejects(dir, "suffix.ply", ascii_ply("0 0 0\n1 0 0x\n0 1 0\n3 0 1 2\n"), "line 11: bad number '0x'");
+  rejects(dir, "extra.ply", ascii_ply("0 0 0 1\n1 0 0\n0 1 0\n3 0 1 2\n"),
+          "line 10: more values than the header declares for a 'vertex'");
+  rejects(dir, "short.ply", ascii_ply("0 0\n1 0 0\n0 1 0\n3 0 1 2\n"), "line 10: the line ends");
+  rejects(dir, "more.ply", ascii_ply(vertices + "3 0 1 2\n3 2 1 0\n"), "line 14: data after the last element");
+  rejects(dir, "count.ply", ascii_ply(vertices + "3.0 0 1 2\n"), "'3.0' is not a 1-byte unsigned integer");
+  rejects(dir, "index.ply", ascii_ply(vertices + "3 0 1 4294967296\n"), "not a 4-byte signed integer");
 }
 
 GltfWriter triangle_scene() {
@@ -191,8 +188,9 @@ TEST(StrictGltf, NodeTransformsOutsideTheSpecificationAreErrors) {
   // A quaternion rounded by an exporter is still a rotation; a zero scale loads, with a warning.
   EXPECT_EQ(load_scene(with_node({{"rotation", {0, 0, 0.7071, 0.7071}}})).triangle_count(), 1u);
   const Scene hidden = load_scene(with_node({{"scale", {0, 0, 0}}}));
-  ASSERT_FALSE(hidden.warnings.empty());
-  EXPECT_NE(hidden.warnings.back().find("singular transform"), std::string::npos);
+  EXPECT_TRUE(std::any_of(hidden.warnings.begin(), hidden.warnings.end(), [](const std::string& w) {
+    return w.find("node 0 has a singular transform") != std::string::npos;
+  }));
 }
 
 TEST(StrictGltf, SparseAccessorsStayInside) {
@@ -217,8 +215,7 @@ TEST(StrictGltf, SparseAccessorsStayInside) {
 TEST(StrictMaterials, NonFiniteOrNegativeFactorsAreErrors) {
   TempDir dir;
   test::write_file(dir / "m.mtl", "newmtl m\nKd 0.5 1e39 0.5\n");
-  test::write_file(dir / "m.obj", "mtllib m.mtl\nusemtl m\n" + kTriangleObj);
-  expect_input_error(dir / "m.obj", "material 0 'm': base colour");
+  rejects(dir, "m.obj", "mtllib m.mtl\nusemtl m\n" + kTriangleObj, "material 0 'm': base colour");
   GltfWriter g = triangle_scene();
   g.doc()["meshes"][0]["primitives"][0]["material"] = g.material({{"emissiveFactor", {1, -1, 1}}});
   expect_input_error(g.write_gltf(dir.path(), "emit"), "emission");

@@ -328,6 +328,15 @@ def make_gltf():
     g.doc["nodes"][1]["children"] = [g.node({"scale": [1e200, 1e200, 1e200], "mesh": 0}, root=False)]
     bad("gltf-scale-overflow.gltf", g.gltf(), "overflows")
 
+    g = lit_gltf()
+    g.doc["meshes"][1]["primitives"][0]["mode"] = 9
+    bad("gltf-unknown-mode.gltf", g.gltf(), "mode 9")
+    g = lit_gltf()
+    g.doc["meshes"][1]["primitives"][0]["indices"] = g.indices([0, 0, 1, 0, 2, 0, 0, 0, 2, 0, 3, 0])
+    g.doc["accessors"][-1]["count"] = 6
+    g.doc["bufferViews"][-1]["byteStride"] = 4
+    bad("gltf-index-view-stride.gltf", g.gltf(), "byteStride")
+
     def sparse_gltf(index_type=5123, indices=(1,), count=None):
         g = lit_gltf()
         fmt = {5121: "B", 5123: "H", 5125: "I", 5126: "f"}[index_type]
@@ -517,6 +526,10 @@ def make_ply():
         "bytes after the last element")
     bad("ply-list-count-overflow.ply", ply_ascii(PLY_VERTS, quad).replace("\n4 0 1 2 3", "\n260 0 1 2 3"),
         "'260' is not a 1-byte unsigned integer")
+    bad("ply-version-2.ply", ply_ascii(PLY_VERTS, quad).replace("ascii 1.0", "ascii 2.0"), "PLY version '2.0'")
+    bad("ply-two-vertex-elements.ply",
+        ply_ascii(PLY_VERTS, quad).replace("element face", "element vertex 0\nproperty float x\nelement face"),
+        "element 'vertex' declared twice")
     bad("ply-all-nan.ply", ply_ascii([("nan", 0, 0), (1, 0, 0), (0, 1, 0)], [[0, 1, 2]]), "nothing to render")
     odd("ply-nan-vertices.ply", ply_ascii(PLY_VERTS + [("nan", "nan", "nan"), ("inf", "-inf", 0)], quad + [[4, 5, 0]]),
         "non-finite", "black")
