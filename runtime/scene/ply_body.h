@@ -7,8 +7,8 @@
 #include <charconv>
 #include <cstdint>
 #include <cstring>
-#include <string>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include <fmt/format.h>
