@@ -15,8 +15,9 @@ namespace {
 bool is_blank(char c) { return c == ' ' || c == '\t'; }
 
 // Splits a statement into tokens as tinyobjloader does (spaces and tabs); a '#' token starts a comment.
-std::vector<std::string_view> tokens_of(std::string_view line) {
-  std::vector<std::string_view> tokens;
+// `tokens` is reused from line to line: an allocation per line would cost more than the parse.
+void split_tokens(std::string_view line, std::vector<std::string_view>& tokens) {
+  tokens.clear();
   for (std::size_t at = 0; at < line.size();) {
     while (at < line.size() && is_blank(line[at])) ++at;
     std::size_t end = at;
@@ -26,7 +27,6 @@ std::vector<std::string_view> tokens_of(std::string_view line) {
     tokens.push_back(line.substr(at, end - at));
     at = end;
   }
-  return tokens;
 }
 
 // The shown part of a bad token: enough to find it, never a whole binary blob.
@@ -41,7 +41,8 @@ class Checker {
 
   void statement(std::string_view line, std::size_t line_number) {
     line_ = line_number;
-    const std::vector<std::string_view> t = tokens_of(line);
+    split_tokens(line, tokens_);
+    const std::vector<std::string_view>& t = tokens_;
     if (t.empty()) return;
     if (t[0] == "v") {
       numbers(t, 3, "vertex", &result_.non_finite_vertices, 3 * result_.vertex_lines);
@@ -106,6 +107,7 @@ class Checker {
 
   const std::string& file_;
   std::size_t line_ = 0;
+  std::vector<std::string_view> tokens_;
   TextCheck result_;
 };
 
