@@ -101,11 +101,12 @@ class NodeWalker {
  private:
   std::vector<int> root_nodes() const {
     if (!model_.scenes.empty()) {
-      const int s =
-          model_.defaultScene >= 0 && static_cast<std::size_t>(model_.defaultScene) < model_.scenes.size()
-              ? model_.defaultScene
-              : 0;
-      return model_.scenes[static_cast<std::size_t>(s)].nodes;
+      // Scene 0 stands in only when the file names none; a named scene that does not exist is an error,
+      // not a reason to render another one.
+      if (static_cast<std::size_t>(std::max(model_.defaultScene, 0)) >= model_.scenes.size())
+        throw InputError(fmt::format("{}: scene {} does not exist ({} scenes)", file_, model_.defaultScene,
+                                     model_.scenes.size()));
+      return model_.scenes[static_cast<std::size_t>(std::max(model_.defaultScene, 0))].nodes;
     }
     std::vector<bool> is_child(model_.nodes.size(), false);
     for (const auto& n : model_.nodes)

@@ -9,6 +9,7 @@
 
 #include "runtime/scene/file_lookup.h"
 #include "runtime/scene/gzip_file.h"
+#include "runtime/scene/obj_text_check.h"
 #include "runtime/scene/texture_decode.h"
 #include "runtime/util/error.h"
 
@@ -80,7 +81,12 @@ bool MaterialLibraries::operator()(const std::string& name, std::vector<tinyobj:
                                           obj_path_.string(), name));
     return false;
   }
-  std::istringstream text(read_whole_file(*file));
+  std::istringstream text;
+  try {
+    text.str(checked_mtl_text(read_whole_file(*file), file->string()));
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: material library {}", obj_path_.string(), e.what()));
+  }
   tinyobj::LoadMtl(names, materials, &text, warn, err);
   return true;
 }

@@ -35,6 +35,22 @@ std::string shown(std::string_view token) {
   return token.size() > kMaxShown ? std::string(token.substr(0, kMaxShown)) + "..." : std::string(token);
 }
 
+// Calls `statement(line, line_number)` for each statement; tinyobjloader also ends one at a lone
+// '\r' (old Mac line ends).
+template <typename F>
+void for_each_statement(std::string_view text, F&& statement) {
+  std::size_t line_number = 1;
+  for (std::size_t at = 0; at < text.size(); ++line_number) {
+    std::size_t end = text.find('\n', at);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(at, end - at);
+    for (std::size_t cr; (cr = line.find('\r')) != std::string_view::npos; line.remove_prefix(cr + 1))
+      statement(line.substr(0, cr), line_number);
+    statement(line, line_number);
+    at = end + 1;
+  }
+}
+
 class Checker {
  public:
   explicit Checker(const std::string& file) : file_(file) {}
@@ -115,19 +131,44 @@ class Checker {
 
 TextCheck check_obj_text(std::string_view text, const std::string& file) {
   Checker checker(file);
-  std::size_t line_number = 1;
-  for (std::size_t at = 0; at < text.size();) {
-    std::size_t end = text.find('\n', at);
-    if (end == std::string_view::npos) end = text.size();
-    // tinyobjloader also ends a statement at a lone '\r' (old Mac line ends).
-    std::string_view line = text.substr(at, end - at);
-    for (std::size_t cr; (cr = line.find('\r')) != std::string_view::npos; line.remove_prefix(cr + 1))
-      checker.statement(line.substr(0, cr), line_number);
-    checker.statement(line, line_number);
-    at = end + 1;
-    ++line_number;
-  }
+  for_each_statement(text, [&](std::string_view line, std::size_t number) { checker.statement(line, number); });
   return checker.take();
+}
+
+std::string checked_mtl_text(std::string_view text, const std::string& file) {
+  std::string out;
+  out.reserve(text.size());
+  std::vector<std::string_view> t;
+  for_each_statement(text, [&](std::string_view line, std::size_t number) {
+    split_tokens(line, t);
+    const bool colour = !t.empty() && (t[0] == "Kd" || t[0] == "Ke" || t[0] == "Ka" || t[0] == "Ks");
+    const bool scalar = !t.empty() && (t[0] == "d" || t[0] == "Tr" || t[0] == "Ns" || t[0] == "Ni");
+    std::size_t first = 1;
+    // "Ka spectral file.rfl", "Kd xyz x y z" and "d -halo 0.5" are legal forms of these statements.
+    if ((colour || scalar) && t.size() > 1 && (t[1] == "spectral" || t[1] == "xyz" || t[1] == "-halo"))
+      first = t[1] == "spectral" ? t.size() + 1 : 2;
+    if ((!colour && !scalar) || first > t.size()) {
+      out.append(line).push_back('\n');
+      return;
+    }
+    const auto fail = [&](const std::string& what) {
+      throw InputError(fmt::format("{}: line {}: {}", file, number, what));
+    };
+    const std::size_t count = t.size() - first;
+    if (colour ? count != 1 && count != 3 : count != 1)
+      fail(fmt::format("{} has {} numbers, needs {}", t[0], count, colour ? "1 or 3" : "1"));
+    for (std::size_t i = first; i < t.size(); ++i) {
+      const std::optional<double> value = parse_number(t[i]);
+      // tinyobjloader reads "nan" as 0, so here a non-finite value is as wrong as a non-number.
+      if (!value || !std::isfinite(*value))
+        fail(fmt::format("'{}' in {} is not a finite number", shown(t[i]), std::string(t[0])));
+    }
+    // "Kd 0.5" is grey (g and b default to r); tinyobjloader would read it as red.
+    out.append(line);
+    if (colour && count == 1) out.append(" ").append(t[first]).append(" ").append(t[first]);
+    out.push_back('\n');
+  });
+  return out;
 }
 
 }  // namespace cohort::obj

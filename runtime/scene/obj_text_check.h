@@ -29,4 +29,9 @@ struct TextCheck {
 // is 0 or does not fit in an int.
 TextCheck check_obj_text(std::string_view text, const std::string& file);
 
+// The same for a material library: Kd, Ke, Ka and Ks take 1 or 3 finite numbers, d, Tr, Ns and Ni one.
+// Returns the text for tinyobjloader, with a one-number colour ("Kd 0.5", grey) spelled out as three,
+// since it would read the missing two as 0.
+std::string checked_mtl_text(std::string_view text, const std::string& file);
+
 }  // namespace cohort::obj

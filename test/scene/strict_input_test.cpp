@@ -212,6 +212,43 @@ TEST(StrictGltf, SparseAccessorsStayInside) {
   expect_input_error(with_sparse(5125, 0, -1));
 }
 
+TEST(StrictMtl, NumbersAreReadWholeAndFinite) {
+  TempDir dir;
+  const std::string obj = "mtllib lib.mtl\nusemtl m\n" + kTriangleObj;
+  test::write_file(dir / "m.obj", obj);
+  test::write_file(dir / "lib.mtl", "newmtl m\nKd 0.5 0.5 0.5 # grey\nKa xyz 0 0 0\nd -halo 0.5\nKe 1\n");
+  const Scene ok = load_scene(dir / "m.obj");
+  EXPECT_EQ(ok.materials[0].base_color, glm::vec3(0.5f));
+  EXPECT_EQ(ok.materials[0].emission, glm::vec3(1.f));
+  for (const auto& [mtl, what] : {std::pair{"newmtl m\nKd 0.5 0.5abc 0.5\n", "line 2: '0.5abc' in Kd"},
+                                  std::pair{"newmtl m\n\nKe nan 1 1\n", "line 3: 'nan' in Ke is not a finite"},
+                                  std::pair{"newmtl m\nNs\n", "line 2: Ns has 0 numbers"},
+                                  std::pair{"newmtl m\nKd 1 1\n", "line 2: Kd has 2 numbers"}}) {
+    test::write_file(dir / "lib.mtl", mtl);
+    try {
+      load_scene(dir / "m.obj");
+      ADD_FAILURE() << mtl << " loaded";
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("m.obj: material library "), std::string::npos) << message;
+      EXPECT_NE(message.find("lib.mtl: " + std::string(what)), std::string::npos) << message;
+    }
+  }
+}
+
+TEST(StrictGltf, DefaultSceneMustExistAndIgnoredExtensionsAreNamed) {
+  TempDir dir;
+  GltfWriter g = triangle_scene();
+  g.doc()["scene"] = 3;
+  expect_input_error(g.write_gltf(dir.path(), "scene"), "scene 3 does not exist");
+  GltfWriter used = triangle_scene();
+  used.doc()["extensionsUsed"] = json::array({"KHR_materials_emissive_strength", "KHR_texture_transform"});
+  const Scene s = load_scene(used.write_gltf(dir.path(), "used"));
+  EXPECT_TRUE(std::any_of(s.warnings.begin(), s.warnings.end(), [](const std::string& w) {
+    return w.find("ignored (optional, not implemented): KHR_texture_transform") != std::string::npos;
+  }));
+}
+
 TEST(StrictMaterials, NonFiniteOrNegativeFactorsAreErrors) {
   TempDir dir;
   test::write_file(dir / "m.mtl", "newmtl m\nKd 0.5 1e39 0.5\n");

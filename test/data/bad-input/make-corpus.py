@@ -337,6 +337,13 @@ def make_gltf():
     g.doc["bufferViews"][-1]["byteStride"] = 4
     bad("gltf-index-view-stride.gltf", g.gltf(), "byteStride")
 
+    g = lit_gltf()
+    g.doc["scene"] = 4
+    bad("gltf-default-scene-missing.gltf", g.gltf(), "scene 4 does not exist")
+    g = lit_gltf()
+    g.doc["extensionsUsed"] = ["KHR_texture_transform"]
+    odd("gltf-optional-extension.gltf", g.gltf(), "KHR_texture_transform", {"same_as": "gltf-lit-reference.gltf"})
+
     def sparse_gltf(index_type=5123, indices=(1,), count=None):
         g = lit_gltf()
         fmt = {5121: "B", 5123: "H", 5125: "I", 5126: "f"}[index_type]
@@ -440,6 +447,9 @@ def make_obj():
     bad("obj-all-degenerate.obj", "v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\n", "nothing to render")
     put("obj-infinite-colour.mtl", "newmtl wall\nKd 1e39 0.5 0.5\n")
     bad("obj-infinite-colour.obj", "mtllib obj-infinite-colour.mtl\nusemtl wall\n" + QUAD_LIGHT, "base colour")
+    put("obj-bad-mtl-number.mtl", "newmtl wall\nKd 0.5 0.5 0.5\nKe 4 4 4x\n")
+    bad("obj-bad-mtl-number.obj", "mtllib obj-bad-mtl-number.mtl\nusemtl wall\n" + QUAD_LIGHT,
+        "obj-bad-mtl-number.mtl: line 3: '4x' in Ke")
     put("obj-corrupt-texture.mtl", "newmtl wall\nKd 0.5 0.5 0.5\nmap_Kd obj-corrupt-texture.png\n")
     put("obj-corrupt-texture.png", b"\x89PNG\r\n\x1a\n" + garbage(10, 64))
     bad("obj-corrupt-texture.obj", "mtllib obj-corrupt-texture.mtl\nusemtl wall\nvt 0 0\n" +
