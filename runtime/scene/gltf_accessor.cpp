@@ -137,12 +137,21 @@ std::vector<Out> read_elements(const tinygltf::Model& model, int index, const st
   for (std::size_t i = 0; i < base.count; ++i)
     for (int c = 0; c < N; ++c) out[i][c] = static_cast<float>(component(base, i, c));
   if (!a.sparse.isSparse) return out;
-  const auto n = static_cast<std::size_t>(std::max(a.sparse.count, 0));
+  if (a.sparse.count < 0 || a.sparse.indices.byteOffset < 0 || a.sparse.values.byteOffset < 0)
+    fail(where, fmt::format("sparse accessor {} has a negative count or byte offset", index));
+  const auto n = static_cast<std::size_t>(a.sparse.count);
+  const int ict = a.sparse.indices.componentType;
+  if (ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+      ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+    fail(where,
+         fmt::format("sparse accessor {} has indices of component type {}, not unsigned integers", index, ict));
+  if (n > a.count)
+    fail(where, fmt::format("sparse accessor {} substitutes {} of its {} elements", index, n, a.count));
   const View idx = make_view(model, a.sparse.indices.bufferView,
-                             static_cast<std::size_t>(std::max(a.sparse.indices.byteOffset, 0)), n,
+                             static_cast<std::size_t>(a.sparse.indices.byteOffset), n,
                              a.sparse.indices.componentType, 1, false, where);
   const View val = make_view(model, a.sparse.values.bufferView,
-                             static_cast<std::size_t>(std::max(a.sparse.values.byteOffset, 0)), n,
+                             static_cast<std::size_t>(a.sparse.values.byteOffset), n,
                              a.componentType, N, a.normalized, where);
   for (std::size_t k = 0; k < n; ++k) {
     const auto i = static_cast<std::size_t>(component(idx, k, 0));
@@ -185,6 +194,10 @@ std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int index,
        ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
     fail(where, fmt::format("index accessor {} is not unsigned byte, short or int scalars", index));
   if (a.sparse.isSparse) fail(where, fmt::format("sparse index accessor {} is not supported", index));
+  // Index views are tightly packed by definition; a stride would pick other indices than the writer meant.
+  if (a.bufferView >= 0 && static_cast<std::size_t>(a.bufferView) < model.bufferViews.size() &&
+      model.bufferViews[static_cast<std::size_t>(a.bufferView)].byteStride != 0)
+    fail(where, fmt::format("index accessor {} reads buffer view {}, which has a byteStride", index, a.bufferView));
   const View v = make_view(model, a.bufferView, a.byteOffset, a.count, ct, 1, false, where);
   std::vector<std::uint32_t> out(v.count);
   for (std::size_t i = 0; i < v.count; ++i) out[i] = static_cast<std::uint32_t>(component(v, i, 0));

@@ -8,6 +8,7 @@
 
 #include "runtime/scene/gltf_accessor.h"
 #include "runtime/scene/texture_decode.h"
+#include "runtime/util/error.h"
 
 namespace cohort::gltf {
 namespace {
@@ -50,7 +51,9 @@ class TextureTable {
  private:
   int decode(int index) {
     const tinygltf::Image& image = model_.images[static_cast<std::size_t>(index)];
-    const std::string name = image.uri.empty() ? fmt::format("image {}", index) : image.uri;
+    // A data URI would quote the whole image in messages.
+    const std::string name = image.uri.empty() || image.uri.starts_with("data:") ? fmt::format("image {}", index)
+                                                                                   : image.uri;
     // Images in buffer views are read here, bounds-checked; tinygltf only kept the external ones.
     const std::string_view bytes =
         image.bufferView >= 0
@@ -63,10 +66,9 @@ class TextureTable {
     std::string error;
     auto texture =
         decode_texture(name, reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), &error);
-    if (!texture) {
-      warn(fmt::format("{} could not be decoded ({}); texture ignored", name, error));
-      return -1;
-    }
+    // Image bytes that are there but broken are a broken file, unlike a missing one (often a
+    // texture left out of a copy): rendering without them would pass a wrong image off as right.
+    if (!texture) throw InputError(fmt::format("{}: {} cannot be decoded: {}", file_, name, error));
     scene_.textures.push_back(std::move(*texture));
     return static_cast<int>(scene_.textures.size() - 1);
   }

@@ -1,5 +1,6 @@
 #include "runtime/scene/gltf_nodes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -22,17 +23,52 @@ constexpr int kMaxDepth = 256;
 // A node graph that shares subtrees (a DAG) is walked once per path; this bounds the expansion.
 constexpr std::size_t kMaxNodeVisits = std::size_t{1} << 22;
 
+bool all_finite(const std::vector<double>& values) {
+  return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
+}
+
+// A transform the specification does not allow is an error: ignoring it (or part of it) would place
+// the node's meshes somewhere the file does not say.
+void check_transform(const tinygltf::Node& n, int index, const std::string& file) {
+  const auto check = [&](const std::vector<double>& values, std::size_t size, const char* name) {
+    if (!values.empty() && values.size() != size)
+      throw InputError(fmt::format("{}: node {} {} has {} numbers, not {}", file, index, name, values.size(), size));
+    if (!all_finite(values))
+      throw InputError(fmt::format("{}: node {} {} is not finite", file, index, name));
+  };
+  check(n.matrix, 16, "matrix");
+  check(n.translation, 3, "translation");
+  check(n.rotation, 4, "rotation");
+  check(n.scale, 3, "scale");
+  // A matrix whose last row is not (0, 0, 0, 1) is a projection, not a node transform.
+  const auto& m = n.matrix;
+  if (m.size() == 16 && (m[3] != 0.0 || m[7] != 0.0 || m[11] != 0.0 || m[15] != 1.0))
+    throw InputError(fmt::format("{}: node {} matrix is not affine (last row not 0, 0, 0, 1)", file, index));
+  if (n.rotation.size() == 4) {
+    const double length = glm::length(glm::dvec4(n.rotation[0], n.rotation[1], n.rotation[2], n.rotation[3]));
+    // Unit within what exporters round to; far from 1 (0, or a lost normalization) is not a rotation.
+    if (!(std::abs(length - 1.0) < 1e-2))
+      throw InputError(
+          fmt::format("{}: node {} rotation is not a unit quaternion (length {})", file, index, length));
+  }
+}
+
 glm::dmat4 local_transform(const tinygltf::Node& n) {
   if (n.matrix.size() == 16) return glm::make_mat4(n.matrix.data());
   glm::dmat4 m(1.0);
   if (n.translation.size() == 3)
     m = glm::translate(m, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
-  if (n.rotation.size() == 4) {
-    const glm::dquat q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
-    if (glm::length(q) > 0.0) m *= glm::mat4_cast(glm::normalize(q));
-  }
+  if (n.rotation.size() == 4)
+    m *= glm::mat4_cast(glm::normalize(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2])));
   if (n.scale.size() == 3) m = glm::scale(m, glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
   return m;
+}
+
+bool is_finite(const glm::dmat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
 }
 
 bool usable_direction(const glm::dvec3& v) {
@@ -65,11 +101,12 @@ class NodeWalker {
  private:
   std::vector<int> root_nodes() const {
     if (!model_.scenes.empty()) {
-      const int s =
-          model_.defaultScene >= 0 && static_cast<std::size_t>(model_.defaultScene) < model_.scenes.size()
-              ? model_.defaultScene
-              : 0;
-      return model_.scenes[static_cast<std::size_t>(s)].nodes;
+      // Scene 0 stands in only when the file names none; a named scene that does not exist is an error,
+      // not a reason to render another one.
+      if (static_cast<std::size_t>(std::max(model_.defaultScene, 0)) >= model_.scenes.size())
+        throw InputError(fmt::format("{}: scene {} does not exist ({} scenes)", file_, model_.defaultScene,
+                                     model_.scenes.size()));
+      return model_.scenes[static_cast<std::size_t>(std::max(model_.defaultScene, 0))].nodes;
     }
     std::vector<bool> is_child(model_.nodes.size(), false);
     for (const auto& n : model_.nodes)
@@ -86,8 +123,17 @@ class NodeWalker {
     check_node(index, depth);
     const auto i = static_cast<std::size_t>(index);
     const tinygltf::Node& node = model_.nodes[i];
+    check_transform(node, index, file_);
     const glm::dmat4 world = parent * local_transform(node);
-    if (node.mesh >= 0) emitter_.emit_mesh(node.mesh, world);
+    if (!is_finite(world))
+      throw InputError(fmt::format("{}: node {} world transform overflows (not finite)", file_, index));
+    if (node.mesh >= 0) {
+      // Legal (a scale of 0 hides a node) but the mesh then renders as nothing; worth a line.
+      if (glm::determinant(glm::dmat3(world)) == 0.0)
+        scene_.warnings.push_back(
+            fmt::format("{}: node {} has a singular transform; its mesh collapses to nothing", file_, index));
+      emitter_.emit_mesh(node.mesh, world);
+    }
     if (node.camera >= 0 && !scene_.camera) take_camera(node.camera, world);
     take_light(node, world);
     on_path_[i] = true;

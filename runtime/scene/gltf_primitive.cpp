@@ -87,7 +87,7 @@ void PrimitiveEmitter::emit_mesh(int mesh, const glm::dmat4& world) {
 }
 
 bool PrimitiveEmitter::skipped(const tinygltf::Primitive& p, int mode) {
-  if (mode < TINYGLTF_MODE_TRIANGLES || mode > TINYGLTF_MODE_TRIANGLE_FAN) {
+  if (mode < TINYGLTF_MODE_TRIANGLES) {
     ++skipped_["point or line primitives skipped"];
     return true;
   }
@@ -101,6 +101,8 @@ bool PrimitiveEmitter::skipped(const tinygltf::Primitive& p, int mode) {
 void PrimitiveEmitter::emit_primitive(const tinygltf::Primitive& p, const std::string& where,
                                       const glm::dmat4& world) {
   const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+  if (mode > TINYGLTF_MODE_TRIANGLE_FAN)
+    throw InputError(fmt::format("{}: mode {} is not a glTF primitive mode (0-6)", where, mode));
   if (skipped(p, mode)) return;
   const Vertices vertices = read_vertices(model_, p, world, where);
   const std::vector<std::uint32_t> idx = vertex_indices(model_, p, vertices.positions.size(), where);

@@ -1,10 +1,13 @@
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string_view>
+#include <utility>
 
 #include <fmt/format.h>
 #include <tiny_gltf.h>
@@ -85,17 +88,54 @@ void add_warnings(const std::string& text, const std::string& file, Scene& scene
     if (!line.empty()) scene.warnings.push_back(fmt::format("{}: {}", file, library_message(line)));
 }
 
-// Extensions that change what the loader reads; others (lights, variants...) only add to it.
-void warn_unsupported_extensions(const tinygltf::Model& model, const std::string& file, Scene& scene) {
-  static constexpr std::array kUnderstood = {
+// "MAJOR.MINOR" as asset.version and asset.minVersion spell it, or nullopt for anything else.
+std::optional<std::pair<int, int>> version_numbers(const std::string& text) {
+  const std::size_t dot = text.find('.');
+  if (dot == std::string::npos || dot == 0 || dot + 1 == text.size()) return std::nullopt;
+  int major = 0, minor = 0;
+  const char* end = text.data() + text.size();
+  const auto a = std::from_chars(text.data(), text.data() + dot, major);
+  const auto b = std::from_chars(text.data() + dot + 1, end, minor);
+  const bool whole = a.ec == std::errc{} && a.ptr == text.data() + dot && b.ec == std::errc{} && b.ptr == end;
+  if (!whole || major < 0 || minor < 0) return std::nullopt;
+  return std::pair{major, minor};
+}
+
+// glTF 2.x readers must load any 2.x file (minor versions stay compatible) unless minVersion asks
+// for more than they implement (2.0 here); a 1.0 file has another schema altogether.
+void check_version(const tinygltf::Asset& asset, const std::string& file) {
+  const auto version = version_numbers(asset.version);
+  if (!version || version->first != 2)
+    throw InputError(fmt::format("{}: glTF asset.version '{}' is not supported (only 2.x)", file, asset.version));
+  if (asset.minVersion.empty()) return;
+  const auto min = version_numbers(asset.minVersion);
+  if (!min || *min > std::pair{2, 0})
+    throw InputError(
+        fmt::format("{}: glTF asset.minVersion '{}' is newer than this loader (2.0)", file, asset.minVersion));
+}
+
+bool implemented(const std::string& extension) {
+  static constexpr std::array kImplemented = {
       std::string_view("KHR_materials_emissive_strength"), std::string_view("KHR_materials_transmission"),
-      std::string_view("KHR_materials_ior"), std::string_view("KHR_mesh_quantization")};
+      std::string_view("KHR_materials_ior"), std::string_view("KHR_mesh_quantization"),
+      std::string_view("KHR_lights_punctual")};
+  return std::find(kImplemented.begin(), kImplemented.end(), extension) != kImplemented.end();
+}
+
+// A required extension changes what the file means, so loading without it would render some other
+// scene: an error. An optional one the file still renders without, as the specification allows,
+// but the image may differ from what the author saw: one warning naming them.
+void check_extensions(const tinygltf::Model& model, const std::string& file, Scene& scene) {
   for (const std::string& name : model.extensionsRequired)
-    if (std::find(kUnderstood.begin(), kUnderstood.end(), name) == kUnderstood.end())
-      scene.warnings.push_back(
-          fmt::format("{}: required extension {} is not supported; geometry or "
-                      "materials may be wrong",
-                      file, name));
+    if (!implemented(name))
+      throw InputError(fmt::format("{}: requires glTF extension {}, which this loader does not implement", file,
+                                   library_message(name)));
+  std::string ignored;
+  for (const std::string& name : model.extensionsUsed)
+    if (!implemented(name)) ignored += (ignored.empty() ? "" : ", ") + library_message(name);
+  if (!ignored.empty())
+    scene.warnings.push_back(fmt::format("{}: glTF extensions ignored (optional, not implemented): {}", file,
+                                         library_message(ignored)));
 }
 
 tinygltf::Model parse(const std::filesystem::path& path, const std::string& bytes, bool binary,
@@ -121,7 +161,8 @@ tinygltf::Model parse(const std::filesystem::path& path, const std::string& byte
              : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), size, base_dir);
   if (!ok) throw InputError(fmt::format("{}: invalid glTF: {}", file, library_message(err)));
   add_warnings(warn, file, scene);
-  warn_unsupported_extensions(model, file, scene);
+  check_version(model.asset, file);
+  check_extensions(model, file, scene);
   return model;
 }
 

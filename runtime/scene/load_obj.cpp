@@ -2,11 +2,9 @@
 #include <array>
 #include <cstdint>
 #include <istream>
-#include <limits>
 #include <optional>
 #include <sstream>
 #include <streambuf>
-#include <string_view>
 
 #include <fmt/format.h>
 #include <tiny_obj_loader.h>
@@ -14,6 +12,7 @@
 #include "runtime/scene/library_message.h"
 #include "runtime/scene/loaders.h"
 #include "runtime/scene/obj_materials.h"
+#include "runtime/scene/obj_text_check.h"
 #include "runtime/scene/scene_builder.h"
 #include "runtime/util/error.h"
 
@@ -128,35 +127,11 @@ class ObjEmitter {
   std::size_t degenerate_ = 0;
 };
 
-// tinyobjloader reads face indices with atoi, which wraps a value that does not fit in an int
-// ("f 1 2 99999999999999999999" reads as "f 1 2 -1", a valid relative index), so such indices are
-// rejected here before it parses the text.
-void check_face_index_sizes(const std::string& text, const std::string& file) {
-  constexpr std::uint64_t kMaxIndex = std::numeric_limits<int>::max();
-  std::size_t line_number = 0;
-  for (std::size_t at = 0; at < text.size(); ++line_number) {
-    std::size_t end = text.find('\n', at);
-    if (end == std::string::npos) end = text.size();
-    const std::string_view line(text.data() + at, end - at);
-    at = end + 1;
-    const std::size_t f = line.find_first_not_of(" \t");
-    if (f == std::string_view::npos || line[f] != 'f' || f + 1 >= line.size() ||
-        (line[f + 1] != ' ' && line[f + 1] != '\t'))
-      continue;
-    for (std::size_t i = f + 1; i < line.size();) {
-      if (line[i] < '0' || line[i] > '9') {
-        ++i;
-        continue;
-      }
-      const std::size_t start = i;
-      std::uint64_t value = 0;
-      for (; i < line.size() && line[i] >= '0' && line[i] <= '9'; ++i)
-        value = std::min(value * 10 + static_cast<std::uint64_t>(line[i] - '0'), kMaxIndex + 1);
-      if (value > kMaxIndex)
-        throw InputError(fmt::format("{}: line {}: face index {} is out of range", file, line_number + 1,
-                                     line.substr(start, std::min<std::size_t>(i - start, 32))));
-    }
-  }
+// tinyobjloader reads "nan" and "inf" as 0; the strict parse's values take their place, so such
+// triangles reach the path that drops non-finite ones instead of rendering somewhere else.
+void restore_non_finite(const std::vector<obj::NonFiniteValue>& values, std::vector<tinyobj::real_t>& into) {
+  for (const obj::NonFiniteValue& v : values)
+    if (v.index < into.size()) into[v.index] = v.value;
 }
 
 void add_reader_warnings(const std::string& text, const std::string& file, Scene& scene) {
@@ -178,7 +153,7 @@ void add_reader_warnings(const std::string& text, const std::string& file, Scene
 Scene load_obj(const std::filesystem::path& path, const std::string& text) {
   Scene scene;
   const std::string file = path.string();
-  check_face_index_sizes(text, file);
+  const obj::TextCheck checked = obj::check_obj_text(text, file);
   ViewBuffer buffer(text);
   std::istream in(&buffer);
   obj::MaterialLibraries libraries(path, scene);
@@ -190,6 +165,12 @@ Scene load_obj(const std::filesystem::path& path, const std::string& text) {
                         /*default_vcols_fallback=*/false))
     throw InputError(fmt::format("{}: invalid OBJ: {}", file, library_message(err)));
   add_reader_warnings(warn, file, scene);
+  if (attrib.vertices.size() != 3 * checked.vertex_lines || attrib.texcoords.size() != 2 * checked.texcoord_lines)
+    throw InputError(fmt::format("{}: invalid OBJ: {} vertices and {} texture coordinates read, {} and {} stated",
+                                 file, attrib.vertices.size() / 3, attrib.texcoords.size() / 2,
+                                 checked.vertex_lines, checked.texcoord_lines));
+  restore_non_finite(checked.non_finite_vertices, attrib.vertices);
+  restore_non_finite(checked.non_finite_texcoords, attrib.texcoords);
   obj::convert_materials(materials, path, scene);
   ObjEmitter emitter(attrib, materials.size(), file, scene);
   for (const tinyobj::shape_t& shape : shapes) emitter.emit(shape);

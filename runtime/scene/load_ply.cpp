@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <initializer_list>
@@ -47,6 +48,7 @@ class BodyReader {
       else
         skip_items(e);
     }
+    in_.end_body();
     return std::move(mesh_);
   }
 
@@ -69,12 +71,14 @@ class BodyReader {
     if (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0) fail("vertex element lacks scalar x, y and z properties");
     mesh_.vertices.reserve(static_cast<std::size_t>(e.count));
     for (std::uint64_t v = 0; v < e.count; ++v) {
+      in_.begin_item();
       glm::vec3 p(0.f);
       for (std::size_t i = 0; i < e.properties.size(); ++i) {
         const double value = read_property(e.properties[i]);
         for (int axis = 0; axis < 3; ++axis)
           if (static_cast<int>(i) == xyz[axis]) p[axis] = static_cast<float>(value);
       }
+      in_.end_item(e);
       mesh_.vertices.push_back(p);
     }
   }
@@ -83,12 +87,15 @@ class BodyReader {
     const int list = property_index(e, {"vertex_indices", "vertex_index"}, true);
     if (list < 0) fail("face element lacks a vertex_indices list");
     mesh_.corners.reserve(3 * static_cast<std::size_t>(e.count));
-    for (std::uint64_t f = 0; f < e.count; ++f)
+    for (std::uint64_t f = 0; f < e.count; ++f) {
+      in_.begin_item();
       for (std::size_t i = 0; i < e.properties.size(); ++i)
         if (static_cast<int>(i) == list)
           read_polygon(e.properties[i], f);
         else
           read_property(e.properties[i]);
+      in_.end_item(e);
+    }
   }
 
   void read_polygon(const Property& p, std::uint64_t face) {
@@ -123,8 +130,11 @@ class BodyReader {
 
   void skip_items(const Element& e) {
     if (e.properties.empty()) return;
-    for (std::uint64_t i = 0; i < e.count; ++i)
+    for (std::uint64_t i = 0; i < e.count; ++i) {
+      in_.begin_item();
       for (const Property& p : e.properties) read_property(p);
+      in_.end_item(e);
+    }
   }
 
   Reader in_;
@@ -135,8 +145,11 @@ class BodyReader {
 
 PlyMesh read_body(const ply::Header& header, const std::string& bytes, const std::string& file) {
   const std::string_view body = std::string_view(bytes).substr(header.body_offset);
-  if (header.format == ply::Format::ascii)
-    return BodyReader<ply::AsciiReader>(ply::AsciiReader(body, file), file).read(header);
+  if (header.format == ply::Format::ascii) {
+    const std::string_view header_text = std::string_view(bytes).substr(0, header.body_offset);
+    const auto first_line = static_cast<std::size_t>(std::count(header_text.begin(), header_text.end(), '\n')) + 1;
+    return BodyReader<ply::AsciiReader>(ply::AsciiReader(body, file, first_line), file).read(header);
+  }
   const bool big = header.format == ply::Format::binary_big_endian;
   return BodyReader<ply::BinaryReader>(ply::BinaryReader(body, big, file), file).read(header);
 }

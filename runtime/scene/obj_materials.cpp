@@ -9,7 +9,9 @@
 
 #include "runtime/scene/file_lookup.h"
 #include "runtime/scene/gzip_file.h"
+#include "runtime/scene/obj_text_check.h"
 #include "runtime/scene/texture_decode.h"
+#include "runtime/util/error.h"
 
 namespace cohort::obj {
 namespace {
@@ -43,11 +45,10 @@ class TextureFiles {
     std::string error;
     auto texture =
         decode_texture(name, reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), &error);
-    if (!texture) {
-      scene_.warnings.push_back(fmt::format("{}: texture '{}' could not be decoded ({})", obj_path_.string(),
-                                            file->string(), error));
-      return -1;
-    }
+    // A texture that is there but broken is an error; a missing one (reported above) is not.
+    if (!texture)
+      throw InputError(
+          fmt::format("{}: texture '{}' cannot be decoded: {}", obj_path_.string(), file->string(), error));
     scene_.textures.push_back(std::move(*texture));
     return static_cast<int>(scene_.textures.size() - 1);
   }
@@ -80,7 +81,12 @@ bool MaterialLibraries::operator()(const std::string& name, std::vector<tinyobj:
                                           obj_path_.string(), name));
     return false;
   }
-  std::istringstream text(read_whole_file(*file));
+  std::istringstream text;
+  try {
+    text.str(checked_mtl_text(read_whole_file(*file), file->string()));
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: material library {}", obj_path_.string(), e.what()));
+  }
   tinyobj::LoadMtl(names, materials, &text, warn, err);
   return true;
 }

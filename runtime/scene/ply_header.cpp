@@ -82,6 +82,7 @@ class HeaderParser {
       header_.format = Format::binary_big_endian;
     else
       fail(fmt::format("unknown PLY format '{}'", name));
+    if (version != "1.0") fail(fmt::format("PLY version '{}' (only 1.0 is defined)", version));
     has_format_ = true;
   }
 
@@ -92,6 +93,9 @@ class HeaderParser {
     const auto [end, ec] = std::from_chars(count.data(), count.data() + count.size(), e.count);
     if (e.name.empty() || ec != std::errc{} || end != count.data() + count.size())
       fail(fmt::format("bad element line for '{}' (count '{}')", e.name, count));
+    // A second vertex or face element would silently extend the first one's index space.
+    for (const Element& earlier : header_.elements)
+      if (earlier.name == e.name) fail(fmt::format("element '{}' declared twice", e.name));
     header_.elements.push_back(std::move(e));
   }
 

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -41,10 +42,33 @@ Scene read_format(const std::filesystem::path& path, const std::string& ext) {
                   path.string(), ext));
 }
 
+bool finite_and_non_negative(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && v.x >= 0.f && v.y >= 0.f && v.z >= 0.f;
+}
+
+// A NaN or infinite factor turns every pixel that sees the material NaN (and an emitter's power NaN
+// poisons light sampling everywhere); a negative colour or emission is no physical material.
+void check_material(const SceneMaterial& m, std::size_t index, const std::filesystem::path& path) {
+  const auto fail = [&](const std::string& what) {
+    const std::string name = m.name.empty() ? "" : fmt::format(" '{}'", m.name);
+    throw InputError(fmt::format("{}: material {}{}: {}", path.string(), index, name, what));
+  };
+  if (!finite_and_non_negative(m.base_color))
+    fail(fmt::format("base colour ({}, {}, {}) is negative or not finite", m.base_color.x, m.base_color.y,
+                     m.base_color.z));
+  if (!finite_and_non_negative(m.emission))
+    fail(fmt::format("emission ({}, {}, {}) is negative or not finite", m.emission.x, m.emission.y, m.emission.z));
+  for (const auto& [name, value] : {std::pair{"alpha", m.alpha}, std::pair{"metallic", m.metallic},
+                                    std::pair{"roughness", m.roughness}, std::pair{"transmission", m.transmission},
+                                    std::pair{"ior", m.ior}})
+    if (!std::isfinite(value) || value < 0.f) fail(fmt::format("{} {} is negative or not finite", name, value));
+}
+
 void check_loaded(const Scene& scene, const std::filesystem::path& path) {
   if (scene.triangle_count() == 0)
     throw InputError(fmt::format("{}: the scene has no triangles", path.string()));
   if (scene.materials.empty()) throw InputError(fmt::format("{}: the scene has no materials", path.string()));
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) check_material(scene.materials[i], i, path);
   const auto bad = std::find_if(scene.material_ids.begin(), scene.material_ids.end(),
                                 [&](std::uint32_t id) { return id >= scene.materials.size(); });
   if (bad != scene.material_ids.end())

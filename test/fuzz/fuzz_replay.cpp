@@ -80,7 +80,9 @@ int main(int argc, char** argv) {
     for (const fs::path& file : files_in(root / target.name)) {
       const std::string bytes = read_file(file);
       replay(file.string(), tally, [&] {
-        cohort::fuzz::load_bytes(target, reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+        const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
+        cohort::fuzz::load_bytes(target, data, bytes.size());
+        if (std::string(target.name) == "gzip") cohort::fuzz::gzip_round_trip(data, bytes.size());
       });
     }
   // Other folders: each file a target reads (by its extension), loaded where it lies so that its

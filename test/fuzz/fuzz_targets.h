@@ -26,6 +26,12 @@ void load_bytes(const Target& target, const std::uint8_t* data, std::size_t size
 // load_scene on an existing file, InputError caught.
 void load_file(const std::filesystem::path& path);
 
+// The gzip reader's contract, beyond "no crash": the bytes after four control bytes are gzipped
+// (as one member, or two back to back), then optionally cut short or have one byte flipped, as the
+// control bytes say. read_whole_file must return exactly the payload or throw InputError saying
+// "truncated" or "corrupt"; a cut file must always fail. Throws std::logic_error when it does not.
+void gzip_round_trip(const std::uint8_t* data, std::size_t size);
+
 // The target a corpus file belongs to by its extension (looking through .gz), or nullptr.
 const Target* target_for_file(const std::filesystem::path& path);
 

@@ -299,7 +299,91 @@ def make_gltf():
     g.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(b"\x89PNG\r\n\x1a\n" + garbage(2, 64)).decode()}]
     g.doc["textures"] = [{"source": 0}]
     g.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 0}
-    odd("gltf-corrupt-texture.gltf", g.gltf(), "texture ignored", {"same_as": "gltf-lit-reference.gltf"})
+    bad("gltf-corrupt-texture.gltf", g.gltf(), "cannot be decoded")
+
+    # What a loader must not read as some other scene (issue 30).
+    for name, version in [("gltf-version-1.gltf", "1.0"), ("gltf-version-3.gltf", "3.0"),
+                          ("gltf-version-garbage.gltf", "2.0beta")]:
+        g = lit_gltf()
+        g.doc["asset"]["version"] = version
+        bad(name, g.gltf(), "asset.version")
+    g = lit_gltf()
+    g.doc["asset"]["minVersion"] = "2.1"
+    bad("gltf-min-version-2-1.gltf", g.gltf(), "minVersion")
+    g = lit_gltf()
+    g.doc["extensionsUsed"] = g.doc["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+    bad("gltf-required-extension.gltf", g.gltf(), "KHR_draco_mesh_compression")
+
+    g = lit_gltf()
+    g.doc["nodes"][1]["translation"] = [0, 0]
+    bad("gltf-translation-2-numbers.gltf", g.gltf(), "translation has 2 numbers")
+    g = lit_gltf()
+    g.doc["nodes"][1]["rotation"] = [0, 0, 0, 0]
+    bad("gltf-zero-quaternion.gltf", g.gltf(), "unit quaternion")
+    g = lit_gltf()
+    g.doc["nodes"][1]["matrix"] = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0.5, 0, 0, 0, 1]
+    bad("gltf-projective-matrix.gltf", g.gltf(), "not affine")
+    g = lit_gltf()
+    g.doc["nodes"][1]["scale"] = [1e200, 1e200, 1e200]
+    g.doc["nodes"][1]["children"] = [g.node({"scale": [1e200, 1e200, 1e200], "mesh": 0}, root=False)]
+    bad("gltf-scale-overflow.gltf", g.gltf(), "overflows")
+
+    g = lit_gltf()
+    g.doc["meshes"][1]["primitives"][0]["mode"] = 9
+    bad("gltf-unknown-mode.gltf", g.gltf(), "mode 9")
+    g = lit_gltf()
+    g.doc["meshes"][1]["primitives"][0]["indices"] = g.indices([0, 0, 1, 0, 2, 0, 0, 0, 2, 0, 3, 0])
+    g.doc["accessors"][-1]["count"] = 6
+    g.doc["bufferViews"][-1]["byteStride"] = 4
+    bad("gltf-index-view-stride.gltf", g.gltf(), "byteStride")
+
+    g = lit_gltf()
+    g.doc["scene"] = 4
+    bad("gltf-default-scene-missing.gltf", g.gltf(), "scene 4 does not exist")
+    g = lit_gltf()
+    g.doc["extensionsUsed"] = ["KHR_texture_transform"]
+    odd("gltf-optional-extension.gltf", g.gltf(), "KHR_texture_transform", {"same_as": "gltf-lit-reference.gltf"})
+
+    def sparse_gltf(index_type=5123, indices=(1,), count=None):
+        g = lit_gltf()
+        fmt = {5121: "B", 5123: "H", 5125: "I", 5126: "f"}[index_type]
+        iv = g.view(struct.pack("<%d%s" % (len(indices), fmt), *indices))
+        vv = g.view(struct.pack("<%df" % (3 * len(indices)), *([0.0] * 3 * len(indices))))
+        g.doc["accessors"][1]["sparse"] = {
+            "count": len(indices) if count is None else count,
+            "indices": {"bufferView": iv, "componentType": index_type}, "values": {"bufferView": vv}}
+        return g
+    bad("gltf-sparse-index-outside.gltf", sparse_gltf(indices=(1, 60)).gltf(), "substitutes element 60")
+    bad("gltf-sparse-float-indices.gltf", sparse_gltf(index_type=5126, indices=(1.0,)).gltf(),
+        "not unsigned integers")
+    g = sparse_gltf(indices=tuple(range(7)))
+    bad("gltf-sparse-count-over.gltf", g.gltf(), "substitutes 7 of its 6")
+
+    g = lit_gltf()
+    g.doc["materials"][1]["emissiveFactor"] = [1e39, 4, 4]  # beyond float: infinite once loaded
+    bad("gltf-emission-infinite.gltf", g.gltf(), "emission (inf")
+    g = lit_gltf()
+    g.doc["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = [-1, 0.5, 0.5, 1]
+    bad("gltf-base-color-negative.gltf", g.gltf(), "base colour")
+    g = lit_gltf()
+    g.doc["materials"][1]["extensions"] = {"KHR_materials_emissive_strength": {"emissiveStrength": -3}}
+    bad("gltf-emissive-strength-negative.gltf", g.gltf(), "emission")
+
+    g = Gltf()
+    g.node({"mesh": g.mesh([[(0, 0, 0), (1, 0, 0), (2, 0, 0)], [(0, 1, 0), (0, 1, 0), (0, 1, 0)]],
+                           g.material((0, 0, 0), (4.0, 4.0, 4.0)))})
+    bad("gltf-all-degenerate.gltf", g.gltf(), "nothing to render")
+    g = Gltf()
+    g.node({"mesh": g.mesh([[(NAN, 0, 0), (1, 0, 0), (0, 1, 0)]], g.material((0, 0, 0), (4.0, 4.0, 4.0)))})
+    bad("gltf-all-nan.gltf", g.gltf(), "nothing to render")
+
+    # A scale of 0 is legal (it hides a node), but said: the wall vanishes, the light stays.
+    light_only = lit_gltf()
+    light_only.doc["scenes"][0]["nodes"] = [0]
+    put("gltf-light-only-reference.gltf", light_only.gltf())
+    g = lit_gltf()
+    g.doc["nodes"][1]["scale"] = [0, 0, 0]
+    odd("gltf-zero-scale.gltf", g.gltf(), "singular transform", {"same_as": "gltf-light-only-reference.gltf"})
 
 
 def make_glb():
@@ -351,6 +435,26 @@ def make_obj():
         "missing-texture.png", "black")
     odd("obj-two-vertex-faces.obj", QUAD_LIGHT + "f 1 2\nf 3\n", "Degenerated face", "black")
     odd("obj-nan-vertices.obj", QUAD_LIGHT + "v nan nan nan\nv inf 0 0\nf 5 6 1\n", "non-finite", "black")
+    # Numbers are read whole (issue 30): each of these once loaded as some other scene.
+    bad("obj-bad-number.obj", QUAD_LIGHT.replace("v 1 1 -0.5", "v 1 1.5abc -0.5"), "line 3: '1.5abc'")
+    bad("obj-decimal-comma.obj", QUAD_LIGHT.replace("v 1 -1 -0.5", "v 1,25 -1 -0.5"), "line 2: '1,25'")
+    bad("obj-hex-number.obj", QUAD_LIGHT.replace("v -1 1 -0.5", "v 0x10 1 -0.5"), "not a number")
+    bad("obj-two-coordinates.obj", QUAD_LIGHT.replace("v -1 -1 -0.5", "v -1 -1"), "needs at least 3")
+    bad("obj-bad-texcoord.obj", QUAD_LIGHT + "vt 0.5 half\n", "'half'")
+    bad("obj-bad-face-token.obj", QUAD_LIGHT + "f 1 2x 3\n", "'2x'")
+    bad("obj-face-float-index.obj", QUAD_LIGHT + "f 1 2.0 3\n", "'2.0'")
+    bad("obj-all-nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "nothing to render")
+    bad("obj-all-degenerate.obj", "v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\n", "nothing to render")
+    put("obj-infinite-colour.mtl", "newmtl wall\nKd 1e39 0.5 0.5\n")
+    bad("obj-infinite-colour.obj", "mtllib obj-infinite-colour.mtl\nusemtl wall\n" + QUAD_LIGHT, "base colour")
+    put("obj-bad-mtl-number.mtl", "newmtl wall\nKd 0.5 0.5 0.5\nKe 4 4 4x\n")
+    bad("obj-bad-mtl-number.obj", "mtllib obj-bad-mtl-number.mtl\nusemtl wall\n" + QUAD_LIGHT,
+        "obj-bad-mtl-number.mtl: line 3: '4x' in Ke")
+    put("obj-corrupt-texture.mtl", "newmtl wall\nKd 0.5 0.5 0.5\nmap_Kd obj-corrupt-texture.png\n")
+    put("obj-corrupt-texture.png", b"\x89PNG\r\n\x1a\n" + garbage(10, 64))
+    bad("obj-corrupt-texture.obj", "mtllib obj-corrupt-texture.mtl\nusemtl wall\nvt 0 0\n" +
+        QUAD_LIGHT.replace("f 1 2 3 4", "f 1/1 2/1 3/1 4/1"), "cannot be decoded")
+    odd("obj-inline-comment.obj", QUAD_LIGHT.replace("v 1 1 -0.5", "v 1 1 -0.5 # corner"), "no light", "black")
 
 
 # ---------------------------------------------------------------- PLY
@@ -368,7 +472,7 @@ PLY_VERTS = [(-1, -1, -0.5), (1, -1, -0.5), (1, 1, -0.5), (-1, 1, -0.5)]
 
 
 def ply_ascii(verts, faces, header=None):
-    body = "".join("%s %s %s\n" % v for v in verts) + "".join(
+    body = "".join(" ".join(str(x) for x in v) + "\n" for v in verts) + "".join(
         "%d %s\n" % (len(f), " ".join(str(i) for i in f)) for f in faces)
     return (header or ply_header("ascii", len(verts), len(faces))) + body
 
@@ -405,8 +509,8 @@ def make_ply():
     bad("ply-index-out-of-range.ply", ply_ascii(PLY_VERTS, [[0, 1, 7]]), "refers to vertex 7")
     bad("ply-negative-index.ply", ply_ascii(PLY_VERTS, [[0, 1, -1]]), "invalid vertex index")
     bad("ply-negative-index-binary.ply", ply_binary(PLY_VERTS, [[0, -5, 2]], big=True), "invalid vertex index")
-    bad("ply-fractional-index.ply", ply_ascii(PLY_VERTS, [[0, 1, 2.5]]), "invalid vertex index")
-    bad("ply-bad-number.ply", ply_ascii(PLY_VERTS, quad).replace("-0.5", "abc", 1), "bad number")
+    bad("ply-fractional-index.ply", ply_ascii(PLY_VERTS, [[0, 1, 2.5]]), "'2.5' is not a 4-byte signed integer")
+    bad("ply-bad-number.ply", ply_ascii(PLY_VERTS, quad).replace("-0.5", "abc", 1), "line 10: bad number 'abc'")
     bad("ply-missing-xyz.ply",
         ply_ascii(PLY_VERTS, quad, ply_header("ascii", 4, 1, "property float x\nproperty float y\nproperty float w\n")),
         "lacks scalar x, y and z")
@@ -421,6 +525,22 @@ def make_ply():
     bad("ply-garbage-after-header.ply", ply_header("binary_little_endian", 4, 1).encode() + garbage(6, 20),
         "")
     odd("ply-no-light.ply", ply_ascii(PLY_VERTS, quad), "no light", "black")
+    # Headers that lie (issue 30): each item is one line, and nothing may follow the last one.
+    bad("ply-number-suffix.ply", ply_ascii(PLY_VERTS, quad).replace("-0.5", "-0.5f", 1), "bad number '-0.5f'")
+    bad("ply-extra-values.ply", ply_ascii([v + (7,) for v in PLY_VERTS], quad), "line 10: more values")
+    bad("ply-missing-values.ply", ply_ascii([v[:2] for v in PLY_VERTS], quad), "line 10: the line ends")
+    bad("ply-fewer-faces-declared.ply", ply_ascii(PLY_VERTS, [[0, 1, 2], [0, 2, 3]],
+                                                  ply_header("ascii", 4, 1)), "data after the last element")
+    bad("ply-fewer-faces-declared-binary.ply",
+        ply_binary(PLY_VERTS, [[0, 1, 2], [0, 2, 3]]).replace(b"element face 2\n", b"element face 1\n"),
+        "bytes after the last element")
+    bad("ply-list-count-overflow.ply", ply_ascii(PLY_VERTS, quad).replace("\n4 0 1 2 3", "\n260 0 1 2 3"),
+        "'260' is not a 1-byte unsigned integer")
+    bad("ply-version-2.ply", ply_ascii(PLY_VERTS, quad).replace("ascii 1.0", "ascii 2.0"), "PLY version '2.0'")
+    bad("ply-two-vertex-elements.ply",
+        ply_ascii(PLY_VERTS, quad).replace("element face", "element vertex 0\nproperty float x\nelement face"),
+        "element 'vertex' declared twice")
+    bad("ply-all-nan.ply", ply_ascii([("nan", 0, 0), (1, 0, 0), (0, 1, 0)], [[0, 1, 2]]), "nothing to render")
     odd("ply-nan-vertices.ply", ply_ascii(PLY_VERTS + [("nan", "nan", "nan"), ("inf", "-inf", 0)], quad + [[4, 5, 0]]),
         "non-finite", "black")
 
@@ -433,12 +553,22 @@ def gz(data):
 def make_gzip():
     good = gz(QUAD_LIGHT)
     bad("gz-corrupt.obj.gz", good[:10] + garbage(7, len(good) - 10), "gzip")
-    bad("gz-truncated.ply.gz", gz(ply_ascii(PLY_VERTS, [[0, 1, 2, 3]]))[:-12], "gzip")
+    bad("gz-truncated.ply.gz", gz(ply_ascii(PLY_VERTS, [[0, 1, 2, 3]]))[:-12], "truncated")
+    # Cut inside the deflate stream, as a download stopped half way: the first half inflates fine.
+    many = QUAD_LIGHT + "".join("v %d %d 0\n" % (i, i * 7 % 13) for i in range(4000))
+    long_gz = gz(many)
+    bad("gz-cut-half.obj.gz", long_gz[: len(long_gz) // 2], "truncated")
+    bad("gz-cut-trailer.obj.gz", long_gz[:-8], "truncated")
+    bad("gz-cut-second-member.obj.gz", gz(QUAD_LIGHT) + long_gz[: len(long_gz) // 2], "truncated")
+    wrong_length = bytearray(long_gz)
+    wrong_length[-1] ^= 0x10
+    bad("gz-bad-length.obj.gz", bytes(wrong_length), "corrupt")
+    odd("gz-two-members.obj.gz", gz(QUAD_LIGHT[:30]) + gz(QUAD_LIGHT[30:]), "no light", "black")
     bad("gz-not-gzip.gltf.gz", lit_gltf().gltf()[:2000], "gzip")
     bad("gz-empty.glb.gz", b"", "gzip")
     crc = bytearray(good)
     crc[-8] ^= 0xFF
-    bad("gz-bad-crc.obj.gz", bytes(crc), "gzip")
+    bad("gz-bad-crc.obj.gz", bytes(crc), "corrupt")
     bad("gz-trailing-garbage.obj.gz", good + b"\x01\x02garbage", "gzip")
     bad("gz-inner-garbage.glb.gz", gz(garbage(8, 2048)), "bad header")
     bad("gz-inner-empty.ply.gz", gz(b""), "no 'ply' magic")
