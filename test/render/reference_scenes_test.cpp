@@ -84,7 +84,8 @@ TEST_P(ReferenceScene, MatchesMitsuba3) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Mitsuba3, ReferenceScene,
-                         ::testing::Values("conductor", "rough-dielectric", "plastic", "envmap", "punctual"),
+                         ::testing::Values("conductor", "rough-dielectric", "plastic", "envmap", "punctual", "on-ground",
+                                           "nave"),
                          [](const auto& info) {
                            std::string n = info.param;
                            for (char& ch : n)
