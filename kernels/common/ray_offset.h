@@ -31,12 +31,13 @@ CO_INLINE co_vec3 triangle_point(co_vec3 p0, co_vec3 p1, co_vec3 p2, float b1, f
   return v3_add(v3_add(a, b), c);
 }
 
-/* L^3 / |cross| (cross = (p1 - p0) x (p2 - p0)), at most RAY_OFFSET_MAX_ASPECT L: how much the
- * watertight test's edge functions magnify rounding on this triangle, as a length. */
+/* L^3 / |cross| (cross = (p1 - p0) x (p2 - p0)): L times the aspect ratio L^2 / |cross|, capped
+ * at RAY_OFFSET_MAX_ASPECT; how much the watertight test's edge functions magnify rounding on this
+ * triangle, as a length. */
 CO_INLINE float triangle_edge_error(co_vec3 p0, co_vec3 p1, co_vec3 p2, co_vec3 cross) {
   co_vec3 e0 = v3_sub(p1, p0), e1 = v3_sub(p2, p0), e2 = v3_sub(p2, p1);
   float l = sqrt(fmax(v3_dot(e0, e0), fmax(v3_dot(e1, e1), v3_dot(e2, e2))));
-  return l * fmin(l / v3_length(cross), RAY_OFFSET_MAX_ASPECT);
+  return l * fmin(l * l / v3_length(cross), RAY_OFFSET_MAX_ASPECT);
 }
 
 /* How far off the surface a ray from this hit point starts; never 0, so even a triangle through
