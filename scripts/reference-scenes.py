@@ -11,7 +11,9 @@ of the settings beside it, which test/render/reference_scenes_test.cpp reads.
 
 Scenes (64 x 64): conductor (rough GGX conductor, F0 = 1, glTF roughness 0.3), rough-dielectric
 (glass of IOR 1.5, roughness 0.3), plastic (smooth plastic over a coloured base), envmap (a
-Lambertian sphere under scenes/reference/sky.exr) and punctual (a point and a spot light).
+Lambertian sphere under scenes/reference/sky.exr), punctual (a point and a spot light), and two
+scenes of issue 31's kinds: on-ground (plastic and metal resting on, and 0.03 above, a 400-wide
+ground under a constant sky) and nave (an interior lit only by emissive windows).
 Run through scripts/reference, which provides mitsuba and numpy."""
 import argparse
 import base64
@@ -43,6 +45,16 @@ def quad(o, u, v):
     o, u, v = (np.array(a, dtype=np.float64) for a in (o, u, v))
     p = np.array([o, o + u, o + u + v, o + v])
     return p, np.array([[0, 1, 2], [0, 2, 3]], dtype=np.uint32)
+
+
+def cuboid(lo, hi):
+    """A closed axis-aligned box, front faces outwards."""
+    (x0, y0, z0), (x1, y1, z1) = lo, hi
+    p = np.array([[x, y, z] for x in (x0, x1) for y in (y0, y1) for z in (z0, z1)], dtype=np.float64)
+    # corners indexed 4x + 2y + z; each face counter-clockwise seen from outside
+    faces = [[0, 1, 3, 2], [4, 6, 7, 5], [0, 4, 5, 1], [2, 3, 7, 6], [0, 2, 6, 4], [1, 5, 7, 3]]
+    f = [[a, b, c] for a, b, c, d in faces] + [[a, c, d] for a, b, c, d in faces]
+    return p, np.array(f, dtype=np.uint32)
 
 
 def icosphere(centre, radius, levels=3):
@@ -131,6 +143,26 @@ def room(sphere_material, light=True):
     return shapes
 
 
+def on_ground():
+    """A car's worth of contact (issue 31): a smooth plastic body 0.03 above a ground 400 wide and rough
+    metal wheels touching it, under a constant sky. An offset of 1e-4 of the diagonal (0.057) is
+    wider than the slot under the body."""
+    return [("ground", quad([-200, 0, 200], [400, 0, 0], [0, 0, -400]), diffuse([0.5, 0.5, 0.5])),
+            ("body", cuboid([-1.2, 0.03, -0.6], [1.2, 0.7, 0.6]), smooth_plastic([0.7, 0.1, 0.1], 1.5)),
+            ("wheel-left", icosphere([-0.9, 0.3, 0.75], 0.3, 2), rough_conductor(0.3)),
+            ("wheel-right", icosphere([0.9, 0.3, 0.75], 0.3, 2), rough_conductor(0.3))]
+
+
+def nave():
+    """An interior lit only by emissive windows a millimetre inside its wall, with a pillar on the floor."""
+    white, warm = diffuse([0.7, 0.7, 0.7]), diffuse([0.7, 0.5, 0.3])
+    shapes = [("room", cuboid([-4, 0, -3], [4, 4, 3]), white),
+              ("pillar", cuboid([1.2, 0, -1.4], [2.0, 4, -0.6]), warm)]
+    for i, z in enumerate((-2.0, 0.5)):
+        shapes.append((f"window{i}", quad([-3.999, 1.0, z], [0, 2, 0], [0, 0, 1.5]), emitter([6.0, 5.5, 4.5])))
+    return shapes
+
+
 def spot_to_world(position, direction):
     d = np.array(direction, dtype=np.float64)
     d /= np.linalg.norm(d)
@@ -150,6 +182,11 @@ def scene_list():
                                  "intensity": [20.0, 14.0, 8.0],
                                  # a narrow transition: glTF's falloff and Mitsuba's differ only there
                                  "inner_cone": math.radians(29.8), "outer_cone": math.radians(30.0)}]},
+        "on-ground": {"shapes": on_ground(), "environment": [1.0, 1.0, 1.0],
+                      "camera": {"eye": [0.0, 0.8, 5.0], "target": [0.0, 0.35, 0.0], "up": [0.0, 1.0, 0.0],
+                                 "fov": 40.0}},
+        "nave": {"shapes": nave(),
+                 "camera": {"eye": [0.5, 1.6, 2.8], "target": [-0.5, 1.5, -3.0], "up": [0.0, 1.0, 0.0], "fov": 60.0}},
     }
 
 
@@ -190,8 +227,10 @@ def write_gltf(path, desc):
         m = {"name": name, "pbrMetallicRoughness": mat["gltf"]}
         ext = dict(mat.get("extensions", {}))
         if "emission" in mat:
-            m["emissiveFactor"] = [1.0, 1.0, 1.0]
-            ext["KHR_materials_emissive_strength"] = {"emissiveStrength": mat["emission"][0]}
+            # glTF splits the radiance into a colour in [0, 1] and a strength
+            peak = max(mat["emission"])
+            m["emissiveFactor"] = [c / peak for c in mat["emission"]]
+            ext["KHR_materials_emissive_strength"] = {"emissiveStrength": peak}
         if ext:
             m["extensions"] = ext
         doc["materials"].append(m)
@@ -200,13 +239,14 @@ def write_gltf(path, desc):
                                                             "material": len(doc["materials"]) - 1}]})
         doc["nodes"].append({"name": name, "mesh": len(doc["meshes"]) - 1})
     # camera: glTF cameras look down their local -Z with +Y up
-    eye, target, up = (np.array(CAMERA[k]) for k in ("eye", "target", "up"))
+    camera = desc.get("camera", CAMERA)
+    eye, target, up = (np.array(camera[k], dtype=np.float64) for k in ("eye", "target", "up"))
     back = eye - target
     back /= np.linalg.norm(back)
     right = np.cross(up, back)
     right /= np.linalg.norm(right)
     true_up = np.cross(back, right)
-    doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": math.radians(CAMERA["fov"]),
+    doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": math.radians(camera["fov"]),
                                                                "aspectRatio": 1.0, "znear": 0.01}}]
     doc["nodes"].append({"name": "camera", "camera": 0, "matrix": column_major(right, true_up, back, eye)})
     lights = []
@@ -261,10 +301,11 @@ def look_at(origin, target, up):
 
 
 def mitsuba_scene(desc, tmp):
+    camera = desc.get("camera", CAMERA)
     scene = {"type": "scene",
              "integrator": {"type": "path", "max_depth": MAX_DEPTH},
-             "sensor": {"type": "perspective", "fov": CAMERA["fov"], "fov_axis": "y", "near_clip": 0.01,
-                        "to_world": look_at(CAMERA["eye"], CAMERA["target"], CAMERA["up"]),
+             "sensor": {"type": "perspective", "fov": camera["fov"], "fov_axis": "y", "near_clip": 0.01,
+                        "to_world": look_at(camera["eye"], camera["target"], camera["up"]),
                         "sampler": {"type": "independent"},
                         "film": {"type": "hdrfilm", "width": RES, "height": RES, "pixel_format": "rgb",
                                  "rfilter": {"type": "box"}}}}

@@ -13,6 +13,7 @@
 
 #include "common/bsdf.h"
 #include "common/camera.h"
+#include "common/ray_offset.h"
 #include "common/rng.h"
 #include "common/scene_view.h"
 
@@ -71,7 +72,7 @@ CO_INLINE int direction_to(co_vec3 from, co_vec3 to, float min_dist, co_vec3* di
  * table's cdf). Returns the shadow ray with the MIS-weighted contribution it adds when unoccluded
  * (already times the throughput); see sample_direct_light. */
 CO_INLINE ShadowRay nee_triangle(const SceneView* s, const RenderParams* p, float u_pick, float u1, float u2,
-                                 co_vec3 pos, const ShadingFrame* frame, const Bsdf* b, co_vec3 wi,
+                                 co_vec3 pos, float offset, const ShadingFrame* frame, const Bsdf* b, co_vec3 wi,
                                  co_vec3 throughput) {
   ShadowRay sr;
   sr.valid = 0;
@@ -79,27 +80,31 @@ CO_INLINE ShadowRay nee_triangle(const SceneView* s, const RenderParams* p, floa
   EmitterEntry entry = s->emitters[e];
   CO_GLOBAL const Triangle* tri = &s->tree.triangles[entry.triangle];
   const CO_GLOBAL Material* m = &s->materials[s->triangle_material[entry.triangle]];
-  float b1, b2;
+  float b1, b2, light_magnitude;
   sample_triangle(u1, u2, &b1, &b2);
-  co_vec3 p0 = v3_from4(tri->v0);
-  co_vec3 e1 = v3_sub(v3_from4(tri->v1), p0), e2 = v3_sub(v3_from4(tri->v2), p0);
-  co_vec3 pl = v3_add(p0, v3_add(v3_scale(e1, b1), v3_scale(e2, b2)));
-  co_vec3 nl = v3_normalize(v3_cross(e1, e2));
+  co_vec3 p0 = v3_from4(tri->v0), p1 = v3_from4(tri->v1), p2 = v3_from4(tri->v2);
+  co_vec3 pl = triangle_point(p0, p1, p2, b1, b2, &light_magnitude);
+  co_vec3 cross_l = v3_cross(v3_sub(p1, p0), v3_sub(p2, p0));
+  co_vec3 nl = v3_normalize(cross_l);
   /* Both strategies of the MIS pair integrate over the directions seen from the ray origin, which
    * is offset from `pos` to the side the ray leaves from: NEE measures its direction, distance and
    * pdfs from the shadow ray's origin, as path_shade measures a BSDF sample's light pdf from the
    * origin of that ray (prev_pos). Measured from `pos` instead, the two weights of one light path
-   * no longer sum to 1: the furnace lost ~0.05% of the direct light. The shadow ray stops one
-   * epsilon short of the light, so neither the receiver's nor the light's own triangle can
-   * occlude the sample. */
+   * no longer sum to 1: the furnace lost ~0.05% of the direct light. The shadow ray stops short of
+   * the light by the error bound of ray_offset.h, so neither the receiver's nor the light's own
+   * triangle can occlude the sample. */
   float side = v3_dot(v3_sub(pl, pos), frame->n);
   if (!(side > 0.0f) && !(side < 0.0f)) return sr; /* in the plane, or NaN */
-  co_vec3 origin = v3_madd(pos, frame->n, side > 0.0f ? p->ray_epsilon : -p->ray_epsilon);
+  co_vec3 origin = offset_origin(pos, frame->n, offset, side > 0.0f);
   co_vec3 wl;
   float dist, dist2;
-  if (!direction_to(origin, pl, 2.0f * p->ray_epsilon, &wl, &dist, &dist2)) return sr;
+  if (!direction_to(origin, pl, 0.0f, &wl, &dist, &dist2)) return sr;
   co_vec3 wl_local = frame_to_local(frame, wl);
-  if (!(wl_local.z * side > 0.0f)) return sr; /* a light within epsilon of the tangent plane */
+  if (!(wl_local.z * side > 0.0f)) return sr; /* a light within the offset of the tangent plane */
+  float cos_light = fabs(v3_dot(nl, wl));
+  float tmax = shadow_tmax(dist, fmax(light_magnitude, v3_max_abs(origin)), triangle_edge_error(p0, p1, p2, cross_l),
+                           cos_light);
+  if (!(tmax > 0.0f)) return sr; /* closer to the light than its position is known */
   co_vec3 f = bsdf_eval(b, wi, wl_local); /* f |cos|; 0 on the wrong side of a reflector */
   if (!(v3_max_component(f) > 0.0f)) return sr;
   co_vec3 le = emitted_radiance_at(s, m, entry.triangle, b1, b2, nl, v3_neg(wl));
@@ -111,11 +116,11 @@ CO_INLINE ShadowRay nee_triangle(const SceneView* s, const RenderParams* p, floa
   float weight = (p->flags & RENDER_FLAG_MIS) ? mis_power(pdf_light, bsdf_pdf(b, wi, wl_local)) : 1.0f;
   /* estimator divides by the probability the table actually used to pick this triangle (times
    * the probability of picking a triangle at all, exactly 1 when they are the only lights) */
-  float pdf_pick = entry.pmf * s->pick_triangles * dist2 / (entry.area * fabs(v3_dot(nl, wl)));
+  float pdf_pick = entry.pmf * s->pick_triangles * dist2 / (entry.area * cos_light);
   float scale = weight / pdf_pick;
   sr.org = origin;
   sr.dir = wl;
-  sr.tmax = dist - p->ray_epsilon;
+  sr.tmax = tmax;
   sr.contribution = v3_mul(throughput, v3_scale(v3_mul(f, le), scale));
   sr.valid = 1;
   return sr;
@@ -124,10 +129,9 @@ CO_INLINE ShadowRay nee_triangle(const SceneView* s, const RenderParams* p, floa
 /* The shadow ray's origin for a light in the unit direction wl: `pos` offset along the normal to
  * the side wl leaves from (the side path_shade offsets a BSDF sample in that direction to). Returns
  * 0 when wl lies in the tangent plane. */
-CO_INLINE int nee_origin(const RenderParams* p, co_vec3 pos, const ShadingFrame* frame, co_vec3 wl_local,
-                         co_vec3* origin) {
+CO_INLINE int nee_origin(co_vec3 pos, float offset, const ShadingFrame* frame, co_vec3 wl_local, co_vec3* origin) {
   if (!(wl_local.z > 0.0f) && !(wl_local.z < 0.0f)) return 0;
-  *origin = v3_madd(pos, frame->n, wl_local.z > 0.0f ? p->ray_epsilon : -p->ray_epsilon);
+  *origin = offset_origin(pos, frame->n, offset, wl_local.z > 0.0f);
   return 1;
 }
 
@@ -135,7 +139,7 @@ CO_INLINE int nee_origin(const RenderParams* p, co_vec3 pos, const ShadingFrame*
 /* Next-event estimation towards the environment map (environment.h), MIS-weighted against the
  * BSDF; pdf_pick is the probability of having chosen the environment. */
 CO_INLINE ShadowRay nee_environment(const SceneView* s, const RenderParams* p, float pdf_pick, float u1, float u2,
-                                    co_vec3 pos, const ShadingFrame* frame, const Bsdf* b, co_vec3 wi,
+                                    co_vec3 pos, float offset, const ShadingFrame* frame, const Bsdf* b, co_vec3 wi,
                                     co_vec3 throughput) {
   ShadowRay sr;
   sr.valid = 0;
@@ -144,7 +148,7 @@ CO_INLINE ShadowRay nee_environment(const SceneView* s, const RenderParams* p, f
   if (!(pdf_env > 0.0f)) return sr;
   co_vec3 wl_local = frame_to_local(frame, wl);
   co_vec3 origin;
-  if (!nee_origin(p, pos, frame, wl_local, &origin)) return sr;
+  if (!nee_origin(pos, offset, frame, wl_local, &origin)) return sr;
   co_vec3 f = bsdf_eval(b, wi, wl_local);
   if (!(v3_max_component(f) > 0.0f)) return sr;
   co_vec3 le = env_eval(&s->env, wl);
@@ -163,21 +167,24 @@ CO_INLINE ShadowRay nee_environment(const SceneView* s, const RenderParams* p, f
 /* Next-event estimation towards a point or spot light picked by power with u_pick: a delta
  * light, so no MIS (no BSDF sample can reach it); pdf_pick is the probability of having chosen
  * the punctual lights. */
-CO_INLINE ShadowRay nee_punctual(const SceneView* s, const RenderParams* p, float pdf_pick, float u_pick, co_vec3 pos,
-                                 const ShadingFrame* frame, const Bsdf* b, co_vec3 wi, co_vec3 throughput) {
+CO_INLINE ShadowRay nee_punctual(const SceneView* s, float pdf_pick, float u_pick, co_vec3 pos,
+                                 float offset, const ShadingFrame* frame, const Bsdf* b, co_vec3 wi, co_vec3 throughput) {
   ShadowRay sr;
   sr.valid = 0;
   const CO_GLOBAL PunctualLight* l = &s->punctual_lights[pick_punctual(s->punctual_lights, s->punctual_count, u_pick)];
   co_vec3 pl = v3_from4(l->position);
   /* No MIS pairs this strategy with another, so the irradiance I cos / r^2 is measured from the
-   * shading point itself: measured from the offset origin, r^2 would be short by 2 epsilon / r
-   * (0.2% in the inverse-square test). The shadow ray leaves from the offset origin. */
+   * shading point itself; the shadow ray leaves from the offset origin and stops short of the
+   * light by the error bound of ray_offset.h (a punctual light has no surface of its own, but may
+   * sit on one). */
   co_vec3 wl;
   float dist, dist2;
-  if (!direction_to(pos, pl, 2.0f * p->ray_epsilon, &wl, &dist, &dist2)) return sr;
+  if (!direction_to(pos, pl, 0.0f, &wl, &dist, &dist2)) return sr;
   co_vec3 wl_local = frame_to_local(frame, wl);
   co_vec3 origin;
-  if (!nee_origin(p, pos, frame, wl_local, &origin)) return sr;
+  if (!nee_origin(pos, offset, frame, wl_local, &origin)) return sr;
+  float tmax = shadow_tmax(v3_length(v3_sub(pl, origin)), fmax(v3_max_abs(pl), v3_max_abs(origin)), 0.0f, 1.0f);
+  if (!(tmax > 0.0f)) return sr;
   co_vec3 f = bsdf_eval(b, wi, wl_local);
   if (!(v3_max_component(f) > 0.0f)) return sr;
   co_vec3 intensity = punctual_intensity(l, v3_neg(wl));
@@ -186,7 +193,7 @@ CO_INLINE ShadowRay nee_punctual(const SceneView* s, const RenderParams* p, floa
   float scale = 1.0f / (pdf_pick * l->pmf * dist2);
   sr.org = origin;
   sr.dir = wl;
-  sr.tmax = dist - 2.0f * p->ray_epsilon;
+  sr.tmax = tmax;
   sr.contribution = v3_mul(throughput, v3_scale(v3_mul(f, intensity), scale));
   sr.valid = 1;
   return sr;
@@ -205,21 +212,21 @@ CO_INLINE float remap_unit(float u, float lo, float width) {
  * unoccluded (already times the throughput). `frame` is the shading frame of the stored
  * geometric normal and `wi` the local direction towards the previous vertex. */
 CO_INLINE ShadowRay sample_direct_light(const SceneView* s, const RenderParams* p, Rng* rng, co_vec3 pos,
-                                        const ShadingFrame* frame, const Bsdf* b, co_vec3 wi, co_vec3 throughput) {
+                                        float offset, const ShadingFrame* frame, const Bsdf* b, co_vec3 wi, co_vec3 throughput) {
   float u_pick = rng_next(rng), u1 = rng_next(rng), u2 = rng_next(rng);
 #ifdef COHORT_FEATURE_ENVMAP
   if (u_pick < s->pick_environment)
-    return nee_environment(s, p, s->pick_environment, u1, u2, pos, frame, b, wi, throughput);
+    return nee_environment(s, p, s->pick_environment, u1, u2, pos, offset, frame, b, wi, throughput);
 #endif
 #ifdef COHORT_FEATURE_PUNCTUAL
   if (u_pick < s->pick_environment + s->pick_punctual)
-    return nee_punctual(s, p, s->pick_punctual, remap_unit(u_pick, s->pick_environment, s->pick_punctual), pos,
-                        frame, b, wi, throughput);
+    return nee_punctual(s, s->pick_punctual, remap_unit(u_pick, s->pick_environment, s->pick_punctual), pos,
+                        offset, frame, b, wi, throughput);
 #endif
 #if defined(COHORT_FEATURE_ENVMAP) || defined(COHORT_FEATURE_PUNCTUAL)
   u_pick = remap_unit(u_pick, 1.0f - s->pick_triangles, s->pick_triangles);
 #endif
-  return nee_triangle(s, p, u_pick, u1, u2, pos, frame, b, wi, throughput);
+  return nee_triangle(s, p, u_pick, u1, u2, pos, offset, frame, b, wi, throughput);
 }
 
 /* Whether NEE has a light to sample. */
@@ -278,9 +285,14 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
   int nee = nee_enabled(s, p);
   CO_GLOBAL const Triangle* tri = &s->tree.triangles[hit.triangle];
   const CO_GLOBAL Material* m = &s->materials[s->triangle_material[hit.triangle]];
+  co_vec3 p0 = v3_from4(tri->v0), p1 = v3_from4(tri->v1), p2 = v3_from4(tri->v2);
   co_vec3 cross_n = triangle_cross(tri);
   co_vec3 n_geo = v3_normalize(cross_n);
-  co_vec3 pos = v3_madd(st->org, st->dir, hit.t);
+  /* from the barycentrics rather than org + t dir: on the triangle to a few ulps of its vertices,
+   * however far the ray came (ray_offset.h) */
+  float magnitude;
+  co_vec3 pos = triangle_point(p0, p1, p2, hit.u, hit.v, &magnitude);
+  float offset = surface_offset(magnitude, triangle_edge_error(p0, p1, p2, cross_n));
 
   co_vec3 le = emitted_radiance_at(s, m, hit.triangle, hit.u, hit.v, n_geo, v3_neg(st->dir));
   if (v3_max_component(le) > 0.0f) {
@@ -312,7 +324,7 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
   ShadowRay shadow = none;
   if (nee && !bsdf_is_delta(&b)) {
     Rng light_rng = rng_make(p->seed, pixel, sample, segment, RNG_LIGHT);
-    shadow = sample_direct_light(s, p, &light_rng, pos, &frame, &b, wi, st->throughput);
+    shadow = sample_direct_light(s, p, &light_rng, pos, offset, &frame, &b, wi, st->throughput);
   }
   if ((p->flags & RENDER_FLAG_RUSSIAN_ROULETTE) && segment >= p->rr_depth) {
     Rng rr_rng = rng_make(p->seed, pixel, sample, segment, RNG_ROULETTE);
@@ -334,7 +346,7 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
   st->prev_bsdf_pdf = (bs.flags & BSDF_DELTA) ? 0.0f : bs.pdf; /* 0: the next emitter hit is not MIS-weighted */
   /* offset to the side the new direction leaves from, not the side of the incoming ray; the MIS
    * weight of an emitter this ray hits measures the light pdf from this origin, as NEE does */
-  st->org = v3_madd(pos, n_geo, bs.wo.z > 0.0f ? p->ray_epsilon : -p->ray_epsilon);
+  st->org = offset_origin(pos, n_geo, offset, bs.wo.z > 0.0f);
   st->prev_pos = st->org;
   st->dir = frame_to_world(&frame, bs.wo);
   st->segment = segment + 1u;

@@ -109,7 +109,7 @@ typedef struct RenderParams {
   uint32_t sample_offset;  /* index of the first sample of this pass */
   uint32_t samples_per_pass;
   float emitter_power_total; /* sum of emitter_power() over emissive triangles */
-  float ray_epsilon;         /* offset of secondary ray origins along the normal */
+  uint32_t pad3;             /* ray offsets come from error bounds (ray_offset.h), not from here */
   uint32_t env_width;        /* environment map texels per row (the grid has one more column) */
   uint32_t env_height;       /* rows, pole to pole; 0 without an environment map */
   uint32_t punctual_count;   /* KHR_lights_punctual lights */

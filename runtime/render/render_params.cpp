@@ -1,7 +1,5 @@
 #include "runtime/render/render_params.h"
 
-#include <algorithm>
-
 #include "runtime/render/camera_params.h"
 
 namespace cohort {
@@ -29,8 +27,6 @@ RenderParams make_render_params(const DeviceScene& scene, const SceneCamera& cam
   p.pick_triangles = scene.pick.triangles;
   p.pick_environment = scene.pick.environment;
   p.pick_punctual = scene.pick.punctual;
-  // offsets scale with the scene so that neither a millimetre nor a kilometre scene self-intersects
-  p.ray_epsilon = 1e-4f * std::max(scene.bounds.diagonal(), 1e-6f);
   return p;
 }
 

@@ -19,23 +19,6 @@ using namespace cohort::test;
 
 namespace {
 
-// Two renders of the same expectation agree over the whole image and in 8 x 8 blocks within
-// 5 standard errors (plus `slack` of the value).
-void expect_same_expectation(const Image& a, const Image& b, const std::string& what, double slack = 0) {
-  const int blocks = 8, size = a.width / blocks;
-  for (int c = 0; c < 3; ++c) {
-    const BlockDifference all = block_difference(a, b, 0, 0, a.width, a.height, c);
-    EXPECT_LT(std::abs(all.mean), 5 * all.standard_error + slack * all.reference_mean + 1e-6)
-        << what << " channel " << c << ": " << all.mean << " of " << all.reference_mean;
-    for (int by = 0; by < blocks; ++by)
-      for (int bx = 0; bx < blocks; ++bx) {
-        const BlockDifference d = block_difference(a, b, bx * size, by * size, size, size, c);
-        EXPECT_LT(std::abs(d.mean), 5 * d.standard_error + slack * d.reference_mean + 1e-6)
-            << what << " block (" << bx << ", " << by << ") channel " << c << ": " << d.mean << " of " << d.reference_mean;
-      }
-  }
-}
-
 // A Lambertian sphere on a Lambertian ground, open to the sky.
 PreparedScene sphere_on_ground() {
   Scene s;

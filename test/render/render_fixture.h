@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <string>
 
+#include <gtest/gtest.h>
+
 #include "runtime/cl/context.h"
 #include "runtime/cl/program_cache.h"
 #include "runtime/render/prepared_scene.h"
@@ -71,6 +73,23 @@ inline BlockDifference block_difference(const Image& a, const Image& b, int x0, 
   const double n = double(w) * h;
   const double mean = sum / n;
   return {mean, std::sqrt(std::max(0.0, sum2 / n - mean * mean) / (n - 1)), ref / n};
+}
+
+// Two renders of the same expectation agree over the whole image and in 8 x 8 blocks within
+// 5 standard errors (plus `slack` of the value).
+inline void expect_same_expectation(const Image& a, const Image& b, const std::string& what, double slack = 0) {
+  const int blocks = 8, size = a.width / blocks;
+  for (int c = 0; c < 3; ++c) {
+    const BlockDifference all = block_difference(a, b, 0, 0, a.width, a.height, c);
+    EXPECT_LT(std::abs(all.mean), 5 * all.standard_error + slack * all.reference_mean + 1e-6)
+        << what << " channel " << c << ": " << all.mean << " of " << all.reference_mean;
+    for (int by = 0; by < blocks; ++by)
+      for (int bx = 0; bx < blocks; ++bx) {
+        const BlockDifference d = block_difference(a, b, bx * size, by * size, size, size, c);
+        EXPECT_LT(std::abs(d.mean), 5 * d.standard_error + slack * d.reference_mean + 1e-6)
+            << what << " block (" << bx << ", " << by << ") channel " << c << ": " << d.mean << " of " << d.reference_mean;
+      }
+  }
 }
 
 }  // namespace cohort::test
