@@ -19,6 +19,11 @@ struct KdBuildOptions {
   float empty_bonus = 0.8f;        // SAH cost factor (1 - bonus) for splits that cut off empty space
   int max_depth = 0;               // 0: 8 + 1.8 log2(N), capped below KD_MAX_DEPTH
   int leaf_triangles = 1;          // never split a node with this many triangles or fewer
+  // Nodes with more triangle references than this choose among `bins - 1` evenly spaced planes per
+  // axis (linear time); smaller ones by the exact sweep over every triangle boundary (a sort).
+  // INT_MAX: exact everywhere, the tree of Wald & Havran's O(N log N) build (slower).
+  int exact_triangles = 1024;
+  int bins = 128;
   bool parallel = true;            // build subtrees with TBB
 };
 
