@@ -143,7 +143,7 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
 
   const std::size_t right_begin = s.refs.size();
   const std::array<std::size_t, 2> counts =
-      partition(s.refs, begin, end, voxel, plane, triangles_);
+      partition(s.refs, begin, end, voxel, plane, triangles_, parallel);
   const std::array<Bounds, 2> cells = child_cells(voxel, plane.axis, plane.pos);
   const std::uint32_t index = checked_offset(out.nodes.size());
   out.nodes.push_back({static_cast<std::uint32_t>(plane.axis), plane.pos, 0, 0});

@@ -3,6 +3,9 @@
 // an extent ending in the plane is left-only, one starting in it right-only, one lying in it goes
 // to the side the SAH chose. Straddling references are clipped to each child cell (perfect splits),
 // and one whose triangle misses a child cell is left out of that child.
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
 #include <utility>
 
 #include "runtime/accel/clip.h"
@@ -28,38 +31,86 @@ std::array<Bounds, 2> child_cells(const Bounds& voxel, int axis, float pos) {
   return cells;
 }
 
-std::array<std::size_t, 2> partition(std::vector<Ref>& refs, std::size_t begin, std::size_t end,
-                                     const Bounds& voxel, const SplitPlane& plane,
-                                     std::span<const Triangle> triangles) {
+namespace {
+
+constexpr std::size_t kParallelChunk = 32768;  // references per task of a parallel split
+
+// Where one reference goes, with its clipped extent in each child it reaches.
+struct Placement {
+  bool left = false, right = false;
+  Bounds left_box, right_box;
+};
+
+Placement place(const Ref& r, const SplitPlane& plane, const std::array<Bounds, 2>& cells,
+                std::span<const Triangle> triangles) {
   const int axis = plane.axis;
   const float p = plane.pos;
-  const std::array<Bounds, 2> cells = child_cells(voxel, axis, p);
+  const float lo = r.box.lo[axis], hi = r.box.hi[axis];
+  Placement out;
+  if (lo == hi) {
+    out.left = lo < p || (lo == p && plane.planar_left);
+    out.right = !out.left;
+  } else {
+    out.left = lo < p;
+    out.right = hi > p;
+  }
+  if (out.left && out.right) {
+    const Triangle& t = triangles[r.tri];
+    out.left_box = clip_triangle_bounds(vertex(t.v0), vertex(t.v1), vertex(t.v2), cells[0]);
+    out.right_box = clip_triangle_bounds(vertex(t.v0), vertex(t.v1), vertex(t.v2), cells[1]);
+    out.left = !out.left_box.empty();
+    out.right = !out.right_box.empty();
+  } else {
+    out.left_box = out.right_box = r.box;
+  }
+  return out;
+}
+
+// Large nodes: fixed-size chunks split on their own, then concatenated in chunk order, so the
+// result is the serial one whatever the thread count.
+std::array<std::size_t, 2> partition_parallel(std::vector<Ref>& refs, std::size_t begin,
+                                              std::size_t end, const SplitPlane& plane,
+                                              const std::array<Bounds, 2>& cells,
+                                              std::span<const Triangle> triangles) {
+  const std::size_t chunks = (end - begin + kParallelChunk - 1) / kParallelChunk;
+  std::vector<std::array<std::vector<Ref>, 2>> parts(chunks);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
+    const std::size_t first = begin + k * kParallelChunk;
+    const std::size_t last = std::min(end, first + kParallelChunk);
+    for (std::size_t i = first; i < last; ++i) {
+      const Placement where = place(refs[i], plane, cells, triangles);
+      if (where.left) parts[k][0].push_back({where.left_box, refs[i].tri});
+      if (where.right) parts[k][1].push_back({where.right_box, refs[i].tri});
+    }
+  });
+  std::size_t write = begin;
+  for (const auto& part : parts) {
+    std::copy(part[0].begin(), part[0].end(), refs.begin() + static_cast<std::ptrdiff_t>(write));
+    write += part[0].size();
+  }
+  const std::size_t right_begin = refs.size();
+  for (const auto& part : parts) refs.insert(refs.end(), part[1].begin(), part[1].end());
+  return {write - begin, refs.size() - right_begin};
+}
+
+}  // namespace
+
+std::array<std::size_t, 2> partition(std::vector<Ref>& refs, std::size_t begin, std::size_t end,
+                                     const Bounds& voxel, const SplitPlane& plane,
+                                     std::span<const Triangle> triangles, bool parallel) {
+  const std::array<Bounds, 2> cells = child_cells(voxel, plane.axis, plane.pos);
+  if (parallel && end - begin >= 2 * kParallelChunk) {
+    return partition_parallel(refs, begin, end, plane, cells, triangles);
+  }
   const std::size_t right_begin = refs.size();
   // Left references overwrite the range in place (never ahead of the one being read), right ones
   // are appended; `refs` may reallocate, so everything goes through indices.
   std::size_t write = begin;
   for (std::size_t read = begin; read < end; ++read) {
     const Ref r = refs[read];
-    const float lo = r.box.lo[axis], hi = r.box.hi[axis];
-    bool left = false, right = false;
-    if (lo == hi) {
-      left = lo < p || (lo == p && plane.planar_left);
-      right = !left;
-    } else {
-      left = lo < p;
-      right = hi > p;
-    }
-    if (left && right) {
-      const Triangle& t = triangles[r.tri];
-      const Bounds l = clip_triangle_bounds(vertex(t.v0), vertex(t.v1), vertex(t.v2), cells[0]);
-      const Bounds h = clip_triangle_bounds(vertex(t.v0), vertex(t.v1), vertex(t.v2), cells[1]);
-      if (!l.empty()) refs[write++] = {l, r.tri};
-      if (!h.empty()) refs.push_back({h, r.tri});
-    } else if (left) {
-      refs[write++] = r;
-    } else {
-      refs.push_back(r);
-    }
+    const Placement where = place(r, plane, cells, triangles);
+    if (where.left) refs[write++] = {where.left_box, r.tri};
+    if (where.right) refs.push_back({where.right_box, r.tri});
   }
   return {write - begin, refs.size() - right_begin};
 }
