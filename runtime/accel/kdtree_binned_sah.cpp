@@ -102,40 +102,96 @@ int best_boundary(const SahContext& c, const Binner& binner, const PlaneScratch&
   return boundary;
 }
 
-// Exact counts inside bins [b - 1, b] of an axis: every reference starting in a lower bin lies
-// left of each event there, every one ending in a lower bin right of none (the bin index is
-// monotone in the position), so a Wald & Havran sweep over the events in those bins, started from
-// the prefix counts, evaluates each of them exactly. This recovers the planes that cut off empty
-// space tightly, which bin boundaries miss and which a KD-tree's cost depends on.
+// The bins whose events get the exact sweep, per axis: up to three disjoint ascending ranges
+// [first, last], around the best boundary and at the two ends of the geometry (the first bin where
+// a reference starts, the last where one ends), where the planes that cut off empty space lie.
+struct Ranges {
+  std::array<std::array<int, 2>, 3> range;
+  int count = 0;
+
+  void add(int first, int last) {
+    for (int k = 0; k < count; ++k) {  // merge with an overlapping or adjacent range
+      if (first <= range[k][1] + 1 && last >= range[k][0] - 1) {
+        range[k] = {std::min(first, range[k][0]), std::max(last, range[k][1])};
+        return;
+      }
+    }
+    range[count++] = {first, last};
+  }
+  void sort() {
+    std::sort(range.begin(), range.begin() + count);
+    for (int k = 0; k + 1 < count; ++k) {  // a merge above may now touch the next range
+      if (range[k + 1][0] <= range[k][1] + 1) {
+        range[k][1] = std::max(range[k][1], range[k + 1][1]);
+        std::copy(range.begin() + k + 2, range.begin() + count, range.begin() + k + 1);
+        --count;
+        --k;
+      }
+    }
+  }
+  bool contains(int bin) const {
+    for (int k = 0; k < count; ++k) {
+      if (bin >= range[k][0] && bin <= range[k][1]) return true;
+    }
+    return false;
+  }
+};
+
+Ranges exact_ranges(const PlaneScratch& counts, int bins, int axis, int boundary) {
+  Ranges r;
+  int first = 0, last = bins - 1;
+  while (first < last && counts.starts[axis * bins + first] == 0) ++first;
+  while (last > first && counts.ends[axis * bins + last] == 0) --last;
+  r.add(first, first);
+  r.add(last, last);
+  if (boundary > 0) r.add(boundary - 1, boundary);
+  r.sort();
+  return r;
+}
+
+// Exact counts inside a range of bins: every reference starting in a lower bin lies left of each
+// event there, every one ending in a lower bin right of none (the bin index is monotone in the
+// position), so a Wald & Havran sweep over the events of the range, started from the prefix
+// counts, evaluates each of them exactly. This recovers the planes at triangle boundaries, which
+// a KD-tree's cost depends on (cutting off empty space tightly) and bin boundaries miss.
 void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs,
-            const std::array<int, 3>& boundary, PlaneScratch& scratch, SplitPlane& best) {
+            const std::array<Ranges, 3>& ranges, PlaneScratch& scratch, SplitPlane& best) {
   for (auto& list : scratch.events) list.clear();
   for (std::size_t i = 0; i < refs.size(); ++i) {
     const Bounds& box = refs[i].box;
     const auto local = static_cast<std::uint32_t>(i);
     for (int axis = 0; axis < 3; ++axis) {
-      if (boundary[axis] == 0) continue;
-      const int first = boundary[axis] - 1, last = boundary[axis];
+      if (ranges[axis].count == 0) continue;
       const int lo = binner.bin(axis, box.lo[axis]), hi = binner.bin(axis, box.hi[axis]);
       std::vector<Event>& list = scratch.events[axis];
       if (box.lo[axis] == box.hi[axis]) {
-        if (lo >= first && lo <= last) list.push_back(Event::make(box.lo[axis], kPlanar, local));
+        if (ranges[axis].contains(lo)) list.push_back(Event::make(box.lo[axis], kPlanar, local));
         continue;
       }
-      if (lo >= first && lo <= last) list.push_back(Event::make(box.lo[axis], kStart, local));
-      if (hi >= first && hi <= last) list.push_back(Event::make(box.hi[axis], kEnd, local));
+      if (ranges[axis].contains(lo)) list.push_back(Event::make(box.lo[axis], kStart, local));
+      if (ranges[axis].contains(hi)) list.push_back(Event::make(box.hi[axis], kEnd, local));
     }
   }
   for (int axis = 0; axis < 3; ++axis) {
-    if (boundary[axis] == 0) continue;
     std::vector<Event>& list = scratch.events[axis];
     std::sort(list.begin(), list.end());
+    // The sorted events fall into the ranges in order; each range's sweep starts from the counts
+    // of the bins below it.
+    std::size_t next = 0;
     std::uint32_t n_left = 0, n_right = c.count;
-    for (int b = 0; b < boundary[axis] - 1; ++b) {
-      n_left += scratch.starts[axis * binner.bins + b];
-      n_right -= scratch.ends[axis * binner.bins + b];
+    int counted = 0;  // bins [0, counted) are in n_left / n_right
+    for (int k = 0; k < ranges[axis].count; ++k) {
+      const auto [first, last] = ranges[axis].range[k];
+      for (; counted < first; ++counted) {
+        n_left += scratch.starts[axis * binner.bins + counted];
+        n_right -= scratch.ends[axis * binner.bins + counted];
+      }
+      std::size_t end = next;
+      while (end < list.size() && binner.bin(axis, list[end].pos()) <= last) ++end;
+      sweep_events(c, axis, std::span<const Event>(list).subspan(next, end - next), n_left,
+                   n_right, best);
+      next = end;
     }
-    sweep_events(c, axis, list, n_left, n_right, best);
   }
 }
 
@@ -158,7 +214,11 @@ SplitPlane find_binned_plane(const SahContext& c, std::span<const Ref> refs, int
     boundary[axis] = best_boundary(c, binner, scratch, axis, axis_best);
     if (axis_best.valid() && (!best.valid() || axis_best.cost < best.cost)) best = axis_best;
   }
-  refine(c, binner, refs, boundary, scratch, best);
+  std::array<Ranges, 3> ranges{};
+  for (int axis = 0; axis < 3; ++axis) {
+    if (c.extent[axis] > 0.f) ranges[axis] = exact_ranges(scratch, bins, axis, boundary[axis]);
+  }
+  refine(c, binner, refs, ranges, scratch, best);
   return best;
 }
 

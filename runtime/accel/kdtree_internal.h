@@ -140,7 +140,7 @@ inline void evaluate_plane(const SahContext& c, const AxisSah& a, float pos, std
 // entirely before the first event and n_right reaching past it: at each position the end events
 // leave the right side, the planar ones sit in the plane, and the start events join the left side
 // after the evaluation. Updates `best` (kdtree_sah.cpp).
-void sweep_events(const SahContext& c, int axis, const std::vector<Event>& events,
+void sweep_events(const SahContext& c, int axis, std::span<const Event> events,
                   std::uint32_t n_left, std::uint32_t n_right, SplitPlane& best);
 
 // Working memory of the plane searches, reused from node to node by one task.

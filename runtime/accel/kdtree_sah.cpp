@@ -23,7 +23,7 @@ bool make_sah_context(const Bounds& voxel, std::size_t count, const KdBuildOptio
   return true;
 }
 
-void sweep_events(const SahContext& c, int axis, const std::vector<Event>& events,
+void sweep_events(const SahContext& c, int axis, std::span<const Event> events,
                   std::uint32_t n_left, std::uint32_t n_right, SplitPlane& best) {
   // A flat cell cannot be split along its flat axis: both children would be the cell itself.
   if (!(c.extent[axis] > 0.f)) return;
