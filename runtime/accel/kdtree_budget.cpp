@@ -34,7 +34,7 @@ KdTree build_kdtree_within(std::span<const glm::vec3> positions, const KdBuildOp
   }
   if (fits < 0) {
     throw InputError(fmt::format(
-        "the KD-tree needs at least {:.1f} MiB (one leaf over {} triangles); the budget is {:.1f} MiB",
+        "the KD-tree needs at least {:.2f} MiB (one leaf over {} triangles); the budget is {:.2f} MiB",
         static_cast<double>(8 + tree.triangles.size() * (sizeof(Triangle) + 4)) / 1048576.0,
         tree.triangles.size(), static_cast<double>(max_bytes) / 1048576.0));
   }
