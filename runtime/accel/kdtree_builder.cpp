@@ -107,9 +107,10 @@ SplitPlane Builder::find_plane(Scratch& s, std::size_t begin, std::size_t end,
                                const SahContext& c, bool parallel) const {
   const std::size_t count = end - begin;
   if (count > static_cast<std::size_t>(std::max(options_.exact_triangles, 0))) {
-    // Bins beyond a few per reference only split hairs.
+    // More bins than references only split hairs: the exact sweep inside the best bins and at
+    // the ends of the geometry finds the planes that matter.
     const int bins = static_cast<int>(
-        std::clamp<std::size_t>(4 * count, 8, static_cast<std::size_t>(std::max(options_.bins, 8))));
+        std::clamp<std::size_t>(count, 8, static_cast<std::size_t>(std::max(options_.bins, 8))));
     return find_binned_plane(c, std::span<const Ref>(s.refs).subspan(begin, count), bins,
                              parallel, s.plane);
   }
@@ -181,6 +182,9 @@ void Builder::build_children_parallel(Subtree& out, std::uint32_t index, Scratch
     child[c] = {};
   };
   tbb::parallel_invoke([&] { build_child(0); }, [&] { build_child(1); });
+  out.nodes.reserve(out.nodes.size() + trees[0].nodes.size() + trees[1].nodes.size());
+  out.leaf_triangles.reserve(out.leaf_triangles.size() + trees[0].leaf_triangles.size() +
+                             trees[1].leaf_triangles.size());
   out.nodes[index].a = append(out, trees[0]);
   out.nodes[index].b = append(out, trees[1]);
 }
