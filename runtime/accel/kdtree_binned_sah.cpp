@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <utility>
 #include <cstddef>
 #include <vector>
 
@@ -119,7 +120,9 @@ struct Ranges {
     range[count++] = {first, last};
   }
   void sort() {
-    std::sort(range.begin(), range.begin() + count);
+    for (int k = 1; k < count; ++k) {  // at most three: insertion
+      for (int j = k; j > 0 && range[j][0] < range[j - 1][0]; --j) std::swap(range[j], range[j - 1]);
+    }
     for (int k = 0; k + 1 < count; ++k) {  // a merge above may now touch the next range
       if (range[k + 1][0] <= range[k][1] + 1) {
         range[k][1] = std::max(range[k][1], range[k + 1][1]);

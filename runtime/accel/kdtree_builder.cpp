@@ -34,6 +34,10 @@ constexpr int kMaxBadRefines = 3;
 struct Scratch {
   std::vector<Ref> refs;
   PlaneScratch plane;
+  // plane.events are already the sorted events of the next node's references: its parent swept
+  // them and handed all of them on unchanged (an empty-space cut with nothing clipped, the most
+  // common split in a KD-tree), so the child skips building and sorting them again.
+  bool events_inherited = false;
 };
 
 class Builder {
@@ -48,8 +52,11 @@ class Builder {
                       const Bounds& voxel, int depth, int bad_refines) const;
 
  private:
+  bool exact(std::size_t count) const {
+    return count <= static_cast<std::size_t>(std::max(options_.exact_triangles, 0));
+  }
   SplitPlane find_plane(Scratch& s, std::size_t begin, std::size_t end, const SahContext& c,
-                        bool parallel) const;
+                        bool parallel, bool inherited) const;
   void build_children_parallel(Subtree& out, std::uint32_t index, Scratch& s,
                                std::array<std::size_t, 2> first, std::array<std::size_t, 2> counts,
                                const std::array<Bounds, 2>& cells, int depth,
@@ -104,9 +111,9 @@ std::uint32_t Builder::append(Subtree& out, const Subtree& child) {
 }
 
 SplitPlane Builder::find_plane(Scratch& s, std::size_t begin, std::size_t end,
-                               const SahContext& c, bool parallel) const {
+                               const SahContext& c, bool parallel, bool inherited) const {
   const std::size_t count = end - begin;
-  if (count > static_cast<std::size_t>(std::max(options_.exact_triangles, 0))) {
+  if (!exact(count)) {
     // More bins than references only split hairs: the exact sweep inside the best bins and at
     // the ends of the geometry finds the planes that matter.
     const int bins = static_cast<int>(
@@ -115,16 +122,19 @@ SplitPlane Builder::find_plane(Scratch& s, std::size_t begin, std::size_t end,
                              parallel, s.plane);
   }
   EventLists& events = s.plane.events;
-  for (auto& list : events) list.clear();
-  for (std::size_t i = begin; i < end; ++i) {
-    push_events(events, s.refs[i].box, static_cast<std::uint32_t>(i - begin));
+  if (!inherited) {
+    for (auto& list : events) list.clear();
+    for (std::size_t i = begin; i < end; ++i) {
+      push_events(events, s.refs[i].box, static_cast<std::uint32_t>(i - begin));
+    }
+    for (auto& list : events) std::sort(list.begin(), list.end());
   }
-  for (auto& list : events) std::sort(list.begin(), list.end());
   return find_best_plane(c, events);
 }
 
 std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::size_t end,
                              const Bounds& voxel, int depth, int bad_refines) const {
+  const bool inherited = std::exchange(s.events_inherited, false);
   const std::size_t count = end - begin;
   const auto leaf_size = static_cast<std::size_t>(std::max(options_.leaf_triangles, 0));
   SahContext context;
@@ -133,7 +143,7 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
     return make_leaf(out, s, begin, end);
   }
   const bool parallel = options_.parallel && count >= kParallelTriangles;
-  const SplitPlane plane = find_plane(s, begin, end, context, parallel);
+  const SplitPlane plane = find_plane(s, begin, end, context, parallel, inherited);
   // Wald & Havran's termination criterion: split only when the best plane beats the leaf, K_I N.
   if (!plane.valid() || !(plane.cost <= options_.intersection_cost * static_cast<float>(count))) {
     return make_leaf(out, s, begin, end);
@@ -143,8 +153,11 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
   if (bad_refines >= kMaxBadRefines) return make_leaf(out, s, begin, end);
 
   const std::size_t right_begin = s.refs.size();
+  std::size_t clipped = 0;
   const std::array<std::size_t, 2> counts =
-      partition(s.refs, begin, end, voxel, plane, triangles_, parallel);
+      partition(s.refs, begin, end, voxel, plane, triangles_, parallel, clipped);
+  // The events of this node are those of a child that got every reference unchanged, in order.
+  const bool hand_on = exact(count) && clipped == 0 && (counts[0] == 0 || counts[1] == 0);
   const std::array<Bounds, 2> cells = child_cells(voxel, plane.axis, plane.pos);
   const std::uint32_t index = checked_offset(out.nodes.size());
   out.nodes.push_back({static_cast<std::uint32_t>(plane.axis), plane.pos, 0, 0});
@@ -152,8 +165,10 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
     build_children_parallel(out, index, s, {begin, right_begin}, counts, cells, depth, bad_refines);
     return index;
   }
+  s.events_inherited = hand_on && counts[0] > 0;
   const std::uint32_t left =
       build(out, s, begin, begin + counts[0], cells[0], depth + 1, bad_refines);
+  s.events_inherited = hand_on && counts[1] > 0;
   const std::uint32_t right = build(out, s, right_begin, right_begin + counts[1], cells[1],
                                     depth + 1, bad_refines);
   s.refs.resize(right_begin);

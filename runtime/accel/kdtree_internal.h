@@ -164,10 +164,12 @@ SplitPlane find_binned_plane(const SahContext& context, std::span<const Ref> ref
 // Splits the references refs[begin, end) along `plane` (kdtree_partition.cpp): the left child's
 // are written over the front of the range, the right child's appended to `refs`; straddling
 // references are clipped to each child cell. Both keep the parent's order, also when `parallel`
-// splits a large node in chunks. Returns the counts.
+// splits a large node in chunks. Returns the counts per child; `clipped` counts the straddling
+// references (0: every child reference is a parent reference unchanged).
 std::array<std::size_t, 2> partition(std::vector<Ref>& refs, std::size_t begin, std::size_t end,
                                      const Bounds& voxel, const SplitPlane& plane,
-                                     std::span<const Triangle> triangles, bool parallel);
+                                     std::span<const Triangle> triangles, bool parallel,
+                                     std::size_t& clipped);
 
 std::array<Bounds, 2> child_cells(const Bounds& voxel, int axis, float pos);
 

@@ -38,6 +38,7 @@ constexpr std::size_t kParallelChunk = 32768;  // references per task of a paral
 // Where one reference goes, with its clipped extent in each child it reaches.
 struct Placement {
   bool left = false, right = false;
+  bool clipped = false;
   Bounds left_box, right_box;
 };
 
@@ -55,6 +56,7 @@ Placement place(const Ref& r, const SplitPlane& plane, const std::array<Bounds, 
     out.right = hi > p;
   }
   if (out.left && out.right) {
+    out.clipped = true;
     const Triangle& t = triangles[r.tri];
     out.left_box = clip_triangle_bounds(vertex(t.v0), vertex(t.v1), vertex(t.v2), cells[0]);
     out.right_box = clip_triangle_bounds(vertex(t.v0), vertex(t.v1), vertex(t.v2), cells[1]);
@@ -71,18 +73,22 @@ Placement place(const Ref& r, const SplitPlane& plane, const std::array<Bounds, 
 std::array<std::size_t, 2> partition_parallel(std::vector<Ref>& refs, std::size_t begin,
                                               std::size_t end, const SplitPlane& plane,
                                               const std::array<Bounds, 2>& cells,
-                                              std::span<const Triangle> triangles) {
+                                              std::span<const Triangle> triangles,
+                                              std::size_t& clipped) {
   const std::size_t chunks = (end - begin + kParallelChunk - 1) / kParallelChunk;
   std::vector<std::array<std::vector<Ref>, 2>> parts(chunks);
+  std::vector<std::size_t> clipped_in(chunks, 0);
   tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
     const std::size_t first = begin + k * kParallelChunk;
     const std::size_t last = std::min(end, first + kParallelChunk);
     for (std::size_t i = first; i < last; ++i) {
       const Placement where = place(refs[i], plane, cells, triangles);
+      clipped_in[k] += where.clipped;
       if (where.left) parts[k][0].push_back({where.left_box, refs[i].tri});
       if (where.right) parts[k][1].push_back({where.right_box, refs[i].tri});
     }
   });
+  for (std::size_t c : clipped_in) clipped += c;
   std::size_t write = begin;
   for (const auto& part : parts) {
     std::copy(part[0].begin(), part[0].end(), refs.begin() + static_cast<std::ptrdiff_t>(write));
@@ -97,10 +103,12 @@ std::array<std::size_t, 2> partition_parallel(std::vector<Ref>& refs, std::size_
 
 std::array<std::size_t, 2> partition(std::vector<Ref>& refs, std::size_t begin, std::size_t end,
                                      const Bounds& voxel, const SplitPlane& plane,
-                                     std::span<const Triangle> triangles, bool parallel) {
+                                     std::span<const Triangle> triangles, bool parallel,
+                                     std::size_t& clipped) {
+  clipped = 0;
   const std::array<Bounds, 2> cells = child_cells(voxel, plane.axis, plane.pos);
   if (parallel && end - begin >= 2 * kParallelChunk) {
-    return partition_parallel(refs, begin, end, plane, cells, triangles);
+    return partition_parallel(refs, begin, end, plane, cells, triangles, clipped);
   }
   const std::size_t right_begin = refs.size();
   // Left references overwrite the range in place (never ahead of the one being read), right ones
@@ -109,6 +117,7 @@ std::array<std::size_t, 2> partition(std::vector<Ref>& refs, std::size_t begin, 
   for (std::size_t read = begin; read < end; ++read) {
     const Ref r = refs[read];
     const Placement where = place(r, plane, cells, triangles);
+    clipped += where.clipped;
     if (where.left) refs[write++] = {where.left_box, r.tri};
     if (where.right) refs.push_back({where.right_box, r.tri});
   }
