@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <utility>
 
 namespace cohort::kd {
 namespace {
@@ -18,23 +19,26 @@ struct Polygon {
   std::size_t n = 0;
 };
 
-// Keeps the part of `in` with sign * (p[axis] - plane) >= 0. Points on the plane count as inside,
-// so a triangle lying in a cell face survives (it belongs to that cell too).
-Polygon clip_plane(const Polygon& in, int axis, double plane, double sign) {
-  Polygon out;
+// Keeps the part of `in` with sign * (p[axis] - plane) >= 0, written to `out`. Points on the plane
+// count as inside, so a triangle lying in a cell face survives (it belongs to that cell too).
+void clip_plane(const Polygon& in, int axis, double plane, double sign, Polygon& out) {
+  out.n = 0;
+  const glm::dvec3* prev = &in.v[in.n - 1];
+  double d_prev = sign * ((*prev)[axis] - plane);
   for (std::size_t i = 0; i < in.n; ++i) {
     const glm::dvec3& cur = in.v[i];
-    const glm::dvec3& next = in.v[(i + 1) % in.n];
-    const double dc = sign * (cur[axis] - plane);
-    const double dn = sign * (next[axis] - plane);
-    if (dc >= 0.0) out.v[out.n++] = cur;
-    if ((dc >= 0.0) != (dn >= 0.0)) {
-      glm::dvec3 p = cur + (next - cur) * (dc / (dc - dn));
+    const double d_cur = sign * (cur[axis] - plane);
+    // The edge prev -> cur: its crossing, then cur when inside (the same output as walking
+    // cur -> next, rotated by one vertex).
+    if ((d_prev >= 0.0) != (d_cur >= 0.0)) {
+      glm::dvec3 p = *prev + (cur - *prev) * (d_prev / (d_prev - d_cur));
       p[axis] = plane;  // exactly on the plane, whatever the rounding of the interpolation
       out.v[out.n++] = p;
     }
+    if (d_cur >= 0.0) out.v[out.n++] = cur;
+    prev = &cur;
+    d_prev = d_cur;
   }
-  return out;
 }
 
 float round_down(double x) {
@@ -57,17 +61,27 @@ Bounds clip_triangle_bounds(const glm::vec3& a, const glm::vec3& b, const glm::v
   poly.v[1] = glm::dvec3(b);
   poly.v[2] = glm::dvec3(c);
   poly.n = 3;
-  for (int axis = 0; axis < 3 && poly.n > 0; ++axis) {
-    poly = clip_plane(poly, axis, box.lo[axis], 1.0);
-    if (poly.n > 0) poly = clip_plane(poly, axis, box.hi[axis], -1.0);
+  // A plane that no vertex lies beyond leaves the polygon as it is: only the planes that cut the
+  // triangle (usually one or two of the six) are worth a pass.
+  const glm::vec3 tri_lo = glm::min(a, glm::min(b, c)), tri_hi = glm::max(a, glm::max(b, c));
+  Polygon scratch;
+  Polygon* cur = &poly;
+  Polygon* next = &scratch;
+  auto clip = [&](int axis, double plane, double sign) {
+    clip_plane(*cur, axis, plane, sign, *next);
+    std::swap(cur, next);
+  };
+  for (int axis = 0; axis < 3 && cur->n > 0; ++axis) {
+    if (tri_lo[axis] < box.lo[axis]) clip(axis, box.lo[axis], 1.0);
+    if (cur->n > 0 && tri_hi[axis] > box.hi[axis]) clip(axis, box.hi[axis], -1.0);
   }
   Bounds result;
-  if (poly.n == 0) return result;
+  if (cur->n == 0) return result;
   glm::dvec3 lo(std::numeric_limits<double>::infinity());
   glm::dvec3 hi(-std::numeric_limits<double>::infinity());
-  for (std::size_t i = 0; i < poly.n; ++i) {
-    lo = glm::min(lo, poly.v[i]);
-    hi = glm::max(hi, poly.v[i]);
+  for (std::size_t i = 0; i < cur->n; ++i) {
+    lo = glm::min(lo, cur->v[i]);
+    hi = glm::max(hi, cur->v[i]);
   }
   for (int axis = 0; axis < 3; ++axis) {
     result.lo[axis] = std::max(round_down(lo[axis]), box.lo[axis]);

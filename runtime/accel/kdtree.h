@@ -19,6 +19,11 @@ struct KdBuildOptions {
   float empty_bonus = 0.8f;        // SAH cost factor (1 - bonus) for splits that cut off empty space
   int max_depth = 0;               // 0: 8 + 1.8 log2(N), capped below KD_MAX_DEPTH
   int leaf_triangles = 1;          // never split a node with this many triangles or fewer
+  // Nodes with more triangle references than this choose among `bins - 1` evenly spaced planes per
+  // axis (linear time); smaller ones by the exact sweep over every triangle boundary (a sort).
+  // INT_MAX: exact everywhere, the tree of Wald & Havran's O(N log N) build (slower).
+  int exact_triangles = 64;
+  int bins = 512;
   bool parallel = true;            // build subtrees with TBB
 };
 
@@ -47,5 +52,11 @@ struct KdTree {
 // positions: 3 per triangle. Bad triangles are dropped and counted, never an error; an input with
 // no good triangle gives a tree with one empty leaf.
 KdTree build_kdtree(std::span<const glm::vec3> positions, const KdBuildOptions& options = {});
+
+// The same tree with the depth limit lowered as far as needed for stats.bytes (nodes, leaf lists,
+// triangles) to fit `max_bytes`: the default tree when it fits. Throws InputError naming the size
+// needed when even a single leaf does not fit. stats.build_seconds counts every build it took.
+KdTree build_kdtree_within(std::span<const glm::vec3> positions, const KdBuildOptions& options,
+                           std::size_t max_bytes);
 
 }  // namespace cohort

@@ -1,16 +1,16 @@
-// The recursive SAH build of Wald & Havran 2006 ("On building fast kd-trees for ray tracing, and on
-// doing that in O(N log N)"), the O(N log N) variant: the events are sorted once at the root and
-// every node after that costs time linear in its size (kdtree_sah.cpp, kdtree_partition.cpp).
-// Subtrees above kParallelTriangles are built as TBB tasks into their own pointer-free Subtree and
-// appended in a fixed order, so the tree is the same bits whatever the thread timing.
+// The recursive SAH build over triangle references. Large nodes pick their plane from binned
+// counts (linear time); nodes of at most KdBuildOptions::exact_triangles references sort their
+// extents as events and sweep every candidate (Wald & Havran 2006's exact SAH). References live in
+// one growing array per task, used as a stack: a node's left child overwrites it in place and its
+// right child is appended, so the recursion allocates nothing per node. Subtrees of large nodes are
+// TBB tasks, built into their own pointer-free Subtree and appended in a fixed order, so the tree
+// is the same bits whatever the thread count and timing.
 #include <fmt/format.h>
 #include <tbb/parallel_invoke.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <stdexcept>
 #include <utility>
 
@@ -29,17 +29,40 @@ constexpr std::size_t kParallelTriangles = 4096;
 // case the cost rule is ever relaxed.
 constexpr int kMaxBadRefines = 3;
 
+// One task's working memory: the reference stack and the event lists of the exact sweep, reused
+// from node to node.
+struct Scratch {
+  std::vector<Ref> refs;
+  PlaneScratch plane;
+  // plane.events are already the sorted events of the next node's references: its parent swept
+  // them and handed all of them on unchanged (an empty-space cut with nothing clipped, the most
+  // common split in a KD-tree), so the child skips building and sorting them again.
+  bool events_inherited = false;
+};
+
 class Builder {
  public:
   Builder(std::span<const Triangle> triangles, const KdBuildOptions& options, int max_depth)
       : triangles_(triangles), options_(options), max_depth_(max_depth) {}
 
-  // Builds the subtree of `work` into `out`; returns the index of its root there.
-  std::uint32_t build(Subtree& out, NodeWork work, int depth, int bad_refines) const;
+  // Builds the subtree of the references s.refs[begin, end) (with cell `voxel`) into `out`;
+  // returns the index of its root there. Leaves s.refs at its size on entry, or empty and freed
+  // when the node was split in parallel.
+  std::uint32_t build(Subtree& out, Scratch& s, std::size_t begin, std::size_t end,
+                      const Bounds& voxel, int depth, int bad_refines) const;
 
  private:
-  bool must_be_leaf(const NodeWork& work, int depth) const;
-  static std::uint32_t make_leaf(Subtree& out, const NodeWork& work);
+  bool exact(std::size_t count) const {
+    return count <= static_cast<std::size_t>(std::max(options_.exact_triangles, 0));
+  }
+  SplitPlane find_plane(Scratch& s, std::size_t begin, std::size_t end, const SahContext& c,
+                        bool parallel, bool inherited) const;
+  void build_children_parallel(Subtree& out, std::uint32_t index, Scratch& s,
+                               std::array<std::size_t, 2> first, std::array<std::size_t, 2> counts,
+                               const std::array<Bounds, 2>& cells, int depth,
+                               int bad_refines) const;
+  static std::uint32_t make_leaf(Subtree& out, const Scratch& s, std::size_t begin,
+                                 std::size_t end);
   static std::uint32_t append(Subtree& out, const Subtree& child);
 
   std::span<const Triangle> triangles_;
@@ -57,17 +80,13 @@ std::uint32_t checked_offset(std::size_t value) {
   return static_cast<std::uint32_t>(value);
 }
 
-bool Builder::must_be_leaf(const NodeWork& work, int depth) const {
-  const auto leaf_size = static_cast<std::size_t>(std::max(options_.leaf_triangles, 0));
-  return work.tris.size() <= leaf_size || depth >= max_depth_;
-}
-
-std::uint32_t Builder::make_leaf(Subtree& out, const NodeWork& work) {
+std::uint32_t Builder::make_leaf(Subtree& out, const Scratch& s, std::size_t begin,
+                                 std::size_t end) {
   const std::uint32_t index = checked_offset(out.nodes.size());
-  checked_offset(out.leaf_triangles.size() + work.tris.size());
+  checked_offset(out.leaf_triangles.size() + (end - begin));
   out.nodes.push_back({KD_LEAF, 0.f, static_cast<std::uint32_t>(out.leaf_triangles.size()),
-                       static_cast<std::uint32_t>(work.tris.size())});
-  out.leaf_triangles.insert(out.leaf_triangles.end(), work.tris.begin(), work.tris.end());
+                       static_cast<std::uint32_t>(end - begin)});
+  for (std::size_t i = begin; i < end; ++i) out.leaf_triangles.push_back(s.refs[i].tri);
   return index;
 }
 
@@ -91,63 +110,111 @@ std::uint32_t Builder::append(Subtree& out, const Subtree& child) {
   return node_offset;
 }
 
-std::uint32_t Builder::build(Subtree& out, NodeWork work, int depth, int bad_refines) const {
-  if (must_be_leaf(work, depth)) return make_leaf(out, work);
-  const std::size_t count = work.tris.size();
+SplitPlane Builder::find_plane(Scratch& s, std::size_t begin, std::size_t end,
+                               const SahContext& c, bool parallel, bool inherited) const {
+  const std::size_t count = end - begin;
+  if (!exact(count)) {
+    // More bins than references only split hairs: the exact sweep inside the best bins and at
+    // the ends of the geometry finds the planes that matter.
+    const int bins = static_cast<int>(
+        std::clamp<std::size_t>(count, 8, static_cast<std::size_t>(std::max(options_.bins, 8))));
+    return find_binned_plane(c, std::span<const Ref>(s.refs).subspan(begin, count), bins,
+                             parallel, s.plane);
+  }
+  EventLists& events = s.plane.events;
+  if (!inherited) {
+    for (auto& list : events) list.clear();
+    for (std::size_t i = begin; i < end; ++i) {
+      push_events(events, s.refs[i].box, static_cast<std::uint32_t>(i - begin));
+    }
+    for (auto& list : events) std::sort(list.begin(), list.end());
+  }
+  return find_best_plane(c, events);
+}
+
+std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::size_t end,
+                             const Bounds& voxel, int depth, int bad_refines) const {
+  const bool inherited = std::exchange(s.events_inherited, false);
+  const std::size_t count = end - begin;
+  const auto leaf_size = static_cast<std::size_t>(std::max(options_.leaf_triangles, 0));
+  SahContext context;
+  if (count <= leaf_size || depth >= max_depth_ ||
+      !make_sah_context(voxel, count, options_, context)) {
+    return make_leaf(out, s, begin, end);
+  }
   const bool parallel = options_.parallel && count >= kParallelTriangles;
-  const SplitPlane plane = find_best_plane(work, options_, parallel);
+  const SplitPlane plane = find_plane(s, begin, end, context, parallel, inherited);
   // Wald & Havran's termination criterion: split only when the best plane beats the leaf, K_I N.
   if (!plane.valid() || !(plane.cost <= options_.intersection_cost * static_cast<float>(count))) {
-    return make_leaf(out, work);
+    return make_leaf(out, s, begin, end);
   }
   const bool no_progress = plane.left_count == count && plane.right_count == count;
   bad_refines = no_progress ? bad_refines + 1 : 0;
-  if (bad_refines >= kMaxBadRefines) return make_leaf(out, work);
+  if (bad_refines >= kMaxBadRefines) return make_leaf(out, s, begin, end);
 
-  std::array<NodeWork, 2> children = partition(std::move(work), plane, triangles_, parallel);
+  const std::size_t right_begin = s.refs.size();
+  std::size_t clipped = 0;
+  const std::array<std::size_t, 2> counts =
+      partition(s.refs, begin, end, voxel, plane, triangles_, parallel, clipped);
+  // The events of this node are those of a child that got every reference unchanged, in order.
+  const bool hand_on = exact(count) && clipped == 0 && (counts[0] == 0 || counts[1] == 0);
+  const std::array<Bounds, 2> cells = child_cells(voxel, plane.axis, plane.pos);
   const std::uint32_t index = checked_offset(out.nodes.size());
   out.nodes.push_back({static_cast<std::uint32_t>(plane.axis), plane.pos, 0, 0});
-  std::uint32_t left = 0, right = 0;
   if (parallel) {
-    Subtree left_tree, right_tree;
-    tbb::parallel_invoke(
-        [&] { build(left_tree, std::move(children[0]), depth + 1, bad_refines); },
-        [&] { build(right_tree, std::move(children[1]), depth + 1, bad_refines); });
-    left = append(out, left_tree);
-    right = append(out, right_tree);
-  } else {
-    left = build(out, std::move(children[0]), depth + 1, bad_refines);
-    right = build(out, std::move(children[1]), depth + 1, bad_refines);
+    build_children_parallel(out, index, s, {begin, right_begin}, counts, cells, depth, bad_refines);
+    return index;
   }
+  s.events_inherited = hand_on && counts[0] > 0;
+  const std::uint32_t left =
+      build(out, s, begin, begin + counts[0], cells[0], depth + 1, bad_refines);
+  s.events_inherited = hand_on && counts[1] > 0;
+  const std::uint32_t right = build(out, s, right_begin, right_begin + counts[1], cells[1],
+                                    depth + 1, bad_refines);
+  s.refs.resize(right_begin);
   out.nodes[index].a = left;  // re-indexed: the recursion grew the vector
   out.nodes[index].b = right;
   return index;
 }
 
-// The root: every kept triangle with its own bounds, events sorted once (the only full sort).
-NodeWork root_work(std::span<const Triangle> triangles, const Bounds& bounds, bool parallel) {
-  NodeWork work;
-  work.voxel = bounds;
-  work.tris.resize(triangles.size());
-  std::iota(work.tris.begin(), work.tris.end(), 0u);
-  for (auto& list : work.events) list.reserve(2 * triangles.size());
+// Each child gets a stack of its own and is built as a task into its own Subtree; the parent's
+// stack is freed first (a node large enough for this has the stack to itself: it is the root or a
+// child of another parallel split).
+void Builder::build_children_parallel(Subtree& out, std::uint32_t index, Scratch& s,
+                                      std::array<std::size_t, 2> first,
+                                      std::array<std::size_t, 2> counts,
+                                      const std::array<Bounds, 2>& cells, int depth,
+                                      int bad_refines) const {
+  std::array<Scratch, 2> child;
+  for (int c = 0; c < 2; ++c) {
+    const auto from = s.refs.begin() + static_cast<std::ptrdiff_t>(first[c]);
+    child[c].refs.assign(from, from + static_cast<std::ptrdiff_t>(counts[c]));
+  }
+  std::vector<Ref>().swap(s.refs);
+  std::array<Subtree, 2> trees;
+  auto build_child = [&](int c) {
+    build(trees[c], child[c], 0, counts[c], cells[c], depth + 1, bad_refines);
+    child[c] = {};
+  };
+  tbb::parallel_invoke([&] { build_child(0); }, [&] { build_child(1); });
+  out.nodes.reserve(out.nodes.size() + trees[0].nodes.size() + trees[1].nodes.size());
+  out.leaf_triangles.reserve(out.leaf_triangles.size() + trees[0].leaf_triangles.size() +
+                             trees[1].leaf_triangles.size());
+  out.nodes[index].a = append(out, trees[0]);
+  out.nodes[index].b = append(out, trees[1]);
+}
+
+// The root: every kept triangle with its own bounds, in input order.
+std::vector<Ref> root_refs(std::span<const Triangle> triangles) {
+  std::vector<Ref> refs(triangles.size());
   for (std::uint32_t i = 0; i < triangles.size(); ++i) {
     Bounds box;
     box.extend(vertex(triangles[i].v0));
     box.extend(vertex(triangles[i].v1));
     box.extend(vertex(triangles[i].v2));
-    push_events(work.events, box, i);
+    refs[i] = {box, i};
   }
-  auto sort = [&](int axis) {
-    auto& list = work.events[axis];
-    if (parallel) {
-      tbb::parallel_sort(list.begin(), list.end());  // a total order: same result as std::sort
-    } else {
-      std::sort(list.begin(), list.end());
-    }
-  };
-  for (int axis = 0; axis < 3; ++axis) sort(axis);
-  return work;
+  return refs;
 }
 
 }  // namespace
@@ -166,7 +233,9 @@ Subtree build_subtree(std::span<const Triangle> triangles, const Bounds& bounds,
   Subtree out;
   const int max_depth = effective_max_depth(options, triangles.size());
   const Builder builder(triangles, options, max_depth);
-  builder.build(out, root_work(triangles, bounds, options.parallel), 0, 0);
+  Scratch scratch;
+  scratch.refs = root_refs(triangles);
+  builder.build(out, scratch, 0, triangles.size(), bounds, 0, 0);
   return out;
 }
 

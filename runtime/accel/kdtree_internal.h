@@ -1,13 +1,16 @@
 // Internals of the KD-tree build shared by kdtree_builder.cpp, kdtree_sah.cpp,
-// kdtree_partition.cpp, kdtree_layout.cpp and kdtree_stats.cpp. Not part of the public contract.
+// kdtree_binned_sah.cpp, kdtree_partition.cpp, kdtree_layout.cpp and kdtree_stats.cpp. Not part of
+// the public contract.
 //
-// The build follows Wald & Havran, "On building fast kd-trees for ray tracing, and on doing that
-// in O(N log N)" (IEEE RT 2006): every node owns one event list per axis, sorted once at the root;
-// the SAH sweep, the left/right/both classification and the splitting of the lists are linear in
-// the node size, and only the events of clipped straddling triangles are sorted again.
+// The build works on triangle references (a triangle and its extent clipped to the node's cell).
+// Large nodes pick their plane from binned counts in linear time; nodes of at most
+// KdBuildOptions::exact_triangles references sort their extents as Wald & Havran's events ("On
+// building fast kd-trees for ray tracing, and on doing that in O(N log N)", IEEE RT 2006) and
+// sweep every candidate exactly.
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -28,34 +31,44 @@ enum EventType : std::uint32_t { kEnd = 0, kPlanar = 1, kStart = 2 };
 constexpr std::uint32_t kLocalBits = 30;
 constexpr std::uint32_t kLocalMask = (1u << kLocalBits) - 1u;
 
-// 8 bytes: position, and the type above the node-local triangle index. Comparing `code` after
-// `pos` sorts by (position, type, triangle), a total order, so every sort is deterministic.
+// 8 bytes, one integer key: the position's float bits mapped to an unsigned integer of the same
+// order, above the type and the node-local reference index. Sorting keys sorts by (position, type,
+// reference), a total order, so every sort is deterministic, and a key comparison is one
+// instruction.
 struct Event {
-  float pos;
-  std::uint32_t code;
+  std::uint64_t key;
 
   static Event make(float pos, EventType type, std::uint32_t local) {
-    return {pos + 0.0f, (static_cast<std::uint32_t>(type) << kLocalBits) | local};  // -0 -> +0
+    return {static_cast<std::uint64_t>(ordered_bits(pos)) << 32 |
+            (static_cast<std::uint32_t>(type) << kLocalBits) | local};
   }
-  EventType type() const { return static_cast<EventType>(code >> kLocalBits); }
-  std::uint32_t local() const { return code & kLocalMask; }
-  friend bool operator<(const Event& a, const Event& b) {
-    return a.pos < b.pos || (a.pos == b.pos && a.code < b.code);
+  float pos() const { return float_of(static_cast<std::uint32_t>(key >> 32)); }
+  std::uint32_t pos_bits() const { return static_cast<std::uint32_t>(key >> 32); }
+  EventType type() const { return static_cast<EventType>((key >> kLocalBits) & 3u); }
+  std::uint32_t local() const { return static_cast<std::uint32_t>(key) & kLocalMask; }
+  friend bool operator<(const Event& a, const Event& b) { return a.key < b.key; }
+
+  // Negative floats reversed below the positive ones; -0 is taken as +0 first.
+  static std::uint32_t ordered_bits(float pos) {
+    const std::uint32_t u = std::bit_cast<std::uint32_t>(pos + 0.0f);
+    return (u & 0x80000000u) ? ~u : u | 0x80000000u;
+  }
+  static float float_of(std::uint32_t ordered) {
+    return std::bit_cast<float>((ordered & 0x80000000u) ? ordered & 0x7fffffffu : ~ordered);
   }
 };
 
 using EventLists = std::array<std::vector<Event>, 3>;
 
-// The work of one node: its cell, its triangles and their (clipped) extents as events. Triangles
-// are named by a node-local index (their position in `tris`), so side flags and index maps are
-// node-local arrays and sibling subtrees can be built on different threads without sharing state.
-struct NodeWork {
-  Bounds voxel;
-  std::vector<std::uint32_t> tris;  // kept-triangle indices, ascending
-  EventLists events;                // per axis, sorted
+// A triangle reference: a kept triangle and its extent clipped to the cell of the node that holds
+// it (Havran's perfect splits). A node's references keep ascending triangle order, so leaf lists
+// are ascending and the tree does not depend on which thread moved the references.
+struct Ref {
+  Bounds box;
+  std::uint32_t tri;
 };
 
-// Appends the events of one triangle whose extent (inside the cell) is `box`.
+// Appends the events of one reference whose extent (inside the cell) is `box`.
 void push_events(EventLists& lists, const Bounds& box, std::uint32_t local);
 
 // ---- SAH ---------------------------------------------------------------------------------------
@@ -64,18 +77,101 @@ struct SplitPlane {
   float pos = 0.f;
   bool planar_left = true;  // where triangles lying in the plane go
   float cost = 0.f;
-  std::uint32_t left_count = 0;  // triangles on each side, before clipping
+  std::uint32_t left_count = 0;  // references on each side, as the search counted them
   std::uint32_t right_count = 0;
   bool valid() const { return axis >= 0; }
 };
 
-// The best plane of the sweep over all three event lists (Wald & Havran's FindPlane).
-SplitPlane find_best_plane(const NodeWork& work, const KdBuildOptions& options, bool parallel);
+// What every candidate plane of one node shares.
+struct SahContext {
+  glm::vec3 lo, hi, extent;
+  float inv_area;  // 1 / surface area of the cell
+  float traversal_cost;
+  float intersection_cost;
+  float empty_factor;   // 1 - empty_bonus
+  std::uint32_t count;  // references in the node
+};
 
-// Splits the node's triangles and event lists along `plane` in linear time, clipping straddling
-// triangles to each child cell (Wald & Havran's perfect splits). Consumes `work`.
-std::array<NodeWork, 2> partition(NodeWork work, const SplitPlane& plane,
-                                  std::span<const Triangle> triangles, bool parallel);
+// False for a cell without area (nothing to split) or with an infinite one.
+bool make_sah_context(const Bounds& voxel, std::size_t count, const KdBuildOptions& options,
+                      SahContext& out);
+
+// Wald & Havran's C_V(p) with their lambda(p): cutting off empty space is rewarded, but only when
+// the empty side has volume, otherwise every flat cut at the cell boundary would look like a win.
+inline float plane_cost(const SahContext& c, float p_left, float p_right, std::uint32_t n_left,
+                        std::uint32_t n_right, float width_left, float width_right) {
+  float cost = c.traversal_cost + c.intersection_cost * (p_left * static_cast<float>(n_left) +
+                                                         p_right * static_cast<float>(n_right));
+  const bool empty_cut = (n_left == 0 && width_left > 0.f) || (n_right == 0 && width_right > 0.f);
+  return empty_cut ? cost * c.empty_factor : cost;
+}
+
+// The parts of a candidate's cost that depend only on its axis.
+struct AxisSah {
+  int axis;
+  float lo, hi;  // the cell along the axis
+  float face;    // area of the cell's face across the axis
+  float rim;     // the two other extents, summed
+};
+
+inline AxisSah axis_sah(const SahContext& c, int axis) {
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  return {axis, c.lo[axis], c.hi[axis], c.extent[u] * c.extent[v], c.extent[u] + c.extent[v]};
+}
+
+// Evaluates plane `pos` both with the planar triangles on the left and on the right (Wald & Havran's
+// SAH(p, V, N_L, N_R, N_P)), keeping the cheaper; ties keep the earlier candidate, so the order of
+// the candidates alone decides and the result is deterministic. Inline: the searches call it once
+// per candidate.
+inline void evaluate_plane(const SahContext& c, const AxisSah& a, float pos, std::uint32_t n_left,
+                           std::uint32_t n_right, std::uint32_t n_planar, SplitPlane& best) {
+  const float width_left = pos - a.lo, width_right = a.hi - pos;
+  const float p_left = 2.f * (a.face + width_left * a.rim) * c.inv_area;
+  const float p_right = 2.f * (a.face + width_right * a.rim) * c.inv_area;
+  auto consider = [&](std::uint32_t l, std::uint32_t r, bool planar_left) {
+    const float cost = plane_cost(c, p_left, p_right, l, r, width_left, width_right);
+    if (!best.valid() || cost < best.cost) best = {a.axis, pos, planar_left, cost, l, r};
+  };
+  consider(n_left + n_planar, n_right, true);
+  if (n_planar > 0) consider(n_left, n_right + n_planar, false);
+}
+
+// Wald & Havran's incremental sweep over one axis's sorted events, starting from n_left references
+// entirely before the first event and n_right reaching past it: at each position the end events
+// leave the right side, the planar ones sit in the plane, and the start events join the left side
+// after the evaluation. Updates `best` (kdtree_sah.cpp).
+void sweep_events(const SahContext& c, int axis, std::span<const Event> events,
+                  std::uint32_t n_left, std::uint32_t n_right, SplitPlane& best);
+
+// Working memory of the plane searches, reused from node to node by one task.
+struct PlaneScratch {
+  std::vector<std::uint32_t> starts, ends;  // binned counts, [axis * bins + bin]
+  EventLists events;
+};
+
+// The best plane of Wald & Havran's sweep (their FindPlane) over a node's sorted event lists:
+// exact, every boundary of a reference's extent is a candidate (kdtree_sah.cpp).
+SplitPlane find_best_plane(const SahContext& context, const EventLists& events);
+
+// The best of `bins - 1` evenly spaced planes per axis, counted from binned reference extents in
+// time linear in the node, and of the exact candidates inside the two bins around each axis's best
+// boundary (kdtree_binned_sah.cpp). For large nodes, where sorting every extent would dominate the
+// build.
+SplitPlane find_binned_plane(const SahContext& context, std::span<const Ref> refs, int bins,
+                             bool parallel, PlaneScratch& scratch);
+
+// ---- Partition ---------------------------------------------------------------------------------
+// Splits the references refs[begin, end) along `plane` (kdtree_partition.cpp): the left child's
+// are written over the front of the range, the right child's appended to `refs`; straddling
+// references are clipped to each child cell. Both keep the parent's order, also when `parallel`
+// splits a large node in chunks. Returns the counts per child; `clipped` counts the straddling
+// references (0: every child reference is a parent reference unchanged).
+std::array<std::size_t, 2> partition(std::vector<Ref>& refs, std::size_t begin, std::size_t end,
+                                     const Bounds& voxel, const SplitPlane& plane,
+                                     std::span<const Triangle> triangles, bool parallel,
+                                     std::size_t& clipped);
+
+std::array<Bounds, 2> child_cells(const Bounds& voxel, int axis, float pos);
 
 // ---- Intermediate tree -------------------------------------------------------------------------
 // Pointer-free, so a subtree built on another thread is a plain value that the parent appends in a

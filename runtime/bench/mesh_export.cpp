@@ -1,6 +1,8 @@
 #include "runtime/bench/mesh_export.h"
 
+#include <algorithm>
 #include <bit>
+#include <limits>
 #include <cstring>
 #include <string>
 
@@ -26,6 +28,21 @@ std::vector<glm::vec3> midpoint_subdivide(std::span<const glm::vec3> positions, 
     current = std::move(next);
   }
   return current;
+}
+
+std::vector<glm::vec3> copies_along_z(std::span<const glm::vec3> positions, unsigned copies) {
+  float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+  for (const glm::vec3& p : positions) {
+    lo = std::min(lo, p.z);
+    hi = std::max(hi, p.z);
+  }
+  const float step = positions.empty() ? 0.f : 1.05f * (hi - lo);
+  std::vector<glm::vec3> out;
+  out.reserve(positions.size() * copies);
+  for (unsigned c = 0; c < copies; ++c) {
+    for (const glm::vec3& p : positions) out.push_back({p.x, p.y, p.z + step * static_cast<float>(c)});
+  }
+  return out;
 }
 
 void write_ply(const std::filesystem::path& path, std::span<const glm::vec3> positions) {

@@ -59,7 +59,11 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
                  "Save the film to OUT.checkpoint every SECONDS (and at the end, or on SIGINT/SIGTERM)")
       ->check(CLI::PositiveNumber)
       ->each([&r](const std::string&) { r.checkpoint = true; });
-  cmd.add_option("--memory-limit", r.memory_limit_mib, "Use at most this many MiB of device memory")
+  cmd.add_option("--memory-limit", r.memory_limit_mib,
+                 "Use at most this many MiB of device memory (the KD-tree gets shallower when the scene would not fit)")
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--tree-budget", r.tree_budget_mib,
+                 "Lower the KD-tree depth limit until nodes, leaf lists and triangles fit in this many MiB")
       ->check(CLI::PositiveNumber);
   cmd.add_flag("--resume", r.resume, "Continue from OUT.checkpoint when it exists (same scene and settings)");
   cmd.add_option("--stats", r.stats_file, "Write the run's figures to this JSON file");
@@ -125,6 +129,8 @@ int run_cli(int argc, char** argv) {
   export_cmd->add_option("-o,--output", export_args.output, "Output .ply")->required();
   export_cmd->add_option("--subdivide", export_args.subdivide, "Midpoint subdivision levels (4x triangles each)")
       ->check(CLI::Range(0, 6));
+  export_cmd->add_option("--copies", export_args.copies, "Copies side by side along z (odd: one in the middle)")
+      ->check(CLI::Range(1, 64));
 
   auto* devices_cmd = app.add_subcommand("devices", "List OpenCL platforms and devices");
 

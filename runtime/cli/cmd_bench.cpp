@@ -179,7 +179,8 @@ int run_bench(const BenchCommand& cmd) {
 
 int run_export(const ExportCommand& cmd) {
   const Scene scene = load_scene(cmd.scene);
-  const auto positions = midpoint_subdivide(scene.positions, cmd.subdivide);
+  auto positions = midpoint_subdivide(scene.positions, cmd.subdivide);
+  if (cmd.copies > 1) positions = copies_along_z(positions, cmd.copies);
   write_ply(cmd.output, positions);
   fmt::print("wrote {}: {} triangles\n", cmd.output.string(), positions.size() / 3);
   return 0;

@@ -4,6 +4,7 @@
 #include "runtime/cl/devices.h"
 #include "runtime/cli/commands.h"
 #include "runtime/render/prepared_scene.h"
+#include "runtime/render/scene_memory.h"
 #include "runtime/util/error.h"
 
 namespace cohort {
@@ -36,11 +37,8 @@ int run_info(const std::filesystem::path& path) {
              "built in {:.3f}s\n",
              ts.depth, ts.node_count, ts.leaf_count, ts.empty_leaf_count, ts.average_leaf_triangles, ts.sah_cost,
              ts.build_seconds);
-  const std::size_t device_bytes = ts.bytes + p.tables.triangle_material.size() * 4 +
-                                   p.tables.materials.size() * sizeof(Material) +
-                                   p.tables.emitters.entries.size() * sizeof(EmitterEntry);
-  fmt::print("memory: {:.2f} MiB on the device (tree {:.2f} MiB), {:.2f} MiB of scene geometry\n",
-             device_bytes / 1048576.0, ts.bytes / 1048576.0, p.scene.geometry_bytes() / 1048576.0);
+  fmt::print("device memory: {}\n", describe(scene_memory(p.tree, p.tables), p.tree.triangles.size()));
+  fmt::print("scene geometry: {:.2f} MiB on the host\n", p.scene.geometry_bytes() / 1048576.0);
   for (const auto& w : p.scene.warnings) fmt::print("warning: {}\n", w);
   return 0;
 }

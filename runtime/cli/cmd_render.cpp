@@ -15,6 +15,7 @@
 #include "runtime/cli/progress.h"
 #include "runtime/render/environment_map.h"
 #include "runtime/render/prepared_scene.h"
+#include "runtime/render/scene_memory.h"
 #include "runtime/render/methods.h"
 #include "runtime/render/renderer.h"
 #include "runtime/render/workloads.h"
@@ -121,6 +122,11 @@ nlohmann::json stats_json(const RenderCommand& cmd, const nlohmann::json& ranks,
   j["kdtree"] = {{"depth", ts.depth}, {"nodes", ts.node_count}, {"leaves", ts.leaf_count},
                  {"average_leaf_triangles", ts.average_leaf_triangles}, {"sah_cost", ts.sah_cost},
                  {"bytes", ts.bytes}};
+  const SceneMemory memory = scene_memory(prepared.tree, prepared.tables);
+  const double kept = static_cast<double>(std::max<std::size_t>(prepared.tree.triangles.size(), 1));
+  j["device_memory"] = {{"nodes", memory.nodes}, {"leaf_lists", memory.leaf_lists},
+                        {"triangles", memory.triangles}, {"shading", memory.shading},
+                        {"total", memory.total()}, {"bytes_per_triangle", static_cast<double>(memory.total()) / kept}};
   j["timings"] = {{"load_seconds", prepared.load_seconds}, {"build_seconds", ts.build_seconds},
                   {"compile_seconds", r.compile_seconds}, {"compile_from_cache", r.compile_from_cache},
                   {"render_seconds", r.render_seconds}};
@@ -215,6 +221,10 @@ int render_job(const RenderCommand& cmd_in, [[maybe_unused]] const MpiSession* m
     };
   }
   PreparedScene prepared = prepare_scene(cmd.scene);
+  if (cmd.tree_budget_mib > 0)
+    prepared.tree = build_kdtree_within(prepared.scene.positions, {},
+                                        static_cast<std::size_t>(cmd.tree_budget_mib * 1048576.0));
+  if (memory_limit) fit_scene_to(prepared, memory_limit);
   if (env_map) set_environment_map(prepared.tables, load_environment_map(cmd.environment));
   if (cmd.white_sky) apply_white_sky(prepared, cmd.settings);
   if (!cmd.camera_bounds.empty())
@@ -326,6 +336,8 @@ int render_job(const RenderCommand& cmd_in, [[maybe_unused]] const MpiSession* m
                  prepared.tables.environment->width, prepared.tables.environment->height);
     fmt::print("kd-tree: depth {}, {} nodes, {} leaves, {:.2f} triangles per leaf, SAH cost {:.2f}, built in {:.3f}s\n",
                ts.depth, ts.node_count, ts.leaf_count, ts.average_leaf_triangles, ts.sah_cost, ts.build_seconds);
+    fmt::print("device memory: {}\n",
+               describe(scene_memory(prepared.tree, prepared.tables), prepared.tree.triangles.size()));
     fmt::print("kernel compile: {:.3f}s ({})\n", result.compile_seconds, result.compile_from_cache ? "warm, from cache" : "cold");
     const auto features = prepared.tables.features.names();
     fmt::print("kernel features: {}\n", features.empty() ? std::string("none (Lambertian only)")

@@ -20,6 +20,7 @@ struct RenderCommand {
   std::string camera_bounds;  // "ex,ey,ez,tx,ty,tz": fractions of the scene bounds
   float fov = 0;              // vertical field of view in degrees; 0 = the camera's own
   double memory_limit_mib = 0;  // pretend the device has at most this much memory (tests, sharing)
+  double tree_budget_mib = 0;   // KD-tree bytes (nodes, leaf lists, triangles); 0: the fastest tree
   bool white_sky = false;
   double checkpoint_seconds = 0;  // --checkpoint: save the film this often
   bool checkpoint = false;        // --checkpoint given
@@ -54,6 +55,7 @@ struct ExportCommand {
   std::filesystem::path scene;
   std::filesystem::path output;
   unsigned subdivide = 0;
+  unsigned copies = 1;  // side by side along z, after subdividing
 };
 
 int run_render(const RenderCommand& cmd);

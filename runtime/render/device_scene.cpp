@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "runtime/cl/cl_error.h"
+#include "runtime/render/scene_memory.h"
 
 namespace cohort {
 namespace {
@@ -218,14 +219,12 @@ std::size_t set_scene_args(DeviceKernel& kernel, std::size_t first, const Device
 
 DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables& tables) {
   DeviceScene d;
-  d.bytes = bytes_of(tree.nodes) + bytes_of(tree.leaf_triangles) + bytes_of(tree.triangles) +
-            bytes_of(tables.triangle_material) + bytes_of(tables.materials) + bytes_of(tables.emitters.entries) +
-            bytes_of(tables.triangle_uvs) + bytes_of(tables.textures) + bytes_of(tables.texels) +
-            bytes_of(tables.punctual.lights) +
-            (tables.environment ? bytes_of(tables.environment->texels) + bytes_of(tables.environment->tables) : 0);
+  const SceneMemory memory = scene_memory(tree, tables);
+  d.bytes = memory.total();
   if (d.bytes > cl.info().global_memory)
-    throw DeviceError(fmt::format("the scene needs {} bytes of device memory; {} has {} bytes", d.bytes,
-                                  cl.info().name, cl.info().global_memory));
+    throw DeviceError(fmt::format("the scene needs {} bytes of device memory ({}); {} has {} bytes", d.bytes,
+                                  describe(memory, tree.triangles.size()), cl.info().name,
+                                  cl.info().global_memory));
   const auto ro = Access::read_only;
   d.nodes = cl.allocate("KD-tree nodes", bytes_of(tree.nodes), tree.nodes.data(), ro);
   d.leaf_triangles = cl.allocate("KD-tree leaf lists", bytes_of(tree.leaf_triangles), tree.leaf_triangles.data(), ro);

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "runtime/render/scene_memory.h"
 #include "runtime/util/error.h"
 
 namespace cohort {
@@ -23,6 +24,21 @@ PreparedScene prepare_scene(const std::filesystem::path& path, const KdBuildOpti
   p.tables = make_scene_tables(p.scene, p.tree);
   p.camera = p.scene.camera ? *p.scene.camera : framing_camera(p.scene.bounds());
   return p;
+}
+
+void fit_scene_to(PreparedScene& p, std::size_t device_bytes, const KdBuildOptions& options) {
+  const SceneMemory memory = scene_memory(p.tree, p.tables);
+  if (memory.total() <= device_bytes) return;
+  // The smallest tree is one leaf: a node and one list entry and the vertices per triangle.
+  const std::size_t smallest = sizeof(KdNode) + p.tree.triangles.size() * (sizeof(std::uint32_t) + sizeof(Triangle));
+  if (memory.shading + smallest > device_bytes) {
+    throw InputError(fmt::format("the scene needs at least {:.2f} MiB of device memory ({:.2f} MiB of shading data and "
+                                 "{:.2f} MiB for the smallest KD-tree); the limit is {:.2f} MiB",
+                                 (memory.shading + smallest) / 1048576.0, memory.shading / 1048576.0,
+                                 smallest / 1048576.0, device_bytes / 1048576.0));
+  }
+  // The kept triangles, and so the shading tables, do not depend on the depth limit.
+  p.tree = build_kdtree_within(p.scene.positions, options, device_bytes - memory.shading);
 }
 
 }  // namespace cohort

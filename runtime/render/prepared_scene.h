@@ -2,6 +2,7 @@
 // benchmarks start from.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 
 #include "runtime/accel/kdtree.h"
@@ -19,5 +20,10 @@ struct PreparedScene {
 };
 
 PreparedScene prepare_scene(const std::filesystem::path& path, const KdBuildOptions& options = {});
+
+// Rebuilds the tree with the depth limit lowered as far as needed for the scene's device memory
+// (tree and shading data, scene_memory.h) to fit `device_bytes`; nothing when it fits already.
+// Throws InputError naming the size needed and the limit when not even a one-leaf tree fits.
+void fit_scene_to(PreparedScene& scene, std::size_t device_bytes, const KdBuildOptions& options = {});
 
 }  // namespace cohort

@@ -4,6 +4,9 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <climits>
+#include <utility>
+
 #include "accel/test_meshes.h"
 #include "accel/tree_check.h"
 #include "kernels/common/kdtree_traverse.h"
@@ -19,9 +22,12 @@ void bench(const char* model) {
   }
   KdBuildOptions serial;
   serial.parallel = false;
-  for (const KdBuildOptions& options : {KdBuildOptions{}, serial}) {
+  KdBuildOptions exact;  // every node by the exact sweep: Wald & Havran's tree, the quality reference
+  exact.exact_triangles = INT_MAX;
+  for (const auto& [name, options] : {std::pair{"parallel", KdBuildOptions{}}, std::pair{"serial  ", serial},
+                                      std::pair{"exact   ", exact}}) {
     const KdTree tree = build_kdtree(*positions, options);
-    fmt::print("[{}] {}: {}\n", model, options.parallel ? "parallel" : "serial  ", summary(tree));
+    fmt::print("[{}] {}: {}\n", model, name, summary(tree));
     for (const std::string& e : layout_errors(tree, KD_MAX_DEPTH)) ADD_FAILURE() << e;
   }
 }

@@ -139,9 +139,31 @@ TEST(Cli, ASceneThatDoesNotFitTheDeviceFailsWithTheSizes) {
   TempDir dir;
   const CommandResult r = run("render " + scene("furnace-sphere.gltf") + " --res 8x8 --spp 1 --memory-limit 0.01 -o " +
                               (dir.path / "x").string());
-  EXPECT_EQ(r.code, 1) << r.output;
-  EXPECT_NE(r.output.find("bytes"), std::string::npos) << r.output;
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("needs at least 0.27 MiB"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the limit is 0.01 MiB"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir.path / "x.exr"));
+}
+
+TEST(Cli, MemoryLimitAndTreeBudgetMakeTheTreeShallowerToFit) {
+  // The furnace sphere needs 0.5 MiB with the default tree (0.27 MiB with a single leaf).
+  TempDir dir;
+  const auto stats = dir.path / "s.json";
+  const CommandResult full = run("render " + scene("furnace-sphere.gltf") + " --res 8x8 --spp 1 -o " +
+                                 (dir.path / "a").string() + " --stats " + stats.string());
+  ASSERT_EQ(full.code, 0) << full.output;
+  const auto full_stats = nlohmann::json::parse(std::ifstream(stats));
+  for (const char* limit : {"--memory-limit 0.35", "--tree-budget 0.2"}) {
+    SCOPED_TRACE(limit);
+    const CommandResult r = run("render " + scene("furnace-sphere.gltf") + " --res 8x8 --spp 1 " + limit + " -o " +
+                                (dir.path / "b").string() + " --stats " + stats.string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto s = nlohmann::json::parse(std::ifstream(stats));
+    EXPECT_LT(s["kdtree"]["depth"].get<int>(), full_stats["kdtree"]["depth"].get<int>());
+    EXPECT_LE(s["device_memory"]["total"].get<double>(), 0.35 * 1048576.0);
+    EXPECT_LE(s["kdtree"]["bytes"].get<double>(), 0.35 * 1048576.0);
+    EXPECT_EQ(s["device_memory"]["triangles"], full_stats["device_memory"]["triangles"]);
+  }
 }
 
 TEST(Cli, TimeLimitStopsTheRender) {

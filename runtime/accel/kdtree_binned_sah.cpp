@@ -1,0 +1,228 @@
+// Binned SAH plane search for large nodes (Wald 2007 for BVHs; Shevtsov et al. 2007 and Hunt et
+// al. 2006 for KD-trees): every reference adds its start to the bin of its lower bound and its end
+// to the bin of its upper bound; prefix sums over the bins then give, for each bin boundary, how
+// many references reach left of it and how many right of it. The counts are integers, so a
+// parallel count gives the same plane as a serial one.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <array>
+#include <utility>
+#include <cstddef>
+#include <vector>
+
+#include "runtime/accel/kdtree_internal.h"
+
+namespace cohort::kd {
+namespace {
+
+constexpr std::size_t kParallelGrain = 16384;  // references per task when counting in parallel
+
+// Maps positions in the cell to bins; positions outside (none, but rounding) clamp to the ends.
+// Monotone in the position: subtraction, scaling and truncation all preserve order.
+struct Binner {
+  glm::vec3 lo;
+  glm::vec3 scale;  // bins / extent, 0 along a flat axis
+  int bins;
+
+  int bin(int axis, float x) const {
+    const float f = (x - lo[axis]) * scale[axis];
+    return std::clamp(static_cast<int>(f), 0, bins - 1);
+  }
+};
+
+// Start and end counts, [axis * bins + bin].
+struct BinCounts {
+  std::vector<std::uint32_t> starts, ends;
+
+  void reset(int bins) {
+    starts.assign(3 * static_cast<std::size_t>(bins), 0u);
+    ends.assign(3 * static_cast<std::size_t>(bins), 0u);
+  }
+  void add(const BinCounts& other) {
+    for (std::size_t i = 0; i < starts.size(); ++i) {
+      starts[i] += other.starts[i];
+      ends[i] += other.ends[i];
+    }
+  }
+};
+
+void count(const Binner& binner, std::span<const Ref> refs, std::vector<std::uint32_t>& starts,
+           std::vector<std::uint32_t>& ends) {
+  for (const Ref& r : refs) {
+    for (int axis = 0; axis < 3; ++axis) {
+      ++starts[axis * binner.bins + binner.bin(axis, r.box.lo[axis])];
+      ++ends[axis * binner.bins + binner.bin(axis, r.box.hi[axis])];
+    }
+  }
+}
+
+void count_all(const Binner& binner, std::span<const Ref> refs, bool parallel,
+               PlaneScratch& scratch) {
+  if (!parallel || refs.size() <= 2 * kParallelGrain) {
+    scratch.starts.assign(3 * static_cast<std::size_t>(binner.bins), 0u);
+    scratch.ends.assign(3 * static_cast<std::size_t>(binner.bins), 0u);
+    count(binner, refs, scratch.starts, scratch.ends);
+    return;
+  }
+  BinCounts empty;
+  empty.reset(binner.bins);
+  BinCounts total = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, refs.size(), kParallelGrain), empty,
+      [&](const tbb::blocked_range<std::size_t>& r, BinCounts partial) {
+        count(binner, refs.subspan(r.begin(), r.size()), partial.starts, partial.ends);
+        return partial;
+      },
+      [](BinCounts a, const BinCounts& b) {
+        a.add(b);
+        return a;
+      });
+  scratch.starts = std::move(total.starts);
+  scratch.ends = std::move(total.ends);
+}
+
+// The best bin boundary of one axis (0: none) with its plane.
+int best_boundary(const SahContext& c, const Binner& binner, const PlaneScratch& counts, int axis,
+                  SplitPlane& axis_best) {
+  const int bins = binner.bins;
+  const float step = c.extent[axis] / static_cast<float>(bins);
+  const AxisSah a = axis_sah(c, axis);
+  int boundary = 0;
+  std::uint32_t n_left = 0, n_right = c.count;
+  for (int b = 1; b < bins; ++b) {
+    // Boundary b: references starting in a lower bin reach left of it, those ending in a lower
+    // bin do not reach right of it.
+    n_left += counts.starts[axis * bins + b - 1];
+    n_right -= counts.ends[axis * bins + b - 1];
+    const float pos = c.lo[axis] + step * static_cast<float>(b);
+    if (!(pos > c.lo[axis] && pos < c.hi[axis])) continue;
+    evaluate_plane(c, a, pos, n_left, n_right, 0, axis_best);
+    if (axis_best.valid() && axis_best.pos == pos) boundary = b;
+  }
+  return boundary;
+}
+
+// The bins whose events get the exact sweep, per axis: up to three disjoint ascending ranges
+// [first, last], around the best boundary and at the two ends of the geometry (the first bin where
+// a reference starts, the last where one ends), where the planes that cut off empty space lie.
+struct Ranges {
+  std::array<std::array<int, 2>, 3> range;
+  int count = 0;
+
+  void add(int first, int last) {
+    for (int k = 0; k < count; ++k) {  // merge with an overlapping or adjacent range
+      if (first <= range[k][1] + 1 && last >= range[k][0] - 1) {
+        range[k] = {std::min(first, range[k][0]), std::max(last, range[k][1])};
+        return;
+      }
+    }
+    range[count++] = {first, last};
+  }
+  void sort() {
+    for (int k = 1; k < count; ++k) {  // at most three: insertion
+      for (int j = k; j > 0 && range[j][0] < range[j - 1][0]; --j) std::swap(range[j], range[j - 1]);
+    }
+    for (int k = 0; k + 1 < count; ++k) {  // a merge above may now touch the next range
+      if (range[k + 1][0] <= range[k][1] + 1) {
+        range[k][1] = std::max(range[k][1], range[k + 1][1]);
+        std::copy(range.begin() + k + 2, range.begin() + count, range.begin() + k + 1);
+        --count;
+        --k;
+      }
+    }
+  }
+  bool contains(int bin) const {
+    for (int k = 0; k < count; ++k) {
+      if (bin >= range[k][0] && bin <= range[k][1]) return true;
+    }
+    return false;
+  }
+};
+
+Ranges exact_ranges(const PlaneScratch& counts, int bins, int axis, int boundary) {
+  Ranges r;
+  int first = 0, last = bins - 1;
+  while (first < last && counts.starts[axis * bins + first] == 0) ++first;
+  while (last > first && counts.ends[axis * bins + last] == 0) --last;
+  r.add(first, first);
+  r.add(last, last);
+  if (boundary > 0) r.add(boundary - 1, boundary);
+  r.sort();
+  return r;
+}
+
+// Exact counts inside a range of bins: every reference starting in a lower bin lies left of each
+// event there, every one ending in a lower bin right of none (the bin index is monotone in the
+// position), so a Wald & Havran sweep over the events of the range, started from the prefix
+// counts, evaluates each of them exactly. This recovers the planes at triangle boundaries, which
+// a KD-tree's cost depends on (cutting off empty space tightly) and bin boundaries miss.
+void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs,
+            const std::array<Ranges, 3>& ranges, PlaneScratch& scratch, SplitPlane& best) {
+  for (auto& list : scratch.events) list.clear();
+  for (std::size_t i = 0; i < refs.size(); ++i) {
+    const Bounds& box = refs[i].box;
+    const auto local = static_cast<std::uint32_t>(i);
+    for (int axis = 0; axis < 3; ++axis) {
+      if (ranges[axis].count == 0) continue;
+      const int lo = binner.bin(axis, box.lo[axis]), hi = binner.bin(axis, box.hi[axis]);
+      std::vector<Event>& list = scratch.events[axis];
+      if (box.lo[axis] == box.hi[axis]) {
+        if (ranges[axis].contains(lo)) list.push_back(Event::make(box.lo[axis], kPlanar, local));
+        continue;
+      }
+      if (ranges[axis].contains(lo)) list.push_back(Event::make(box.lo[axis], kStart, local));
+      if (ranges[axis].contains(hi)) list.push_back(Event::make(box.hi[axis], kEnd, local));
+    }
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    std::vector<Event>& list = scratch.events[axis];
+    std::sort(list.begin(), list.end());
+    // The sorted events fall into the ranges in order; each range's sweep starts from the counts
+    // of the bins below it.
+    std::size_t next = 0;
+    std::uint32_t n_left = 0, n_right = c.count;
+    int counted = 0;  // bins [0, counted) are in n_left / n_right
+    for (int k = 0; k < ranges[axis].count; ++k) {
+      const auto [first, last] = ranges[axis].range[k];
+      for (; counted < first; ++counted) {
+        n_left += scratch.starts[axis * binner.bins + counted];
+        n_right -= scratch.ends[axis * binner.bins + counted];
+      }
+      std::size_t end = next;
+      while (end < list.size() && binner.bin(axis, list[end].pos()) <= last) ++end;
+      sweep_events(c, axis, std::span<const Event>(list).subspan(next, end - next), n_left,
+                   n_right, best);
+      next = end;
+    }
+  }
+}
+
+}  // namespace
+
+SplitPlane find_binned_plane(const SahContext& c, std::span<const Ref> refs, int bins,
+                             bool parallel, PlaneScratch& scratch) {
+  Binner binner{c.lo, {}, bins};
+  for (int axis = 0; axis < 3; ++axis) {
+    binner.scale[axis] = c.extent[axis] > 0.f ? static_cast<float>(bins) / c.extent[axis] : 0.f;
+  }
+  count_all(binner, refs, parallel, scratch);
+  // Per axis the best bin boundary, in axis order with a strict comparison (deterministic); then
+  // the exact candidates around each axis's best.
+  SplitPlane best;
+  std::array<int, 3> boundary{0, 0, 0};
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!(c.extent[axis] > 0.f)) continue;  // a flat cell cannot be split along its flat axis
+    SplitPlane axis_best;
+    boundary[axis] = best_boundary(c, binner, scratch, axis, axis_best);
+    if (axis_best.valid() && (!best.valid() || axis_best.cost < best.cost)) best = axis_best;
+  }
+  std::array<Ranges, 3> ranges{};
+  for (int axis = 0; axis < 3; ++axis) {
+    if (c.extent[axis] > 0.f) ranges[axis] = exact_ranges(scratch, bins, axis, boundary[axis]);
+  }
+  refine(c, binner, refs, ranges, scratch, best);
+  return best;
+}
+
+}  // namespace cohort::kd

@@ -1,0 +1,42 @@
+#include "runtime/render/scene_memory.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace cohort {
+namespace {
+
+template <class T>
+std::size_t bytes_of(const std::vector<T>& v) {
+  return v.size() * sizeof(T);
+}
+
+}  // namespace
+
+SceneMemory scene_memory(const KdTree& tree, const SceneTables& tables) {
+  SceneMemory m;
+  m.nodes = bytes_of(tree.nodes);
+  m.leaf_lists = bytes_of(tree.leaf_triangles);
+  m.triangles = bytes_of(tree.triangles);
+  m.shading = bytes_of(tables.triangle_material) + bytes_of(tables.materials) +
+              bytes_of(tables.emitters.entries) + bytes_of(tables.triangle_uvs) +
+              bytes_of(tables.textures) + bytes_of(tables.texels) +
+              bytes_of(tables.punctual.lights) +
+              (tables.environment ? bytes_of(tables.environment->texels) +
+                                        bytes_of(tables.environment->tables)
+                                  : 0);
+  return m;
+}
+
+std::string describe(const SceneMemory& m, std::size_t triangles) {
+  const double n = static_cast<double>(std::max<std::size_t>(triangles, 1));
+  return fmt::format(
+      "{:.1f} MiB: {:.1f} bytes per triangle (nodes {:.1f}, leaf lists {:.1f}, triangles {:.1f}, "
+      "shading {:.1f})",
+      static_cast<double>(m.total()) / 1048576.0, static_cast<double>(m.total()) / n,
+      static_cast<double>(m.nodes) / n, static_cast<double>(m.leaf_lists) / n,
+      static_cast<double>(m.triangles) / n, static_cast<double>(m.shading) / n);
+}
+
+}  // namespace cohort

@@ -1,0 +1,29 @@
+// Device memory of a prepared scene, by part: what upload_scene allocates, what `cohort info` and
+// `--stats` report per triangle, and what a memory limit is checked against before any upload.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "runtime/accel/kdtree.h"
+#include "runtime/render/device_scene.h"
+
+namespace cohort {
+
+struct SceneMemory {
+  std::size_t nodes = 0;       // KD-tree nodes
+  std::size_t leaf_lists = 0;  // KD-tree leaf triangle lists
+  std::size_t triangles = 0;   // vertices for intersection
+  std::size_t shading = 0;     // per-triangle materials and texture coordinates, materials,
+                               // textures, lights, environment map
+  std::size_t total() const { return nodes + leaf_lists + triangles + shading; }
+  std::size_t tree() const { return nodes + leaf_lists + triangles; }
+};
+
+SceneMemory scene_memory(const KdTree& tree, const SceneTables& tables);
+
+// "123.4 MiB: 150.2 bytes per triangle (nodes 60.1, leaf lists 30.0, triangles 48.0, shading
+// 12.1)"; `triangles` is the kept triangle count.
+std::string describe(const SceneMemory& memory, std::size_t triangles);
+
+}  // namespace cohort
