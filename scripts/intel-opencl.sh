@@ -32,3 +32,8 @@ cohort_intel_opencl() {
   export OCL_ICD_VENDORS="$icd"
   export LD_PRELOAD="$lib/libtbb.so.12${LD_PRELOAD:+:$LD_PRELOAD}"
 }
+
+# A --device spec (or COHORT_DEVICE) that matches one CPU runtime's platform only: pocl or intel.
+cohort_runtime_device() {
+  case "$1" in pocl) echo "portable computing" ;; intel) echo "intel(r) opencl" ;; *) echo "$1" ;; esac
+}
