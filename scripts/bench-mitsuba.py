@@ -1,16 +1,20 @@
 #!/usr/bin/env python3
-"""Mitsuba 3 (scalar_rgb) on the white-sky workload of ../shared/bench-protocol.md, beside `cohort bench`.
+"""Mitsuba 3 (scalar_rgb, or --variant llvm_ad_rgb) on the white-sky workload of ../shared/bench-protocol.md, beside `cohort bench`.
 
 The mesh is the world-space triangle soup that `cohort export` writes (binary PLY; the protocol names
 Mitsuba's `obj` shape, the `ply` shape with `face_normals` is the same geometry with flat normals),
 and the camera is read from the `cohort bench` JSON of the same scene, so both renderers use one
 definition of each. Samples/s = res * res * spp / seconds of mi.render (scene loading excluded),
 median of --reps renders; the last image is saved as EXR. --ladder renders once at each spp given
-(the error-against-time chart) and records their times and images.
+(the error-against-time chart) and records their times and images. --variant llvm_ad_rgb is the
+fast CPU variant a user would pick (Dr.Jit's LLVM JIT, vectorised over samples): it needs libLLVM
+(Debian libllvm19, found through DRJIT_LIBLLVM_PATH, which scripts/bench sets); its first render
+includes the JIT compile, so it is rendered once untimed first.
 
 Run inside the venv of scripts/venv.sh (scripts/bench does):
   python bench-mitsuba.py --ply MESH.ply --camera-json COHORT.json [--view exterior] [--res 512]
-                          [--spp 4] [--reps 3] [--ladder 1,2,4,8] --out DIR --name NAME [--json OUT.json]"""
+                          [--spp 4] [--reps 3] [--ladder 1,2,4,8] [--variant scalar_rgb|llvm_ad_rgb]
+                          --out DIR --name NAME [--json OUT.json]"""
 import argparse
 import json
 import os
@@ -19,8 +23,6 @@ import time
 
 import drjit as dr
 import mitsuba as mi
-
-mi.set_variant("scalar_rgb")
 
 
 def camera_from(path, view):
@@ -59,6 +61,8 @@ def white_sky_scene(ply, camera, res, spp):
 def timed_render(scene, spp, seed):
     start = time.perf_counter()
     image = mi.render(scene, spp=spp, seed=seed)
+    dr.eval(image)  # the JIT variants evaluate lazily: the render ends when its kernel has run
+    dr.sync_thread()
     return image, time.perf_counter() - start
 
 
@@ -74,17 +78,21 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--name", required=True)
     ap.add_argument("--json", default="")
+    ap.add_argument("--variant", default="scalar_rgb", choices=["scalar_rgb", "llvm_ad_rgb"])
     args = ap.parse_args()
+    mi.set_variant(args.variant)
     os.makedirs(args.out, exist_ok=True)
     camera = camera_from(args.camera_json, args.view)
     start = time.perf_counter()
     scene = mi.load_dict(white_sky_scene(args.ply, camera, args.res, args.spp))
     load_seconds = time.perf_counter() - start
     rates, image = [], None
+    if args.variant != "scalar_rgb":
+        timed_render(scene, args.spp, 999)  # JIT compile and kernel cache, not timed
     for rep in range(args.reps):
         image, seconds = timed_render(scene, args.spp, rep)
         rates.append(args.res * args.res * args.spp / seconds * 1e-6)
-    exr = os.path.join(args.out, f"{args.name}-mitsuba.exr")
+    exr = os.path.join(args.out, f"{args.name}-mitsuba{'' if args.variant == 'scalar_rgb' else '-' + args.variant}.exr")
     mi.util.write_bitmap(exr, image)
     report = {"peer": "mitsuba", "mitsuba": {"version": mi.__version__, "variant": mi.variant(),
                                              "threads": dr.thread_count()},
@@ -97,7 +105,7 @@ def main():
         path = os.path.join(args.out, f"{args.name}-mitsuba-{spp}spp.exr")
         mi.util.write_bitmap(path, image)
         report["ladder"].append({"spp": spp, "seconds": seconds, "exr": path})
-    print(f"mitsuba {mi.__version__} scalar_rgb, {report['mitsuba']['threads']} threads: {args.name} [{args.view}] "
+    print(f"mitsuba {mi.__version__} {args.variant}, {report['mitsuba']['threads']} threads: {args.name} [{args.view}] "
           f"{args.res}x{args.res} {args.spp} spp: {statistics.median(rates):.3f} M samples/s median "
           f"({max(rates):.3f} best), load {load_seconds:.2f}s")
     if args.json:

@@ -30,6 +30,7 @@ def main():
     cohort = load(os.path.join(out, "cohort", "*.json"))
     embree = load(os.path.join(out, "embree", "*.json"))
     mitsuba = load(os.path.join(out, "mitsuba", "*.json"))
+    mitsuba_llvm = load(os.path.join(out, "mitsuba-llvm", "*.json"))
     if not cohort:
         sys.exit(f"{out}: no cohort/*.json")
     first = next(iter(cohort.values()))
@@ -81,13 +82,16 @@ def main():
             samples = pt[best]["msamples_per_second"]["median"]
             mk = f"{name}-{v['view']}"
             ms = mitsuba[mk]["msamples_per_second"]["median"] if mk in mitsuba else None
+            ml = mitsuba_llvm[mk]["msamples_per_second"]["median"] if mk in mitsuba_llvm else None
             rows.append([name, v["view"]] + [fig(pt[m]["mrays_per_second"]) if m in pt else "-" for m in methods] +
                         [ratio(med.get("pth"), med.get("naive")),
                          f"{ratio(med.get('pth'), med.get(best_other))} ({best_other})" if best_other else "-",
-                         f"{samples:.3f} ({best})", f"{ms:.3f}" if ms else "-", ratio(samples, ms) if ms else "-"])
+                         f"{samples:.3f} ({best})", f"{ms:.3f}" if ms else "-", ratio(samples, ms) if ms else "-",
+                         f"{ml:.3f}" if ml else "-", ratio(samples, ml) if ml else "-"])
             simd_rows.append([name, v["view"]] + [f"{pt[m]['simd_efficiency']:.3f}" if m in pt else "-" for m in methods])
     table(["scene", "view"] + methods + ["pth / naive", "pth / best other", "best Cohort M samples/s",
-                                         "Mitsuba M samples/s", "Cohort/Mitsuba"], rows)
+                                         "Mitsuba scalar_rgb M samples/s", "Cohort/scalar_rgb",
+                                         "Mitsuba llvm_ad_rgb M samples/s", "Cohort/llvm_ad_rgb"], rows)
     print("### SIMD efficiency of traversal (mean over max steps per 32 rays; naive: not measured)\n")
     table(["scene", "view"] + methods, simd_rows)
 

@@ -25,10 +25,12 @@ COHORT_PACKAGES=(
   libgtest-dev                      # tests
   python3-venv                      # the venv of scripts/reference (Mitsuba, FLIP, matplotlib from PyPI)
   openmpi-bin libopenmpi-dev        # mpirun cohort render: several machines (optional at build time)
+  oclgrind                          # scripts/test-oclgrind: every kernel on a checking simulator (CI)
 )
 # Wanted but not needed to build and test: installed when apt can, else the feature is skipped.
 COHORT_OPTIONAL_PACKAGES=(
   libembree-dev                     # Embree 3: the peer of scripts/bench on the protocol's rays
+  libllvm19                         # Mitsuba's llvm_ad_rgb variant (scripts/bench, DRJIT_LIBLLVM_PATH)
 )
 
 cohort_missing_packages() {

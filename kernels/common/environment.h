@@ -33,10 +33,35 @@ CO_INLINE const CO_GLOBAL float* env_conditional(const EnvironmentView* e, uint3
   return e->tables + e->height + (e->height - 1u) + row * e->width;
 }
 
+/* atan2(y, x) from adds, multiplies, divides, square roots and compares only, all correctly
+ * rounded, so every device and the host get the same bits (OpenCL allows the built-in atan2 and
+ * acos 6 and 4 ulp, and PoCL and Intel's runtime differ: docs/vendors.md). The ratio t in [0, 1] is
+ * halved in angle twice (atan t = 2 atan(t / (1 + sqrt(1 + t^2)))) to at most tan(pi/16) ~ 0.2,
+ * where the Taylor series to x^15 is accurate to float precision; octant symmetries restore the
+ * angle. */
+CO_INLINE float co_atan2(float y, float x) {
+  float ax = fabs(x), ay = fabs(y);
+  float hi = fmax(ax, ay), lo = fmin(ax, ay);
+  if (hi == 0.0f) return 0.0f;
+  float t = lo / hi;
+  t = t / (1.0f + sqrt(1.0f + t * t));
+  t = t / (1.0f + sqrt(1.0f + t * t));
+  float t2 = t * t;
+  float a = t * (1.0f + t2 * (-1.0f / 3.0f + t2 * (1.0f / 5.0f + t2 * (-1.0f / 7.0f + t2 * (1.0f / 9.0f +
+                 t2 * (-1.0f / 11.0f + t2 * (1.0f / 13.0f + t2 * (-1.0f / 15.0f))))))));
+  a = 4.0f * a;
+  if (ay > ax) a = 0.5f * CO_PI - a;
+  if (x < 0.0f) a = CO_PI - a;
+  return y < 0.0f ? -a : a;
+}
+
+/* acos(c) for c in [-1, 1], through co_atan2 (see there). */
+CO_INLINE float co_acos(float c) { return co_atan2(sqrt((1.0f - c) * (1.0f + c)), c); }
+
 /* Grid coordinates of a unit direction: cell (*i, *j) and the bilinear weights (*fx, *fy) in it. */
 CO_INLINE void env_cell(const EnvironmentView* e, co_vec3 d, uint32_t* i, uint32_t* j, float* fx, float* fy) {
-  float u = atan2(d.x, -d.z) * (0.5f * CO_INV_PI);
-  float v = acos(fmin(fmax(d.y, -1.0f), 1.0f)) * CO_INV_PI;
+  float u = co_atan2(d.x, -d.z) * (0.5f * CO_INV_PI);
+  float v = co_acos(fmin(fmax(d.y, -1.0f), 1.0f)) * CO_INV_PI;
   u -= 0.5f / (float)e->width; /* column centres at (i + 1/2) / W */
   u -= floor(u);
   u *= (float)e->width;

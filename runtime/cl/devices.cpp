@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cstdlib>
 
 #include <fmt/format.h>
 
@@ -106,14 +107,23 @@ DeviceInfo pick(const std::vector<DeviceInfo>& devices, const std::string& spec,
                                std::count(taken.begin(), taken.end(), true) ? "other " : ""));
 }
 
+// An empty --device means $COHORT_DEVICE when it is set.
+std::string device_spec(const std::string& spec) {
+  if (!spec.empty()) return spec;
+  const char* env = std::getenv("COHORT_DEVICE");
+  return env ? env : "";
+}
+
 }  // namespace
 
-DeviceInfo select_device(const std::string& spec) {
+DeviceInfo select_device(const std::string& requested) {
+  const std::string spec = device_spec(requested);
   const auto devices = installed_devices();
   return pick(devices, spec, std::vector<bool>(devices.size(), false));
 }
 
-std::vector<DeviceInfo> select_devices(const std::string& spec, int local_rank) {
+std::vector<DeviceInfo> select_devices(const std::string& requested, int local_rank) {
+  const std::string spec = device_spec(requested);
   const auto devices = installed_devices();
   if (spec == "all" || spec.starts_with("all:") || spec.starts_with("rank:")) {
     const std::size_t colon = spec.find(':');

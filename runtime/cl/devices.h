@@ -32,7 +32,8 @@ struct DeviceInfo {
 // Every device of every platform, in platform order. Empty when no platform is installed.
 std::vector<DeviceInfo> list_devices();
 
-// "" picks the first GPU, else the first CPU device; otherwise an index into list_devices() or a
+// "" picks the device $COHORT_DEVICE names (any spec below; how the tests and scripts/test-vendors
+// choose a runtime), else the first GPU, else the first CPU device; otherwise an index into list_devices() or a
 // case-insensitive substring of the device or platform name. Throws InputError when nothing matches.
 DeviceInfo select_device(const std::string& spec);
 

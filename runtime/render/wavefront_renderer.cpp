@@ -148,8 +148,11 @@ RenderResult render_wavefront(const Method& method, const Device& cl, const Prog
   // the shared code identically
   const DeviceProgram build = cl.build_program(cache, "wavefront", scene.build_options);
   const std::uint32_t pixels = settings.width * settings.height;
-  // a pass holds one result per (pixel, sample): bound it to ~64 MiB of results
-  const std::uint32_t max_per_pass = std::max<std::uint32_t>(1, (1u << 22) / std::max<std::uint32_t>(pixels, 1));
+  // a launch holds one result per (pixel, sample): bound it to ~64 MiB of results, and to the
+  // render's spp, which no launch exceeds (small renders then allocate little: Oclgrind's checks
+  // cost time in proportion to the memory allocated, at every launch)
+  std::uint32_t max_per_pass = std::max<std::uint32_t>(1, (1u << 22) / std::max<std::uint32_t>(pixels, 1));
+  if (settings.spp > 0) max_per_pass = std::min(max_per_pass, settings.spp);
   const std::uint64_t max_items = std::uint64_t(pixels) * std::min(max_per_pass, std::max<std::uint32_t>(settings.spp, 1));
   const bool sorting = method.sort != RaySort::none;
   Pool pool(cl, choose_pool_size(cl, settings, max_items, kPathStateBytes + (sorting ? kSortBytes : 0)));
