@@ -143,7 +143,9 @@ TEST(EnvironmentSampling, SampleEvalPdfConsistent) {
   // and every direction with radiance has a positive pdf
   for (int k = 0; k < n; ++k) {
     const co_vec3 d = sphere_direction(2.0 * rng.next() - 1.0, 2 * M_PI * rng.next());
-    if (v3_max_component(env_eval(&e, d)) > 0.f) ASSERT_GT(env_pdf(&e, d), 0.f);
+    if (v3_max_component(env_eval(&e, d)) > 0.f) {
+      ASSERT_GT(env_pdf(&e, d), 0.f);
+    }
   }
 }
 

@@ -47,7 +47,9 @@ TEST_P(MethodAgreement, CornellBoxBitForBit) {
   s.speculative = GetParam().speculative;
   const RenderResult other = render_scene(path, s);
   expect_bitwise_equal(reference, other, GetParam().method);
-  if (GetParam().wavefront_size) EXPECT_EQ(other.wavefront_size, GetParam().wavefront_size);
+  if (GetParam().wavefront_size) {
+    EXPECT_EQ(other.wavefront_size, GetParam().wavefront_size);
+  }
   EXPECT_FALSE(other.iterations.empty());
 }
 
