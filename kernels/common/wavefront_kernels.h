@@ -77,7 +77,7 @@ CO_KERNEL wf_shadow(SCENE_KERNEL_PARAMS, CO_GLOBAL co_float4* path_radiance, CO_
   co_float4 dir = shadow_dir[slot];
   uint32_t visited = 0u;
   HitOut occ = kd_trace_steps(&s.tree, v3_from4(shadow_org[slot]), v3_from4(dir), 0.0f, dir.w, 1, &visited);
-  steps[i] = visited; /* nodes visited per queue index: read by wf_max_steps */
+  steps[i] = visited; /* nodes visited per queue index: read by wf_shadow_max_steps */
   ShadowRay sr;
   sr.contribution = v3_from4(shadow_contribution[slot]);
   PathState st;

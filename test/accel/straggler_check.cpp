@@ -128,13 +128,16 @@ std::vector<TestRay> straggler_rays(const KdTree& tree, std::size_t count, std::
   return rays;
 }
 
-std::vector<std::uint32_t> host_visits(const KdTree& tree, std::span<const TestRay> rays) {
+std::vector<std::uint32_t> host_visits(const KdTree& tree, std::span<const TestRay> rays,
+                                       std::vector<HitOut>* hits) {
   const KdTreeView view = view_of(tree);
   std::vector<std::uint32_t> visited(rays.size());
+  if (hits) hits->resize(rays.size());
   tbb::parallel_for(std::size_t(0), rays.size(), [&](std::size_t i) {
     const TestRay& r = rays[i];
-    kd_trace_steps(&view, v3(r.org.x, r.org.y, r.org.z), v3(r.dir.x, r.dir.y, r.dir.z), 0.f, INFINITY, 0,
-                   &visited[i]);
+    const HitOut hit = kd_trace_steps(&view, v3(r.org.x, r.org.y, r.org.z), v3(r.dir.x, r.dir.y, r.dir.z), 0.f,
+                                      INFINITY, 0, &visited[i]);
+    if (hits) (*hits)[i] = hit;
   });
   return visited;
 }

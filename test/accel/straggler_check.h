@@ -35,8 +35,9 @@ struct StragglerCheck {
 StragglerCheck check_stragglers(const KdTree& tree, std::span<const TestRay> rays,
                                 std::span<const std::uint32_t> visited);
 
-// kd_trace_steps on the host (closest hit on (0, inf)) for every ray.
-std::vector<std::uint32_t> host_visits(const KdTree& tree, std::span<const TestRay> rays);
+// kd_trace_steps on the host (closest hit on (0, inf)) for every ray; the hits go to `hits` when given.
+std::vector<std::uint32_t> host_visits(const KdTree& tree, std::span<const TestRay> rays,
+                                       std::vector<HitOut>* hits = nullptr);
 
 // "org (x, y, z) dir (x, y, z)" in C99 hex floats (%a): exact, so the ray replays bit for bit.
 std::string hex_ray(const TestRay& ray);
