@@ -3,7 +3,8 @@
 // arguments and work-group sizes, timed events, reads and writes). OpenCL (runtime/cl, ClContext)
 // and CUDA (runtime/cuda) implement it; the kernels behind it are the same shared headers.
 //
-// Header only, so the backends implement it without linking each other.
+// The interface is header only; the backends share device choice, the embedded kernel sources and
+// the program cache (the rest of runtime/backend), and never link each other.
 #pragma once
 
 #include <cstddef>
@@ -17,11 +18,15 @@
 #include <variant>
 #include <vector>
 
-#include "runtime/cl/devices.h"
+#include "runtime/backend/device_info.h"
+#include "runtime/util/error.h"
 
 namespace cohort {
 
 class ProgramCache;
+
+// Backends report every failure of the device or its driver as DeviceError (runtime/util/error.h),
+// naming the call, the error and what it was for; their own error types stay inside them.
 
 // A backend's own buffer object (cl::Buffer, CUdeviceptr).
 class BufferObject {
@@ -160,6 +165,8 @@ class Device {
   // -DNAME[=VALUE] (the scene's -DCOHORT_FEATURE_* defines, the sort's sizes), through the cache.
   virtual DeviceProgram build_program(const ProgramCache& cache, const std::string& name,
                                       const std::string& defines = {}) const = 0;
+  // The options every program of this device is compiled with, besides `defines` (for the record).
+  virtual std::string compile_options() const { return {}; }
 
   // Runs `kernel` over `items` work items in work-groups of `group` (items rounded up to a
   // multiple of it), in order after every earlier command. Nothing runs for 0 items.

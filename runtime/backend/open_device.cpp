@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "runtime/backend/device_choice.h"
 #include "runtime/cl/context.h"
 #include "runtime/util/error.h"
 #ifdef COHORT_WITH_CUDA
@@ -25,7 +26,7 @@ bool cuda_backend_built() {
 }
 
 std::vector<DeviceInfo> list_backend_devices(Backend backend) {
-  if (backend == Backend::opencl) return list_devices();
+  if (backend == Backend::opencl) return installed_devices();
 #ifdef COHORT_WITH_CUDA
   return list_cuda_devices();
 #else
@@ -41,12 +42,16 @@ std::unique_ptr<Device> open_device(Backend backend, const std::string& spec, st
     throw InputError("--backend cuda: this build has no CUDA backend (nvcc was not found when it was configured)");
 #endif
   }
-  DeviceInfo device = select_device(spec);
+  DeviceInfo device = select_device(installed_devices(), spec);
   if (memory_limit) {
     device.global_memory = std::min(device.global_memory, memory_limit);
     device.max_allocation = std::min(device.max_allocation, memory_limit);
   }
   return std::make_unique<ClContext>(device);
+}
+
+DeviceOpener opencl_opener(const std::vector<DeviceInfo>& devices) {
+  return [devices](std::size_t i) -> std::unique_ptr<Device> { return std::make_unique<ClContext>(devices.at(i)); };
 }
 
 }  // namespace cohort

@@ -1,7 +1,6 @@
 #include "runtime/bench/bench_json.h"
 
 #include "runtime/bench/build_info.h"
-#include "runtime/cl/kernel_program.h"
 
 namespace cohort {
 namespace {
@@ -70,12 +69,13 @@ nlohmann::json scenes_json(const std::vector<SceneFigures>& scenes, const std::s
   return list;
 }
 
-nlohmann::json bench_json(const DeviceInfo& device, const BenchOptions& o, const std::vector<SceneFigures>& scenes) {
+nlohmann::json bench_json(const Device& d, const BenchOptions& o, const std::vector<SceneFigures>& scenes) {
   const BuildInfo b = build_info();
+  const DeviceInfo& device = d.info();
   nlohmann::json j;
   j["cohort"] = {{"git_commit", b.git_commit}, {"build_type", b.build_type}, {"compiler", b.compiler},
-                 {"cxx_flags", b.cxx_flags}, {"kernel_build_options", base_build_options(device)}};
-  j["device"] = {{"name", device.name}, {"platform", device.platform_name}, {"vendor", device.vendor},
+                 {"cxx_flags", b.cxx_flags}, {"kernel_build_options", d.compile_options()}};
+  j["device"] = {{"name", device.name}, {"backend", backend_name(d.backend())}, {"platform", device.platform_name}, {"vendor", device.vendor},
                  {"version", device.version}, {"driver", device.driver_version}, {"is_gpu", device.is_gpu},
                  {"compute_units", device.compute_units}};
   j["settings"] = {{"trace_res", o.trace_res}, {"res", o.res}, {"spp", o.spp}, {"reps", o.reps},

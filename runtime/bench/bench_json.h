@@ -7,14 +7,14 @@
 #include <nlohmann/json.hpp>
 
 #include "runtime/bench/scene_bench.h"
-#include "runtime/cl/devices.h"
+#include "runtime/backend/device.h"
 
 namespace cohort {
 
 nlohmann::json rate_json(const RateFigure& f, double scale = 1e-6);  // {median, best, runs} in millions
 // The scenes and their views; accel_key names the acceleration structure ("kdtree", "bvh").
 nlohmann::json scenes_json(const std::vector<SceneFigures>& scenes, const std::string& accel_key = "kdtree");
-nlohmann::json bench_json(const DeviceInfo& device, const BenchOptions& options,
+nlohmann::json bench_json(const Device& device, const BenchOptions& options,
                           const std::vector<SceneFigures>& scenes);
 
 }  // namespace cohort

@@ -75,7 +75,7 @@ std::vector<std::uint32_t> order_by(const std::vector<std::uint64_t>& keys) {
 }
 
 // Median device time of sorting the (key, value) pairs by `key_bits` bits.
-double sort_ms(const ClContext& cl, RadixSort& sort, const std::vector<std::uint64_t>& keys, unsigned key_bits,
+double sort_ms(const Device& cl, RadixSort& sort, const std::vector<std::uint64_t>& keys, unsigned key_bits,
                unsigned reps) {
   std::vector<std::uint32_t> values(keys.size());
   std::iota(values.begin(), values.end(), 0u);
@@ -94,7 +94,7 @@ double sort_ms(const ClContext& cl, RadixSort& sort, const std::vector<std::uint
 
 }  // namespace
 
-std::vector<GateBounce> gate_bench(const ClContext& cl, const ProgramCache& cache, const PreparedScene& scene,
+std::vector<GateBounce> gate_bench(const Device& cl, const ProgramCache& cache, const PreparedScene& scene,
                                    const SceneCamera& camera, const GateOptions& options) {
   const KdTree& tree = scene.tree;
   TraceBench tracer(cl, cache, tree);

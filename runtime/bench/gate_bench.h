@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "runtime/bench/figures.h"
-#include "runtime/cl/context.h"
-#include "runtime/cl/program_cache.h"
+#include "runtime/backend/device.h"
+#include "runtime/backend/program_cache.h"
 #include "runtime/render/prepared_scene.h"
 
 namespace cohort {
@@ -36,7 +36,7 @@ struct GateOptions {
   unsigned reps = 3;
 };
 
-std::vector<GateBounce> gate_bench(const ClContext& cl, const ProgramCache& cache, const PreparedScene& scene,
+std::vector<GateBounce> gate_bench(const Device& device, const ProgramCache& cache, const PreparedScene& scene,
                                    const SceneCamera& camera, const GateOptions& options);
 
 }  // namespace cohort

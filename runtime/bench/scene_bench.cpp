@@ -40,7 +40,7 @@ std::map<std::string, double> time_breakdown(const std::map<std::string, double>
 
 namespace {
 
-MethodFigures bench_method(const ClContext& cl, const ProgramCache& cache, const DeviceScene& scene,
+MethodFigures bench_method(const Device& cl, const ProgramCache& cache, const DeviceScene& scene,
                            const SceneCamera& camera, RenderSettings settings, const std::string& method,
                            unsigned reps) {
   settings.method = method;
@@ -78,7 +78,7 @@ MethodFigures bench_method(const ClContext& cl, const ProgramCache& cache, const
 
 }  // namespace
 
-SceneFigures bench_scene(const ClContext& cl, const ProgramCache& cache, const std::filesystem::path& path,
+SceneFigures bench_scene(const Device& cl, const ProgramCache& cache, const std::filesystem::path& path,
                          const std::vector<BenchView>& views, const BenchOptions& options,
                          const std::function<void(const std::string&)>& log_line) {
   const auto log = [&](const std::string& s) {

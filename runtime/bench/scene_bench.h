@@ -13,8 +13,8 @@
 
 #include "runtime/accel/kdtree.h"
 #include "runtime/bench/figures.h"
-#include "runtime/cl/context.h"
-#include "runtime/cl/program_cache.h"
+#include "runtime/backend/device.h"
+#include "runtime/backend/program_cache.h"
 #include "runtime/scene/scene.h"
 
 namespace cohort {
@@ -83,7 +83,7 @@ std::map<std::string, double> time_breakdown(const std::map<std::string, double>
 
 // Loads and builds the scene, then measures every view. `log` receives one line per figure as it
 // is measured (progress on a slow device); may be empty.
-SceneFigures bench_scene(const ClContext& cl, const ProgramCache& cache, const std::filesystem::path& path,
+SceneFigures bench_scene(const Device& device, const ProgramCache& cache, const std::filesystem::path& path,
                          const std::vector<BenchView>& views, const BenchOptions& options,
                          const std::function<void(const std::string&)>& log = {});
 

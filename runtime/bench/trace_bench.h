@@ -1,5 +1,5 @@
 // Traversal alone: the protocol's rays traced by kernels/trace.cl (closest hit), timed by the
-// kernel's profiling events, so upload, read-back and compilation are excluded.
+// kernel's device events, so upload, read-back and compilation are excluded.
 #pragma once
 
 #include <span>
@@ -8,21 +8,21 @@
 #include "runtime/accel/kdtree.h"
 #include "runtime/bench/figures.h"
 #include "runtime/bench/protocol_rays.h"
-#include "runtime/cl/context.h"
-#include "runtime/cl/program_cache.h"
+#include "runtime/backend/device.h"
+#include "runtime/backend/program_cache.h"
 
 namespace cohort {
 
 // The arguments of kernels/trace.cl's trace_rays: the tree's buffers and bounds, count rays in,
 // hits out, closest or any hit.
-void set_trace_rays_args(cl::Kernel& kernel, const cl::Buffer& nodes, const cl::Buffer& leaf_triangles,
-                         const cl::Buffer& triangles, const Bounds& bounds, const cl::Buffer& rays,
-                         const cl::Buffer& hits, std::size_t count, bool any_hit);
+void set_trace_rays_args(DeviceKernel& kernel, const DeviceBuffer& nodes, const DeviceBuffer& leaf_triangles,
+                         const DeviceBuffer& triangles, const Bounds& bounds, const DeviceBuffer& rays,
+                         const DeviceBuffer& hits, std::size_t count, bool any_hit);
 
 class TraceBench {
  public:
   // The tree's buffers go to the device once; every trace() reuses them.
-  TraceBench(const ClContext& cl, const ProgramCache& cache, const KdTree& tree);
+  TraceBench(const Device& device, const ProgramCache& cache, const KdTree& tree);
 
   // Traces `rays` `reps` times (reps >= 1); hits come from the last repetition.
   TraceFigures trace(std::span<const RayIn> rays, unsigned reps, std::size_t group_size = 64) const;
@@ -30,10 +30,10 @@ class TraceBench {
   double compile_seconds() const { return compile_seconds_; }
 
  private:
-  const ClContext& cl_;
+  const Device& device_;
   const KdTree& tree_;
-  cl::Program program_;
-  cl::Buffer nodes_, leaves_, triangles_;
+  DeviceProgram program_;
+  DeviceBuffer nodes_, leaves_, triangles_;
   double compile_seconds_ = 0;
 };
 

@@ -20,7 +20,9 @@ struct ClKernelObject : KernelObject {
   cl::Kernel kernel;
   cl::Device device;
   ClKernelObject(cl::Kernel k, cl::Device d) : kernel(std::move(k)), device(std::move(d)) {}
-  std::size_t max_group() const override { return kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device); }
+  std::size_t max_group() const override {
+    return translate_cl_errors("", [&] { return kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device); });
+  }
 };
 
 struct ClProgramObject : ProgramObject {
@@ -39,10 +41,14 @@ struct ClProgramObject : ProgramObject {
 struct ClEventObject : EventObject {
   cl::Event event;
   explicit ClEventObject(cl::Event e) : event(std::move(e)) {}
-  void wait() override { event.wait(); }
+  void wait() override {
+    translate_cl_errors("", [&] { event.wait(); });
+  }
   double seconds() override {
-    event.wait();
-    return event_seconds(event);
+    return translate_cl_errors("", [&] {
+      event.wait();
+      return event_seconds(event);
+    });
   }
 };
 
@@ -60,7 +66,7 @@ const cl::Buffer& cl_buffer(const DeviceBuffer& b) {
 }
 
 DeviceBuffer wrap_buffer(const cl::Buffer& b) {
-  return DeviceBuffer(std::make_shared<ClBufferObject>(b), b.getInfo<CL_MEM_SIZE>());
+  return DeviceBuffer(std::make_shared<ClBufferObject>(b), translate_cl_errors("", [&] { return b.getInfo<CL_MEM_SIZE>(); }));
 }
 
 DeviceBuffer ClContext::allocate(const std::string& what, std::size_t bytes, const void* data, Access access) const {
@@ -72,11 +78,13 @@ DeviceProgram ClContext::build_program(const ProgramCache& cache, const std::str
                                        const std::string& defines) const {
   const ProgramBuild build = build_kernel_program(*this, cache, name + ".cl", defines);
   DeviceProgram p;
-  p.object = std::make_shared<ClProgramObject>(build.program, device.device);
+  p.object = std::make_shared<ClProgramObject>(build.program, cl_device);
   p.from_cache = build.from_cache;
   p.seconds = build.seconds;
   return p;
 }
+
+std::string ClContext::compile_options() const { return base_build_options(device); }
 
 DeviceEvent ClContext::launch(const DeviceKernel& kernel, std::size_t items, std::size_t group) const {
   if (items == 0) return {};
@@ -104,36 +112,46 @@ void ClContext::write(const DeviceBuffer& to, std::size_t offset, std::size_t by
                       bool blocking) const {
   // Oclgrind's uninitialised-value check (21.10) forgets the rest of a buffer written in part (the
   // queue counters are): there the whole buffer is read, patched and written back
-  if (is_oclgrind(device) && (offset != 0 || bytes != to.size())) {
-    std::vector<unsigned char> whole(to.size());
-    queue.enqueueReadBuffer(cl_buffer(to), CL_TRUE, 0, whole.size(), whole.data());
-    std::memcpy(whole.data() + offset, data, bytes);
-    queue.enqueueWriteBuffer(cl_buffer(to), CL_TRUE, 0, whole.size(), whole.data());
-    return;
-  }
-  queue.enqueueWriteBuffer(cl_buffer(to), blocking ? CL_TRUE : CL_FALSE, offset, bytes, data);
+  translate_cl_errors("", [&] {
+    if (is_oclgrind(device) && (offset != 0 || bytes != to.size())) {
+      std::vector<unsigned char> whole(to.size());
+      queue.enqueueReadBuffer(cl_buffer(to), CL_TRUE, 0, whole.size(), whole.data());
+      std::memcpy(whole.data() + offset, data, bytes);
+      queue.enqueueWriteBuffer(cl_buffer(to), CL_TRUE, 0, whole.size(), whole.data());
+      return;
+    }
+    queue.enqueueWriteBuffer(cl_buffer(to), blocking ? CL_TRUE : CL_FALSE, offset, bytes, data);
+  });
 }
 
 void ClContext::read(const DeviceBuffer& from, std::size_t offset, std::size_t bytes, void* data) const {
-  queue.enqueueReadBuffer(cl_buffer(from), CL_TRUE, offset, bytes, data);
+  translate_cl_errors("", [&] { queue.enqueueReadBuffer(cl_buffer(from), CL_TRUE, offset, bytes, data); });
 }
 
 DeviceEvent ClContext::copy(const DeviceBuffer& from, const DeviceBuffer& to, std::size_t bytes) const {
-  cl::Event event;
-  queue.enqueueCopyBuffer(cl_buffer(from), cl_buffer(to), 0, 0, bytes, nullptr, &event);
-  return wrap_event(event);
+  return translate_cl_errors("", [&] {
+    cl::Event event;
+    queue.enqueueCopyBuffer(cl_buffer(from), cl_buffer(to), 0, 0, bytes, nullptr, &event);
+    return wrap_event(event);
+  });
 }
 
 void ClContext::fill(const DeviceBuffer& to, std::uint32_t value, std::size_t count) const {
   if (!count) return;
   // Oclgrind's uninitialised-value check does not see clEnqueueFillBuffer (21.10): there the words
   // come from the host, so scripts/test-oclgrind reports only what the kernels leave unset
-  if (is_oclgrind(device)) {
-    const std::vector<std::uint32_t> words(count, value);
-    queue.enqueueWriteBuffer(cl_buffer(to), CL_TRUE, 0, count * sizeof(value), words.data());
-    return;
-  }
-  queue.enqueueFillBuffer(cl_buffer(to), value, 0, count * sizeof(value));
+  translate_cl_errors("", [&] {
+    if (is_oclgrind(device)) {
+      const std::vector<std::uint32_t> words(count, value);
+      queue.enqueueWriteBuffer(cl_buffer(to), CL_TRUE, 0, count * sizeof(value), words.data());
+      return;
+    }
+    queue.enqueueFillBuffer(cl_buffer(to), value, 0, count * sizeof(value));
+  });
+}
+
+void ClContext::finish() const {
+  translate_cl_errors("", [&] { queue.finish(); });
 }
 
 }  // namespace cohort

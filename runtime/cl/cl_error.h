@@ -14,4 +14,15 @@ const char* cl_error_name(cl_int code);
 
 std::string describe(const cl::Error& e, const std::string& context = {});
 
+// Returns call(), an OpenCL error turned into DeviceError (describe(e, context)): OpenCL's own errors
+// stay inside the backend.
+template <class Call>
+decltype(auto) translate_cl_errors(const char* context, Call&& call) {
+  try {
+    return call();
+  } catch (const cl::Error& e) {
+    throw DeviceError(describe(e, context));
+  }
+}
+
 }  // namespace cohort

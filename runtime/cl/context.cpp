@@ -3,13 +3,14 @@
 #include <fmt/format.h>
 
 #include "runtime/cl/cl_error.h"
+#include "runtime/cl/devices.h"
 
 namespace cohort {
 
-ClContext::ClContext(const DeviceInfo& info) : device(info) {
+ClContext::ClContext(const DeviceInfo& info) : device(info), cl_device(find_cl_device(info)) {
   try {
-    context = cl::Context(device.device);
-    queue = cl::CommandQueue(context, device.device, CL_QUEUE_PROFILING_ENABLE);
+    context = cl::Context(cl_device);
+    queue = cl::CommandQueue(context, cl_device, CL_QUEUE_PROFILING_ENABLE);
   } catch (const cl::Error& e) {
     throw DeviceError(describe(e, device.name));
   }

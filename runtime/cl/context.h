@@ -13,6 +13,7 @@ namespace cohort {
 
 struct ClContext : Device {
   DeviceInfo device;
+  cl::Device cl_device;  // the device list_devices() described as `device`
   cl::Context context;
   cl::CommandQueue queue;
 
@@ -30,13 +31,14 @@ struct ClContext : Device {
                         Access access = Access::read_write) const override;
   DeviceProgram build_program(const ProgramCache& cache, const std::string& name,
                               const std::string& defines = {}) const override;
+  std::string compile_options() const override;
   DeviceEvent launch(const DeviceKernel& kernel, std::size_t items, std::size_t group) const override;
   void write(const DeviceBuffer& to, std::size_t offset, std::size_t bytes, const void* data,
              bool blocking = true) const override;
   void read(const DeviceBuffer& from, std::size_t offset, std::size_t bytes, void* data) const override;
   DeviceEvent copy(const DeviceBuffer& from, const DeviceBuffer& to, std::size_t bytes) const override;
   void fill(const DeviceBuffer& to, std::uint32_t value, std::size_t count) const override;
-  void finish() const override { queue.finish(); }
+  void finish() const override;
 };
 
 // The OpenCL buffer behind a buffer of the OpenCL backend, and the other way round.

@@ -1,8 +1,28 @@
 #include "runtime/cl/kernel_program.h"
 
-#include "runtime/cl/embedded_sources.h"
+#include <chrono>
+
+#include <fmt/format.h>
+
+#include "runtime/backend/embedded_sources.h"
+#include "runtime/cl/cl_error.h"
 
 namespace cohort {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::string build_log(const cl::Program& program, const cl::Device& device) {
+  try {
+    return program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device);
+  } catch (const cl::Error&) {
+    return "(no build log)";
+  }
+}
+
+}  // namespace
 
 std::string base_build_options(const DeviceInfo& device) {
   std::string options = "-cl-std=CL1.2";
@@ -10,11 +30,53 @@ std::string base_build_options(const DeviceInfo& device) {
   return options;
 }
 
+ProgramBuild build_cl_program(const ClContext& cl, const ProgramCache& cache, const std::string& source,
+                              const std::string& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string entry_key = ProgramCache::key(cl.device, source, options);
+  ProgramBuild result;
+  if (const auto file = cache.entry_file(entry_key)) {
+    result.cache_file = file->string();
+    if (auto binary = cache.load(entry_key)) {
+      try {
+        cl::Program::Binaries binaries{std::vector<unsigned char>(binary->begin(), binary->end())};
+        cl::Program program(cl.context, {cl.cl_device}, binaries);
+        program.build({cl.cl_device}, options.c_str());
+        result.program = program;
+        result.from_cache = true;
+        result.seconds = seconds_since(t0);
+        return result;
+      } catch (const cl::Error&) {
+        // the driver rejected the cached binary (a new driver, a damaged file): rebuild below
+      }
+    }
+  }
+  cl::Program program;
+  try {
+    program = cl::Program(cl.context, source);
+    program.build({cl.cl_device}, options.c_str());
+  } catch (const cl::Error& e) {
+    throw DeviceError(fmt::format("{} on {}:\n{}", describe(e), cl.device.name, build_log(program, cl.cl_device)));
+  }
+  result.program = program;
+  result.seconds = seconds_since(t0);
+  if (!result.cache_file.empty()) {
+    try {
+      const auto binaries = program.getInfo<CL_PROGRAM_BINARIES>();
+      if (!binaries.empty() && !binaries.front().empty())
+        cache.store(entry_key, std::string(binaries.front().begin(), binaries.front().end()));
+    } catch (const cl::Error&) {
+      // a driver that cannot return its binary costs speed, not correctness
+    }
+  }
+  return result;
+}
+
 ProgramBuild build_kernel_program(const ClContext& cl, const ProgramCache& cache, const std::string& file,
                                   const std::string& extra_options) {
   std::string options = base_build_options(cl.device);
   if (!extra_options.empty()) options += " " + extra_options;
-  return cache.build(cl.context, cl.device, expand_kernel_source(file), options);
+  return build_cl_program(cl, cache, expand_kernel_source(file), options);
 }
 
 }  // namespace cohort

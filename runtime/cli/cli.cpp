@@ -6,7 +6,6 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "runtime/cl/cl_error.h"
 #include "runtime/cli/commands.h"
 #include "runtime/render/methods.h"
 #include "runtime/util/error.h"
@@ -95,6 +94,8 @@ void add_bench_options(CLI::App& cmd, BenchCommand& b) {
   cmd.add_option("--code", b.code, "Coherence code of hash/pth (see render --code)");
   cmd.add_option("--pth-levels", b.pth_levels, "Subtree levels of pth")->check(CLI::Range(1, 16));
   cmd.add_option("--device", b.device, "Device index or name substring");
+  cmd.add_option("--backend", b.backend, "Device backend: opencl or cuda (the same kernels either way)")
+      ->check(CLI::IsMember({"opencl", "cuda"}));
   cmd.add_option("--json", b.json, "Write every figure to this JSON file");
   cmd.add_flag("--no-traversal", b.no_traversal, "Skip the primary and diffuse traversal workloads");
   cmd.add_flag("--gate", b.gate,

@@ -9,7 +9,7 @@
 #include "runtime/bench/gate_bench.h"
 #include "runtime/bench/mesh_export.h"
 #include "runtime/bench/scene_bench.h"
-#include "runtime/cl/devices.h"
+#include "runtime/backend/open_device.h"
 #include "runtime/cli/commands.h"
 #include "runtime/cli/parse_values.h"
 #include "runtime/render/methods.h"
@@ -97,7 +97,7 @@ void print_view(const SceneFigures& s, const ViewFigures& v) {
 }
 
 // --gate: every order's trace rate against generation order, and what its sort costs.
-int run_gate(const BenchCommand& cmd, const std::vector<BenchView>& views, const ClContext& cl,
+int run_gate(const BenchCommand& cmd, const std::vector<BenchView>& views, const Device& device,
              const ProgramCache& cache) {
   GateOptions options;
   options.res = parse_resolution(cmd.trace_resolution + "x" + cmd.trace_resolution).first;
@@ -108,7 +108,7 @@ int run_gate(const BenchCommand& cmd, const std::vector<BenchView>& views, const
     PreparedScene prepared = prepare_scene(path);
     for (const BenchView& view : views) {
       const SceneCamera camera = view_camera(prepared.scene.bounds(), view);
-      const auto bounces = gate_bench(cl, cache, prepared, camera, options);
+      const auto bounces = gate_bench(device, cache, prepared, camera, options);
       fmt::print("\n{} [{} view], {} triangles, {}x{} primary rays: trace Mrays/s median (best), x generation "
                  "order, device sort ms\n",
                  path.string(), view.name, prepared.scene.triangle_count(), options.res, options.res);
@@ -135,7 +135,7 @@ int run_gate(const BenchCommand& cmd, const std::vector<BenchView>& views, const
   fmt::print("\nnet: trace time in generation order over (trace time in this order + its sort); the payload gather "
              "is not counted\n");
   if (!cmd.json.empty()) {
-    write_file_atomically(cmd.json, nlohmann::json{{"device", cl.info().name}, {"driver", cl.info().driver_version},
+    write_file_atomically(cmd.json, nlohmann::json{{"device", device.info().name}, {"driver", device.info().driver_version},
                                                    {"gate", all}}.dump(2) + "\n");
     fmt::print("wrote {}\n", cmd.json);
   }
@@ -155,15 +155,16 @@ int run_bench(const BenchCommand& cmd) {
   options.code = cmd.code;
   options.pth_levels = cmd.pth_levels;
   const std::vector<BenchView> views = bench_views(cmd);
-  const DeviceInfo device = select_device(cmd.device);
-  const ClContext cl(device);
+  const std::unique_ptr<Device> opened = open_device(parse_backend(cmd.backend), cmd.device);
+  const Device& device = *opened;
+  const DeviceInfo& info = device.info();
   const ProgramCache cache(ProgramCache::default_directory());
-  fmt::print("device: {} ({}, driver {}), {} compute units\n", device.name, device.platform_name,
-             device.driver_version, device.compute_units);
-  if (cmd.gate) return run_gate(cmd, views, cl, cache);
+  fmt::print("device: {} ({}, driver {}), {} compute units\n", info.name, info.platform_name, info.driver_version,
+             info.compute_units);
+  if (cmd.gate) return run_gate(cmd, views, device, cache);
   std::vector<SceneFigures> scenes;
   for (const auto& path : cmd.scenes) {
-    scenes.push_back(bench_scene(cl, cache, path, views, options, [](const std::string& line) {
+    scenes.push_back(bench_scene(device, cache, path, views, options, [](const std::string& line) {
       fmt::print(stderr, "{}\n", line);
     }));
     for (const auto& v : scenes.back().views) print_view(scenes.back(), v);

@@ -1,7 +1,6 @@
 #include <fmt/format.h>
 
 #include "runtime/backend/open_device.h"
-#include "runtime/cl/devices.h"
 #include "runtime/cli/commands.h"
 #include "runtime/render/prepared_scene.h"
 #include "runtime/render/scene_memory.h"
@@ -44,8 +43,10 @@ int run_info(const std::filesystem::path& path) {
 }
 
 int run_devices() {
-  const auto devices = list_devices();
-  if (devices.empty()) {
+  std::vector<DeviceInfo> devices;
+  try {
+    devices = list_backend_devices(Backend::opencl);
+  } catch (const InputError&) {
     fmt::print("no OpenCL devices found (Debian: install pocl-opencl-icd for the CPU)\n");
     return 1;
   }
@@ -56,9 +57,7 @@ int run_devices() {
                d.global_memory >> 20, d.max_allocation >> 20);
     fmt::print("    {}, driver {}\n", d.version, d.driver_version);
     // what the kernels adapt to: sub-group votes (speculative traversal) and IEEE division
-    const std::string extensions = d.device.getInfo<CL_DEVICE_EXTENSIONS>();
-    fmt::print("    sub-groups (cl_khr_subgroups): {}, correctly rounded divide/sqrt: {}\n",
-               extensions.find("cl_khr_subgroups") != std::string::npos ? "yes" : "no",
+    fmt::print("    sub-groups (cl_khr_subgroups): {}, correctly rounded divide/sqrt: {}\n", d.subgroups ? "yes" : "no",
                d.correctly_rounded_divide_sqrt ? "yes" : "no");
   }
   if (cuda_backend_built()) {

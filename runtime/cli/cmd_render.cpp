@@ -8,6 +8,7 @@
 #include <array>
 #include <fstream>
 
+#include "runtime/backend/device_choice.h"
 #include "runtime/backend/open_device.h"
 #include "runtime/cli/commands.h"
 #include "runtime/cli/output_paths.h"
@@ -204,7 +205,7 @@ int render_job(const RenderCommand& cmd_in, [[maybe_unused]] const MpiSession* m
   std::vector<DeviceInfo> devices;
   DeviceOpener open_devices;
   if (backend == Backend::opencl) {
-    devices = select_devices(cmd.device, local_rank);
+    devices = select_devices(list_backend_devices(backend), cmd.device, local_rank);
     if (memory_limit) {
       for (auto& device : devices) {
         device.global_memory = std::min(device.global_memory, memory_limit);

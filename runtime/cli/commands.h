@@ -43,6 +43,7 @@ struct BenchCommand {
   std::string code;
   std::uint32_t pth_levels = 0;
   std::string device;
+  std::string backend = "opencl";  // opencl | cuda
   std::string json;
   bool no_traversal = false;
   bool gate = false;     // the ordering gate experiment instead of the usual figures

@@ -7,8 +7,8 @@
 
 #include <fmt/format.h>
 
-#include "runtime/cl/embedded_sources.h"
-#include "runtime/cl/program_cache.h"
+#include "runtime/backend/embedded_sources.h"
+#include "runtime/backend/program_cache.h"
 #include "runtime/cuda/cuda_api.h"
 #include "runtime/cuda/nvrtc_compile.h"
 #include "runtime/util/error.h"
@@ -188,6 +188,12 @@ class CudaDevice final : public Device {
     p.object = std::move(program);
     p.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return p;
+  }
+
+  std::string compile_options() const override {
+    std::string joined;
+    for (const auto& o : nvrtc_options(cc_major_, cc_minor_, {})) joined += (joined.empty() ? "" : " ") + o;
+    return joined;
   }
 
   DeviceEvent launch(const DeviceKernel& kernel, std::size_t items, std::size_t group) const override {

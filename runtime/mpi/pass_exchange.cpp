@@ -11,7 +11,6 @@
 
 #include <fmt/format.h>
 
-#include "runtime/cl/cl_error.h"
 #include "runtime/util/error.h"
 
 namespace cohort {

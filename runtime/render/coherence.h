@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "kernels/common/types.h"
-#include "runtime/cl/devices.h"
+#include "runtime/backend/device_info.h"
 #include "runtime/render/device_scene.h"
 
 namespace cohort {

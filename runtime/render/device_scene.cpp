@@ -8,7 +8,7 @@
 
 #include <fmt/format.h>
 
-#include "runtime/cl/cl_error.h"
+#include "runtime/util/error.h"
 #include "runtime/render/scene_memory.h"
 
 namespace cohort {

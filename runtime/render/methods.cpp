@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "runtime/cl/cl_error.h"
 #include "runtime/render/render_params.h"
 #include "runtime/util/error.h"
 
@@ -40,12 +39,8 @@ RenderResult render(const Device& cl, const ProgramCache& cache, const DeviceSce
                     const RenderSettings& settings, const ProgressCallback& progress, const RenderControl& control) {
   const Method& method = find_method(settings.method);
   const RenderParams params = make_render_params(scene, camera, settings);
-  try {
-    return method.wavefront ? render_wavefront(method, cl, cache, scene, params, settings, progress, control)
-                            : render_naive(cl, cache, scene, params, settings, progress, control);
-  } catch (const cl::Error& e) {
-    throw DeviceError(describe(e, fmt::format("--method {}", method.name)));
-  }
+  return method.wavefront ? render_wavefront(method, cl, cache, scene, params, settings, progress, control)
+                          : render_naive(cl, cache, scene, params, settings, progress, control);
 }
 
 }  // namespace cohort

@@ -3,15 +3,10 @@
 #include <algorithm>
 #include <chrono>
 
-#include "runtime/cl/context.h"
 #include "runtime/render/launch_log.h"
 #include "runtime/render/pass_driver.h"
 
 namespace cohort {
-
-DeviceOpener opencl_opener(const std::vector<DeviceInfo>& devices) {
-  return [devices](std::size_t i) -> std::unique_ptr<Device> { return std::make_unique<ClContext>(devices.at(i)); };
-}
 
 DeviceWorkers::DeviceWorkers(const std::vector<DeviceInfo>& devices, const DeviceOpener& open,
                              const ProgramCache& cache, const PreparedScene& scene, const RenderSettings& settings,

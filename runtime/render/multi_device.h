@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "runtime/backend/device.h"
-#include "runtime/cl/devices.h"
+#include "runtime/backend/open_device.h"
 #include "runtime/render/prepared_scene.h"
 #include "runtime/render/renderer.h"
 
@@ -23,13 +23,6 @@ struct DeviceRun {
   RenderResult result;  // this device's figures: passes, rays, busy time, kernels (no image)
   double upload_seconds = 0;
 };
-
-// Opens device `index` of the list on the calling thread (a CUDA context is current on the thread
-// that made it, so each worker opens its own).
-using DeviceOpener = std::function<std::unique_ptr<Device>(std::size_t index)>;
-
-// OpenCL contexts for `devices`.
-DeviceOpener opencl_opener(const std::vector<DeviceInfo>& devices);
 
 class DeviceWorkers {
  public:

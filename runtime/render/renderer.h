@@ -11,7 +11,7 @@
 
 #include "runtime/accel/kdtree.h"
 #include "runtime/backend/device.h"
-#include "runtime/cl/program_cache.h"
+#include "runtime/backend/program_cache.h"
 #include "runtime/image/image.h"
 #include "runtime/render/checkpoint.h"
 #include "runtime/render/device_scene.h"

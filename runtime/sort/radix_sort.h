@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "runtime/backend/device.h"
-#include "runtime/cl/program_cache.h"
+#include "runtime/backend/program_cache.h"
 
 namespace cohort {
 

@@ -5,20 +5,20 @@
 #include <filesystem>
 
 #include "runtime/bench/gate_bench.h"
-#include "runtime/cl/devices.h"
+#include "runtime/backend/open_device.h"
 
 using namespace cohort;
 
 TEST(GateBench, EveryOrderFindsTheSameHitsAndHasASortCost) {
   const PreparedScene scene = prepare_scene(std::filesystem::path(COHORT_SOURCE_DIR) / "scenes/cornell-box.gltf");
-  const ClContext cl(select_device(""));
+  const auto device = open_device(Backend::opencl, "");
   const ProgramCache cache(ProgramCache::default_directory());
   GateOptions options;
   options.res = 48;
   options.bounces = 3;
   // the file's camera looks into the open box (the protocol camera sees its outside, where every
   // diffuse ray escapes)
-  const auto bounces = gate_bench(cl, cache, scene, scene.camera, options);
+  const auto bounces = gate_bench(*device, cache, scene, scene.camera, options);
   ASSERT_EQ(bounces.size(), 3u);
   EXPECT_EQ(bounces[0].rays, 48u * 48u);
   for (std::size_t b = 0; b < bounces.size(); ++b) {

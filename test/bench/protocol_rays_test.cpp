@@ -7,7 +7,7 @@
 #include "runtime/bench/protocol_rays.h"
 #include "runtime/bench/scene_bench.h"
 #include "runtime/bench/trace_bench.h"
-#include "runtime/cl/devices.h"
+#include "runtime/backend/open_device.h"
 
 using namespace cohort;
 
@@ -126,9 +126,9 @@ TEST(ProtocolRays, BenchTraceReportsSceneTriangleIndices) {
   const KdTree tree = build_kdtree(scene.positions);
   ASSERT_EQ(tree.stats.dropped_triangles, 1u);
   const Bounds bounds = scene.bounds();
-  const ClContext cl(select_device(""));
+  const auto device = open_device(Backend::opencl, "");
   const ProgramCache cache(ProgramCache::default_directory());
-  const TraceBench bench(cl, cache, tree);
+  const TraceBench bench(*device, cache, tree);
   const auto primary = protocol_primary_rays(view_camera(bounds, BenchView{}), 32);
   const TraceFigures f = bench.trace(primary, 3);
   EXPECT_EQ(f.rays_per_second.runs.size(), 3u);

@@ -6,9 +6,9 @@
 
 #include "runtime/cl/cl_error.h"
 #include "runtime/cl/context.h"
-#include "runtime/cl/embedded_sources.h"
+#include "runtime/backend/embedded_sources.h"
 #include "runtime/cl/kernel_program.h"
-#include "runtime/cl/program_cache.h"
+#include "runtime/backend/program_cache.h"
 
 namespace fs = std::filesystem;
 using namespace cohort;
@@ -88,7 +88,7 @@ TEST(ProgramCache, BuildErrorNamesTheCallAndCarriesTheLog) {
   const ClContext cl = cpu_context();
   const ProgramCache cache(std::nullopt);
   try {
-    cache.build(cl.context, cl.device, "__kernel void broken( { }", "");
+    build_cl_program(cl, cache, "__kernel void broken( { }", "");
     FAIL() << "expected a build failure";
   } catch (const DeviceError& e) {
     const std::string msg = e.what();

@@ -24,20 +24,20 @@ std::vector<HitOut> trace_on_device(const KdTree& tree, const std::vector<TestRa
                                     const std::vector<float>& tmax) {
   const ClContext cl(select_device(""));
   const ProgramCache cache(ProgramCache::default_directory());
-  const ProgramBuild build = build_kernel_program(cl, cache, "trace.cl");
+  const DeviceProgram program = cl.build_program(cache, "trace");
   std::vector<RayIn> in(rays.size());
   for (std::size_t i = 0; i < rays.size(); ++i)
     in[i] = RayIn{{rays[i].org.x, rays[i].org.y, rays[i].org.z, 0.f}, {rays[i].dir.x, rays[i].dir.y, rays[i].dir.z, tmax[i]}};
-  auto nodes = cl.buffer("nodes", tree.nodes.size() * sizeof(KdNode), tree.nodes.data());
-  auto leaves = cl.buffer("leaves", tree.leaf_triangles.size() * 4, tree.leaf_triangles.data());
-  auto tris = cl.buffer("triangles", tree.triangles.size() * sizeof(Triangle), tree.triangles.data());
-  auto ray_buf = cl.buffer("rays", in.size() * sizeof(RayIn), in.data());
-  auto hit_buf = cl.buffer("hits", in.size() * sizeof(HitOut));
-  cl::Kernel k(build.program, "trace_rays");
+  const DeviceBuffer nodes = cl.allocate("nodes", tree.nodes.size() * sizeof(KdNode), tree.nodes.data());
+  const DeviceBuffer leaves = cl.allocate("leaves", tree.leaf_triangles.size() * 4, tree.leaf_triangles.data());
+  const DeviceBuffer tris = cl.allocate("triangles", tree.triangles.size() * sizeof(Triangle), tree.triangles.data());
+  const DeviceBuffer ray_buf = cl.allocate("rays", in.size() * sizeof(RayIn), in.data());
+  const DeviceBuffer hit_buf = cl.allocate("hits", in.size() * sizeof(HitOut));
+  DeviceKernel k = program.kernel("trace_rays");
   set_trace_rays_args(k, nodes, leaves, tris, tree.bounds, ray_buf, hit_buf, in.size(), any_hit);
-  cl.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange((in.size() + 63) / 64 * 64), cl::NDRange(64));
+  cl.launch(k, in.size(), 64);
   std::vector<HitOut> hits(in.size());
-  cl.queue.enqueueReadBuffer(hit_buf, CL_TRUE, 0, hits.size() * sizeof(HitOut), hits.data());
+  cl.read(hit_buf, 0, hits.size() * sizeof(HitOut), hits.data());
   return hits;
 }
 

@@ -192,6 +192,7 @@ TEST(Cli, BenchWritesEveryFigureAsJson) {
   EXPECT_FALSE(j["cohort"]["kernel_build_options"].get<std::string>().empty());
   EXPECT_FALSE(j["device"]["name"].get<std::string>().empty());
   EXPECT_TRUE(j["device"].contains("driver"));
+  EXPECT_EQ(j["device"]["backend"], "opencl");  // the default
   EXPECT_EQ(j["settings"]["reps"], 3);
   ASSERT_EQ(j["scenes"].size(), 1u);
   const auto& s = j["scenes"][0];
@@ -223,15 +224,30 @@ TEST(Cli, BenchInteriorViewAndTraversalOnly) {
   TempDir dir;
   const fs::path json = dir.path / "bench.json";
   const CommandResult r = run("bench " + scene("cornell-box.gltf") + " --view exterior,interior --methods none " +
-                              "--trace-res 8 --json " + json.string());
+                              "--trace-res 8 --backend opencl --json " + json.string());
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream in(json);
   const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["device"]["backend"], "opencl");
   const auto& views = j["scenes"][0]["views"];
   ASSERT_EQ(views.size(), 2u);
   EXPECT_EQ(views[1]["view"], "interior");
   EXPECT_EQ(views[1]["camera"]["vfov_degrees"], 60.0);
   EXPECT_TRUE(views[1]["path_tracing"].empty());
+}
+
+// bench opens its device as render does: --backend cuda without a GPU is an error saying why,
+// before any scene is loaded or file written, not an unknown option.
+TEST(Cli, BenchBackendCudaWithoutAGpuIsExitTwoSayingWhy) {
+  EXPECT_EQ(run("bench --backend metal --methods none --trace-res 8").code, 2);
+  TempDir dir;
+  const fs::path json = dir.path / "bench.json";
+  const CommandResult r = run("bench " + scene("cornell-box.gltf") + " --backend cuda --methods none --trace-res 8 --json " +
+                              json.string());
+  if (r.code == 0) GTEST_SKIP() << "this machine has a CUDA GPU: it measured";
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("--backend cuda"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(json));
 }
 
 TEST(Cli, BenchRejectsBadOptionsWithExitTwo) {

@@ -22,7 +22,6 @@
 #include "host/scene_paths.h"
 #include "host/trace_on_device.h"
 #include "runtime/backend/open_device.h"
-#include "runtime/cl/context.h"
 #include "runtime/render/methods.h"
 #include "runtime/render/prepared_scene.h"
 #include "runtime/render/workloads.h"

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "runtime/cl/embedded_sources.h"
+#include "runtime/backend/embedded_sources.h"
 #include "runtime/cuda/nvrtc_compile.h"
 #include "runtime/util/error.h"
 

@@ -10,7 +10,7 @@
 
 #include "runtime/accel/kdtree.h"
 #include "runtime/backend/device.h"
-#include "runtime/cl/program_cache.h"
+#include "runtime/backend/program_cache.h"
 
 namespace cohort::test {
 

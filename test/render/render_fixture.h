@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "runtime/cl/context.h"
-#include "runtime/cl/program_cache.h"
+#include "runtime/backend/program_cache.h"
 #include "runtime/render/prepared_scene.h"
 #include "runtime/render/renderer.h"
 

@@ -1,6 +1,5 @@
-#include "runtime/cl/program_cache.h"
+#include "runtime/backend/program_cache.h"
 
-#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -8,7 +7,6 @@
 
 #include <fmt/format.h>
 
-#include "runtime/cl/cl_error.h"
 #include "runtime/util/atomic_file.h"
 #include "runtime/util/hash.h"
 
@@ -17,10 +15,6 @@ namespace {
 
 // Entry layout: magic, key length, key, payload length, payload checksum, payload.
 constexpr std::string_view kMagic = "COHORT-KERNEL-CACHE-1\n";
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 void append_u64(std::string& out, std::uint64_t v) { out.append(reinterpret_cast<const char*>(&v), 8); }
 
@@ -55,14 +49,6 @@ std::string make_entry(const std::string& key, const std::string& binary) {
   append_u64(out, fnv1a64(binary));
   out += binary;
   return out;
-}
-
-std::string build_log(const cl::Program& program, const cl::Device& device) {
-  try {
-    return program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device);
-  } catch (const cl::Error&) {
-    return "(no build log)";
-  }
 }
 
 }  // namespace
@@ -100,47 +86,6 @@ void ProgramCache::store(const std::string& key, const std::string& binary) cons
     write_file_atomically(*file, make_entry(key, binary));
   } catch (const std::exception&) {
   }
-}
-
-ProgramBuild ProgramCache::build(const cl::Context& context, const DeviceInfo& device, const std::string& source,
-                                 const std::string& options) const {
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::string entry_key = key(device, source, options);
-  ProgramBuild result;
-  if (directory_) {
-    result.cache_file = entry_file(entry_key)->string();
-    if (auto binary = load(entry_key)) {
-      try {
-        cl::Program::Binaries binaries{std::vector<unsigned char>(binary->begin(), binary->end())};
-        cl::Program program(context, {device.device}, binaries);
-        program.build({device.device}, options.c_str());
-        result.program = program;
-        result.from_cache = true;
-        result.seconds = seconds_since(t0);
-        return result;
-      } catch (const cl::Error&) {
-        // the driver rejected the cached binary (a new driver, a damaged file): rebuild below
-      }
-    }
-  }
-  cl::Program program(context, source);
-  try {
-    program.build({device.device}, options.c_str());
-  } catch (const cl::Error& e) {
-    throw DeviceError(fmt::format("{} on {}:\n{}", describe(e), device.name, build_log(program, device.device)));
-  }
-  result.program = program;
-  result.seconds = seconds_since(t0);
-  if (directory_) {
-    try {
-      const auto binaries = program.getInfo<CL_PROGRAM_BINARIES>();
-      if (!binaries.empty() && !binaries.front().empty())
-        store(entry_key, std::string(binaries.front().begin(), binaries.front().end()));
-    } catch (const cl::Error&) {
-      // a driver that cannot return its binary costs speed, not correctness
-    }
-  }
-  return result;
 }
 
 }  // namespace cohort

@@ -1,4 +1,4 @@
-#include "runtime/cl/embedded_sources.h"
+#include "runtime/backend/embedded_sources.h"
 
 #include <set>
 #include <sstream>

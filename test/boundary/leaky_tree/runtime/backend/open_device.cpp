@@ -1,0 +1,3 @@
+// The one file that chooses a backend: allowed.
+#include "runtime/cl/context.h"
+#include "runtime/cuda/cuda_device.h"

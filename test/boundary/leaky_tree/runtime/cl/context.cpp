@@ -1,0 +1,2 @@
+// The OpenCL backend includes OpenCL: allowed.
+#include <CL/opencl.hpp>
