@@ -1,19 +1,16 @@
-# The backend boundary (runtime/backend/device.h): under ROOT/runtime, only runtime/cl includes OpenCL
-# headers and only runtime/cuda includes CUDA's; everything else sees Device and DeviceInfo. The one
-# file that chooses a backend, runtime/backend/open_device.cpp, may include both backends' headers.
+# The backend boundary (runtime/backend/device.h): under ROOT/runtime, OpenCL headers are included
+# only in runtime/cl and CUDA headers only in runtime/cuda; everything else sees Device and
+# DeviceInfo. The one file that chooses a backend, runtime/backend/open_device.cpp, may include both.
 #   cmake -DROOT=<source tree> -P check_includes.cmake   (exit code 1 and one line per leak)
 if(NOT ROOT)
   message(FATAL_ERROR "usage: cmake -DROOT=<source tree> -P check_includes.cmake")
 endif()
-
-# include paths that belong to a backend: the OpenCL and CUDA headers, and the backends' own files
-set(backend_headers
-    "^(CL|OpenCL)/"
-    "(^|/)(cl|cl2|opencl)\\.(h|hpp)$"
-    "^(cuda|cuda_runtime|cuda_runtime_api|cudaTypedefs|nvrtc)\\.h$"
-    "^runtime/(cl|cuda)/")
-set(chooser runtime/backend/open_device.cpp)
 get_filename_component(ROOT "${ROOT}" ABSOLUTE)
+
+# include paths that belong to each backend: its API's headers and the backend's own files
+set(opencl_headers "^(CL|OpenCL)/" "(^|/)(cl|cl2|opencl)\\.(h|hpp)$" "^runtime/cl/")
+set(cuda_headers "^(cuda|cuda_runtime|cuda_runtime_api|cudaTypedefs|nvrtc)\\.h$" "^runtime/cuda/")
+set(chooser runtime/backend/open_device.cpp)
 
 file(GLOB_RECURSE files RELATIVE ${ROOT} ${ROOT}/runtime/*.h ${ROOT}/runtime/*.hpp ${ROOT}/runtime/*.cpp
      ${ROOT}/runtime/*.in)
@@ -21,8 +18,15 @@ list(SORT files)
 set(leaks "")
 set(checked 0)
 foreach(f IN LISTS files)
-  if(f MATCHES "^runtime/(cl|cuda)/" OR f STREQUAL chooser)
+  if(f STREQUAL chooser)
     continue()
+  endif()
+  set(forbidden "")
+  if(NOT f MATCHES "^runtime/cl/")
+    list(APPEND forbidden ${opencl_headers})
+  endif()
+  if(NOT f MATCHES "^runtime/cuda/")
+    list(APPEND forbidden ${cuda_headers})
   endif()
   math(EXPR checked "${checked} + 1")
   # one list element per line: brackets and semicolons would join or split elements
@@ -34,7 +38,7 @@ foreach(f IN LISTS files)
     math(EXPR number "${number} + 1")
     if(line MATCHES "^[ \t]*#[ \t]*include[ \t]*[<\"]([^>\"]+)[>\"]")
       set(header ${CMAKE_MATCH_1})
-      foreach(pattern IN LISTS backend_headers)
+      foreach(pattern IN LISTS forbidden)
         if(header MATCHES "${pattern}")
           string(APPEND leaks "  ${f}:${number}: includes <${header}>\n")
           break()
@@ -48,6 +52,7 @@ if(checked EQUAL 0)
   message(FATAL_ERROR "no source files under ${ROOT}/runtime")
 endif()
 if(NOT leaks STREQUAL "")
-  message(FATAL_ERROR "backend headers outside runtime/cl and runtime/cuda (use runtime/backend/device.h):\n${leaks}")
+  message(FATAL_ERROR "backend headers outside their backend (OpenCL: runtime/cl, CUDA: runtime/cuda; "
+                      "elsewhere use runtime/backend/device.h):\n${leaks}")
 endif()
-message(STATUS "backend boundary: ${checked} files under runtime/ include no OpenCL or CUDA header")
+message(STATUS "backend boundary: ${checked} files under runtime/ include no other backend's headers")
