@@ -8,7 +8,7 @@
 namespace cohort {
 
 struct DeviceInfo {
-  std::size_t platform_index = 0;
+  std::size_t platform_index = 0;  // OpenCL: the platform's index; CUDA: 0
   std::size_t device_index = 0;  // index in its backend's list, as `cohort devices` prints it
   std::string platform_name;     // the OpenCL platform; "CUDA"
   std::string name;

@@ -75,7 +75,8 @@ nlohmann::json bench_json(const Device& d, const BenchOptions& o, const std::vec
   nlohmann::json j;
   j["cohort"] = {{"git_commit", b.git_commit}, {"build_type", b.build_type}, {"compiler", b.compiler},
                  {"cxx_flags", b.cxx_flags}, {"kernel_build_options", d.compile_options()}};
-  j["device"] = {{"name", device.name}, {"backend", backend_name(d.backend())}, {"platform", device.platform_name}, {"vendor", device.vendor},
+  j["device"] = {{"name", device.name}, {"backend", backend_name(d.backend())},
+                 {"platform", device.platform_name}, {"vendor", device.vendor},
                  {"version", device.version}, {"driver", device.driver_version}, {"is_gpu", device.is_gpu},
                  {"compute_units", device.compute_units}};
   j["settings"] = {{"trace_res", o.trace_res}, {"res", o.res}, {"spp", o.spp}, {"reps", o.reps},

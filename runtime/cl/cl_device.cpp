@@ -21,7 +21,7 @@ struct ClKernelObject : KernelObject {
   cl::Device device;
   ClKernelObject(cl::Kernel k, cl::Device d) : kernel(std::move(k)), device(std::move(d)) {}
   std::size_t max_group() const override {
-    return translate_cl_errors("", [&] { return kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device); });
+    return translate_cl_errors([&] { return kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device); });
   }
 };
 
@@ -42,10 +42,10 @@ struct ClEventObject : EventObject {
   cl::Event event;
   explicit ClEventObject(cl::Event e) : event(std::move(e)) {}
   void wait() override {
-    translate_cl_errors("", [&] { event.wait(); });
+    translate_cl_errors([&] { event.wait(); });
   }
   double seconds() override {
-    return translate_cl_errors("", [&] {
+    return translate_cl_errors([&] {
       event.wait();
       return event_seconds(event);
     });
@@ -66,7 +66,8 @@ const cl::Buffer& cl_buffer(const DeviceBuffer& b) {
 }
 
 DeviceBuffer wrap_buffer(const cl::Buffer& b) {
-  return DeviceBuffer(std::make_shared<ClBufferObject>(b), translate_cl_errors("", [&] { return b.getInfo<CL_MEM_SIZE>(); }));
+  const std::size_t bytes = translate_cl_errors([&] { return b.getInfo<CL_MEM_SIZE>(); });
+  return DeviceBuffer(std::make_shared<ClBufferObject>(b), bytes);
 }
 
 DeviceBuffer ClContext::allocate(const std::string& what, std::size_t bytes, const void* data, Access access) const {
@@ -112,7 +113,7 @@ void ClContext::write(const DeviceBuffer& to, std::size_t offset, std::size_t by
                       bool blocking) const {
   // Oclgrind's uninitialised-value check (21.10) forgets the rest of a buffer written in part (the
   // queue counters are): there the whole buffer is read, patched and written back
-  translate_cl_errors("", [&] {
+  translate_cl_errors([&] {
     if (is_oclgrind(device) && (offset != 0 || bytes != to.size())) {
       std::vector<unsigned char> whole(to.size());
       queue.enqueueReadBuffer(cl_buffer(to), CL_TRUE, 0, whole.size(), whole.data());
@@ -125,11 +126,11 @@ void ClContext::write(const DeviceBuffer& to, std::size_t offset, std::size_t by
 }
 
 void ClContext::read(const DeviceBuffer& from, std::size_t offset, std::size_t bytes, void* data) const {
-  translate_cl_errors("", [&] { queue.enqueueReadBuffer(cl_buffer(from), CL_TRUE, offset, bytes, data); });
+  translate_cl_errors([&] { queue.enqueueReadBuffer(cl_buffer(from), CL_TRUE, offset, bytes, data); });
 }
 
 DeviceEvent ClContext::copy(const DeviceBuffer& from, const DeviceBuffer& to, std::size_t bytes) const {
-  return translate_cl_errors("", [&] {
+  return translate_cl_errors([&] {
     cl::Event event;
     queue.enqueueCopyBuffer(cl_buffer(from), cl_buffer(to), 0, 0, bytes, nullptr, &event);
     return wrap_event(event);
@@ -140,7 +141,7 @@ void ClContext::fill(const DeviceBuffer& to, std::uint32_t value, std::size_t co
   if (!count) return;
   // Oclgrind's uninitialised-value check does not see clEnqueueFillBuffer (21.10): there the words
   // come from the host, so scripts/test-oclgrind reports only what the kernels leave unset
-  translate_cl_errors("", [&] {
+  translate_cl_errors([&] {
     if (is_oclgrind(device)) {
       const std::vector<std::uint32_t> words(count, value);
       queue.enqueueWriteBuffer(cl_buffer(to), CL_TRUE, 0, count * sizeof(value), words.data());
@@ -151,7 +152,7 @@ void ClContext::fill(const DeviceBuffer& to, std::uint32_t value, std::size_t co
 }
 
 void ClContext::finish() const {
-  translate_cl_errors("", [&] { queue.finish(); });
+  translate_cl_errors([&] { queue.finish(); });
 }
 
 }  // namespace cohort

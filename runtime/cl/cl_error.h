@@ -17,7 +17,7 @@ std::string describe(const cl::Error& e, const std::string& context = {});
 // Returns call(), an OpenCL error turned into DeviceError (describe(e, context)): OpenCL's own errors
 // stay inside the backend.
 template <class Call>
-decltype(auto) translate_cl_errors(const char* context, Call&& call) {
+decltype(auto) translate_cl_errors(Call&& call, const char* context = "") {
   try {
     return call();
   } catch (const cl::Error& e) {

@@ -95,7 +95,8 @@ cl::Device find_cl_device(const DeviceInfo& info) {
   } catch (const cl::Error& e) {
     throw DeviceError(describe(e, info.name));
   }
-  if (!found()) throw DeviceError(fmt::format("OpenCL device {} ({}) is no longer listed", info.device_index, info.name));
+  if (!found())
+    throw DeviceError(fmt::format("OpenCL device {} ({}) is no longer listed", info.device_index, info.name));
   return found;
 }
 

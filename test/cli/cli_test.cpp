@@ -242,8 +242,8 @@ TEST(Cli, BenchBackendCudaWithoutAGpuIsExitTwoSayingWhy) {
   EXPECT_EQ(run("bench --backend metal --methods none --trace-res 8").code, 2);
   TempDir dir;
   const fs::path json = dir.path / "bench.json";
-  const CommandResult r = run("bench " + scene("cornell-box.gltf") + " --backend cuda --methods none --trace-res 8 --json " +
-                              json.string());
+  const CommandResult r =
+      run("bench " + scene("cornell-box.gltf") + " --backend cuda --methods none --trace-res 8 --json " + json.string());
   if (r.code == 0) GTEST_SKIP() << "this machine has a CUDA GPU: it measured";
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("--backend cuda"), std::string::npos) << r.output;
