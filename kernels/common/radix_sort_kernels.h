@@ -60,6 +60,13 @@ typedef uint32_t sort_key_t;
 #define LOOKBACK_AGGREGATE 0x40000000u
 #define LOOKBACK_PREFIX 0x80000000u
 #define LOOKBACK_COUNT 0x3fffffffu
+#define SORT_NO_COUNT_WORD 0xffffffffu /* count_index: the count is the argument itself */
+
+/* The number of pairs: `count`, or at most `count` taken from count_word[count_index] when the
+ * count lives on the device (a queue length the host never reads). */
+CO_INLINE uint32_t sort_count(uint32_t count, CO_GLOBAL const uint32_t* count_word, uint32_t count_index) {
+  return count_index == SORT_NO_COUNT_WORD ? count : co_umin(count, count_word[count_index]);
+}
 
 /* Local tables are scanned with each work item reading 16 consecutive entries; one padding word
  * every 32 keeps those strided reads free of bank conflicts on 32-bank GPUs (Harris, Sengupta &
@@ -114,27 +121,30 @@ CO_INLINE void scan_table(CO_LOCAL uint32_t* table, CO_LOCAL uint32_t* tmp, cons
 }
 
 /* hist[pass * 256 + d] += number of keys whose digit of that pass is d, over this work-group's
- * `chunk` keys; the host has zeroed hist. Also zeroes lookback[0, lookback_words) (every pass's
- * table), lookback_chunk words per group, and tickets[0, passes): sort_pass relies on both. */
+ * share of the keys (the launch has `groups` work-groups); the host has zeroed hist. Also zeroes
+ * the look-back words of every pass that sort_pass will use (pass p's table starts at word
+ * p * tile_stride * 256) and tickets[0, passes): sort_pass relies on both. */
 CO_KERNEL_WG(SORT_WG)
-sort_histogram(CO_GLOBAL const sort_key_t* keys, uint32_t count, uint32_t chunk, uint32_t passes,
-               uint32_t digit_bits, uint32_t key_bits, CO_GLOBAL uint32_t* hist, CO_GLOBAL uint32_t* lookback,
-               uint32_t lookback_words, uint32_t lookback_chunk, CO_GLOBAL uint32_t* tickets) {
+sort_histogram(CO_GLOBAL const sort_key_t* keys, uint32_t count, CO_GLOBAL const uint32_t* count_word,
+               uint32_t count_index, uint32_t groups, uint32_t passes, uint32_t digit_bits, uint32_t key_bits,
+               CO_GLOBAL uint32_t* hist, CO_GLOBAL uint32_t* lookback, uint32_t tile_stride,
+               CO_GLOBAL uint32_t* tickets) {
   CO_SHARED uint32_t bins[SORT_MAX_PASSES * SORT_BINS];
   const uint32_t item = co_local_id();
-  /* Each group clears lookback_chunk words and counts `chunk` keys, both contiguous. */
-  const uint32_t clear_begin = co_group_id() * lookback_chunk;
-  const uint32_t clear_end = co_umin(lookback_words, clear_begin + lookback_chunk);
-  for (uint32_t i = clear_begin + item; i < clear_end; i += SORT_WG) lookback[i] = 0u;
+  const uint32_t n = sort_count(count, count_word, count_index);
+  const uint32_t used = (n + TILE - 1) / TILE * SORT_BINS; /* look-back words per pass */
+  for (uint32_t p = 0; p < passes; ++p)
+    for (uint32_t i = co_global_id(); i < used; i += groups * SORT_WG) lookback[p * tile_stride * SORT_BINS + i] = 0u;
   if (co_group_id() == 0)
     for (uint32_t p = item; p < passes; p += SORT_WG) tickets[p] = 0u;
 
-  const uint32_t used = passes * SORT_BINS;
-  for (uint32_t i = item; i < used; i += SORT_WG) bins[i] = 0u;
+  const uint32_t bins_used = passes * SORT_BINS;
+  for (uint32_t i = item; i < bins_used; i += SORT_WG) bins[i] = 0u;
   co_barrier();
-  /* Consecutive items read consecutive keys. */
-  const uint32_t begin = co_group_id() * chunk;
-  const uint32_t end = co_umin(count, begin + chunk);
+  /* Each group counts a contiguous chunk; consecutive items read consecutive keys. */
+  const uint32_t chunk = (n + groups - 1) / groups;
+  const uint32_t begin = co_umin(n, co_group_id() * chunk);
+  const uint32_t end = co_umin(n, begin + chunk);
   for (uint32_t j = begin + item; j < end; j += SORT_WG) {
     const sort_key_t key = keys[j];
     for (uint32_t p = 0; p < passes; ++p) {
@@ -149,7 +159,7 @@ sort_histogram(CO_GLOBAL const sort_key_t* keys, uint32_t count, uint32_t chunk,
     }
   }
   co_barrier();
-  for (uint32_t i = item; i < used; i += SORT_WG)
+  for (uint32_t i = item; i < bins_used; i += SORT_WG)
     if (bins[i] != 0u) co_atomic_add(&hist[i], bins[i]);
 }
 
@@ -187,25 +197,37 @@ CO_INLINE void rank_tile_by_nibble(CO_LOCAL sort_key_t* tile_keys, CO_LOCAL uint
 #endif
 
 /* Digit pass `pass` of a sort: moves every pair to its place by the digit at bits [shift, shift +
- * bits of digit_mask). It uses the pass's 256 digit counts over all keys in `hist`, its `tiles` *
- * 256 words of `lookback` and its tile counter in `tickets`, all zeroed by sort_histogram. */
+ * bits of digit_mask). It uses the pass's 256 digit counts over all keys in `hist`, its look-back
+ * table from word pass * tile_stride * 256 and its tile counter in `tickets`, all zeroed by
+ * sort_histogram. Launched over as many tiles as the count may need: groups whose ticket is past
+ * the last tile of the actual count leave at once. */
 CO_KERNEL_WG(SORT_WG)
 sort_pass(CO_GLOBAL const sort_key_t* keys_in, CO_GLOBAL const uint32_t* values_in, CO_GLOBAL sort_key_t* keys_out,
-          CO_GLOBAL uint32_t* values_out, uint32_t count, uint32_t shift, uint32_t digit_mask, uint32_t pass,
-          uint32_t tiles, CO_GLOBAL const uint32_t* all_hist, CO_GLOBAL uint32_t* all_lookback,
-          CO_GLOBAL uint32_t* tickets) {
+          CO_GLOBAL uint32_t* values_out, uint32_t max_count, CO_GLOBAL const uint32_t* count_word,
+          uint32_t count_index, uint32_t shift, uint32_t digit_mask, uint32_t pass, uint32_t tile_stride,
+          CO_GLOBAL const uint32_t* all_hist, CO_GLOBAL uint32_t* all_lookback, CO_GLOBAL uint32_t* tickets) {
   CO_GLOBAL const uint32_t* hist = all_hist + pass * SORT_BINS;
-  CO_GLOBAL uint32_t* lookback = all_lookback + pass * tiles * SORT_BINS;
+  CO_GLOBAL uint32_t* lookback = all_lookback + pass * tile_stride * SORT_BINS;
   CO_GLOBAL uint32_t* ticket = tickets + pass;
+  const uint32_t count = sort_count(max_count, count_word, count_index);
   CO_SHARED uint32_t tile_index;
   CO_SHARED uint32_t counts[SORT_BINS];               /* the tile's pairs per digit */
   CO_SHARED uint32_t digit_start[TABLE_WORDS(SORT_BINS)]; /* scans: all keys', then the tile's */
   CO_SHARED uint32_t dest_base[SORT_BINS];             /* where the tile's first pair of a digit goes */
   CO_SHARED uint32_t tmp[SORT_WG];
+#if SORT_LOCAL_EXCHANGE
+  CO_SHARED sort_key_t tile_keys[TILE];
+  CO_SHARED uint32_t tile_values[TILE];
+  CO_SHARED uint32_t table[TABLE_WORDS(16 * SORT_WG)]; /* the 4-bit ranking's counters */
+#endif
   const uint32_t item = co_local_id();
+#if !defined(__OPENCL_VERSION__) && !defined(__CUDACC__)
+  tile_index = 0u; /* the host build (one item per group) cannot see that item 0 always sets it */
+#endif
   if (item == 0) tile_index = co_atomic_inc(ticket);
   co_barrier();
   const uint32_t tile = tile_index;
+  if (tile >= (count + TILE - 1) / TILE) return; /* the whole group: tile_index is shared */
   const uint32_t base = tile * TILE;
   const uint32_t n = co_umin((uint32_t)TILE, count - base);
 
@@ -213,9 +235,6 @@ sort_pass(CO_GLOBAL const sort_key_t* keys_in, CO_GLOBAL const uint32_t* values_
   for (uint32_t d = item; d < SORT_BINS; d += SORT_WG) counts[d] = 0u;
   co_barrier();
 #if SORT_LOCAL_EXCHANGE
-  CO_SHARED sort_key_t tile_keys[TILE];
-  CO_SHARED uint32_t tile_values[TILE];
-  CO_SHARED uint32_t table[TABLE_WORDS(16 * SORT_WG)];
   for (uint32_t i = 0; i < SORT_ITEMS; ++i) {
     const uint32_t j = item + i * SORT_WG; /* coalesced */
     if (j < n) {

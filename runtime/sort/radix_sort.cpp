@@ -16,6 +16,7 @@ namespace {
 constexpr std::uint32_t kBins = 256;       // SORT_BINS in the kernel
 constexpr std::uint32_t kMaxPasses = 8;    // SORT_MAX_PASSES
 constexpr std::uint32_t kMaxCount = (1u << 30) - 1;  // LOOKBACK_COUNT: counts live in 30 bits
+constexpr std::uint32_t kNoCountWord = 0xffffffffu;  // SORT_NO_COUNT_WORD
 
 std::uint32_t div_up(std::uint64_t a, std::uint64_t b) { return static_cast<std::uint32_t>((a + b - 1) / b); }
 
@@ -109,6 +110,20 @@ RadixSort::RadixSort(const Device& cl, const ProgramCache& cache, std::uint32_t 
 
 void RadixSort::sort(const DeviceBuffer& keys, const DeviceBuffer& values, std::uint32_t count, unsigned key_bits,
                      std::map<std::string, double>* seconds) {
+  run(keys, values, count, hist_, kNoCountWord, key_bits, seconds);
+}
+
+void RadixSort::sort_device_count(const DeviceBuffer& keys, const DeviceBuffer& values, std::uint32_t max_count,
+                                  const DeviceBuffer& count_word, std::uint32_t count_index, unsigned key_bits,
+                                  std::map<std::string, double>* seconds) {
+  if (count_word.size() < (std::size_t(count_index) + 1) * 4)
+    throw std::invalid_argument(fmt::format("radix sort count word {} is outside its buffer", count_index));
+  run(keys, values, max_count, count_word, count_index, key_bits, seconds);
+}
+
+void RadixSort::run(const DeviceBuffer& keys, const DeviceBuffer& values, std::uint32_t count,
+                    const DeviceBuffer& count_word, std::uint32_t count_index, unsigned key_bits,
+                    std::map<std::string, double>* seconds) {
   if (count > capacity_)
     throw std::invalid_argument(fmt::format("radix sort of {} pairs exceeds its capacity of {}", count, capacity_));
   if (key_bits > 8 * key_bytes())
@@ -119,16 +134,15 @@ void RadixSort::sort(const DeviceBuffer& keys, const DeviceBuffer& values, std::
 
   const Passes passes = passes_for(key_bits);
   const std::uint32_t tile = tiling_.group * tiling_.items;
-  const std::uint32_t tiles = div_up(count, tile);
-  const std::uint32_t lookback_words = passes.count * tiles * kBins;
+  const std::uint32_t tiles = div_up(count, tile);  // at most: the count on the device may be lower
+  const std::uint32_t tile_stride = std::max<std::uint32_t>(div_up(capacity_, tile), 1);
   // The histogram reads the keys in chunks of several tiles: fewer groups, fewer global atomics.
   const std::uint32_t histogram_groups = div_up(tiles, 4);
   std::vector<std::pair<const char*, DeviceEvent>> launches;
 
   cl_.fill(hist_, 0, std::size_t(passes.count) * kBins);
-  histogram_.set_args(keys, count, div_up(count, histogram_groups), passes.count, passes.digit_bits,
-                      std::uint32_t(key_bits), hist_, lookback_, lookback_words, div_up(lookback_words, histogram_groups),
-                      tickets_);
+  histogram_.set_args(keys, count, count_word, count_index, histogram_groups, passes.count, passes.digit_bits,
+                      std::uint32_t(key_bits), hist_, lookback_, tile_stride, tickets_);
   launches.emplace_back("sort histogram",
                         cl_.launch(histogram_, std::size_t(histogram_groups) * tiling_.group, tiling_.group));
 
@@ -141,8 +155,8 @@ void RadixSort::sort(const DeviceBuffer& keys, const DeviceBuffer& values, std::
     const DeviceBuffer& values_out = from_caller ? scratch_values_ : values;
     const std::uint32_t shift = pass * passes.digit_bits;
     const std::uint32_t bits = shift < key_bits ? std::min(passes.digit_bits, key_bits - shift) : 0;
-    pass_.set_args(keys_in, values_in, keys_out, values_out, count, shift, (1u << bits) - 1, pass, tiles, hist_,
-                   lookback_, tickets_);
+    pass_.set_args(keys_in, values_in, keys_out, values_out, count, count_word, count_index, shift, (1u << bits) - 1,
+                   pass, tile_stride, hist_, lookback_, tickets_);
     launches.emplace_back("sort scatter", cl_.launch(pass_, std::size_t(tiles) * tiling_.group, tiling_.group));
   }
   if (seconds)

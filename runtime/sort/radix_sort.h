@@ -25,6 +25,13 @@ class RadixSort {
   void sort(const DeviceBuffer& keys, const DeviceBuffer& values, std::uint32_t count, unsigned key_bits,
             std::map<std::string, double>* seconds = nullptr);
 
+  // The same for a count that lives on the device: at most `max_count` pairs, taken from the 32-bit
+  // word `count_index` of `count_word` when the sort runs (a queue length), so the host need not
+  // read it. Launches cover max_count; work-groups past the actual count leave at once.
+  void sort_device_count(const DeviceBuffer& keys, const DeviceBuffer& values, std::uint32_t max_count,
+                         const DeviceBuffer& count_word, std::uint32_t count_index, unsigned key_bits,
+                         std::map<std::string, double>* seconds = nullptr);
+
   // Device commands (fills and kernel launches) a sort of `key_bits` bits issues: 1 + 1 + passes.
   static std::uint32_t commands(unsigned key_bits);
 
@@ -49,6 +56,8 @@ class RadixSort {
   friend struct RadixSortTestAccess;  // tests force other devices' tilings
   RadixSort(const Device& cl, const ProgramCache& cache, std::uint32_t capacity, SortKey key, Tiling tiling);
   static Tiling choose_tiling(const DeviceInfo& device, SortKey key);
+  void run(const DeviceBuffer& keys, const DeviceBuffer& values, std::uint32_t count, const DeviceBuffer& count_word,
+           std::uint32_t count_index, unsigned key_bits, std::map<std::string, double>* seconds);
 
   const Device& cl_;
   std::uint32_t capacity_;

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstring>
 #include <cstdint>
@@ -269,6 +270,45 @@ TEST(RadixSort, ReportsDeviceTimePerLaunchName) {
     ASSERT_TRUE(seconds.count(name)) << name;
     EXPECT_GT(seconds[name], 0.0) << name;
   }
+}
+
+// A count the host never reads (a queue length on the device): launches cover max_count, the sort
+// orders only the first count_word[3] pairs and leaves the rest alone, for counts at and around tile
+// edges, and a device count above max_count is clamped to it.
+TEST(RadixSort, CountFromTheDevice) {
+  const ClContext& cl = device().cl;
+  const std::uint32_t max_count = 70001;
+  const std::vector<std::uint64_t> keys = random_keys(max_count, 17);
+  for (RadixSort* sort : {&device().sort, &device().sort32}) {
+    for (std::uint32_t n : {0u, 1u, 2u, 4095u, 4096u, 4097u, 50000u, max_count, max_count + 5}) {
+      SCOPED_TRACE(fmt::format("{}-bit keys, device count {}", 8 * sort->key_bytes(), n));
+      const std::vector<unsigned char> in = key_bytes(*sort, keys);
+      std::vector<std::uint32_t> values(max_count);
+      std::iota(values.begin(), values.end(), 0u);
+      const DeviceBuffer k = cl.allocate("keys", in.size(), in.data());
+      const DeviceBuffer v = cl.allocate("values", values.size() * 4, values.data());
+      const std::array<std::uint32_t, 4> words{7, 7, 7, n};
+      const DeviceBuffer count = cl.allocate("count", sizeof(words), words.data());
+      sort->sort_device_count(k, v, max_count, count, 3, 32);
+      std::vector<unsigned char> out(in.size());
+      std::vector<std::uint32_t> out_values(max_count);
+      cl.read(k, 0, out.size(), out.data());
+      cl.read(v, 0, out_values.size() * 4, out_values.data());
+      const std::uint32_t sorted = std::min(n, max_count);
+      const std::vector<std::uint64_t> head(keys.begin(), keys.begin() + sorted);
+      const Pairs want = reference_sort(head, 32, sort->key() == SortKey::bits64 ? ~0ull : 0xffffffffull);
+      const std::vector<std::uint64_t> got = keys_from_bytes(*sort, out), stored = keys_from_bytes(*sort, in);
+      for (std::uint32_t i = 0; i < max_count; ++i) {
+        const std::uint64_t want_key = i < sorted ? want.keys[i] : stored[i];
+        const std::uint32_t want_value = i < sorted ? want.values[i] : i;
+        if (got[i] != want_key || out_values[i] != want_value)
+          FAIL() << fmt::format("first mismatch at {}: got ({:#x}, {}), want ({:#x}, {})", i, got[i], out_values[i],
+                                want_key, want_value);
+      }
+    }
+  }
+  DeviceBuffer k = cl.allocate("keys", 8), v = cl.allocate("values", 4), count = cl.allocate("count", 4);
+  EXPECT_THROW(device().sort.sort_device_count(k, v, 1, count, 1, 32), std::invalid_argument);
 }
 
 // Tilings other than this device's (the default tests run PoCL's 1 x 4096 direct): a GPU's
