@@ -9,7 +9,8 @@
  *                                CO_LOCAL_BIND(T, name) at the top of the body makes it visible
  *   CO_SHARED                    a fixed-size local array declared in a kernel body
  *   co_global_id() ...           work-item indices in dimension 0; co_barrier(): a work-group barrier
- *   co_atomic_add / co_atomic_inc / co_atomic_max on 32-bit global counters (return the old value)
+ *   co_atomic_add / co_atomic_inc / co_atomic_max / co_atomic_xchg on 32-bit global or local words
+ *   (return the old value); co_atomic_load reads one through the atomic path (a spin-wait's read)
  * Rounding: OpenCL is built without contraction (the pragma below) and, where the device offers
  * it, with correctly rounded division and sqrt; CUDA with -fmad=false -prec-div=true
  * -prec-sqrt=true; the host never contracts. Then +, -, *, / and sqrt round identically on every
@@ -50,6 +51,8 @@ typedef uint4 co_uint4;
 #define co_atomic_add(p, v) atomic_add((p), (v))
 #define co_atomic_inc(p) atomic_inc(p)
 #define co_atomic_max(p, v) atomic_max((p), (v))
+#define co_atomic_xchg(p, v) atomic_xchg((p), (v))
+#define co_atomic_load(p) atomic_or((p), 0u)
 
 #elif defined(__CUDACC__)
 #if defined(__CUDACC_RTC__)
@@ -91,6 +94,8 @@ typedef uint4 co_uint4;
 #define co_atomic_add(p, v) atomicAdd((p), (v))
 #define co_atomic_inc(p) atomicAdd((p), 1u)
 #define co_atomic_max(p, v) atomicMax((p), (v))
+#define co_atomic_xchg(p, v) atomicExch((p), (v))
+#define co_atomic_load(p) atomicOr((p), 0u)
 
 #else
 #include <cmath>
@@ -142,6 +147,8 @@ inline thread_local CoHostWorkItem co_host_item{};
 inline uint32_t co_atomic_add(uint32_t* p, uint32_t v) { uint32_t old = *p; *p = old + v; return old; }
 inline uint32_t co_atomic_inc(uint32_t* p) { return co_atomic_add(p, 1u); }
 inline uint32_t co_atomic_max(uint32_t* p, uint32_t v) { uint32_t old = *p; *p = old > v ? old : v; return old; }
+inline uint32_t co_atomic_xchg(uint32_t* p, uint32_t v) { uint32_t old = *p; *p = v; return old; }
+inline uint32_t co_atomic_load(const uint32_t* p) { return *p; }
 #endif
 
 CO_INLINE uint32_t co_umin(uint32_t a, uint32_t b) { return a < b ? a : b; }

@@ -170,18 +170,24 @@ TEST(CudaVsOpenCl, RadixSortEqualsStableSort) {
   std::vector<std::uint64_t> keys(n);
   for (auto& k : keys) k = rng() & ((1ull << 44) - 1);
   for (std::uint32_t i = 0; i < n; i += 5) keys[i] = keys[i / 3];
+  const std::vector<std::uint32_t> keys32(keys.begin(), keys.end());  // the low 32 bits
   std::vector<std::uint32_t> values(n);
   std::iota(values.begin(), values.end(), 0u);
-  std::vector<std::uint32_t> want = values;
+  std::vector<std::uint32_t> want = values, want32 = values;
   std::stable_sort(want.begin(), want.end(), [&](std::uint32_t a, std::uint32_t b) { return keys[a] < keys[b]; });
+  std::stable_sort(want32.begin(), want32.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return keys32[a] < keys32[b]; });
   for (const Device* d : {backends().cuda.get(), backends().opencl.get()}) {
-    RadixSort sort(*d, cache(), n);
-    const DeviceBuffer k = d->allocate("keys", n * 8ull, keys.data());
-    const DeviceBuffer v = d->allocate("values", n * 4ull, values.data());
-    sort.sort(k, v, n, 44);
-    std::vector<std::uint32_t> got(n);
-    d->read(v, 0, n * 4ull, got.data());
-    EXPECT_EQ(got, want) << backend_name(d->backend());
+    for (const SortKey key : {SortKey::bits64, SortKey::bits32}) {
+      const bool wide = key == SortKey::bits64;
+      RadixSort sort(*d, cache(), n, key);
+      const DeviceBuffer k = wide ? d->allocate("keys", n * 8ull, keys.data()) : d->allocate("keys", n * 4ull, keys32.data());
+      const DeviceBuffer v = d->allocate("values", n * 4ull, values.data());
+      sort.sort(k, v, n, wide ? 44 : 32);
+      std::vector<std::uint32_t> got(n);
+      d->read(v, 0, n * 4ull, got.data());
+      EXPECT_EQ(got, wide ? want : want32) << backend_name(d->backend()) << (wide ? " 64-bit" : " 32-bit");
+    }
   }
 }
 

@@ -44,9 +44,10 @@ TEST(NvrtcCompile, TracingAndTestPrograms) {
 }
 
 TEST(NvrtcCompile, RadixSortTilings) {
-  // the GPU tiling the sort picks on a 48 KiB device, and a one-item tiling without local exchange
-  compile("radix_sort", "-DSORT_WG=256 -DSORT_ITEMS=9 -DSCAN_WG=256 -DSORT_LOCAL_EXCHANGE=1");
-  compile("radix_sort", "-DSORT_WG=1 -DSORT_ITEMS=64 -DSCAN_WG=1 -DSORT_LOCAL_EXCHANGE=0");
+  // the GPU tilings the sort picks on a 48 KiB device, and a one-item tiling without local exchange
+  compile("radix_sort", "-DSORT_WG=256 -DSORT_ITEMS=13 -DSORT_LOCAL_EXCHANGE=1 -DSORT_KEY64=0");
+  compile("radix_sort", "-DSORT_WG=256 -DSORT_ITEMS=9 -DSORT_LOCAL_EXCHANGE=1 -DSORT_KEY64=1");
+  compile("radix_sort", "-DSORT_WG=1 -DSORT_ITEMS=64 -DSORT_LOCAL_EXCHANGE=0 -DSORT_KEY64=1");
 }
 
 TEST(NvrtcCompile, OptionsCarryTheRoundingOfOpenCl) {

@@ -71,7 +71,9 @@ DeviceBuffer HostDevice::allocate(const std::string&, std::size_t bytes, const v
 
 DeviceProgram HostDevice::build_program(const ProgramCache&, const std::string& name,
                                         const std::string& defines) const {
-  const HostProgram& program = name == "radix_sort" ? host_sort_program() : host_render_program();
+  const bool key32 = defines.find("-DSORT_KEY64=0") != std::string::npos;
+  const HostProgram& program =
+      name != "radix_sort" ? host_render_program() : key32 ? host_sort32_program() : host_sort64_program();
   if (fixed_defines(defines) != program.defines)
     throw std::invalid_argument(fmt::format("host program {} is compiled with \"{}\", not \"{}\"", name,
                                             program.defines, fixed_defines(defines)));

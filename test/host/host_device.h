@@ -4,7 +4,7 @@
 // shared code through a C++ compiler, the path CUDA's code takes, on a machine without a GPU.
 //
 // Work-groups run with one work item (barriers are then no-ops): the sort is built with the CPU
-// tiling (SORT_WG = SCAN_WG = 1), and the other kernels share local memory only for the PTH
+// tiling (SORT_WG = 1), and the other kernels share local memory only for the PTH
 // subtree copy, which one work item does alone.
 #pragma once
 
@@ -27,7 +27,8 @@ struct HostProgram {
   HostProgramTable kernels;
 };
 const HostProgram& host_render_program();  // naive, wavefront, pth and trace kernels
-const HostProgram& host_sort_program();    // radix_sort with SORT_WG=1 SORT_ITEMS=4096 SCAN_WG=1
+const HostProgram& host_sort64_program();  // radix_sort, SORT_WG=1 SORT_ITEMS=4096, 64-bit keys
+const HostProgram& host_sort32_program();  // the same for 32-bit keys
 
 class HostDevice final : public Device {
  public:

@@ -73,26 +73,33 @@ TEST(HostKernels, TraversalAndPthWalkEqualOpenCl) {
 
 TEST(HostKernels, RadixSortEqualsOpenClAndStableSort) {
   std::mt19937_64 rng(5);
-  const std::uint32_t n = 70000;  // 18 blocks of 4096: the multi-block histogram, scan and scatter
+  const std::uint32_t n = 70000;  // 18 tiles of 4096: look-back across tiles
   std::vector<std::uint64_t> keys(n);
-  for (auto& k : keys) k = rng() & 0xfffffffffull;  // 36 bits: 9 passes, an odd count (copy back)
+  for (auto& k : keys) k = rng() & 0xfffffffffull;  // 36 bits: 6 passes of 6 bits
   for (std::uint32_t i = 0; i < n; i += 7) keys[i] = keys[i / 2];  // duplicates: stability matters
+  const std::vector<std::uint32_t> keys32(keys.begin(), keys.end());  // the low 32 bits: 4 passes of 8
   std::vector<std::uint32_t> values(n);
   std::iota(values.begin(), values.end(), 0u);
-  auto run = [&](const Device& device) {
-    RadixSort sort(device, cache(), n);
-    const DeviceBuffer k = device.allocate("keys", n * 8ull, keys.data());
+  auto run = [&](const Device& device, SortKey key) {
+    RadixSort sort(device, cache(), n, key);
+    const bool wide = key == SortKey::bits64;
+    const DeviceBuffer k = wide ? device.allocate("keys", n * 8ull, keys.data())
+                                : device.allocate("keys", n * 4ull, keys32.data());
     const DeviceBuffer v = device.allocate("values", n * 4ull, values.data());
-    sort.sort(k, v, n, 36);
+    sort.sort(k, v, n, wide ? 36 : 32);
     std::vector<std::uint32_t> out(n);
     device.read(v, 0, n * 4ull, out.data());
     return out;
   };
-  std::vector<std::uint32_t> want = values;
+  std::vector<std::uint32_t> want = values, want32 = values;
   std::stable_sort(want.begin(), want.end(), [&](std::uint32_t a, std::uint32_t b) { return keys[a] < keys[b]; });
+  std::stable_sort(want32.begin(), want32.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return keys32[a] < keys32[b]; });
   const HostDevice host;
-  EXPECT_EQ(run(host), want);
-  EXPECT_EQ(run(opencl()), want);
+  EXPECT_EQ(run(host, SortKey::bits64), want);
+  EXPECT_EQ(run(opencl(), SortKey::bits64), want);
+  EXPECT_EQ(run(host, SortKey::bits32), want32);
+  EXPECT_EQ(run(opencl(), SortKey::bits32), want32);
 }
 
 TEST(HostKernels, EveryMethodRendersTheOpenClImage) {

@@ -4,7 +4,8 @@
 //   COHORT_SORT_TILINGS   "default,GROUPxITEMS[/local],..." where /local stages tiles in local memory
 //                         (the GPU mode) and no suffix writes pairs straight to global memory (the
 //                         CPU mode); default: this device's tiling and a sweep of both modes
-//   COHORT_SORT_COUNT     pairs (default 1000000)     COHORT_SORT_BITS  key bits (default 44)
+//   COHORT_SORT_COUNT     pairs (default 1000000)     COHORT_SORT_BITS  key bits (default 32);
+//                         keys up to 32 bits are sorted as 32-bit keys, wider ones as 64-bit keys
 //   COHORT_SORT_REPS      timed repetitions (default 5), after one warm-up run
 #include <gtest/gtest.h>
 #include <sys/resource.h>
@@ -14,6 +15,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <numeric>
 #include <random>
@@ -46,17 +48,21 @@ std::uint64_t env_number(const char* name, std::uint64_t fallback) {
 // One line per tiling: median and best rate over the repetitions and the device time per launch name.
 void bench(const ClContext& cl, RadixSort& sort, const std::string& label, std::uint32_t n, unsigned bits, int reps) {
   std::mt19937_64 rng(1);
-  std::vector<std::uint64_t> keys(n);
+  const std::size_t key_bytes = sort.key_bytes();
+  std::vector<unsigned char> keys(n * key_bytes);
   const std::uint64_t mask = bits >= 64 ? ~0ull : (1ull << bits) - 1;
-  for (auto& k : keys) k = rng() & mask;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint64_t k = rng() & mask;
+    std::memcpy(&keys[i * key_bytes], &k, key_bytes);  // little-endian: the low bytes
+  }
   std::vector<std::uint32_t> values(n);
   std::iota(values.begin(), values.end(), 0u);
-  DeviceBuffer k = cl.allocate("bench keys", n * 8ull), v = cl.allocate("bench values", n * 4ull);
+  DeviceBuffer k = cl.allocate("bench keys", keys.size()), v = cl.allocate("bench values", n * 4ull);
   std::vector<double> wall;
   std::map<std::string, double> device;
   double cpu = 0;
   for (int rep = 0; rep <= reps; ++rep) {
-    cl.write(k, 0, n * 8ull, keys.data(), false);
+    cl.write(k, 0, keys.size(), keys.data(), false);
     cl.write(v, 0, n * 4ull, values.data());
     std::map<std::string, double> seconds;
     const double cpu_start = cpu_seconds();
@@ -73,8 +79,9 @@ void bench(const ClContext& cl, RadixSort& sort, const std::string& label, std::
   const double median = wall[wall.size() / 2];
   std::string split;
   for (const auto& [name, t] : device) split += fmt::format("  {} {:.2f} ms", name.substr(5), t * 1e3);
-  std::printf("%-10s %7.1f Mpairs/s median %7.1f best %8.2f ms, cpu %8.2f ms |%s\n", label.c_str(),
-              n / median * 1e-6, n / wall.front() * 1e-6, median * 1e3, cpu * 1e3, split.c_str());
+  std::printf("%-10s %7.1f Mpairs/s median %7.1f best %8.2f ms, cpu %8.2f ms, %u commands |%s\n", label.c_str(),
+              n / median * 1e-6, n / wall.front() * 1e-6, median * 1e3, cpu * 1e3, RadixSort::commands(bits),
+              split.c_str());
   std::fflush(stdout);
 }
 
@@ -84,18 +91,19 @@ TEST(RadixSortBench, DISABLED_Tilings) {
   const ClContext cl(select_device(std::getenv("COHORT_DEVICE") ? std::getenv("COHORT_DEVICE") : ""));
   const ProgramCache cache(ProgramCache::default_directory());
   const auto n = static_cast<std::uint32_t>(env_number("COHORT_SORT_COUNT", 1000000));
-  const auto bits = static_cast<unsigned>(env_number("COHORT_SORT_BITS", 44));
+  const auto bits = static_cast<unsigned>(std::min<std::uint64_t>(env_number("COHORT_SORT_BITS", 32), 64));
+  const SortKey key = bits <= 32 ? SortKey::bits32 : SortKey::bits64;
   const int reps = static_cast<int>(std::max<std::uint64_t>(env_number("COHORT_SORT_REPS", 5), 1));
   std::printf("%s: %u pairs, %u-bit keys, %d repetitions\n", cl.device.name.c_str(), n, bits, reps);
 
   const char* spec = std::getenv("COHORT_SORT_TILINGS");
   std::string list = spec ? spec : "";
   if (list.empty())
-    list = "default,1x1024,1x4096,1x16384,4x1024,8x255/local,64x16/local,128x15/local,256x7/local,256x9/local";
+    list = "default,1x1024,1x4096,1x16384,64x15/local,128x15/local,256x7/local,256x9/local,256x13/local";
   std::stringstream tilings(list);
   for (std::string item; std::getline(tilings, item, ',');) {
     if (item == "default") {
-      RadixSort chosen(cl, cache, n);
+      RadixSort chosen(cl, cache, n, key);
       bench(cl, chosen, "default", n, bits, reps);
       continue;
     }
@@ -106,8 +114,7 @@ TEST(RadixSortBench, DISABLED_Tilings) {
     const bool local = item.find("/local") != std::string::npos;
     if (group > cl.device.max_work_group) continue;
     try {
-      const auto scan_group = static_cast<std::uint32_t>(std::min<std::size_t>(256, cl.device.max_work_group));
-      auto sort = RadixSortTestAccess::make(cl, cache, n, group, items, scan_group, local);
+      auto sort = RadixSortTestAccess::make(cl, cache, n, group, items, local, key);
       bench(cl, *sort, item, n, bits, reps);
     } catch (const std::exception& e) {
       std::printf("%-10s failed: %s\n", item.c_str(), e.what());

@@ -6,7 +6,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <cstring>
 #include <cstdint>
 #include <memory>
 #include <numeric>
@@ -26,12 +28,14 @@ constexpr std::uint32_t kCapacity = 1u << 20;
 constexpr std::size_t kGuard = 7;  // pairs past `count` that the sort must leave alone
 constexpr std::uint64_t kGuardKey = 0x5a5a5a5a5a5a5a5aull;
 
-// One context, program cache and sort for the whole executable: building the program once keeps
-// the suite fast, and reusing the sort checks that its buffers carry nothing between calls.
+// One context, program cache and sort per key width for the whole executable: building the
+// programs once keeps the suite fast, and reusing a sort checks that its buffers (look-back table,
+// tickets, histogram) carry nothing between calls.
 struct Device {
   ClContext cl{select_device("")};
   ProgramCache cache{ProgramCache::default_directory()};
   RadixSort sort{cl, cache, kCapacity};
+  RadixSort sort32{cl, cache, kCapacity, SortKey::bits32};
 };
 
 Device& device() {
@@ -46,7 +50,36 @@ struct Pairs {
   std::vector<std::uint32_t> values;
 };
 
+// Keys as the sort stores them: 8 bytes each, or the low 4 bytes of each for a 32-bit sort.
+std::vector<unsigned char> key_bytes(const RadixSort& sort, const std::vector<std::uint64_t>& keys) {
+  std::vector<unsigned char> bytes(keys.size() * sort.key_bytes());
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    if (sort.key() == SortKey::bits64) {
+      std::memcpy(&bytes[i * 8], &keys[i], 8);
+    } else {
+      const auto k = static_cast<std::uint32_t>(keys[i]);
+      std::memcpy(&bytes[i * 4], &k, 4);
+    }
+  }
+  return bytes;
+}
+
+std::vector<std::uint64_t> keys_from_bytes(const RadixSort& sort, const std::vector<unsigned char>& bytes) {
+  std::vector<std::uint64_t> keys(bytes.size() / sort.key_bytes());
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    if (sort.key() == SortKey::bits64) {
+      std::memcpy(&keys[i], &bytes[i * 8], 8);
+    } else {
+      std::uint32_t k;
+      std::memcpy(&k, &bytes[i * 4], 4);
+      keys[i] = k;
+    }
+  }
+  return keys;
+}
+
 // Sorts keys[0, count) on the device with values = indices; the buffers hold kGuard more pairs.
+// A 32-bit sort sees the low 32 bits of each key.
 Pairs device_sort(RadixSort& sort, const std::vector<std::uint64_t>& keys, unsigned key_bits,
                   std::map<std::string, double>* seconds = nullptr) {
   const ClContext& cl = device().cl;
@@ -55,14 +88,18 @@ Pairs device_sort(RadixSort& sort, const std::vector<std::uint64_t>& keys, unsig
   std::iota(in.values.begin(), in.values.end(), 0u);
   in.keys.resize(n + kGuard, kGuardKey);
   in.values.resize(n + kGuard, 0xdeadbeefu);
-  DeviceBuffer k = cl.allocate("test keys", in.keys.size() * 8, in.keys.data());
+  const std::vector<unsigned char> in_bytes = key_bytes(sort, in.keys);
+  DeviceBuffer k = cl.allocate("test keys", in_bytes.size(), in_bytes.data());
   DeviceBuffer v = cl.allocate("test values", in.values.size() * 4, in.values.data());
   sort.sort(k, v, static_cast<std::uint32_t>(n), key_bits, seconds);
-  Pairs out{std::vector<std::uint64_t>(n + kGuard), std::vector<std::uint32_t>(n + kGuard)};
-  cl.read(k, 0, out.keys.size() * 8, out.keys.data());
+  std::vector<unsigned char> out_bytes(in_bytes.size());
+  Pairs out{{}, std::vector<std::uint32_t>(n + kGuard)};
+  cl.read(k, 0, out_bytes.size(), out_bytes.data());
+  out.keys = keys_from_bytes(sort, out_bytes);
   cl.read(v, 0, out.values.size() * 4, out.values.data());
+  const std::uint64_t guard_key = sort.key() == SortKey::bits64 ? kGuardKey : std::uint32_t(kGuardKey);
   for (std::size_t i = n; i < n + kGuard; ++i) {
-    EXPECT_EQ(out.keys[i], kGuardKey) << "key past count changed at " << i;
+    EXPECT_EQ(out.keys[i], guard_key) << "key past count changed at " << i;
     EXPECT_EQ(out.values[i], 0xdeadbeefu) << "value past count changed at " << i;
   }
   out.keys.resize(n);
@@ -71,7 +108,8 @@ Pairs device_sort(RadixSort& sort, const std::vector<std::uint64_t>& keys, unsig
 }
 
 // std::stable_sort of (key, index) by the masked key: the reference the device must equal exactly.
-Pairs reference_sort(const std::vector<std::uint64_t>& keys, unsigned key_bits) {
+// `stored` is the mask of the key as the sort stores it (the low 32 bits for a 32-bit sort).
+Pairs reference_sort(const std::vector<std::uint64_t>& keys, unsigned key_bits, std::uint64_t stored) {
   const std::uint64_t mask = mask_of(key_bits);
   std::vector<std::uint32_t> order(keys.size());
   std::iota(order.begin(), order.end(), 0u);
@@ -79,7 +117,7 @@ Pairs reference_sort(const std::vector<std::uint64_t>& keys, unsigned key_bits) 
                    [&](std::uint32_t a, std::uint32_t b) { return (keys[a] & mask) < (keys[b] & mask); });
   Pairs out;
   for (std::uint32_t i : order) {
-    out.keys.push_back(keys[i]);
+    out.keys.push_back(keys[i] & stored);
     out.values.push_back(i);
   }
   return out;
@@ -88,7 +126,7 @@ Pairs reference_sort(const std::vector<std::uint64_t>& keys, unsigned key_bits) 
 // Compares without flooding the log: the first mismatch names its position.
 void expect_sorted_like_reference(RadixSort& sort, const std::vector<std::uint64_t>& keys, unsigned key_bits) {
   const Pairs got = device_sort(sort, keys, key_bits);
-  const Pairs want = reference_sort(keys, key_bits);
+  const Pairs want = reference_sort(keys, key_bits, sort.key() == SortKey::bits64 ? ~0ull : 0xffffffffull);
   ASSERT_EQ(got.keys.size(), want.keys.size());
   for (std::size_t i = 0; i < keys.size(); ++i) {
     if (got.keys[i] != want.keys[i] || got.values[i] != want.values[i]) {
@@ -108,16 +146,40 @@ std::vector<std::uint64_t> random_keys(std::size_t n, std::uint64_t seed) {
 }  // namespace
 
 TEST(RadixSort, RandomKeysEachKeyWidth) {
-  for (unsigned bits : {64u, 48u, 20u, 7u}) {
+  for (unsigned bits : {64u, 60u, 48u, 20u, 7u}) {
     SCOPED_TRACE(bits);
     expect_sorted_like_reference(device().sort, random_keys(100003, bits), bits);
   }
+  for (unsigned bits : {32u, 24u, 17u, 8u, 3u}) {
+    SCOPED_TRACE(fmt::format("32-bit keys, {} bits", bits));
+    expect_sorted_like_reference(device().sort32, random_keys(100003, bits), bits);
+  }
+}
+
+// Even pass counts (no copy back), digits of at most 8 bits, and 2 + passes commands per sort: a
+// 32-bit sort is 6 device commands, the reduce-then-scan sort it replaced took 40.
+TEST(RadixSort, PassesAndCommands) {
+  EXPECT_EQ(RadixSort::passes_for(32).count, 4u);
+  EXPECT_EQ(RadixSort::passes_for(32).digit_bits, 8u);
+  EXPECT_EQ(RadixSort::passes_for(60).count, 8u);
+  EXPECT_EQ(RadixSort::passes_for(24).count, 4u);
+  EXPECT_EQ(RadixSort::passes_for(24).digit_bits, 6u);
+  EXPECT_EQ(RadixSort::passes_for(5).count, 2u);
+  EXPECT_EQ(RadixSort::passes_for(0).count, 0u);
+  for (unsigned bits = 1; bits <= 64; ++bits) {
+    const RadixSort::Passes p = RadixSort::passes_for(bits);
+    EXPECT_EQ(p.count % 2, 0u) << bits;
+    EXPECT_LE(p.digit_bits, 8u) << bits;
+    EXPECT_GE(p.count * p.digit_bits, bits) << bits;
+  }
+  EXPECT_EQ(RadixSort::commands(32), 6u);
 }
 
 TEST(RadixSort, Counts) {
-  for (std::size_t n : {0u, 1u, 2u, 63u, 64u, 65u, 1000u, 100003u}) {
+  for (std::size_t n : {0u, 1u, 2u, 63u, 64u, 65u, 1000u, 4095u, 4096u, 4097u, 100003u}) {
     SCOPED_TRACE(n);
     expect_sorted_like_reference(device().sort, random_keys(n, n), 64);
+    expect_sorted_like_reference(device().sort32, random_keys(n, n + 1), 32);
   }
 }
 
@@ -150,8 +212,16 @@ TEST(RadixSort, Patterns) {
     SCOPED_TRACE(c.name);
     expect_sorted_like_reference(device().sort, c.keys, 64);
   }
-  // few distinct keys sorted with 2 bits: one pass, the odd-pass copy back
+  // few distinct keys sorted with 2 bits: two 1-bit passes
   expect_sorted_like_reference(device().sort, few, 2);
+  for (const Case& c : {Case{"equal", equal}, Case{"distinct", distinct}, Case{"reversed", reversed}}) {
+    SCOPED_TRACE(fmt::format("32-bit keys, {}", c.name));
+    expect_sorted_like_reference(device().sort32, c.keys, 32);
+  }
+  // one digit value holds every key but one: the look-back adds up to whole tiles of it
+  std::vector<std::uint64_t> skewed(n, 0xabu);
+  skewed[n / 2] = 0x12u;
+  expect_sorted_like_reference(device().sort32, skewed, 32);
 }
 
 TEST(RadixSort, BitsAboveKeyBitsAreIgnored) {
@@ -178,6 +248,9 @@ TEST(RadixSort, RejectsCountAboveCapacityAndWideKeys) {
   DeviceBuffer k = cl.allocate("keys", 101 * 8), v = cl.allocate("values", 101 * 4);
   EXPECT_THROW(small.sort(k, v, 101, 64), std::invalid_argument);
   EXPECT_THROW(small.sort(k, v, 100, 65), std::invalid_argument);
+  RadixSort small32(cl, device().cache, 100, SortKey::bits32);
+  EXPECT_THROW(small32.sort(k, v, 100, 33), std::invalid_argument);
+  EXPECT_NO_THROW(small32.sort(k, v, 100, 32));
   EXPECT_NO_THROW(small.sort(k, v, 100, 64));
   EXPECT_NO_THROW(small.sort(k, v, 0, 64));
   RadixSort empty(cl, device().cache, 0);
@@ -191,38 +264,88 @@ TEST(RadixSort, RejectsCountAboveCapacityAndWideKeys) {
 TEST(RadixSort, ReportsDeviceTimePerLaunchName) {
   std::map<std::string, double> seconds{{"other", 1.0}};
   device_sort(device().sort, random_keys(20000, 3), 36, &seconds);
-  EXPECT_EQ(seconds.size(), 4u);
+  EXPECT_EQ(seconds.size(), 3u);
   EXPECT_EQ(seconds["other"], 1.0);  // added to, never cleared
-  for (const char* name : {"sort histogram", "sort scan", "sort scatter"}) {
+  for (const char* name : {"sort histogram", "sort scatter"}) {
     ASSERT_TRUE(seconds.count(name)) << name;
     EXPECT_GT(seconds[name], 0.0) << name;
   }
 }
 
-// Tilings other than this device's, in both modes (the default tests run PoCL's 1 x 4096 direct):
-// tiny blocks and scan work-groups make the histogram table long enough for three and four scan
-// levels, and 256 x 9 staged in local memory is what an NVIDIA GPU with 48 KiB gets.
+// A count the host never reads (a queue length on the device): launches cover max_count, the sort
+// orders only the first count_word[3] pairs and leaves the rest alone, for counts at and around tile
+// edges, and a device count above max_count is clamped to it.
+TEST(RadixSort, CountFromTheDevice) {
+  const ClContext& cl = device().cl;
+  const std::uint32_t max_count = 70001;
+  const std::vector<std::uint64_t> keys = random_keys(max_count, 17);
+  for (RadixSort* sort : {&device().sort, &device().sort32}) {
+    for (std::uint32_t n : {0u, 1u, 2u, 4095u, 4096u, 4097u, 50000u, max_count, max_count + 5}) {
+      SCOPED_TRACE(fmt::format("{}-bit keys, device count {}", 8 * sort->key_bytes(), n));
+      const std::vector<unsigned char> in = key_bytes(*sort, keys);
+      std::vector<std::uint32_t> values(max_count);
+      std::iota(values.begin(), values.end(), 0u);
+      const DeviceBuffer k = cl.allocate("keys", in.size(), in.data());
+      const DeviceBuffer v = cl.allocate("values", values.size() * 4, values.data());
+      const std::array<std::uint32_t, 4> words{7, 7, 7, n};
+      const DeviceBuffer count = cl.allocate("count", sizeof(words), words.data());
+      sort->sort_device_count(k, v, max_count, count, 3, 32);
+      std::vector<unsigned char> out(in.size());
+      std::vector<std::uint32_t> out_values(max_count);
+      cl.read(k, 0, out.size(), out.data());
+      cl.read(v, 0, out_values.size() * 4, out_values.data());
+      const std::uint32_t sorted = std::min(n, max_count);
+      const std::vector<std::uint64_t> head(keys.begin(), keys.begin() + sorted);
+      const Pairs want = reference_sort(head, 32, sort->key() == SortKey::bits64 ? ~0ull : 0xffffffffull);
+      const std::vector<std::uint64_t> got = keys_from_bytes(*sort, out), stored = keys_from_bytes(*sort, in);
+      for (std::uint32_t i = 0; i < max_count; ++i) {
+        const std::uint64_t want_key = i < sorted ? want.keys[i] : stored[i];
+        const std::uint32_t want_value = i < sorted ? want.values[i] : i;
+        if (got[i] != want_key || out_values[i] != want_value)
+          FAIL() << fmt::format("first mismatch at {}: got ({:#x}, {}), want ({:#x}, {})", i, got[i], out_values[i],
+                                want_key, want_value);
+      }
+    }
+  }
+  DeviceBuffer k = cl.allocate("keys", 8), v = cl.allocate("values", 4), count = cl.allocate("count", 4);
+  EXPECT_THROW(device().sort.sort_device_count(k, v, 1, count, 1, 32), std::invalid_argument);
+}
+
+// Tilings other than this device's (the default tests run PoCL's 1 x 4096 direct): a GPU's
+// local-memory ranking at its own sizes (256 x 13 for 32-bit keys, 256 x 9 for 64-bit keys on
+// 48 KiB), odd small groups and runs, and tiles so small that the look-back walks long chains.
 TEST(RadixSort, OtherTilings) {
   struct Case {
-    std::uint32_t group, items, scan_group;
+    std::uint32_t group, items;
     bool local_exchange;
+    SortKey key;
     std::size_t count;
   };
   // (PoCL compiles each tiling's kernels on first use: a few seconds each on a cold cache.)
-  for (const Case& c : {Case{8, 3, 8, true, 150001}, Case{32, 5, 4, true, 100001}, Case{256, 9, 256, true, 150001},
-                        Case{128, 64, 32, true, 150001}, Case{4, 100, 2, false, 150001}, Case{1, 1, 1, false, 3001}}) {
-    SCOPED_TRACE(fmt::format("{} x {}, scan {}, {}", c.group, c.items, c.scan_group,
-                             c.local_exchange ? "local exchange" : "direct"));
+  for (const Case& c : {Case{8, 3, true, SortKey::bits64, 150001}, Case{32, 5, true, SortKey::bits32, 100001},
+                        Case{256, 13, true, SortKey::bits32, 150001}, Case{256, 9, true, SortKey::bits64, 150001},
+                        Case{1, 1, false, SortKey::bits32, 3001}, Case{1, 7, false, SortKey::bits64, 30001}}) {
+    const unsigned bits = c.key == SortKey::bits64 ? 64 : 32;
+    SCOPED_TRACE(fmt::format("{} x {}, {}, {}-bit keys", c.group, c.items,
+                             c.local_exchange ? "local exchange" : "direct", bits));
     const DeviceInfo& info = device().cl.device;
-    const std::size_t tile_bytes = c.local_exchange ? std::size_t(c.group) * c.items * 12 : 0;
-    if (c.group > info.max_work_group || c.scan_group > info.max_work_group ||
-        (!info.local_memory_is_global && tile_bytes + std::size_t(c.group) * 70 > info.local_memory))
+    const std::size_t tile_bytes = c.local_exchange ? std::size_t(c.group) * c.items * (bits / 8 + 4) : 0;
+    if (c.group > info.max_work_group ||
+        (!info.local_memory_is_global && tile_bytes + std::size_t(c.group) * 70 + 4096 > info.local_memory))
       continue;  // does not fit this device (these run on PoCL; a GPU runs its own tiling above)
-    auto sort = RadixSortTestAccess::make(device().cl, device().cache, 200000, c.group, c.items, c.scan_group,
-                                          c.local_exchange);
-    expect_sorted_like_reference(*sort, random_keys(c.count, c.group + c.items), 64);
+    auto sort = RadixSortTestAccess::make(device().cl, device().cache, 200000, c.group, c.items, c.local_exchange,
+                                          c.key);
+    expect_sorted_like_reference(*sort, random_keys(c.count, c.group + c.items), bits);
     expect_sorted_like_reference(*sort, random_keys(777, c.items), 23);
   }
+}
+
+// Invalid tilings are refused before any launch: more than one item per group needs local ranking,
+// and groups must divide the 256 digit values.
+TEST(RadixSort, RejectsInvalidTilings) {
+  EXPECT_THROW(RadixSortTestAccess::make(device().cl, device().cache, 100, 4, 16, false), std::invalid_argument);
+  EXPECT_THROW(RadixSortTestAccess::make(device().cl, device().cache, 100, 3, 16, true), std::invalid_argument);
+  EXPECT_THROW(RadixSortTestAccess::make(device().cl, device().cache, 100, 512, 1, true), std::invalid_argument);
 }
 
 // Information, not an assertion: sorting rate for 1M pairs of 44-bit keys (11 passes).
