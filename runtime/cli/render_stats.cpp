@@ -8,9 +8,9 @@
 
 namespace cohort {
 
-// One device's share of the render: passes, rays, rays/s while busy, busy time.
 namespace {
 
+// One device's share of the render: passes, rays, rays/s while busy, busy time.
 nlohmann::json device_json(const DeviceRun& run) {
   const RenderResult& r = run.result;
   return {{"name", run.device.name}, {"platform", run.device.platform_name}, {"driver", run.device.driver_version},
