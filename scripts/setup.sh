@@ -58,11 +58,14 @@ cohort_install_packages() {
   fi
 }
 
+# Configures on first use, with COHORT_CMAKE_ARGS (space-separated; CI: -DCOHORT_WERROR=ON) and
+# the arguments given.
 cohort_build() {
-  local jobs
+  local jobs extra
   jobs="$(nproc 2>/dev/null || echo 2)"
+  read -r -a extra <<<"${COHORT_CMAKE_ARGS:-}"
   if [[ ! -f "$COHORT_BUILD/CMakeCache.txt" ]]; then
-    cmake -S "$COHORT_ROOT" -B "$COHORT_BUILD" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+    cmake -S "$COHORT_ROOT" -B "$COHORT_BUILD" -DCMAKE_BUILD_TYPE=Release "${extra[@]}" "$@" >/dev/null
   fi
   cmake --build "$COHORT_BUILD" -j"$jobs"
 }

@@ -39,7 +39,6 @@ CO_INLINE void co_sincos_2pi(float u, float* s, float* c) {
   else { *s = -cx; *c = sx; }
 }
 
-CO_INLINE float co_sqr(float x) { return x * x; }
 CO_INLINE float co_safe_sqrt(float x) { return sqrt(fmax(x, 0.0f)); }
 
 /* Mirror of v about the unit vector m (both pointing away from the surface). */

@@ -161,7 +161,7 @@ class Device {
                                 Access access = Access::read_write) const = 0;
 
   // Builds the embedded program `name` ("naive", "wavefront", "pth", "trace", "radix_sort",
-  // "bsdf_test": kernels/NAME.cl or kernels/cuda/NAME.cu) with `defines`, a space-separated list of
+  // "film": kernels/NAME.cl or kernels/cuda/NAME.cu) with `defines`, a space-separated list of
   // -DNAME[=VALUE] (the scene's -DCOHORT_FEATURE_* defines, the sort's sizes), through the cache.
   virtual DeviceProgram build_program(const ProgramCache& cache, const std::string& name,
                                       const std::string& defines = {}) const = 0;

@@ -14,8 +14,9 @@ struct EmbeddedSource {
 
 const std::vector<EmbeddedSource>& embedded_sources();
 
-// The named .cl file with every `#include "..."` replaced by the embedded file, each file once.
+// The named .cl file with every `#include "..."` replaced by the embedded file, each file once;
+// files are looked up in `first` (the tests' own kernels) before the production table.
 // Throws std::runtime_error when a file is missing.
-std::string expand_kernel_source(std::string_view path);
+std::string expand_kernel_source(std::string_view path, const std::vector<EmbeddedSource>& first = {});
 
 }  // namespace cohort

@@ -65,11 +65,6 @@ const cl::Buffer& cl_buffer(const DeviceBuffer& b) {
   return object->buffer;
 }
 
-DeviceBuffer wrap_buffer(const cl::Buffer& b) {
-  const std::size_t bytes = translate_cl_errors([&] { return b.getInfo<CL_MEM_SIZE>(); });
-  return DeviceBuffer(std::make_shared<ClBufferObject>(b), bytes);
-}
-
 DeviceBuffer ClContext::allocate(const std::string& what, std::size_t bytes, const void* data, Access access) const {
   const cl_mem_flags flags = access == Access::read_only ? CL_MEM_READ_ONLY : CL_MEM_READ_WRITE;
   return DeviceBuffer(std::make_shared<ClBufferObject>(buffer(what, bytes, data, flags)), std::max<std::size_t>(bytes, 1));

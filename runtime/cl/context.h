@@ -41,9 +41,8 @@ struct ClContext : Device {
   void finish() const override;
 };
 
-// The OpenCL buffer behind a buffer of the OpenCL backend, and the other way round.
+// The OpenCL buffer behind a buffer of the OpenCL backend.
 const cl::Buffer& cl_buffer(const DeviceBuffer& b);
-DeviceBuffer wrap_buffer(const cl::Buffer& b);
 
 // Seconds a finished kernel ran, from its profiling event.
 double event_seconds(const cl::Event& event);

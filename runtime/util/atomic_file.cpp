@@ -14,8 +14,11 @@ void write_atomically(const std::filesystem::path& path,
   namespace fs = std::filesystem;
   std::random_device entropy;  // distinct names for concurrent writers
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  const fs::path temp = dir / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                               std::to_string(entropy()));
+  // appended one by one: GCC 12 reports a false -Wrestrict on `"." + std::string&&`
+  std::string name = ".";
+  name += path.filename().string();
+  name += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(entropy());
+  const fs::path temp = dir / name;
   try {
     write(temp);
     fs::rename(temp, path);

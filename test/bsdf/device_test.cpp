@@ -13,8 +13,8 @@
 #include <memory>
 
 #include "bsdf/bsdf_check.h"
+#include "kernels/test_kernels.h"
 #include "runtime/cl/context.h"
-#include "runtime/cl/kernel_program.h"
 
 using namespace cohort;
 using namespace cohort::bsdf_test;
@@ -35,7 +35,7 @@ Device& device() {
     try {
       dev.cl = std::make_unique<ClContext>(select_device(""));
       const ProgramCache cache(ProgramCache::default_directory());
-      dev.build = build_kernel_program(*dev.cl, cache, "bsdf_test.cl");
+      dev.build = build_test_kernel_program(*dev.cl, cache, "bsdf_test.cl");
     } catch (const std::exception& e) {
       dev.error = e.what();
     }

@@ -11,8 +11,8 @@
 
 #include "bsdf/bsdf_check.h"
 #include "common/environment.h"
+#include "kernels/test_kernels.h"
 #include "runtime/cl/context.h"
-#include "runtime/cl/kernel_program.h"
 #include "runtime/render/environment_map.h"
 #include "runtime/util/error.h"
 
@@ -192,7 +192,7 @@ TEST(EnvironmentSampling, DeviceAgreesWithHost) {
   ProgramBuild build;
   try {
     cl = std::make_unique<ClContext>(select_device(""));
-    build = build_kernel_program(*cl, ProgramCache(ProgramCache::default_directory()), "environment_test.cl");
+    build = build_test_kernel_program(*cl, ProgramCache(ProgramCache::default_directory()), "environment_test.cl");
   } catch (const std::exception& ex) {
     GTEST_SKIP() << "no OpenCL device: " << ex.what();
   }

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "kernels/test_kernels.h"
 #include "runtime/backend/embedded_sources.h"
 #include "runtime/cuda/nvrtc_compile.h"
 #include "runtime/util/error.h"
@@ -17,7 +18,7 @@ void compile(const std::string& name, const std::string& defines) {
   const auto options = nvrtc_options(9, 0, defines);
   std::string cubin;
   try {
-    cubin = nvrtc_compile(name, expand_kernel_source("cuda/" + name + ".cu"), options);
+    cubin = nvrtc_compile(name, expand_test_kernel_source("cuda/" + name + ".cu"), options);
   } catch (const InputError& e) {
     GTEST_SKIP() << "NVRTC is not available: " << e.what();
   }

@@ -1,0 +1,31 @@
+#include <fmt/format.h>
+
+#include "runtime/backend/open_device.h"
+#include "runtime/cli/parse_values.h"
+#include "runtime/cli/render_steps.h"
+#include "runtime/render/environment_map.h"
+#include "runtime/render/methods.h"
+#include "runtime/util/error.h"
+
+namespace cohort {
+
+RenderPlan parse_render(const RenderCommand& command) {
+  RenderPlan plan{.command = command};
+  RenderSettings& settings = plan.command.settings;
+  std::tie(settings.width, settings.height) = parse_resolution(command.resolution);
+  plan.environment_map = is_environment_map_path(command.environment);
+  if (!command.environment.empty() && !plan.environment_map)
+    settings.environment = parse_rgb("--env", command.environment);
+  if (settings.spp == 0 && settings.time_limit <= 0) throw InputError("--spp 0 needs --time SECONDS to say when to stop");
+  if (settings.straggler_rays && !find_method(settings.method).wavefront)
+    throw InputError(fmt::format("--stragglers reads the rays of a wavefront method's extension launches; --method {} "
+                                 "has none (every method traces the same rays: use --method wavefront)",
+                                 settings.method));
+  if (settings.straggler_rays && command.stats_file.empty())
+    throw InputError("--stragglers writes its rays to the --stats file: give --stats FILE.json");
+  if (command.memory_limit_mib > 0) plan.memory_limit = static_cast<std::uint64_t>(command.memory_limit_mib * 1048576.0);
+  plan.backend = parse_backend(command.backend);
+  return plan;
+}
+
+}  // namespace cohort

@@ -1,0 +1,70 @@
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "runtime/backend/device_choice.h"
+#include "runtime/backend/open_device.h"
+#include "runtime/cli/parse_values.h"
+#include "runtime/cli/render_steps.h"
+#include "runtime/render/environment_map.h"
+#include "runtime/render/workloads.h"
+
+namespace cohort {
+namespace {
+
+struct OpenedDevices {
+  std::vector<DeviceInfo> devices;
+  DeviceOpener open;
+};
+
+OpenedDevices open_devices(const RenderPlan& plan, int local_rank) {
+  const std::uint64_t limit = plan.memory_limit;
+  if (plan.backend == Backend::opencl) {
+    std::vector<DeviceInfo> devices = select_devices(list_backend_devices(Backend::opencl), plan.command.device, local_rank);
+    if (limit) {
+      for (auto& device : devices) {
+        device.global_memory = std::min(device.global_memory, limit);
+        device.max_allocation = std::min(device.max_allocation, limit);
+      }
+    }
+    DeviceOpener open = opencl_opener(devices);
+    return {std::move(devices), std::move(open)};
+  }
+  // CUDA renders on one GPU per process (several through MPI ranks); opened here once so a missing
+  // GPU is an error before the scene loads, and again on the worker thread that uses it
+  const Backend backend = plan.backend;
+  return {{open_device(backend, plan.command.device, limit)->info()},
+          [backend, spec = plan.command.device, limit](std::size_t) { return open_device(backend, spec, limit); }};
+}
+
+}  // namespace
+
+PreparedRender prepare_render(RenderPlan plan, int local_rank, bool reports) {
+  OpenedDevices opened = open_devices(plan, local_rank);
+  const RenderCommand& cmd = plan.command;
+  PreparedScene prepared = prepare_scene(cmd.scene);
+  if (cmd.tree_budget_mib > 0)
+    prepared.tree = build_kdtree_within(prepared.scene.positions, {},
+                                        static_cast<std::size_t>(cmd.tree_budget_mib * 1048576.0));
+  if (plan.memory_limit) fit_scene_to(prepared, plan.memory_limit);
+  if (plan.environment_map) set_environment_map(prepared.tables, load_environment_map(cmd.environment));
+  if (cmd.white_sky) apply_white_sky(prepared, plan.command.settings);
+  if (!cmd.camera_bounds.empty())
+    prepared.camera = camera_from_bounds(prepared.scene.bounds(), parse_six("--camera-bounds", cmd.camera_bounds),
+                                         prepared.camera.vfov_degrees);
+  if (cmd.fov > 0) prepared.camera.vfov_degrees = cmd.fov;
+  if (reports) {
+    for (const auto& w : prepared.scene.warnings) fmt::print(stderr, "warning: {}: {}\n", cmd.scene.string(), w);
+    if (prepared.tree.stats.dropped_triangles)
+      fmt::print(stderr, "warning: {}: dropped {} degenerate or non-finite triangles\n", cmd.scene.string(),
+                 prepared.tree.stats.dropped_triangles);
+  }
+  ProgramCache cache(cmd.no_cache ? std::nullopt : std::optional(ProgramCache::default_directory()));
+  return {.plan = std::move(plan),
+          .devices = std::move(opened.devices),
+          .open_devices = std::move(opened.open),
+          .scene = std::move(prepared),
+          .cache = std::move(cache)};
+}
+
+}  // namespace cohort

@@ -1,0 +1,87 @@
+#include <fmt/format.h>
+
+#include "runtime/cli/progress.h"
+#include "runtime/cli/render_steps.h"
+#include "runtime/render/checkpoint.h"
+#include "runtime/util/hash.h"
+
+namespace cohort {
+namespace {
+
+// What decides the image: a checkpoint may only be resumed by a render that would produce it.
+std::uint64_t render_fingerprint(const PreparedRender& render) {
+  const auto& s = render.plan.settings();
+  const auto& p = render.scene;
+  const auto& c = p.camera;
+  const std::string text = fmt::format(
+      "{}|{}x{}|seed {}|depth {} rr {}|nee {} mis {} rr {}|env {}|eye {} {} {}|target {} {} {}|fov {}|tris {}",
+      std::filesystem::weakly_canonical(render.plan.command.scene).string(), s.width, s.height, s.seed, s.max_depth,
+      s.rr_depth, s.nee, s.mis, s.russian_roulette,
+      s.environment ? fmt::format("{} {} {}", s.environment->x, s.environment->y, s.environment->z) : "none",
+      c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z, c.vfov_degrees, p.tree.triangles.size());
+  // an environment map is named by its file (older checkpoints, without one, keep their fingerprint)
+  if (p.tables.environment)
+    return fnv1a64(text + "|envmap " + std::filesystem::weakly_canonical(p.tables.environment->source).string());
+  return fnv1a64(text);
+}
+
+std::unique_ptr<DeviceWorkers> start_workers(const PreparedRender& render, PassSource& passes) {
+  return std::make_unique<DeviceWorkers>(render.devices, render.open_devices, render.cache, render.scene,
+                                         render.plan.settings(), passes);
+}
+
+}  // namespace
+
+RenderOutcome run_render_passes(const PreparedRender& render, const RenderTeam& team, const OutputPaths& out,
+                                const InterruptGuard& interrupt) {
+  const RenderCommand& cmd = render.plan.command;
+  const std::uint64_t fingerprint = render_fingerprint(render);
+  RenderControl control;
+  if (cmd.resume) control.resume_from = load_checkpoint(out.checkpoint, fingerprint);
+  if (control.resume_from) fmt::print("resuming {} at {} spp\n", out.checkpoint.string(), control.resume_from->samples);
+  if (cmd.checkpoint || cmd.resume) {
+    control.checkpoint_seconds = cmd.checkpoint_seconds;
+    control.checkpoint = [&](const FilmState& film) { save_checkpoint(out.checkpoint, fingerprint, film); };
+  }
+  control.stop_requested = [&] { return interrupt.requested(); };
+  ProgressReporter reporter(stderr);
+  PassJob job(render.plan.settings(), [&](const Progress& p) { reporter.update(p); }, control,
+              pass_window(render.devices.size() * team.size(), render.pixels() * sizeof(co_float4)),
+              render.devices.size());
+  if (team.size() > 1) job.combine_on_host();  // other ranks send partial films
+  std::vector<DeviceRun> runs;
+  {
+    const auto workers = start_workers(render, job);
+    team.serve(job, render.pixels());
+    runs = workers->join();
+  }
+  RenderOutcome outcome{.film = job.finish()};
+  reporter.finish();
+  RenderResult& result = outcome.result;
+  result = merge_device_results(runs);
+  result.image = film_image(outcome.film);
+  result.samples = outcome.film.samples;
+  result.resumed_samples = job.resumed_samples();
+  result.dropped_samples = outcome.film.dropped_samples;
+  result.interrupted = job.interrupted();
+  result.render_seconds = job.seconds();
+  result.rays = job.rays();  // every rank's rays
+
+  outcome.ranks = nlohmann::json::array();
+  outcome.ranks.push_back(rank_json(0, team.host(), render.scene, runs));
+  const auto texts = team.gather(outcome.ranks[0].dump());
+  for (std::size_t r = 1; r < texts.size(); ++r) outcome.ranks.push_back(nlohmann::json::parse(texts[r]));
+  result.passes = 0;
+  for (const auto& rank_entry : outcome.ranks)
+    for (const auto& d : rank_entry["devices"]) result.passes += d["passes"].get<std::uint32_t>();
+  outcome.image_mean = job.image_mean();
+  return outcome;
+}
+
+void follow_render(const PreparedRender& render, const RenderTeam& team) {
+  const auto runs = team.follow(
+      render.devices.size(), [&](PassSource& passes) { return start_workers(render, passes); }, render.pixels());
+  team.gather(rank_json(team.rank(), team.host(), render.scene, runs).dump());
+}
+
+}  // namespace cohort

@@ -1,0 +1,131 @@
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "runtime/cli/render_steps.h"
+#include "runtime/render/scene_memory.h"
+#include "runtime/util/median.h"
+
+namespace cohort {
+
+namespace {
+
+// One device's share of the render: passes, rays, rays/s while busy, busy time.
+nlohmann::json device_json(const DeviceRun& run) {
+  const RenderResult& r = run.result;
+  return {{"name", run.device.name}, {"platform", run.device.platform_name}, {"driver", run.device.driver_version},
+          {"compute_units", run.device.compute_units}, {"passes", r.passes}, {"samples", r.samples},
+          {"rays", r.rays}, {"rays_per_second", r.busy_seconds > 0 ? double(r.rays) / r.busy_seconds : 0.0},
+          {"busy_seconds", r.busy_seconds}, {"upload_seconds", run.upload_seconds},
+          {"compile_seconds", r.compile_seconds}, {"pass_kernel_seconds", r.pass_kernel_seconds},
+          {"max_nodes_per_ray", r.max_nodes_per_ray}};
+}
+
+}  // namespace
+
+// One process's serial part (load, build) beside its render time, so scaling losses are visible.
+nlohmann::json rank_json(int rank, const std::string& host, const PreparedScene& prepared,
+                         const std::vector<DeviceRun>& runs) {
+  nlohmann::json devices = nlohmann::json::array();
+  double render_seconds = 0, compile_seconds = 0;
+  for (const auto& run : runs) {
+    devices.push_back(device_json(run));
+    render_seconds = std::max(render_seconds, run.result.render_seconds);
+    compile_seconds = std::max(compile_seconds, run.result.compile_seconds);
+  }
+  return {{"rank", rank}, {"host", host}, {"load_seconds", prepared.load_seconds},
+          {"build_seconds", prepared.tree.stats.build_seconds}, {"compile_seconds", compile_seconds},
+          {"render_seconds", render_seconds}, {"devices", devices}};
+}
+
+nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& outcome, const OutputPaths& out) {
+  const RenderCommand& cmd = render.plan.command;
+  const PreparedScene& prepared = render.scene;
+  const RenderResult& r = outcome.result;
+  const auto& mean = outcome.image_mean;
+  nlohmann::json j;
+  j["image_mean"] = {{"rgb", mean.mean}, {"standard_error", mean.standard_error}};
+  j["scene"] = cmd.scene.string();
+  j["method"] = cmd.settings.method;
+  nlohmann::json devices = nlohmann::json::array();
+  for (const auto& rank : outcome.ranks)
+    for (auto d : rank["devices"]) {
+      d["rank"] = rank["rank"];
+      devices.push_back(d);
+    }
+  j["backend"] = cmd.backend;
+  j["device"] = devices.at(0);  // the first device, as before several devices
+  j["devices"] = devices;
+  j["ranks"] = outcome.ranks;
+  j["passes"] = r.passes;
+  // stragglers show as passes far slower than the median, and as rays that visit much of the tree
+  std::vector<double> pass_seconds;
+  std::uint32_t max_nodes = 0;
+  for (const auto& d : devices) {
+    for (const auto& s : d["pass_kernel_seconds"]) pass_seconds.push_back(s.get<double>());
+    max_nodes = std::max(max_nodes, d["max_nodes_per_ray"].get<std::uint32_t>());
+  }
+  j["pass_seconds"] = {{"median", median(pass_seconds)},
+                       {"max", pass_seconds.empty() ? 0.0 : *std::max_element(pass_seconds.begin(), pass_seconds.end())}};
+  j["max_nodes_per_ray"] = max_nodes;
+  if (cmd.settings.straggler_rays) {
+    nlohmann::json per_pass = nlohmann::json::array(), worst = nlohmann::json::array();
+    for (const auto& p : r.pass_stragglers) per_pass.push_back({{"max", p.max}, {"p9999", p.p9999}});
+    // hex floats: the exact bits, so the ray replays as traced
+    const auto hex = [](const glm::vec3& v) {
+      return nlohmann::json::array({fmt::format("{:a}", v.x), fmt::format("{:a}", v.y), fmt::format("{:a}", v.z)});
+    };
+    for (const auto& w : r.worst_rays)
+      worst.push_back({{"nodes", w.nodes}, {"org", hex(w.org)}, {"dir", hex(w.dir)},
+                       {"tmin", fmt::format("{:a}", w.tmin)}, {"tmax", fmt::format("{:a}", w.tmax)}});
+    j["stragglers"] = {{"rays", "extension rays of this device (rank 0's devices under MPI)"},
+                       {"per_pass", per_pass}, {"worst", worst}};
+  }
+  j["image"] = {{"width", cmd.settings.width}, {"height", cmd.settings.height}, {"spp", r.samples},
+                {"exr", out.exr.string()}, {"png", out.png.string()}};
+  j["settings"] = {{"max_depth", cmd.settings.max_depth}, {"rr_depth", cmd.settings.rr_depth},
+                   {"seed", cmd.settings.seed}, {"nee", cmd.settings.nee}, {"mis", cmd.settings.mis},
+                   {"russian_roulette", cmd.settings.russian_roulette}};
+  const auto& ts = prepared.tree.stats;
+  j["scene_stats"] = {{"triangles", prepared.scene.triangle_count()}, {"dropped_triangles", ts.dropped_triangles},
+                      {"emitters", prepared.tables.emitters.entries.size()},
+                      {"punctual_lights", prepared.tables.punctual.lights.size()}};
+  if (prepared.tables.environment) j["scene_stats"]["environment_map"] = prepared.tables.environment->source.string();
+  j["kdtree"] = {{"depth", ts.depth}, {"nodes", ts.node_count}, {"leaves", ts.leaf_count},
+                 {"average_leaf_triangles", ts.average_leaf_triangles}, {"sah_cost", ts.sah_cost},
+                 {"bytes", ts.bytes}};
+  const SceneMemory memory = scene_memory(prepared.tree, prepared.tables);
+  const double kept = static_cast<double>(std::max<std::size_t>(prepared.tree.triangles.size(), 1));
+  j["device_memory"] = {{"nodes", memory.nodes}, {"leaf_lists", memory.leaf_lists},
+                        {"triangles", memory.triangles}, {"shading", memory.shading},
+                        {"total", memory.total()}, {"bytes_per_triangle", static_cast<double>(memory.total()) / kept}};
+  j["timings"] = {{"load_seconds", prepared.load_seconds}, {"build_seconds", ts.build_seconds},
+                  {"compile_seconds", r.compile_seconds}, {"compile_from_cache", r.compile_from_cache},
+                  {"render_seconds", r.render_seconds}};
+  j["rays"] = r.rays;
+  j["rays_per_second"] = r.render_seconds > 0 ? static_cast<double>(r.rays) / r.render_seconds : 0.0;
+  j["samples_per_second"] =
+      r.render_seconds > 0 ? double(r.samples) * cmd.settings.width * cmd.settings.height / r.render_seconds : 0.0;
+  j["dropped_samples"] = r.dropped_samples;
+  nlohmann::json kernels;
+  for (const auto& [name, seconds] : r.kernel_seconds)
+    kernels[name] = {{"seconds", seconds}, {"rays_per_second", seconds > 0 ? double(r.rays) / seconds : 0.0}};
+  j["kernels"] = kernels;
+  if (r.wavefront_size) {
+    j["wavefront"] = {{"slots", r.wavefront_size}, {"bytes_per_path", r.path_state_bytes},
+                      {"simd_efficiency", r.simd_efficiency}};
+    if (!r.code_layout.empty())
+      j["coherence"] = {{"code", r.code_layout}, {"pth_levels", r.pth_levels}, {"subtree_nodes", r.pth_subtree_nodes},
+                        {"speculative", r.speculative}};
+    nlohmann::json bounces = nlohmann::json::array();
+    for (const auto& it : r.iterations)
+      bounces.push_back({{"live_paths", it.live_paths}, {"extension_rays", it.live_paths},
+                         {"shadow_rays", it.shadow_rays},
+                         {"simd_efficiency", it.simd_groups ? it.simd_efficiency_sum / double(it.simd_groups) : 0.0},
+                         {"kernel_seconds", it.kernel_seconds}});
+    j["bounces"] = bounces;
+  }
+  return j;
+}
+
+}  // namespace cohort

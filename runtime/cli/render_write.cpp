@@ -1,0 +1,81 @@
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "runtime/cli/render_steps.h"
+#include "runtime/image/image.h"
+#include "runtime/render/scene_memory.h"
+#include "runtime/util/atomic_file.h"
+
+namespace cohort {
+namespace {
+
+// --verbose: every device's share, then the scene, the tree and the kernels of rank 0.
+void print_details(const PreparedRender& render, const RenderOutcome& outcome) {
+  const PreparedScene& prepared = render.scene;
+  const RenderResult& result = outcome.result;
+  const auto& ts = prepared.tree.stats;
+  for (const auto& rank_entry : outcome.ranks)
+    for (const auto& d : rank_entry["devices"])
+      fmt::print("device{}: {} ({}): {} passes, {:.3f}s busy, {:.2f} Mrays/s\n",
+                 outcome.ranks.size() > 1 ? fmt::format(" (rank {})", rank_entry["rank"].get<int>()) : std::string(),
+                 d["name"].get<std::string>(), d["platform"].get<std::string>(), d["passes"].get<std::uint32_t>(),
+                 d["busy_seconds"].get<double>(), d["rays_per_second"].get<double>() * 1e-6);
+  fmt::print("scene: {} triangles, {} emissive, {} punctual lights, loaded in {:.3f}s\n",
+             prepared.scene.triangle_count(), prepared.tables.emitters.entries.size(),
+             prepared.tables.punctual.lights.size(), prepared.load_seconds);
+  if (prepared.tables.environment)
+    fmt::print("environment map: {}, {}x{}\n", prepared.tables.environment->source.string(),
+               prepared.tables.environment->width, prepared.tables.environment->height);
+  fmt::print("kd-tree: depth {}, {} nodes, {} leaves, {:.2f} triangles per leaf, SAH cost {:.2f}, built in {:.3f}s\n",
+             ts.depth, ts.node_count, ts.leaf_count, ts.average_leaf_triangles, ts.sah_cost, ts.build_seconds);
+  fmt::print("device memory: {}\n", describe(scene_memory(prepared.tree, prepared.tables), prepared.tree.triangles.size()));
+  fmt::print("kernel compile: {:.3f}s ({})\n", result.compile_seconds, result.compile_from_cache ? "warm, from cache" : "cold");
+  const auto features = prepared.tables.features.names();
+  fmt::print("kernel features: {}\n", features.empty() ? std::string("none (Lambertian only)")
+                                                       : fmt::format("{}", fmt::join(features, " ")));
+  fmt::print("passes: {} of {} spp\n", result.passes, outcome.film.pass_samples);
+  for (const auto& [name, seconds] : result.kernel_seconds) fmt::print("kernel {}: {:.3f}s\n", name, seconds);
+  if (result.wavefront_size)
+    fmt::print("wavefront: {} path slots x {} bytes = {:.1f} MiB, {} bounces, SIMD efficiency {:.3f}\n",
+               result.wavefront_size, result.path_state_bytes,
+               result.wavefront_size * result.path_state_bytes / 1048576.0, result.iterations.size(),
+               result.simd_efficiency);
+  if (!result.code_layout.empty())
+    fmt::print("coherence code: {}; PTH subtree {} levels, {} nodes\n", result.code_layout, result.pth_levels,
+               result.pth_subtree_nodes);
+}
+
+}  // namespace
+
+int write_render(const PreparedRender& render, const RenderOutcome& outcome, const OutputPaths& out,
+                 const InterruptGuard& interrupt) {
+  const RenderCommand& cmd = render.plan.command;
+  const RenderResult& result = outcome.result;
+  write_exr(out.exr, result.image);
+  write_png(out.png, result.image);
+  if (cmd.verbose) print_details(render, outcome);
+  if (result.dropped_samples)
+    fmt::print(stderr, "warning: {} NaN or infinite samples were dropped\n", result.dropped_samples);
+  std::size_t device_count = 0;
+  for (const auto& rank_entry : outcome.ranks) device_count += rank_entry["devices"].size();
+  const std::size_t ranks = outcome.ranks.size();
+  const double mrays = result.render_seconds > 0 ? double(result.rays) / result.render_seconds * 1e-6 : 0;
+  fmt::print("rendered {}x{} at {} spp in {:.2f}s ({:.2f} Mrays/s{})\n", render.plan.settings().width,
+             render.plan.settings().height, result.samples, result.render_seconds, mrays,
+             device_count > 1 ? fmt::format(", {} devices in {} rank{}", device_count, ranks, ranks > 1 ? "s" : "")
+                              : std::string());
+  fmt::print("wrote {}\nwrote {}\n", out.exr.string(), out.png.string());
+  if (cmd.checkpoint || cmd.resume) fmt::print("wrote {}\n", out.checkpoint.string());
+  if (!cmd.stats_file.empty()) {
+    write_file_atomically(cmd.stats_file, stats_json(render, outcome, out).dump(2) + "\n");
+    fmt::print("wrote {}\n", cmd.stats_file);
+  }
+  if (result.interrupted) {
+    fmt::print(stderr, "interrupted by signal {} at {} spp: the image so far is saved{}\n", interrupt.signal_number(),
+               result.samples, cmd.checkpoint || cmd.resume ? "; --resume continues it" : "");
+    return 128 + interrupt.signal_number();
+  }
+  return 0;
+}
+
+}  // namespace cohort

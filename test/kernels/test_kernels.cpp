@@ -1,0 +1,13 @@
+#include "kernels/test_kernels.h"
+
+namespace cohort {
+
+std::string expand_test_kernel_source(std::string_view path) {
+  return expand_kernel_source(path, test_kernel_sources());
+}
+
+ProgramBuild build_test_kernel_program(const ClContext& cl, const ProgramCache& cache, const std::string& file) {
+  return cache.build(cl.context, cl.device, expand_test_kernel_source(file), base_build_options(cl.device));
+}
+
+}  // namespace cohort
