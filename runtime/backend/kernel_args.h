@@ -39,10 +39,14 @@ void bind_arg(DeviceKernel& kernel, std::size_t& index, const T& value, const ch
 #define CO_HOST_GROUP_FIELD(Group, member, LIST) Group member;
 #define CO_HOST_BIND(kind, T, name) kernel_args_detail::bind_arg(kernel, index, name, #name);
 #define CO_HOST_GROUP_BIND(Group, member, LIST) member.bind(kernel, index);
+#define CO_HOST_COUNT(kind, T, name) 1 +
+#define CO_HOST_GROUP_COUNT(Group, member, LIST) Group::arg_count +
 
-// A struct `Name` with the fields of LIST and bind(kernel) / bind(kernel, index) (for a group).
+// A struct `Name` with the fields of LIST, bind(kernel) / bind(kernel, index) (for a group), and
+// arg_count, the arguments bind sets.
 #define CO_HOST_ARGS(Name, LIST)                                     \
   struct Name {                                                      \
+    static constexpr std::size_t arg_count = LIST(CO_HOST_COUNT, CO_HOST_GROUP_COUNT) 0; \
     LIST(CO_HOST_FIELD, CO_HOST_GROUP_FIELD)                         \
     void bind(DeviceKernel& kernel, std::size_t& index) const {      \
       LIST(CO_HOST_BIND, CO_HOST_GROUP_BIND)                         \
