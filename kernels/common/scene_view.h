@@ -28,8 +28,7 @@ typedef struct SceneView {
   float pick_triangles, pick_environment, pick_punctual; /* NEE's choice of a kind of light */
 } SceneView;
 
-/* The view of the scene a rendering kernel's SCENE_PARAMS (kernel_params.h) make. */
-
+/* The view of the scene that a rendering kernel's SCENE_PARAMS (kernel_params.h) make. */
 CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNode* nodes,
                                     const CO_GLOBAL uint32_t* leaf_triangles, const CO_GLOBAL Triangle* triangles,
                                     const CO_GLOBAL uint32_t* triangle_material, const CO_GLOBAL Material* materials,

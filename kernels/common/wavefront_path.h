@@ -1,5 +1,5 @@
-/* Path slots of the wavefront kernels: the structure-of-arrays layout, its kernel
- * parameters, and loads and stores of a PathState. Shared by wavefront_kernels.h and pth_kernels.h. */
+/* Path slots of the wavefront kernels (structure of arrays, PATH_BUFFERS in kernel_params.h): loads
+ * and stores of a PathState. Shared by wavefront_kernels.h and pth_kernels.h. */
 #ifndef COHORT_WAVEFRONT_PATH_H
 #define COHORT_WAVEFRONT_PATH_H
 
