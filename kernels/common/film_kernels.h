@@ -6,12 +6,9 @@
 #ifndef COHORT_FILM_KERNELS_H
 #define COHORT_FILM_KERNELS_H
 
-#include "common/port.h"
+#include "common/kernel_params.h"
 
-#define FILM_WG 256 /* the most work items a group may have; the host launches a power of two */
-
-CO_KERNEL film_add(CO_GLOBAL co_float4* image, CO_GLOBAL const co_float4* pass, uint32_t pixels,
-                   CO_GLOBAL co_float4* group_sums, CO_GLOBAL const uint32_t* dropped, uint32_t groups) {
+CO_KERNEL film_add(CO_PARAMS(FILM_ADD_PARAMS)) {
   CO_SHARED float sum_x[FILM_WG];
   CO_SHARED float sum_y[FILM_WG];
   CO_SHARED float sum_z[FILM_WG];

@@ -4,16 +4,10 @@
 #ifndef COHORT_NAIVE_KERNEL_H
 #define COHORT_NAIVE_KERNEL_H
 
+#include "common/kernel_params.h"
 #include "common/pathtrace.h"
 
-/* counters: [NAIVE_COUNTER_RAYS] rays traced, [NAIVE_COUNTER_MAX_STEPS] the most KD-tree nodes one ray
- * visited (the straggler figure of --stats). */
-#define NAIVE_COUNTER_RAYS 0
-#define NAIVE_COUNTER_MAX_STEPS 1
-#define NAIVE_COUNTER_COUNT 2
-
-CO_KERNEL render_naive(SCENE_KERNEL_PARAMS, CO_GLOBAL co_float4* film, CO_GLOBAL uint32_t* counters,
-                       CO_GLOBAL uint32_t* dropped_samples) {
+CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
   uint32_t pixel = co_global_id();
   RenderParams p = *params;
   if (pixel >= p.width * p.height) return;

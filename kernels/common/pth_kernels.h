@@ -10,16 +10,7 @@
 #include "common/wavefront_path.h"
 #include "common/coherence.h"
 
-#define TRAVERSAL_DONE 0xffffffffu
-#define PTH_MAX_LEVELS 16
-
-CO_KERNEL pth_walk_and_code(SCENE_KERNEL_PARAMS, CO_GLOBAL const co_float4* path_org,
-                            CO_GLOBAL const co_float4* path_dir, CO_GLOBAL const uint32_t* path_item,
-                            CO_GLOBAL const uint32_t* path_status, CO_GLOBAL const uint32_t* queue, uint32_t use_queue,
-                            uint32_t count, CO_LOCAL_PARAM(KdNode, subtree) uint32_t subtree_nodes,
-                            CO_CONSTANT CodeParams* code_params, CO_GLOBAL const float* origin_bounds,
-                            CO_GLOBAL uint64_t* keys, CO_GLOBAL uint32_t* values, CO_GLOBAL co_uint4* traversal,
-                            CO_GLOBAL co_float4* traversal_stack, uint32_t stack_stride, CO_GLOBAL HitOut* hits) {
+CO_KERNEL pth_walk_and_code(CO_PARAMS(PTH_WALK_AND_CODE_PARAMS)) {
   /* one copy of the subtree per work-group, before any work item may leave */
   CO_LOCAL_BIND(KdNode, subtree)
   for (uint32_t k = co_local_id(); k < subtree_nodes; k += co_local_size()) subtree[k] = nodes[k];
@@ -32,7 +23,7 @@ CO_KERNEL pth_walk_and_code(SCENE_KERNEL_PARAMS, CO_GLOBAL const co_float4* path
   keys[i] = c.key_bits >= 64u ? ~(uint64_t)0 : (((uint64_t)1 << c.key_bits) - (uint64_t)1);
   values[i] = slot;
   if (path_item[slot] == ITEM_NONE || path_status[slot] != PATH_ALIVE) {
-    traversal[slot] = co_make_uint4(TRAVERSAL_DONE, 0u, 0u, 0u);
+    traversal[slot] = traversal_done();
     return;
   }
   RenderParams p = *params;
@@ -47,48 +38,55 @@ CO_KERNEL pth_walk_and_code(SCENE_KERNEL_PARAMS, CO_GLOBAL const co_float4* path
     miss.v = 0.0f;
     miss.triangle = HIT_NONE;
     hits[slot] = miss;
-    traversal[slot] = co_make_uint4(TRAVERSAL_DONE, 0u, 0u, 0u);
+    traversal[slot] = traversal_done();
     return;
   }
   KdStackEntry stack[PTH_MAX_LEVELS];
   int sp = 0;
   uint32_t node = 0u;
   uint32_t bits = pth_walk(subtree, subtree_nodes, c.pth_levels, org, dir, inv_dir, &node, &t0, &t1, stack, &sp);
-  traversal[slot] = co_make_uint4(node, co_as_uint(t0), co_as_uint(t1), (uint32_t)sp);
-  for (int k = 0; k < sp; ++k)
-    traversal_stack[(uint32_t)k * stack_stride + slot] =
-        co_make_float4(co_as_float(stack[k].node), stack[k].tmin, stack[k].tmax, 0.0f);
+  TraversalState state;
+  state.node = node;
+  state.tmin = t0;
+  state.tmax = t1;
+  state.depth = (uint32_t)sp;
+  traversal[slot] = state;
+  for (int k = 0; k < sp; ++k) {
+    SavedStackEntry e;
+    e.node = stack[k].node;
+    e.tmin = stack[k].tmin;
+    e.tmax = stack[k].tmax;
+    e.pad = 0u;
+    traversal_stack[(uint32_t)k * stack_stride + slot] = e;
+  }
   keys[i] = coherence_code(&c, origin_bounds, org, dir, bits);
 }
 
 /* The `depth` stack entries pth_walk_and_code saved for `slot` (entry k of every slot together). */
-CO_INLINE void load_traversal_stack(CO_GLOBAL const co_float4* traversal_stack, uint32_t stack_stride, uint32_t slot,
-                                    uint32_t depth, KdStackEntry* stack) {
+CO_INLINE void load_traversal_stack(CO_GLOBAL const SavedStackEntry* traversal_stack, uint32_t stack_stride,
+                                    uint32_t slot, uint32_t depth, KdStackEntry* stack) {
   for (uint32_t k = 0u; k < depth; ++k) {
-    co_float4 e = traversal_stack[k * stack_stride + slot];
-    stack[k].node = co_as_uint(e.x);
-    stack[k].tmin = e.y;
-    stack[k].tmax = e.z;
+    SavedStackEntry e = traversal_stack[k * stack_stride + slot];
+    stack[k].node = e.node;
+    stack[k].tmin = e.tmin;
+    stack[k].tmax = e.tmax;
   }
 }
 
 /* Continues each ray's traversal in sorted order from the state pth_walk_and_code saved. */
-CO_KERNEL pth_resume(SCENE_KERNEL_PARAMS, CO_GLOBAL const co_float4* path_org, CO_GLOBAL const co_float4* path_dir,
-                     CO_GLOBAL const uint32_t* sorted_slots, uint32_t count, CO_GLOBAL const co_uint4* traversal,
-                     CO_GLOBAL const co_float4* traversal_stack, uint32_t stack_stride, CO_GLOBAL HitOut* hits,
-                     CO_GLOBAL uint32_t* steps) {
+CO_KERNEL pth_resume(CO_PARAMS(PTH_RESUME_PARAMS)) {
   uint32_t i = co_global_id();
   if (i >= count) return;
   uint32_t slot = sorted_slots[i];
-  co_uint4 state = traversal[slot];
+  TraversalState state = traversal[slot];
   uint32_t visited = 0u;
-  if (state.x != TRAVERSAL_DONE) {
+  if (state.node != TRAVERSAL_DONE) {
     RenderParams p = *params;
     SceneView s = SCENE_VIEW(p);
     KdStackEntry stack[KD_MAX_DEPTH];
-    load_traversal_stack(traversal_stack, stack_stride, slot, state.w, stack);
-    hits[slot] = kd_resume(&s.tree, v3_from4(path_org[slot]), v3_from4(path_dir[slot]), 0.0f, INFINITY, 0, state.x,
-                           co_as_float(state.y), co_as_float(state.z), stack, (int)state.w, &visited);
+    load_traversal_stack(traversal_stack, stack_stride, slot, state.depth, stack);
+    hits[slot] = kd_resume(&s.tree, v3_from4(path_org[slot]), v3_from4(path_dir[slot]), 0.0f, INFINITY, 0, state.node,
+                           state.tmin, state.tmax, stack, (int)state.depth, &visited);
   }
   steps[i] = visited;
 }
@@ -98,24 +96,20 @@ CO_KERNEL pth_resume(SCENE_KERNEL_PARAMS, CO_GLOBAL const co_float4* path_org, C
 /* pth_resume with speculative traversal (--speculative): the same hits, bit for bit, with leaf
  * tests postponed until the group agrees. Launched with one SIMD group (32) per work-group; every
  * work item runs the group loop, so the items past `count` join as finished rays. */
-CO_KERNEL pth_resume_speculative(SCENE_KERNEL_PARAMS, CO_GLOBAL const co_float4* path_org,
-                                 CO_GLOBAL const co_float4* path_dir, CO_GLOBAL const uint32_t* sorted_slots,
-                                 uint32_t count, CO_GLOBAL const co_uint4* traversal,
-                                 CO_GLOBAL const co_float4* traversal_stack, uint32_t stack_stride,
-                                 CO_GLOBAL HitOut* hits, CO_GLOBAL uint32_t* steps) {
+CO_KERNEL pth_resume_speculative(CO_PARAMS(PTH_RESUME_PARAMS)) {
   CO_SHARED uint32_t votes[3];
   uint32_t i = co_global_id();
   uint32_t slot = i < count ? sorted_slots[i] : 0u;
-  co_uint4 state = i < count ? traversal[slot] : co_make_uint4(TRAVERSAL_DONE, 0u, 0u, 0u);
-  int active = state.x != TRAVERSAL_DONE;
+  TraversalState state = i < count ? traversal[slot] : traversal_done();
+  int active = state.node != TRAVERSAL_DONE;
   RenderParams p = *params;
   SceneView s = SCENE_VIEW(p);
   KdStackEntry stack[KD_MAX_DEPTH];
-  if (active) load_traversal_stack(traversal_stack, stack_stride, slot, state.w, stack);
+  if (active) load_traversal_stack(traversal_stack, stack_stride, slot, state.depth, stack);
   KdSpeculativeRay ray;
   kd_spec_start(&ray, active, active ? v3_from4(path_org[slot]) : v3(0.0f, 0.0f, 1.0f),
-                active ? v3_from4(path_dir[slot]) : v3(0.0f, 0.0f, 1.0f), 0.0f, INFINITY, state.x,
-                co_as_float(state.y), co_as_float(state.z), (int)state.w);
+                active ? v3_from4(path_dir[slot]) : v3(0.0f, 0.0f, 1.0f), 0.0f, INFINITY, state.node,
+                state.tmin, state.tmax, (int)state.depth);
   kd_spec_run_group(&s.tree, &ray, stack, votes);
   if (i >= count) return;
   if (active) hits[slot] = ray.hit;

@@ -28,15 +28,7 @@ typedef struct SceneView {
   float pick_triangles, pick_environment, pick_punctual; /* NEE's choice of a kind of light */
 } SceneView;
 
-/* The kernel arguments every rendering kernel takes, and the view they make. */
-#define SCENE_KERNEL_PARAMS                                                                         \
-  CO_CONSTANT RenderParams *params, CO_GLOBAL const KdNode *nodes, CO_GLOBAL const uint32_t *leaf_triangles, \
-      CO_GLOBAL const Triangle *triangles, CO_GLOBAL const uint32_t *triangle_material,              \
-      CO_GLOBAL const Material *materials, CO_GLOBAL const EmitterEntry *emitters,                    \
-      CO_GLOBAL const TriangleUv *triangle_uvs, CO_GLOBAL const TextureDesc *textures,                \
-      CO_GLOBAL const uint32_t *texels, CO_GLOBAL const co_float4 *env_texels,                       \
-      CO_GLOBAL const float *env_tables, CO_GLOBAL const PunctualLight *punctual_lights
-
+/* The view of the scene that a rendering kernel's SCENE_PARAMS (kernel_params.h) make. */
 CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNode* nodes,
                                     const CO_GLOBAL uint32_t* leaf_triangles, const CO_GLOBAL Triangle* triangles,
                                     const CO_GLOBAL uint32_t* triangle_material, const CO_GLOBAL Material* materials,

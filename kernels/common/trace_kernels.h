@@ -3,10 +3,9 @@
 #define COHORT_TRACE_KERNELS_H
 
 #include "common/kdtree_traverse.h"
+#include "common/kernel_params.h"
 
-CO_KERNEL trace_rays(CO_GLOBAL const KdNode* nodes, CO_GLOBAL const uint32_t* leaf_triangles,
-                     CO_GLOBAL const Triangle* triangles, co_float4 scene_min, co_float4 scene_max,
-                     CO_GLOBAL const RayIn* rays, CO_GLOBAL HitOut* hits, uint32_t count, uint32_t any_hit) {
+CO_KERNEL trace_rays(CO_PARAMS(TRACE_RAYS_PARAMS)) {
   uint32_t i = co_global_id();
   if (i >= count) return;
   KdTreeView tree = make_tree_view(nodes, leaf_triangles, triangles, scene_min, scene_max);
@@ -15,10 +14,7 @@ CO_KERNEL trace_rays(CO_GLOBAL const KdNode* nodes, CO_GLOBAL const uint32_t* le
 }
 
 /* trace_rays with the nodes each ray visited: the straggler tests. */
-CO_KERNEL trace_rays_steps(CO_GLOBAL const KdNode* nodes, CO_GLOBAL const uint32_t* leaf_triangles,
-                           CO_GLOBAL const Triangle* triangles, co_float4 scene_min, co_float4 scene_max,
-                           CO_GLOBAL const RayIn* rays, CO_GLOBAL HitOut* hits, uint32_t count, uint32_t any_hit,
-                           CO_GLOBAL uint32_t* steps) {
+CO_KERNEL trace_rays_steps(CO_PARAMS(TRACE_RAYS_STEPS_PARAMS)) {
   uint32_t i = co_global_id();
   if (i >= count) return;
   KdTreeView tree = make_tree_view(nodes, leaf_triangles, triangles, scene_min, scene_max);
@@ -33,11 +29,7 @@ CO_KERNEL trace_rays_steps(CO_GLOBAL const KdNode* nodes, CO_GLOBAL const uint32
 /* Partial traversal of the top `levels` (subtree in local memory) then resumed traversal, for a
  * buffer of rays: the test that PTH + resume finds exactly the hit of kd_trace, and that the PTH
  * bits match a reference walk. */
-CO_KERNEL trace_rays_pth(CO_GLOBAL const KdNode* nodes, CO_GLOBAL const uint32_t* leaf_triangles,
-                         CO_GLOBAL const Triangle* triangles, co_float4 scene_min, co_float4 scene_max,
-                         CO_GLOBAL const RayIn* rays, CO_GLOBAL HitOut* hits, uint32_t count,
-                         CO_LOCAL_PARAM(KdNode, subtree) uint32_t subtree_nodes, uint32_t levels,
-                         CO_GLOBAL uint32_t* pth_bits) {
+CO_KERNEL trace_rays_pth(CO_PARAMS(TRACE_RAYS_PTH_PARAMS)) {
   CO_LOCAL_BIND(KdNode, subtree)
   for (uint32_t k = co_local_id(); k < subtree_nodes; k += co_local_size()) subtree[k] = nodes[k];
   co_barrier();
@@ -69,10 +61,7 @@ CO_KERNEL trace_rays_pth(CO_GLOBAL const KdNode* nodes, CO_GLOBAL const uint32_t
 
 /* kd_trace with speculative traversal, for a buffer of rays: the test that it finds exactly the
  * hit of kd_trace. Every work item runs the group loop; items past `count` join as finished. */
-CO_KERNEL trace_rays_speculative(CO_GLOBAL const KdNode* nodes, CO_GLOBAL const uint32_t* leaf_triangles,
-                                 CO_GLOBAL const Triangle* triangles, co_float4 scene_min, co_float4 scene_max,
-                                 CO_GLOBAL const RayIn* rays, CO_GLOBAL HitOut* hits, uint32_t count,
-                                 CO_GLOBAL uint32_t* steps) {
+CO_KERNEL trace_rays_speculative(CO_PARAMS(TRACE_RAYS_SPECULATIVE_PARAMS)) {
   CO_SHARED uint32_t votes[3];
   uint32_t i = co_global_id();
   KdTreeView tree = make_tree_view(nodes, leaf_triangles, triangles, scene_min, scene_max);

@@ -12,8 +12,7 @@
 
 /* Free slots take the next work items (pixel, sample) of the pass; in queue mode they join the
  * queue of live slots. */
-CO_KERNEL wf_generate(CO_CONSTANT RenderParams* params, PATH_PARAMS, CO_GLOBAL uint32_t* counters,
-                      CO_GLOBAL uint32_t* queue, uint32_t use_queue, uint32_t slot_count, uint32_t item_end) {
+CO_KERNEL wf_generate(CO_PARAMS(WF_GENERATE_PARAMS)) {
   uint32_t slot = co_global_id();
   if (slot >= slot_count || path_item[slot] != ITEM_NONE) return;
   uint32_t item = co_atomic_inc(&counters[COUNTER_NEXT_ITEM]);
@@ -26,8 +25,7 @@ CO_KERNEL wf_generate(CO_CONSTANT RenderParams* params, PATH_PARAMS, CO_GLOBAL u
 }
 
 /* Closest hit of every live path's next ray. */
-CO_KERNEL wf_extend(SCENE_KERNEL_PARAMS, PATH_PARAMS, CO_GLOBAL HitOut* hits, CO_GLOBAL const uint32_t* queue,
-                    uint32_t use_queue, uint32_t count, CO_GLOBAL uint32_t* steps) {
+CO_KERNEL wf_extend(CO_PARAMS(WF_EXTEND_PARAMS)) {
   uint32_t i = co_global_id();
   if (i >= count) return;
   uint32_t slot = slot_of(i, queue, use_queue);
@@ -42,10 +40,7 @@ CO_KERNEL wf_extend(SCENE_KERNEL_PARAMS, PATH_PARAMS, CO_GLOBAL HitOut* hits, CO
 }
 
 /* Emission, light sample (queued as a shadow ray), Russian roulette and the next direction. */
-CO_KERNEL wf_shade(SCENE_KERNEL_PARAMS, PATH_PARAMS, CO_GLOBAL const HitOut* hits, CO_GLOBAL const uint32_t* queue,
-                   uint32_t use_queue, uint32_t count, CO_GLOBAL co_float4* shadow_org, CO_GLOBAL co_float4* shadow_dir,
-                   CO_GLOBAL co_float4* shadow_contribution, CO_GLOBAL uint32_t* shadow_queue,
-                   CO_GLOBAL uint32_t* counters) {
+CO_KERNEL wf_shade(CO_PARAMS(WF_SHADE_PARAMS)) {
   uint32_t i = co_global_id();
   if (i >= count) return;
   uint32_t slot = slot_of(i, queue, use_queue);
@@ -65,10 +60,7 @@ CO_KERNEL wf_shade(SCENE_KERNEL_PARAMS, PATH_PARAMS, CO_GLOBAL const HitOut* hit
 }
 
 /* Any hit for each queued shadow ray; unoccluded light joins the path's radiance. */
-CO_KERNEL wf_shadow(SCENE_KERNEL_PARAMS, CO_GLOBAL co_float4* path_radiance, CO_GLOBAL const co_float4* shadow_org,
-                    CO_GLOBAL const co_float4* shadow_dir, CO_GLOBAL const co_float4* shadow_contribution,
-                    CO_GLOBAL const uint32_t* shadow_queue, CO_GLOBAL const uint32_t* counters,
-                    CO_GLOBAL uint32_t* steps) {
+CO_KERNEL wf_shadow(CO_PARAMS(WF_SHADOW_PARAMS)) {
   uint32_t i = co_global_id();
   if (i >= counters[COUNTER_SHADOW]) return;
   uint32_t slot = shadow_queue[i];
@@ -88,8 +80,7 @@ CO_KERNEL wf_shadow(SCENE_KERNEL_PARAMS, CO_GLOBAL co_float4* path_radiance, CO_
 
 /* Finished paths hand their radiance to the pass's result buffer and free their slot; live
  * paths are counted and, in queue mode, compacted into the queue (Wald 2011). */
-CO_KERNEL wf_finish(PATH_PARAMS, CO_GLOBAL co_float4* results, CO_GLOBAL uint32_t* counters, CO_GLOBAL uint32_t* queue,
-                    uint32_t use_queue, uint32_t slot_count) {
+CO_KERNEL wf_finish(CO_PARAMS(WF_FINISH_PARAMS)) {
   uint32_t slot = co_global_id();
   if (slot >= slot_count) return;
   uint32_t item = path_item[slot];
@@ -104,8 +95,7 @@ CO_KERNEL wf_finish(PATH_PARAMS, CO_GLOBAL co_float4* results, CO_GLOBAL uint32_
 }
 
 /* Adds the pass's samples to the film in sample order, as the megakernel does. */
-CO_KERNEL wf_accumulate(CO_CONSTANT RenderParams* params, CO_GLOBAL const co_float4* results, CO_GLOBAL co_float4* film,
-                        CO_GLOBAL uint32_t* dropped_samples) {
+CO_KERNEL wf_accumulate(CO_PARAMS(WF_ACCUMULATE_PARAMS)) {
   uint32_t pixel = co_global_id();
   RenderParams p = *params;
   uint32_t pixels = p.width * p.height;
@@ -140,11 +130,11 @@ CO_INLINE uint32_t steps_group_max(CO_GLOBAL const uint32_t* steps, uint32_t fir
 /* SIMD efficiency of a traversal launch (Aila & Laine 2009): for each group of 32 consecutive
  * launch indices, mean over max of the nodes each visited; summed in units of 1e-4 with the
  * number of groups, so the host reads two counters instead of every step count. */
-CO_KERNEL wf_simd_efficiency(CO_GLOBAL const uint32_t* steps, uint32_t count, CO_GLOBAL uint32_t* counters) {
+CO_KERNEL wf_simd_efficiency(CO_PARAMS(WF_SIMD_EFFICIENCY_PARAMS)) {
   uint32_t group = co_global_id();
-  uint32_t first = group * 32u;
+  uint32_t first = group * SIMD_GROUP;
   if (first >= count) return;
-  uint32_t last = co_umin(first + 32u, count), sum = 0u;
+  uint32_t last = co_umin(first + SIMD_GROUP, count), sum = 0u;
   uint32_t most = steps_group_max(steps, first, last, counters, &sum);
   if (most == 0u) return;
   co_atomic_add(&counters[COUNTER_SIMD_SUM], (uint32_t)(10000.0f * (float)sum / (float)(most * (last - first)) + 0.5f));
@@ -152,10 +142,10 @@ CO_KERNEL wf_simd_efficiency(CO_GLOBAL const uint32_t* steps, uint32_t count, CO
 }
 
 /* The shadow rays' share of the straggler counter (their count is on the device). */
-CO_KERNEL wf_shadow_max_steps(CO_GLOBAL const uint32_t* steps, CO_GLOBAL uint32_t* counters) {
-  uint32_t first = co_global_id() * 32u, count = counters[COUNTER_SHADOW], sum = 0u;
+CO_KERNEL wf_shadow_max_steps(CO_PARAMS(WF_SHADOW_MAX_STEPS_PARAMS)) {
+  uint32_t first = co_global_id() * SIMD_GROUP, count = counters[COUNTER_SHADOW], sum = 0u;
   if (first >= count) return;
-  steps_group_max(steps, first, co_umin(first + 32u, count), counters, &sum);
+  steps_group_max(steps, first, co_umin(first + SIMD_GROUP, count), counters, &sum);
 }
 
 #endif

@@ -1,25 +1,12 @@
-/* Path slots of the wavefront kernels: the structure-of-arrays layout, its kernel
- * parameters, and loads and stores of a PathState. Shared by wavefront_kernels.h and pth_kernels.h. */
+/* Path slots of the wavefront kernels (structure of arrays, PATH_BUFFERS in kernel_params.h): loads
+ * and stores of a PathState. Shared by wavefront_kernels.h and pth_kernels.h. */
 #ifndef COHORT_WAVEFRONT_PATH_H
 #define COHORT_WAVEFRONT_PATH_H
 
+#include "common/kernel_params.h"
 #include "common/pathtrace.h"
 
-#define ITEM_NONE 0xffffffffu
-
-/* counters[] */
-#define COUNTER_NEXT_ITEM 0
-#define COUNTER_QUEUE 1  /* live slots (and the length of the compacted queue) */
-#define COUNTER_SHADOW 2 /* shadow rays queued this bounce */
-#define COUNTER_SIMD_SUM 3
-#define COUNTER_SIMD_GROUPS 4
-#define COUNTER_MAX_STEPS 5 /* the most KD-tree nodes one ray visited (the straggler figure) */
-#define COUNTER_COUNT 6
-
-#define PATH_PARAMS                                                                                      \
-  CO_GLOBAL co_float4 *path_org, CO_GLOBAL co_float4 *path_dir, CO_GLOBAL co_float4 *path_throughput,    \
-      CO_GLOBAL co_float4 *path_radiance, CO_GLOBAL co_float4 *path_prev, CO_GLOBAL uint32_t *path_item, \
-      CO_GLOBAL uint32_t *path_segment, CO_GLOBAL uint32_t *path_status
+#define PATH_PARAMS CO_PARAMS(PATH_BUFFERS)
 
 CO_INLINE PathState load_path(PATH_PARAMS, uint32_t slot) {
   PathState st;

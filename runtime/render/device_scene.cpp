@@ -207,14 +207,21 @@ LightPick light_pick(const SceneTables& t, float radius) {
   return pick;
 }
 
-std::vector<const DeviceBuffer*> DeviceScene::kernel_buffers() const {
-  return {&nodes,        &leaf_triangles, &triangles, &triangle_material, &materials, &emitters,
-          &triangle_uvs, &textures,       &texels,    &env_texels,        &env_tables, &punctual_lights};
-}
-
-std::size_t set_scene_args(DeviceKernel& kernel, std::size_t first, const DeviceScene& scene) {
-  for (const DeviceBuffer* b : scene.kernel_buffers()) kernel.set_arg(first++, *b);
-  return first;
+SceneBuffers DeviceScene::kernel_buffers() const {
+  SceneBuffers b;
+  b.nodes = nodes;
+  b.leaf_triangles = leaf_triangles;
+  b.triangles = triangles;
+  b.triangle_material = triangle_material;
+  b.materials = materials;
+  b.emitters = emitters;
+  b.triangle_uvs = triangle_uvs;
+  b.textures = textures;
+  b.texels = texels;
+  b.env_texels = env_texels;
+  b.env_tables = env_tables;
+  b.punctual_lights = punctual_lights;
+  return b;
 }
 
 DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables& tables) {

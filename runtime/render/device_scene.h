@@ -10,6 +10,7 @@
 #include "kernels/common/types.h"
 #include "runtime/accel/kdtree.h"
 #include "runtime/backend/device.h"
+#include "runtime/backend/kernel_args.h"
 #include "runtime/render/emitters.h"
 #include "runtime/render/environment_map.h"
 #include "runtime/render/punctual_lights.h"
@@ -82,12 +83,9 @@ struct DeviceScene {
   std::vector<std::uint32_t> level_starts;  // first node of each depth, then the node count
   std::array<std::vector<float>, 3> centroid_samples;  // sorted triangle centroids per axis (subsampled)
 
-  // The buffers of SCENE_KERNEL_PARAMS after `params`, in order: the one place that lists them.
-  std::vector<const DeviceBuffer*> kernel_buffers() const;
+  // The scene's kernel arguments (SCENE_BUFFERS in kernels/common/kernel_params.h).
+  SceneBuffers kernel_buffers() const;
 };
-
-// Sets the scene's buffers as arguments first, first + 1, ... of `kernel`; returns the next index.
-std::size_t set_scene_args(DeviceKernel& kernel, std::size_t first, const DeviceScene& scene);
 
 DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables& tables);
 

@@ -10,15 +10,15 @@ namespace cohort {
 
 const std::vector<Method>& methods() {
   static const std::vector<Method> table = {
-      {"naive", "one megakernel, a work item per pixel (the reference)", false, false, false},
-      {"wavefront", "wavefront stages over the whole pool, refilled when it drains", true, false, false},
-      {"sc", "wavefront with stream compaction of live paths after every bounce", true, true, false},
-      {"rg", "wavefront with path regeneration into free slots after every bounce", true, false, true},
-      {"sc+rg", "stream compaction and path regeneration", true, true, true},
+      {"naive", "one megakernel, a work item per pixel (the reference)", false, render_naive},
+      {"wavefront", "wavefront stages over the whole pool, refilled when it drains", true, render_wavefront},
+      {"sc", "wavefront with stream compaction of live paths after every bounce", true, render_sc},
+      {"rg", "wavefront with path regeneration into free slots after every bounce", true, render_rg},
+      {"sc+rg", "stream compaction and path regeneration", true, render_sc_rg},
       {"hash", "sc+rg, rays sorted by origin and direction hash before traversal (Garanzha & Loop 2010)", true,
-       true, true, RaySort::hash},
+       render_hash},
       {"pth", "sc+rg, rays sorted by the coherence code of a partial traversal in local memory (Wang & Deng)",
-       true, true, true, RaySort::pth},
+       true, render_pth},
   };
   return table;
 }
@@ -39,8 +39,7 @@ RenderResult render(const Device& cl, const ProgramCache& cache, const DeviceSce
                     const RenderSettings& settings, const ProgressCallback& progress, const RenderControl& control) {
   const Method& method = find_method(settings.method);
   const RenderParams params = make_render_params(scene, camera, settings);
-  return method.wavefront ? render_wavefront(method, cl, cache, scene, params, settings, progress, control)
-                          : render_naive(cl, cache, scene, params, settings, progress, control);
+  return method.render(MethodInputs{cl, cache, scene, params, settings, progress, control});
 }
 
 }  // namespace cohort

@@ -7,14 +7,14 @@
 #include <optional>
 #include <vector>
 
+#include "kernels/common/contract.h"
+#include "runtime/backend/kernel_args.h"
 #include "runtime/render/launch_log.h"
 #include "runtime/render/pass_job.h"
 
 namespace cohort {
 
 namespace {
-
-constexpr std::size_t kFilmGroup = 256;  // FILM_WG in kernels/common/film_kernels.h: the most per group
 
 // The image film on the device: each pass is added to it there (film_add), and only the pass's
 // per-group totals come back, instead of a partial film per pass.
@@ -30,7 +30,7 @@ struct DeviceImage {
     const DeviceProgram program = cl.build_program(cache, "film");
     compile_seconds = program.seconds;
     add = program.kernel("film_add");
-    while (group * 2 <= std::min(kFilmGroup, add.max_group())) group *= 2;
+    while (group * 2 <= std::min<std::size_t>(FILM_WG, add.max_group())) group *= 2;
     groups.resize((pixels + group - 1) / group + 1);  // the last entry: the dropped-sample count
     film = cl.allocate("image film", std::size_t(pixels) * sizeof(co_float4), start.sums.data());
     group_sums = cl.allocate("pass totals", groups.size() * sizeof(co_float4));
@@ -40,7 +40,14 @@ struct DeviceImage {
   // dropped samples
   void add_pass(const Device& cl, const PassBuffers& pass, std::uint32_t pixels, PassFilm& out) {
     const auto group_count = static_cast<std::uint32_t>(groups.size() - 1);
-    add.set_args(film, pass.film, pixels, group_sums, pass.dropped, group_count);
+    FilmAddArgs args;
+    args.image = film;
+    args.pass = pass.film;
+    args.pixels = pixels;
+    args.group_sums = group_sums;
+    args.dropped = pass.dropped;
+    args.groups = group_count;
+    args.bind(add);
     const DeviceEvent event = cl.launch(add, pixels, group);
     cl.read(group_sums, 0, groups.size() * sizeof(co_float4), groups.data());
     last_seconds = event.seconds();

@@ -10,6 +10,7 @@
 
 #include "runtime/accel/kdtree.h"
 #include "runtime/backend/device.h"
+#include "runtime/backend/kernel_args.h"
 #include "runtime/backend/program_cache.h"
 
 namespace cohort::test {
@@ -26,19 +27,34 @@ inline TraceOutput trace_on_device(const Device& device, const ProgramCache& cac
   const bool partial = levels > 0;
   DeviceKernel k = program.kernel(partial ? "trace_rays_pth" : "trace_rays");
   const auto count = static_cast<std::uint32_t>(rays.size());
-  const DeviceBuffer nodes = device.allocate("nodes", tree.nodes.size() * sizeof(KdNode), tree.nodes.data());
-  const DeviceBuffer leaves = device.allocate("leaves", tree.leaf_triangles.size() * 4, tree.leaf_triangles.data());
-  const DeviceBuffer tris = device.allocate("triangles", tree.triangles.size() * sizeof(Triangle), tree.triangles.data());
+  TraceTree t;
+  t.nodes = device.allocate("nodes", tree.nodes.size() * sizeof(KdNode), tree.nodes.data());
+  t.leaf_triangles = device.allocate("leaves", tree.leaf_triangles.size() * 4, tree.leaf_triangles.data());
+  t.triangles = device.allocate("triangles", tree.triangles.size() * sizeof(Triangle), tree.triangles.data());
+  t.scene_min = co_float4{tree.bounds.lo.x, tree.bounds.lo.y, tree.bounds.lo.z, 0.f};
+  t.scene_max = co_float4{tree.bounds.hi.x, tree.bounds.hi.y, tree.bounds.hi.z, 0.f};
   const DeviceBuffer ray_buf = device.allocate("rays", rays.size() * sizeof(RayIn), rays.data());
   const DeviceBuffer hit_buf = device.allocate("hits", rays.size() * sizeof(HitOut));
   const DeviceBuffer bit_buf = device.allocate("bits", rays.size() * 4);
-  const co_float4 lo{tree.bounds.lo.x, tree.bounds.lo.y, tree.bounds.lo.z, 0.f};
-  const co_float4 hi{tree.bounds.hi.x, tree.bounds.hi.y, tree.bounds.hi.z, 0.f};
-  if (partial)
-    k.set_args(nodes, leaves, tris, lo, hi, ray_buf, hit_buf, count,
-               LocalMemory{std::max<std::size_t>(subtree_nodes, 1) * sizeof(KdNode)}, subtree_nodes, levels, bit_buf);
-  else
-    k.set_args(nodes, leaves, tris, lo, hi, ray_buf, hit_buf, count, std::uint32_t(0));
+  if (partial) {
+    TraceRaysPthArgs args;
+    args.tree = t;
+    args.rays = ray_buf;
+    args.hits = hit_buf;
+    args.count = count;
+    args.subtree = LocalMemory{std::max<std::size_t>(subtree_nodes, 1) * sizeof(KdNode)};
+    args.subtree_nodes = subtree_nodes;
+    args.levels = levels;
+    args.pth_bits = bit_buf;
+    args.bind(k);
+  } else {
+    TraceRaysArgs args;
+    args.tree = t;
+    args.rays = ray_buf;
+    args.hits = hit_buf;
+    args.count = count;
+    args.bind(k);
+  }
   device.launch(k, rays.size(), 64);
   TraceOutput out;
   out.hits.resize(rays.size());

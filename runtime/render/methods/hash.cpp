@@ -1,0 +1,25 @@
+// hash: sc+rg with the rays sorted by a hash of origin and direction before traversal (Garanzha &
+// Loop 2010): the sort of pth without its partial traversal.
+#include "runtime/render/stages/sorted_traversal.h"
+#include "runtime/render/stages/stages.h"
+
+namespace cohort {
+
+RenderResult render_hash(const MethodInputs& in) {
+  WavefrontRender render(in, Launches::compacted, SORT_SLOT_BYTES);
+  SortedTraversal sorted(render, SortKey::hash);
+  RenderResult result = render.run([&](WavefrontPass& p) {
+    generate(p);
+    if (p.live == 0) return false;
+    sorted.walk(p);  // the hash code only: no subtree levels
+    sorted.sort(p);
+    sorted.resume(p);
+    shade(p);
+    finish(p);
+    return true;
+  });
+  sorted.report(result);
+  return result;
+}
+
+}  // namespace cohort

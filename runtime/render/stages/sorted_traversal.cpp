@@ -1,0 +1,94 @@
+#include "runtime/render/stages/sorted_traversal.h"
+
+#include <algorithm>
+
+#include "kernels/common/contract.h"
+#include "runtime/render/stages/traversal_figures.h"
+
+namespace cohort {
+
+SortedTraversal::SortedTraversal(const WavefrontRender& render, SortKey key)
+    : key_(key), speculative_(render.inputs().settings.speculative) {
+  const MethodInputs& in = render.inputs();
+  const Device& cl = in.device;
+  const std::uint32_t slots = render.pool().slots;
+  program_ = cl.build_program(in.cache, "pth", in.scene.build_options);
+  const bool pth = key == SortKey::pth;
+  subtree_ = pth ? choose_subtree(cl.info(), in.scene, in.settings.pth_levels) : SubtreeChoice{};
+  layout_ = in.settings.code.empty() ? default_code_layout(pth) : in.settings.code;
+  code_ = parse_code_layout(layout_, subtree_.levels, in.scene.bounds);
+  if (!pth) code_.pth_levels = 0;  // the hash sort never walks the subtree
+  if (code_.pth_levels > PTH_MAX_LEVELS) code_.pth_levels = PTH_MAX_LEVELS;
+  code_params_ = cl.allocate("code parameters", sizeof(code_), &code_, Access::read_only);
+  const auto bounds = origin_boundaries(in.scene, code_.origin_bits);
+  origin_bounds_ = cl.allocate("origin grid", bounds.size() * sizeof(float), bounds.data(), Access::read_only);
+  keys_ = cl.allocate("coherence codes", std::size_t(slots) * sizeof(std::uint64_t));
+  values_ = cl.allocate("sorted slots", std::size_t(slots) * sizeof(std::uint32_t));
+  traversal_ = cl.allocate("traversal states", std::size_t(slots) * sizeof(TraversalState));
+  traversal_stack_ = cl.allocate("traversal stacks", std::size_t(slots) * sizeof(SavedStackEntry) *
+                                                         std::max<std::uint32_t>(code_.pth_levels, 1));
+  sort_.emplace(cl, in.cache, slots);
+  walk_ = program_.kernel("pth_walk_and_code");
+  resume_ = program_.kernel(speculative_ ? "pth_resume_speculative" : "pth_resume");
+}
+
+void SortedTraversal::walk(WavefrontPass& p) {
+  const std::uint32_t count = p.count();
+  const PathBuffers& path = p.pool.path;
+  PthWalkAndCodeArgs args;
+  args.params = p.buffers.params;
+  args.scene = p.scene;
+  args.path_org = path.path_org;
+  args.path_dir = path.path_dir;
+  args.path_item = path.path_item;
+  args.path_status = path.path_status;
+  args.queue = p.pool.queue;
+  args.use_queue = p.use_queue();
+  args.count = count;
+  args.subtree = LocalMemory{std::max<std::size_t>(subtree_.local_bytes, sizeof(KdNode))};
+  args.subtree_nodes = subtree_.nodes;
+  args.code_params = code_params_;
+  args.origin_bounds = origin_bounds_;
+  args.keys = keys_;
+  args.values = values_;
+  args.traversal = traversal_;
+  args.traversal_stack = traversal_stack_;
+  args.stack_stride = p.pool.slots;
+  args.hits = p.pool.hits;
+  args.bind(walk_);
+  p.log.launch(p.device, walk_, key_ == SortKey::pth ? "pth" : "hash", count);
+}
+
+void SortedTraversal::sort(WavefrontPass& p) { sort_->sort(keys_, values_, p.count(), code_.key_bits, &p.sort_seconds); }
+
+void SortedTraversal::resume(WavefrontPass& p) {
+  const std::uint32_t count = p.count();
+  PthResumeArgs args;
+  args.params = p.buffers.params;
+  args.scene = p.scene;
+  args.path_org = p.pool.path.path_org;
+  args.path_dir = p.pool.path.path_dir;
+  args.sorted_slots = values_;
+  args.count = count;
+  args.traversal = traversal_;
+  args.traversal_stack = traversal_stack_;
+  args.stack_stride = p.pool.slots;
+  args.hits = p.pool.hits;
+  args.steps = p.pool.steps;
+  args.bind(resume_);
+  // the speculative kernel votes per work-group: make it one SIMD group
+  p.log.launch(p.device, resume_, "resume", count, speculative_ ? SIMD_GROUP : 64);
+  measure_traversal(p, &values_, count);
+}
+
+void SortedTraversal::report(RenderResult& result) const {
+  result.compile_seconds += program_.seconds;
+  result.compile_from_cache = result.compile_from_cache && program_.from_cache;
+  result.path_state_bytes += SORT_SLOT_BYTES + sizeof(SavedStackEntry) * code_.pth_levels;
+  result.code_layout = layout_;
+  result.pth_levels = code_.pth_levels;
+  result.pth_subtree_nodes = subtree_.nodes;
+  result.speculative = speculative_;
+}
+
+}  // namespace cohort

@@ -1,0 +1,46 @@
+// The stages that replace `extend` when rays are sorted before traversal (kernels/common/
+// pth_kernels.h): walk (the top KD-tree levels in local memory, then the coherence code), sort (the
+// device radix sort of (code, slot) pairs) and resume (each traversal continues, in sorted order,
+// from the state the walk saved). With the hash key the walk covers no levels: the hash sort of
+// Garanzha & Loop.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "runtime/render/coherence.h"
+#include "runtime/render/stages/wavefront_loop.h"
+#include "runtime/sort/radix_sort.h"
+
+namespace cohort {
+
+// What the sort key holds beyond the origin and direction.
+enum class SortKey {
+  hash,  // origin and direction only (Garanzha & Loop 2010)
+  pth,   // with the bits of the partial traversal of the top subtree (Wang & Deng)
+};
+
+class SortedTraversal {
+ public:
+  SortedTraversal(const WavefrontRender& render, SortKey key);
+
+  void walk(WavefrontPass& pass);
+  void sort(WavefrontPass& pass);
+  void resume(WavefrontPass& pass);
+  // The code, the subtree and the compile time into the render's figures.
+  void report(RenderResult& result) const;
+
+ private:
+  SortKey key_;
+  bool speculative_;
+  DeviceProgram program_;
+  CodeParams code_{};
+  SubtreeChoice subtree_;
+  std::string layout_;
+  DeviceBuffer code_params_, origin_bounds_, keys_, values_, traversal_, traversal_stack_;
+  std::optional<RadixSort> sort_;
+  DeviceKernel walk_, resume_;
+};
+
+}  // namespace cohort

@@ -1,0 +1,91 @@
+// The host side of kernels/common/kernel_params.h: every kernel's argument struct sets exactly as
+// many arguments as the kernel has parameters (compiled here as host C++), in the order of its
+// fields, and refuses a buffer left unset instead of launching with a null argument.
+#define COHORT_FEATURE_TEXTURES
+#define COHORT_FEATURE_CONDUCTOR
+#define COHORT_FEATURE_DIELECTRIC
+#define COHORT_FEATURE_PLASTIC
+#include "kernels/common/film_kernels.h"
+#include "kernels/common/naive_kernel.h"
+#include "kernels/common/pth_kernels.h"
+#include "kernels/common/trace_kernels.h"
+#include "kernels/common/wavefront_kernels.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <variant>
+
+#include "runtime/backend/kernel_args.h"
+
+using namespace cohort;
+
+namespace {
+
+template <class... Params>
+constexpr std::size_t arity(void (*)(Params...)) {
+  return sizeof...(Params);
+}
+
+DeviceBuffer some_buffer() { return DeviceBuffer(std::make_shared<BufferObject>(), 4); }
+
+}  // namespace
+
+TEST(KernelArgs, OneArgumentPerKernelParameter) {
+  EXPECT_EQ(RenderNaiveArgs::arg_count, arity(&render_naive));
+  EXPECT_EQ(WfGenerateArgs::arg_count, arity(&wf_generate));
+  EXPECT_EQ(WfExtendArgs::arg_count, arity(&wf_extend));
+  EXPECT_EQ(WfShadeArgs::arg_count, arity(&wf_shade));
+  EXPECT_EQ(WfShadowArgs::arg_count, arity(&wf_shadow));
+  EXPECT_EQ(WfFinishArgs::arg_count, arity(&wf_finish));
+  EXPECT_EQ(WfAccumulateArgs::arg_count, arity(&wf_accumulate));
+  EXPECT_EQ(WfSimdEfficiencyArgs::arg_count, arity(&wf_simd_efficiency));
+  EXPECT_EQ(WfShadowMaxStepsArgs::arg_count, arity(&wf_shadow_max_steps));
+  EXPECT_EQ(PthWalkAndCodeArgs::arg_count, arity(&pth_walk_and_code));
+  EXPECT_EQ(PthResumeArgs::arg_count, arity(&pth_resume));
+  EXPECT_EQ(PthResumeArgs::arg_count, arity(&pth_resume_speculative));
+  EXPECT_EQ(TraceRaysArgs::arg_count, arity(&trace_rays));
+  EXPECT_EQ(TraceRaysStepsArgs::arg_count, arity(&trace_rays_steps));
+  EXPECT_EQ(TraceRaysPthArgs::arg_count, arity(&trace_rays_pth));
+  EXPECT_EQ(TraceRaysSpeculativeArgs::arg_count, arity(&trace_rays_speculative));
+  EXPECT_EQ(FilmAddArgs::arg_count, arity(&film_add));
+  // the groups stand for their parameters: 12 scene buffers, 8 path buffers, 4 shadow buffers
+  EXPECT_EQ(SceneBuffers::arg_count, 12u);
+  EXPECT_EQ(PathBuffers::arg_count, 8u);
+  EXPECT_EQ(ShadowBuffers::arg_count, 4u);
+}
+
+TEST(KernelArgs, BindSetsFieldsInSignatureOrder) {
+  WfSimdEfficiencyArgs args;
+  args.steps = some_buffer();
+  args.count = 77;
+  args.counters = some_buffer();
+  DeviceKernel kernel(nullptr, "wf_simd_efficiency");
+  args.bind(kernel);
+  ASSERT_EQ(kernel.args().size(), 3u);
+  const auto* steps = std::get_if<DeviceBuffer>(&kernel.args()[0]);
+  const auto* count = std::get_if<ValueArg>(&kernel.args()[1]);
+  const auto* counters = std::get_if<DeviceBuffer>(&kernel.args()[2]);
+  ASSERT_TRUE(steps && count && counters);
+  EXPECT_EQ(steps->object(), args.steps.object());
+  EXPECT_EQ(counters->object(), args.counters.object());
+  std::uint32_t value = 0;
+  ASSERT_EQ(count->bytes.size(), sizeof(value));
+  std::memcpy(&value, count->bytes.data(), sizeof(value));
+  EXPECT_EQ(value, 77u);
+}
+
+TEST(KernelArgs, UnsetBufferIsAnErrorNamingIt) {
+  WfSimdEfficiencyArgs args;
+  args.steps = some_buffer();
+  DeviceKernel kernel(nullptr, "wf_simd_efficiency");
+  try {
+    args.bind(kernel);
+    FAIL() << "bind accepted an unset buffer";
+  } catch (const std::logic_error& e) {
+    EXPECT_NE(std::string(e.what()).find("counters"), std::string::npos) << e.what();
+  }
+}
