@@ -84,7 +84,9 @@ struct SortStage {
   SortStage(const Device& cl, const ProgramCache& cache, const DeviceScene& scene, const Method& method,
             const RenderSettings& s, std::uint32_t slots) {
     const bool pth = method.sort == RaySort::pth;
-    subtree = pth ? choose_subtree(cl.info(), scene, s.pth_levels) : SubtreeChoice{};
+    // --code pth:N means N levels (issue 25): it and --pth-levels must agree when both are given
+    const std::uint32_t requested = requested_pth_levels(s.code, s.pth_levels);
+    subtree = pth ? choose_subtree(cl.info(), scene, requested) : SubtreeChoice{};
     layout = s.code.empty() ? default_code_layout(pth) : s.code;
     code = parse_code_layout(layout, subtree.levels, scene.bounds);
     if (!pth) code.pth_levels = 0;  // the hash sort never walks the subtree
