@@ -32,7 +32,8 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
   cmd.add_option("--wavefront-size", r.settings.wavefront_size,
                  "Path slots of the wavefront methods (default: chosen from the device)");
   cmd.add_option("--code", r.settings.code,
-                 "Coherence code of hash/pth, most significant part first (default origin:8,pth:10,dir:8)");
+                 "Coherence code of hash/pth, most significant part first (default origin:8,pth:10,dir:8), or a "
+                 "preset: paper, hash, origin-first; its pth:N sets the levels pth walks");
   cmd.add_option("--pth-levels", r.settings.pth_levels,
                  "KD-tree levels pth walks in local memory (default: 10, fewer if the tree or local memory is smaller)")
       ->check(CLI::Range(1, 16));

@@ -10,13 +10,18 @@
 
 namespace cohort {
 
-std::string default_code_layout(bool with_pth) { return with_pth ? "origin:8,pth:10,dir:8" : "origin:8,dir:8"; }
+namespace {
 
-CodeParams parse_code_layout(const std::string& layout, std::uint32_t pth_levels, const Bounds& bounds) {
-  struct Part {
-    std::string name;
-    std::uint32_t width = 0;
-  };
+struct Part {
+  std::string name;
+  std::uint32_t width = 0;
+};
+
+// The parts of a layout or of the preset it names, most significant first.
+std::vector<Part> layout_parts(const std::string& given) {
+  std::string layout = given;
+  for (const CodePreset& p : code_presets())
+    if (given == p.name) layout = p.layout;
   std::vector<Part> parts;
   std::istringstream in(layout);
   std::string item;
@@ -26,9 +31,39 @@ CodeParams parse_code_layout(const std::string& layout, std::uint32_t pth_levels
     const char* first = item.data() + colon + 1;
     const char* last = item.data() + item.size();
     if (colon == std::string::npos || std::from_chars(first, last, part.width).ptr != last)
-      throw InputError(fmt::format("--code {}: expected parts like origin:8,pth:10,dir:8", layout));
+      throw InputError(fmt::format("--code {}: expected parts like origin:8,pth:10,dir:8 or a preset (paper, hash, origin-first)", layout));
     parts.push_back(part);
   }
+  return parts;
+}
+
+}  // namespace
+
+const std::vector<CodePreset>& code_presets() {
+  static const std::vector<CodePreset> presets{
+      {"paper", "origin:8,pth:10,dir:8"}, {"hash", "origin:8,dir:8"}, {"origin-first", "origin-uniform:8,dir:4"}};
+  return presets;
+}
+
+std::string default_code_layout(bool with_pth) { return with_pth ? "origin:8,pth:10,dir:8" : "origin:8,dir:8"; }
+
+std::uint32_t layout_pth_levels(const std::string& layout) {
+  std::uint32_t levels = 0;
+  for (const Part& p : layout_parts(layout))
+    if (p.name == "pth") levels = p.width;
+  return levels;
+}
+
+std::uint32_t requested_pth_levels(const std::string& code, std::uint32_t pth_levels) {
+  const std::uint32_t coded = code.empty() ? 0 : layout_pth_levels(code);
+  if (coded != 0 && pth_levels != 0 && coded != pth_levels)
+    throw InputError(fmt::format("--code {} asks for {} PTH levels and --pth-levels for {}: give one", code, coded,
+                                 pth_levels));
+  return coded != 0 ? coded : pth_levels;
+}
+
+CodeParams parse_code_layout(const std::string& layout, std::uint32_t pth_levels, const Bounds& bounds) {
+  const std::vector<Part> parts = layout_parts(layout);
   CodeParams c{};
   c.lo = {bounds.lo.x, bounds.lo.y, bounds.lo.z, 0.f};
   c.hi = {bounds.hi.x, bounds.hi.y, bounds.hi.z, 0.f};

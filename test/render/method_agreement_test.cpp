@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "render_fixture.h"
+#include "runtime/render/coherence.h"
 #include "runtime/render/methods.h"
 #include "runtime/render/workloads.h"
 #include "runtime/util/error.h"
@@ -98,15 +99,46 @@ TEST(Methods, PthWithOtherCodeLayoutsAndSubtreeDepthsStillBitForBit) {
   const auto path = shipped_scene("cornell-box.gltf");
   const RenderResult reference = render_scene(path, s);
   s.method = "pth";
-  for (const char* code : {"pth:4", "dir:16,pth:6,origin:4", "origin-uniform:10,pth:12", "pth:16,dir:16"}) {
-    for (std::uint32_t levels : {1u, 3u, 8u}) {  // 8 levels keep every layout within 64 bits
-      s.code = code;
-      s.pth_levels = levels;
-      const RenderResult r = render_scene(path, s);
-      expect_bitwise_equal(reference, r, code);
-      EXPECT_EQ(r.code_layout, code);
-    }
+  // --code pth:N walks N levels (capped by the tree's depth), whatever the default would be
+  struct Case {
+    const char* code;
+    std::uint32_t levels;  // the pth width the layout asks for; 0: the default's 10
+  };
+  for (const Case& c : {Case{"pth:4", 4}, Case{"dir:16,pth:6,origin:4", 6}, Case{"origin-uniform:10,pth:12", 12},
+                        Case{"pth:16,dir:16", 16}, Case{"paper", 10}, Case{"pth:1,origin-uniform:8,dir:4", 1}}) {
+    s.code = c.code;
+    const RenderResult r = render_scene(path, s);
+    expect_bitwise_equal(reference, r, c.code);
+    EXPECT_EQ(r.code_layout, c.code);
+    EXPECT_GT(r.pth_levels, 0u) << c.code;
+    EXPECT_LE(r.pth_levels, c.levels) << c.code;
+    if (c.levels <= 4) EXPECT_EQ(r.pth_levels, c.levels) << c.code;  // the box's tree is deeper than 4
   }
+  // --pth-levels alone sets the default layout's pth width; with a --code that agrees it is fine
+  s.code.clear();
+  for (std::uint32_t levels : {1u, 3u}) {
+    s.pth_levels = levels;
+    const RenderResult r = render_scene(path, s);
+    expect_bitwise_equal(reference, r, "--pth-levels");
+    EXPECT_EQ(r.pth_levels, levels);
+  }
+  s.code = "pth:3,dir:8";
+  EXPECT_EQ(render_scene(path, s).pth_levels, 3u);
+}
+
+TEST(Methods, CodeAndPthLevelsThatDisagreeAreAnInputError) {
+  RenderSettings s;
+  s.width = s.height = 8;
+  s.spp = 1;
+  s.method = "pth";
+  s.code = "origin:8,pth:4,dir:8";
+  s.pth_levels = 6;
+  EXPECT_THROW(render_scene(shipped_scene("cornell-box.gltf"), s), InputError);
+  EXPECT_EQ(requested_pth_levels("pth:4", 0), 4u);
+  EXPECT_EQ(requested_pth_levels("", 7), 7u);
+  EXPECT_EQ(requested_pth_levels("paper", 0), 10u);
+  EXPECT_EQ(requested_pth_levels("origin-first", 5), 5u);  // no pth part: --pth-levels decides
+  EXPECT_EQ(layout_pth_levels("origin-first"), 0u);
 }
 
 TEST(Methods, MalformedCodeLayoutsAreInputErrors) {
@@ -114,7 +146,7 @@ TEST(Methods, MalformedCodeLayoutsAreInputErrors) {
   s.width = s.height = 8;
   s.spp = 1;
   s.method = "pth";
-  for (const char* code : {"origin:11", "pth", "dir:8,colour:3", "origin:10,pth:16,dir:16"}) {
+  for (const char* code : {"origin:11", "pth", "dir:8,colour:3", "origin:10,pth:16,dir:16", "papers"}) {
     s.code = code;
     EXPECT_THROW(render_scene(shipped_scene("cornell-box.gltf"), s), InputError) << code;
   }

@@ -14,7 +14,9 @@ SortedTraversal::SortedTraversal(const WavefrontRender& render, SortKey key)
   const std::uint32_t slots = render.pool().slots;
   program_ = cl.build_program(in.cache, "pth", in.scene.build_options);
   const bool pth = key == SortKey::pth;
-  subtree_ = pth ? choose_subtree(cl.info(), in.scene, in.settings.pth_levels) : SubtreeChoice{};
+  // --code pth:N means N levels (issue 25): it and --pth-levels must agree when both are given
+  const std::uint32_t requested = requested_pth_levels(in.settings.code, in.settings.pth_levels);
+  subtree_ = pth ? choose_subtree(cl.info(), in.scene, requested) : SubtreeChoice{};
   layout_ = in.settings.code.empty() ? default_code_layout(pth) : in.settings.code;
   code_ = parse_code_layout(layout_, subtree_.levels, in.scene.bounds);
   if (!pth) code_.pth_levels = 0;  // the hash sort never walks the subtree
