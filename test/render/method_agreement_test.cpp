@@ -112,7 +112,9 @@ TEST(Methods, PthWithOtherCodeLayoutsAndSubtreeDepthsStillBitForBit) {
     EXPECT_EQ(r.code_layout, c.code);
     EXPECT_GT(r.pth_levels, 0u) << c.code;
     EXPECT_LE(r.pth_levels, c.levels) << c.code;
-    if (c.levels <= 4) EXPECT_EQ(r.pth_levels, c.levels) << c.code;  // the box's tree is deeper than 4
+    if (c.levels <= 4) {  // the box's tree is deeper than 4
+      EXPECT_EQ(r.pth_levels, c.levels) << c.code;
+    }
   }
   // --pth-levels alone sets the default layout's pth width; with a --code that agrees it is fine
   s.code.clear();
