@@ -54,23 +54,28 @@ void flatten(const Subtree& subtree, KdTree& tree) {
   tree.nodes.reserve(node_count);
   tree.leaf_triangles.reserve(leaf_entries);
   // `order` is the breadth-first queue and, by position, the output index of every node: the two
-  // children of a node are queued together, so they land next to each other.
+  // children of a node are queued together, so they land next to each other. Entries name their
+  // subtree by an index into `trees` (8 bytes an entry: the queue holds every node).
   struct Entry {
-    const Subtree* tree;
+    std::uint32_t tree;
     std::uint32_t node;
   };
+  std::vector<const Subtree*> trees{&subtree};
   std::vector<Entry> order;
   order.reserve(node_count);
-  order.push_back({&subtree, 0});
-  auto queue = [&order](const Subtree* in, std::uint32_t child) {
+  order.push_back({0, 0});
+  auto queue = [&](std::uint32_t parent, std::uint32_t child) {
     if (child & kSpawnedBit) {
-      order.push_back({&in->spawned[child & ~kSpawnedBit], 0});
+      const Subtree* spawned = &trees[parent]->spawned[child & ~kSpawnedBit];
+      trees.push_back(spawned);
+      order.push_back({static_cast<std::uint32_t>(trees.size() - 1), 0});
     } else {
-      order.push_back({in, child});
+      order.push_back({parent, child});
     }
   };
   for (std::size_t i = 0; i < order.size(); ++i) {
-    const auto [in, index] = order[i];
+    const auto [tree_index, index] = order[i];
+    const Subtree* in = trees[tree_index];
     const BuildNode& node = in->nodes[index];
     if (node.axis == KD_LEAF) {
       tree.nodes.push_back(leaf_node(node.b, tree.leaf_triangles.size()));
@@ -78,8 +83,8 @@ void flatten(const Subtree& subtree, KdTree& tree) {
       tree.leaf_triangles.insert(tree.leaf_triangles.end(), first, first + node.b);
     } else {
       tree.nodes.push_back(inner_node(node, order.size()));
-      queue(in, node.a);
-      queue(in, node.b);
+      queue(tree_index, node.a);
+      queue(tree_index, node.b);
     }
   }
 }
