@@ -93,10 +93,11 @@ SplitPlane Builder::find_plane(Scratch& s, std::size_t begin, std::size_t end,
                                const SahContext& c, bool parallel, bool inherited) const {
   const std::size_t count = end - begin;
   if (!exact(count)) {
-    // More bins than references only split hairs: the exact sweep inside the best bins and at
-    // the ends of the geometry finds the planes that matter.
-    const int bins = static_cast<int>(
-        std::clamp<std::size_t>(count, 8, static_cast<std::size_t>(std::max(options_.bins, 8))));
+    // A bin per four references is enough: the exact sweep inside the best bins and at the ends
+    // of the geometry finds the planes that matter (on the bunny: 3% fewer instructions than a
+    // bin per reference, SAH 75.03 against 75.09).
+    const int bins = static_cast<int>(std::clamp<std::size_t>(
+        count / 4, 8, static_cast<std::size_t>(std::max(options_.bins, 8))));
     return find_binned_plane(c, std::span<const Ref>(s.refs).subspan(begin, count), bins,
                              parallel, s.plane);
   }
