@@ -5,6 +5,8 @@
 // reaches.
 #pragma once
 
+#include <array>
+
 #include <glm/glm.hpp>
 
 #include "runtime/scene/bounds.h"
@@ -18,5 +20,13 @@ namespace cohort::kd {
 // box.
 Bounds clip_triangle_bounds(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
                             const Bounds& box);
+
+// clip_triangle_bounds on the two halves of `cell` split at x[axis] = pos ({lower, upper}), with
+// the clipping to the cell done once for both: what a KD-tree split needs for a straddling
+// triangle. The order of the clipping planes differs, so the boxes may differ from the
+// one-cell function in the last bit, but they are just as conservative.
+std::array<Bounds, 2> split_triangle_bounds(const glm::vec3& a, const glm::vec3& b,
+                                            const glm::vec3& c, const Bounds& cell, int axis,
+                                            float pos);
 
 }  // namespace cohort::kd

@@ -103,7 +103,7 @@ int best_boundary(const SahContext& c, const Binner& binner, const PlaneScratch&
   return boundary;
 }
 
-// The bins whose events get the exact sweep, per axis: up to three disjoint ascending ranges
+// The bins whose extents get the exact sweep, per axis: up to three disjoint ascending ranges
 // [first, last], around the best boundary and at the two ends of the geometry (the first bin where
 // a reference starts, the last where one ends), where the planes that cut off empty space lie.
 struct Ranges {
@@ -132,12 +132,6 @@ struct Ranges {
       }
     }
   }
-  bool contains(int bin) const {
-    for (int k = 0; k < count; ++k) {
-      if (bin >= range[k][0] && bin <= range[k][1]) return true;
-    }
-    return false;
-  }
 };
 
 Ranges exact_ranges(const PlaneScratch& counts, int bins, int axis, int boundary) {
@@ -152,35 +146,51 @@ Ranges exact_ranges(const PlaneScratch& counts, int bins, int axis, int boundary
   return r;
 }
 
+// How many of the sorted positions, from `first` on, fall into bins up to `last`.
+std::size_t in_bins_up_to(std::span<const float> sorted, std::size_t first, const Binner& binner,
+                          int axis, int last) {
+  std::size_t end = first;
+  while (end < sorted.size() && binner.bin(axis, sorted[end]) <= last) ++end;
+  return end - first;
+}
+
 // Exact counts inside a range of bins: every reference starting in a lower bin lies left of each
-// event there, every one ending in a lower bin right of none (the bin index is monotone in the
-// position), so a Wald & Havran sweep over the events of the range, started from the prefix
+// position there, every one ending in a lower bin right of none (the bin index is monotone in the
+// position), so a Wald & Havran sweep over the extents of the range, started from the prefix
 // counts, evaluates each of them exactly. This recovers the planes at triangle boundaries, which
 // a KD-tree's cost depends on (cutting off empty space tightly) and bin boundaries miss.
 void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs,
             const std::array<Ranges, 3>& ranges, PlaneScratch& scratch, SplitPlane& best) {
-  for (auto& list : scratch.events) list.clear();
-  for (std::size_t i = 0; i < refs.size(); ++i) {
-    const Bounds& box = refs[i].box;
-    const auto local = static_cast<std::uint32_t>(i);
+  for (AxisExtents& x : scratch.extents) x.clear();
+  // A lookup per position instead of a search through the ranges.
+  const auto bins = static_cast<std::size_t>(binner.bins);
+  scratch.refined.assign(3 * bins, 0);
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int k = 0; k < ranges[axis].count; ++k) {
+      for (int b = ranges[axis].range[k][0]; b <= ranges[axis].range[k][1]; ++b) {
+        scratch.refined[axis * bins + static_cast<std::size_t>(b)] = 1;
+      }
+    }
+  }
+  for (const Ref& r : refs) {
     for (int axis = 0; axis < 3; ++axis) {
-      if (ranges[axis].count == 0) continue;
-      const int lo = binner.bin(axis, box.lo[axis]), hi = binner.bin(axis, box.hi[axis]);
-      std::vector<Event>& list = scratch.events[axis];
-      if (box.lo[axis] == box.hi[axis]) {
-        if (ranges[axis].contains(lo)) list.push_back(Event::make(box.lo[axis], kPlanar, local));
+      const std::uint8_t* refined = scratch.refined.data() + axis * bins;
+      const float lo = r.box.lo[axis] + 0.f, hi = r.box.hi[axis] + 0.f;
+      AxisExtents& x = scratch.extents[axis];
+      if (lo == hi) {
+        if (refined[binner.bin(axis, lo)]) x.flats.push_back(lo);
         continue;
       }
-      if (ranges[axis].contains(lo)) list.push_back(Event::make(box.lo[axis], kStart, local));
-      if (ranges[axis].contains(hi)) list.push_back(Event::make(box.hi[axis], kEnd, local));
+      if (refined[binner.bin(axis, lo)]) x.starts.push_back(lo);
+      if (refined[binner.bin(axis, hi)]) x.ends.push_back(hi);
     }
   }
   for (int axis = 0; axis < 3; ++axis) {
-    std::vector<Event>& list = scratch.events[axis];
-    std::sort(list.begin(), list.end());
-    // The sorted events fall into the ranges in order; each range's sweep starts from the counts
-    // of the bins below it.
-    std::size_t next = 0;
+    AxisExtents& x = scratch.extents[axis];
+    x.sort();
+    // The sorted positions fall into the ranges in order; each range's sweep starts from the
+    // counts of the bins below it.
+    std::size_t s = 0, e = 0, f = 0;
     std::uint32_t n_left = 0, n_right = c.count;
     int counted = 0;  // bins [0, counted) are in n_left / n_right
     for (int k = 0; k < ranges[axis].count; ++k) {
@@ -189,11 +199,15 @@ void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs
         n_left += scratch.starts[axis * binner.bins + counted];
         n_right -= scratch.ends[axis * binner.bins + counted];
       }
-      std::size_t end = next;
-      while (end < list.size() && binner.bin(axis, list[end].pos()) <= last) ++end;
-      sweep_events(c, axis, std::span<const Event>(list).subspan(next, end - next), n_left,
-                   n_right, best);
-      next = end;
+      const std::size_t ns = in_bins_up_to(x.starts, s, binner, axis, last);
+      const std::size_t ne = in_bins_up_to(x.ends, e, binner, axis, last);
+      const std::size_t nf = in_bins_up_to(x.flats, f, binner, axis, last);
+      sweep_extents(c, axis, std::span<const float>(x.starts).subspan(s, ns),
+                    std::span<const float>(x.ends).subspan(e, ne),
+                    std::span<const float>(x.flats).subspan(f, nf), n_left, n_right, best);
+      s += ns;
+      e += ne;
+      f += nf;
     }
   }
 }

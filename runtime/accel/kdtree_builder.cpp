@@ -1,10 +1,10 @@
 // The recursive SAH build over triangle references. Large nodes pick their plane from binned
 // counts (linear time); nodes of at most KdBuildOptions::exact_triangles references sort their
-// extents as events and sweep every candidate (Wald & Havran 2006's exact SAH). References live in
+// extents and sweep every candidate (Wald & Havran 2006's exact SAH). References live in
 // one growing array per task, used as a stack: a node's left child overwrites it in place and its
 // right child is appended, so the recursion allocates nothing per node. Subtrees of large nodes are
-// TBB tasks, built into their own pointer-free Subtree and appended in a fixed order, so the tree
-// is the same bits whatever the thread count and timing.
+// TBB tasks, built into their own pointer-free Subtree kept in a fixed slot of their parent's, so
+// the tree is the same bits whatever the thread count and timing.
 #include <fmt/format.h>
 #include <tbb/parallel_invoke.h>
 
@@ -34,10 +34,10 @@ constexpr int kMaxBadRefines = 3;
 struct Scratch {
   std::vector<Ref> refs;
   PlaneScratch plane;
-  // plane.events are already the sorted events of the next node's references: its parent swept
+  // plane.extents are already the sorted extents of the next node's references: its parent swept
   // them and handed all of them on unchanged (an empty-space cut with nothing clipped, the most
-  // common split in a KD-tree), so the child skips building and sorting them again.
-  bool events_inherited = false;
+  // common split in a KD-tree), so the child skips gathering and sorting them again.
+  bool extents_inherited = false;
 };
 
 class Builder {
@@ -63,7 +63,6 @@ class Builder {
                                int bad_refines) const;
   static std::uint32_t make_leaf(Subtree& out, const Scratch& s, std::size_t begin,
                                  std::size_t end);
-  static std::uint32_t append(Subtree& out, const Subtree& child);
 
   std::span<const Triangle> triangles_;
   const KdBuildOptions& options_;
@@ -90,51 +89,33 @@ std::uint32_t Builder::make_leaf(Subtree& out, const Scratch& s, std::size_t beg
   return index;
 }
 
-// Appends a subtree built on its own, shifting its node and leaf-list indices.
-std::uint32_t Builder::append(Subtree& out, const Subtree& child) {
-  checked_offset(out.nodes.size() + child.nodes.size());
-  checked_offset(out.leaf_triangles.size() + child.leaf_triangles.size());
-  const auto node_offset = static_cast<std::uint32_t>(out.nodes.size());
-  const auto leaf_offset = static_cast<std::uint32_t>(out.leaf_triangles.size());
-  for (BuildNode node : child.nodes) {
-    if (node.axis == KD_LEAF) {
-      node.a += leaf_offset;
-    } else {
-      node.a += node_offset;
-      node.b += node_offset;
-    }
-    out.nodes.push_back(node);
-  }
-  out.leaf_triangles.insert(out.leaf_triangles.end(), child.leaf_triangles.begin(),
-                            child.leaf_triangles.end());
-  return node_offset;
-}
-
 SplitPlane Builder::find_plane(Scratch& s, std::size_t begin, std::size_t end,
                                const SahContext& c, bool parallel, bool inherited) const {
   const std::size_t count = end - begin;
   if (!exact(count)) {
-    // More bins than references only split hairs: the exact sweep inside the best bins and at
-    // the ends of the geometry finds the planes that matter.
-    const int bins = static_cast<int>(
-        std::clamp<std::size_t>(count, 8, static_cast<std::size_t>(std::max(options_.bins, 8))));
+    // A bin per four references is enough: the exact sweep inside the best bins and at the ends
+    // of the geometry finds the planes that matter (on the bunny: 3% fewer instructions than a
+    // bin per reference, SAH 75.03 against 75.09).
+    const int bins = static_cast<int>(std::clamp<std::size_t>(
+        count / 4, 8, static_cast<std::size_t>(std::max(options_.bins, 8))));
     return find_binned_plane(c, std::span<const Ref>(s.refs).subspan(begin, count), bins,
                              parallel, s.plane);
   }
-  EventLists& events = s.plane.events;
+  NodeExtents& extents = s.plane.extents;
   if (!inherited) {
-    for (auto& list : events) list.clear();
+    for (AxisExtents& x : extents) x.clear();
     for (std::size_t i = begin; i < end; ++i) {
-      push_events(events, s.refs[i].box, static_cast<std::uint32_t>(i - begin));
+      const Bounds& box = s.refs[i].box;
+      for (int axis = 0; axis < 3; ++axis) extents[axis].add(box.lo[axis], box.hi[axis]);
     }
-    for (auto& list : events) std::sort(list.begin(), list.end());
+    for (AxisExtents& x : extents) x.sort();
   }
-  return find_best_plane(c, events);
+  return find_best_plane(c, extents);
 }
 
 std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::size_t end,
                              const Bounds& voxel, int depth, int bad_refines) const {
-  const bool inherited = std::exchange(s.events_inherited, false);
+  const bool inherited = std::exchange(s.extents_inherited, false);
   const std::size_t count = end - begin;
   const auto leaf_size = static_cast<std::size_t>(std::max(options_.leaf_triangles, 0));
   SahContext context;
@@ -156,7 +137,7 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
   std::size_t clipped = 0;
   const std::array<std::size_t, 2> counts =
       partition(s.refs, begin, end, voxel, plane, triangles_, parallel, clipped);
-  // The events of this node are those of a child that got every reference unchanged, in order.
+  // The extents of this node are those of a child that got every reference unchanged.
   const bool hand_on = exact(count) && clipped == 0 && (counts[0] == 0 || counts[1] == 0);
   const std::array<Bounds, 2> cells = child_cells(voxel, plane.axis, plane.pos);
   const std::uint32_t index = checked_offset(out.nodes.size());
@@ -165,10 +146,10 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
     build_children_parallel(out, index, s, {begin, right_begin}, counts, cells, depth, bad_refines);
     return index;
   }
-  s.events_inherited = hand_on && counts[0] > 0;
+  s.extents_inherited = hand_on && counts[0] > 0;
   const std::uint32_t left =
       build(out, s, begin, begin + counts[0], cells[0], depth + 1, bad_refines);
-  s.events_inherited = hand_on && counts[1] > 0;
+  s.extents_inherited = hand_on && counts[1] > 0;
   const std::uint32_t right = build(out, s, right_begin, right_begin + counts[1], cells[1],
                                     depth + 1, bad_refines);
   s.refs.resize(right_begin);
@@ -177,8 +158,9 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
   return index;
 }
 
-// Each child gets a stack of its own and is built as a task into its own Subtree; the parent's
-// stack is freed first (a node large enough for this has the stack to itself: it is the root or a
+// Each child gets a stack of its own and is built as a task into its own Subtree, kept in the
+// parent's `spawned` (never copied: kdtree_layout.cpp walks them in place); the parent's stack is
+// freed first (a node large enough for this has the stack to itself: it is the root or a
 // child of another parallel split).
 void Builder::build_children_parallel(Subtree& out, std::uint32_t index, Scratch& s,
                                       std::array<std::size_t, 2> first,
@@ -191,17 +173,17 @@ void Builder::build_children_parallel(Subtree& out, std::uint32_t index, Scratch
     child[c].refs.assign(from, from + static_cast<std::ptrdiff_t>(counts[c]));
   }
   std::vector<Ref>().swap(s.refs);
-  std::array<Subtree, 2> trees;
+  const auto first_spawned = checked_offset(out.spawned.size());
+  if (first_spawned + 2 > kSpawnedBit) throw std::length_error("KD-tree has too many subtrees");
+  out.spawned.resize(out.spawned.size() + 2);
+  Subtree* trees = out.spawned.data() + first_spawned;
   auto build_child = [&](int c) {
     build(trees[c], child[c], 0, counts[c], cells[c], depth + 1, bad_refines);
     child[c] = {};
   };
   tbb::parallel_invoke([&] { build_child(0); }, [&] { build_child(1); });
-  out.nodes.reserve(out.nodes.size() + trees[0].nodes.size() + trees[1].nodes.size());
-  out.leaf_triangles.reserve(out.leaf_triangles.size() + trees[0].leaf_triangles.size() +
-                             trees[1].leaf_triangles.size());
-  out.nodes[index].a = append(out, trees[0]);
-  out.nodes[index].b = append(out, trees[1]);
+  out.nodes[index].a = kSpawnedBit | first_spawned;
+  out.nodes[index].b = kSpawnedBit | (first_spawned + 1);
 }
 
 // The root: every kept triangle with its own bounds, in input order.

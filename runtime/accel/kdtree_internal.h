@@ -4,13 +4,12 @@
 //
 // The build works on triangle references (a triangle and its extent clipped to the node's cell).
 // Large nodes pick their plane from binned counts in linear time; nodes of at most
-// KdBuildOptions::exact_triangles references sort their extents as Wald & Havran's events ("On
-// building fast kd-trees for ray tracing, and on doing that in O(N log N)", IEEE RT 2006) and
-// sweep every candidate exactly.
+// KdBuildOptions::exact_triangles references sort their extents and sweep every candidate exactly
+// as Wald & Havran do with their events ("On building fast kd-trees for ray tracing, and on doing
+// that in O(N log N)", IEEE RT 2006).
 #pragma once
 
 #include <array>
-#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -23,42 +22,33 @@
 
 namespace cohort::kd {
 
-// ---- Events ------------------------------------------------------------------------------------
-// Wald & Havran's event types. Their order (end < planar < start at the same position) is what
-// lets one sweep count N_L, N_P and N_R for every candidate plane (their incremental sweep).
-enum EventType : std::uint32_t { kEnd = 0, kPlanar = 1, kStart = 2 };
+// ---- Sorted extents ----------------------------------------------------------------------------
+// One axis of a node's references for the exact sweep: where each extent of non-zero width starts
+// and ends, and where each flat one (a triangle lying in a plane across the axis) lies. Sorted, these
+// are Wald & Havran's event lists without the events: their sweep needs only how many extents
+// start, end or lie at each position, so three float arrays sort faster than tagged events and give
+// the same planes.
+struct AxisExtents {
+  std::vector<float> starts, ends, flats;
 
-constexpr std::uint32_t kLocalBits = 30;
-constexpr std::uint32_t kLocalMask = (1u << kLocalBits) - 1u;
-
-// 8 bytes, one integer key: the position's float bits mapped to an unsigned integer of the same
-// order, above the type and the node-local reference index. Sorting keys sorts by (position, type,
-// reference), a total order, so every sort is deterministic, and a key comparison is one
-// instruction.
-struct Event {
-  std::uint64_t key;
-
-  static Event make(float pos, EventType type, std::uint32_t local) {
-    return {static_cast<std::uint64_t>(ordered_bits(pos)) << 32 |
-            (static_cast<std::uint32_t>(type) << kLocalBits) | local};
+  void clear() {
+    starts.clear();
+    ends.clear();
+    flats.clear();
   }
-  float pos() const { return float_of(static_cast<std::uint32_t>(key >> 32)); }
-  std::uint32_t pos_bits() const { return static_cast<std::uint32_t>(key >> 32); }
-  EventType type() const { return static_cast<EventType>((key >> kLocalBits) & 3u); }
-  std::uint32_t local() const { return static_cast<std::uint32_t>(key) & kLocalMask; }
-  friend bool operator<(const Event& a, const Event& b) { return a.key < b.key; }
-
-  // Negative floats reversed below the positive ones; -0 is taken as +0 first.
-  static std::uint32_t ordered_bits(float pos) {
-    const std::uint32_t u = std::bit_cast<std::uint32_t>(pos + 0.0f);
-    return (u & 0x80000000u) ? ~u : u | 0x80000000u;
+  // -0 is taken as +0, so equal positions compare equal and the plane is never -0.
+  void add(float lo, float hi) {
+    if (lo == hi) {
+      flats.push_back(lo + 0.f);
+    } else {
+      starts.push_back(lo + 0.f);
+      ends.push_back(hi + 0.f);
+    }
   }
-  static float float_of(std::uint32_t ordered) {
-    return std::bit_cast<float>((ordered & 0x80000000u) ? ordered & 0x7fffffffu : ~ordered);
-  }
+  void sort();
 };
 
-using EventLists = std::array<std::vector<Event>, 3>;
+using NodeExtents = std::array<AxisExtents, 3>;
 
 // A triangle reference: a kept triangle and its extent clipped to the cell of the node that holds
 // it (Havran's perfect splits). A node's references keep ascending triangle order, so leaf lists
@@ -67,9 +57,6 @@ struct Ref {
   Bounds box;
   std::uint32_t tri;
 };
-
-// Appends the events of one reference whose extent (inside the cell) is `box`.
-void push_events(EventLists& lists, const Bounds& box, std::uint32_t local);
 
 // ---- SAH ---------------------------------------------------------------------------------------
 struct SplitPlane {
@@ -136,22 +123,24 @@ inline void evaluate_plane(const SahContext& c, const AxisSah& a, float pos, std
   if (n_planar > 0) consider(n_left, n_right + n_planar, false);
 }
 
-// Wald & Havran's incremental sweep over one axis's sorted events, starting from n_left references
-// entirely before the first event and n_right reaching past it: at each position the end events
-// leave the right side, the planar ones sit in the plane, and the start events join the left side
-// after the evaluation. Updates `best` (kdtree_sah.cpp).
-void sweep_events(const SahContext& c, int axis, std::span<const Event> events,
-                  std::uint32_t n_left, std::uint32_t n_right, SplitPlane& best);
+// Wald & Havran's incremental sweep over one axis's sorted extents, starting from n_left references
+// entirely before the first position and n_right reaching past it: at each position the extents
+// ending there leave the right side, the flat ones sit in the plane, and those starting there join
+// the left side after the evaluation. Updates `best` (kdtree_sah.cpp).
+void sweep_extents(const SahContext& c, int axis, std::span<const float> starts,
+                   std::span<const float> ends, std::span<const float> flats, std::uint32_t n_left,
+                   std::uint32_t n_right, SplitPlane& best);
 
 // Working memory of the plane searches, reused from node to node by one task.
 struct PlaneScratch {
   std::vector<std::uint32_t> starts, ends;  // binned counts, [axis * bins + bin]
-  EventLists events;
+  std::vector<std::uint8_t> refined;        // 1 for the bins the exact sweep covers, same index
+  NodeExtents extents;
 };
 
-// The best plane of Wald & Havran's sweep (their FindPlane) over a node's sorted event lists:
-// exact, every boundary of a reference's extent is a candidate (kdtree_sah.cpp).
-SplitPlane find_best_plane(const SahContext& context, const EventLists& events);
+// The best plane of Wald & Havran's sweep (their FindPlane) over a node's sorted extents: exact,
+// every boundary of a reference's extent is a candidate (kdtree_sah.cpp).
+SplitPlane find_best_plane(const SahContext& context, const NodeExtents& extents);
 
 // The best of `bins - 1` evenly spaced planes per axis, counted from binned reference extents in
 // time linear in the node, and of the exact candidates inside the two bins around each axis's best
@@ -174,18 +163,23 @@ std::array<std::size_t, 2> partition(std::vector<Ref>& refs, std::size_t begin, 
 std::array<Bounds, 2> child_cells(const Bounds& voxel, int axis, float pos);
 
 // ---- Intermediate tree -------------------------------------------------------------------------
-// Pointer-free, so a subtree built on another thread is a plain value that the parent appends in a
-// fixed order: the result is the same bits whatever the thread timing.
+// Pointer-free, so a subtree built on another thread is a plain value that its parent keeps in a
+// fixed slot: the result is the same bits whatever the thread timing.
 struct BuildNode {
   std::uint32_t axis = KD_LEAF;  // 0..2, or KD_LEAF
   float split = 0.f;
-  std::uint32_t a = 0;  // inner: left child index; leaf: first entry in Subtree::leaf_triangles
-  std::uint32_t b = 0;  // inner: right child index; leaf: triangle count
+  std::uint32_t a = 0;  // inner: left child; leaf: first entry in Subtree::leaf_triangles
+  std::uint32_t b = 0;  // inner: right child; leaf: triangle count
 };
+
+// An inner node's child with this bit set is the root of Subtree::spawned[child & ~kSpawnedBit]
+// (built by another task), else a node of the same Subtree.
+constexpr std::uint32_t kSpawnedBit = 1u << 31;
 
 struct Subtree {
   std::vector<BuildNode> nodes;  // nodes[0] is the root
   std::vector<std::uint32_t> leaf_triangles;
+  std::vector<Subtree> spawned;  // subtrees built in parallel, kept in place instead of copied
 };
 
 // The recursive SAH build over the kept triangles (kdtree_builder.cpp).
@@ -202,8 +196,8 @@ constexpr int kDepthCap = KD_MAX_DEPTH - 4;
 // rays/s of the armadillo and the Sponza interior (docs/results.md); 2.0 to 3.0 gained nothing more.
 int effective_max_depth(const KdBuildOptions& options, std::size_t triangle_count);
 
-// Breadth-first device layout (kdtree_layout.cpp). Throws std::length_error when an index does
-// not fit the 30 bits of KdNode::word0.
+// Breadth-first device layout of the subtree and those it spawned (kdtree_layout.cpp). Throws
+// std::length_error when an index does not fit the 30 bits of KdNode::word0.
 void flatten(const Subtree& subtree, KdTree& tree);
 
 // Fills tree.stats from the flattened tree, except dropped_triangles and build_seconds.

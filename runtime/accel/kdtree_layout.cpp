@@ -3,6 +3,7 @@
 // top L levels are a prefix of the array (what a kernel caching the top of the tree needs).
 #include <fmt/format.h>
 
+#include <array>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
@@ -33,28 +34,57 @@ KdNode leaf_node(std::size_t count, std::size_t first) {
   return {static_cast<std::uint32_t>(count) << 2 | KD_LEAF, static_cast<std::uint32_t>(first)};
 }
 
+// Nodes and leaf entries of a subtree and those it spawned.
+std::array<std::size_t, 2> sizes(const Subtree& subtree) {
+  std::array<std::size_t, 2> total{subtree.nodes.size(), subtree.leaf_triangles.size()};
+  for (const Subtree& child : subtree.spawned) {
+    const auto [nodes, leaf_triangles] = sizes(child);
+    total[0] += nodes;
+    total[1] += leaf_triangles;
+  }
+  return total;
+}
+
 }  // namespace
 
 void flatten(const Subtree& subtree, KdTree& tree) {
   tree.nodes.clear();
   tree.leaf_triangles.clear();
-  tree.nodes.reserve(subtree.nodes.size());
-  tree.leaf_triangles.reserve(subtree.leaf_triangles.size());
+  const auto [node_count, leaf_entries] = sizes(subtree);
+  tree.nodes.reserve(node_count);
+  tree.leaf_triangles.reserve(leaf_entries);
   // `order` is the breadth-first queue and, by position, the output index of every node: the two
-  // children of a node are queued together, so they land next to each other.
-  std::vector<std::uint32_t> order;
-  order.reserve(subtree.nodes.size());
-  order.push_back(0);
+  // children of a node are queued together, so they land next to each other. Entries name their
+  // subtree by an index into `trees` (8 bytes an entry: the queue holds every node).
+  struct Entry {
+    std::uint32_t tree;
+    std::uint32_t node;
+  };
+  std::vector<const Subtree*> trees{&subtree};
+  std::vector<Entry> order;
+  order.reserve(node_count);
+  order.push_back({0, 0});
+  auto queue = [&](std::uint32_t parent, std::uint32_t child) {
+    if (child & kSpawnedBit) {
+      const Subtree* spawned = &trees[parent]->spawned[child & ~kSpawnedBit];
+      trees.push_back(spawned);
+      order.push_back({static_cast<std::uint32_t>(trees.size() - 1), 0});
+    } else {
+      order.push_back({parent, child});
+    }
+  };
   for (std::size_t i = 0; i < order.size(); ++i) {
-    const BuildNode& node = subtree.nodes[order[i]];
+    const auto [tree_index, index] = order[i];
+    const Subtree* in = trees[tree_index];
+    const BuildNode& node = in->nodes[index];
     if (node.axis == KD_LEAF) {
       tree.nodes.push_back(leaf_node(node.b, tree.leaf_triangles.size()));
-      const auto first = subtree.leaf_triangles.begin() + node.a;
+      const auto first = in->leaf_triangles.begin() + node.a;
       tree.leaf_triangles.insert(tree.leaf_triangles.end(), first, first + node.b);
     } else {
       tree.nodes.push_back(inner_node(node, order.size()));
-      order.push_back(node.a);
-      order.push_back(node.b);
+      queue(tree_index, node.a);
+      queue(tree_index, node.b);
     }
   }
 }

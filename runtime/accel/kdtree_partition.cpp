@@ -13,17 +13,6 @@
 
 namespace cohort::kd {
 
-void push_events(EventLists& lists, const Bounds& box, std::uint32_t local) {
-  for (int axis = 0; axis < 3; ++axis) {
-    if (box.lo[axis] == box.hi[axis]) {
-      lists[axis].push_back(Event::make(box.lo[axis], kPlanar, local));
-    } else {
-      lists[axis].push_back(Event::make(box.lo[axis], kStart, local));
-      lists[axis].push_back(Event::make(box.hi[axis], kEnd, local));
-    }
-  }
-}
-
 std::array<Bounds, 2> child_cells(const Bounds& voxel, int axis, float pos) {
   std::array<Bounds, 2> cells{voxel, voxel};
   cells[0].hi[axis] = pos;
@@ -42,7 +31,7 @@ struct Placement {
   Bounds left_box, right_box;
 };
 
-Placement place(const Ref& r, const SplitPlane& plane, const std::array<Bounds, 2>& cells,
+Placement place(const Ref& r, const SplitPlane& plane, const Bounds& voxel,
                 std::span<const Triangle> triangles) {
   const int axis = plane.axis;
   const float p = plane.pos;
@@ -58,8 +47,10 @@ Placement place(const Ref& r, const SplitPlane& plane, const std::array<Bounds, 
   if (out.left && out.right) {
     out.clipped = true;
     const Triangle& t = triangles[r.tri];
-    out.left_box = clip_triangle_bounds(vertex(t.v0), vertex(t.v1), vertex(t.v2), cells[0]);
-    out.right_box = clip_triangle_bounds(vertex(t.v0), vertex(t.v1), vertex(t.v2), cells[1]);
+    const auto [left_box, right_box] =
+        split_triangle_bounds(vertex(t.v0), vertex(t.v1), vertex(t.v2), voxel, axis, p);
+    out.left_box = left_box;
+    out.right_box = right_box;
     out.left = !out.left_box.empty();
     out.right = !out.right_box.empty();
   } else {
@@ -72,7 +63,7 @@ Placement place(const Ref& r, const SplitPlane& plane, const std::array<Bounds, 
 // result is the serial one whatever the thread count.
 std::array<std::size_t, 2> partition_parallel(std::vector<Ref>& refs, std::size_t begin,
                                               std::size_t end, const SplitPlane& plane,
-                                              const std::array<Bounds, 2>& cells,
+                                              const Bounds& voxel,
                                               std::span<const Triangle> triangles,
                                               std::size_t& clipped) {
   const std::size_t chunks = (end - begin + kParallelChunk - 1) / kParallelChunk;
@@ -82,7 +73,7 @@ std::array<std::size_t, 2> partition_parallel(std::vector<Ref>& refs, std::size_
     const std::size_t first = begin + k * kParallelChunk;
     const std::size_t last = std::min(end, first + kParallelChunk);
     for (std::size_t i = first; i < last; ++i) {
-      const Placement where = place(refs[i], plane, cells, triangles);
+      const Placement where = place(refs[i], plane, voxel, triangles);
       clipped_in[k] += where.clipped;
       if (where.left) parts[k][0].push_back({where.left_box, refs[i].tri});
       if (where.right) parts[k][1].push_back({where.right_box, refs[i].tri});
@@ -106,9 +97,8 @@ std::array<std::size_t, 2> partition(std::vector<Ref>& refs, std::size_t begin, 
                                      std::span<const Triangle> triangles, bool parallel,
                                      std::size_t& clipped) {
   clipped = 0;
-  const std::array<Bounds, 2> cells = child_cells(voxel, plane.axis, plane.pos);
   if (parallel && end - begin >= 2 * kParallelChunk) {
-    return partition_parallel(refs, begin, end, plane, cells, triangles, clipped);
+    return partition_parallel(refs, begin, end, plane, voxel, triangles, clipped);
   }
   const std::size_t right_begin = refs.size();
   // Left references overwrite the range in place (never ahead of the one being read), right ones
@@ -116,7 +106,7 @@ std::array<std::size_t, 2> partition(std::vector<Ref>& refs, std::size_t begin, 
   std::size_t write = begin;
   for (std::size_t read = begin; read < end; ++read) {
     const Ref r = refs[read];
-    const Placement where = place(r, plane, cells, triangles);
+    const Placement where = place(r, plane, voxel, triangles);
     clipped += where.clipped;
     if (where.left) refs[write++] = {where.left_box, r.tri};
     if (where.right) refs.push_back({where.right_box, r.tri});

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 namespace cohort::kd {
 namespace {
 
@@ -66,6 +68,38 @@ TEST(Clip, ResultIsConservativeAndInsideTheBox) {
       }
     }
   }
+}
+
+TEST(Clip, SplitGivesTheBoundsOfEachHalf) {
+  // split_triangle_bounds clips to the cell once and then to each side of the plane; the boxes
+  // must be those of clipping to each half on its own (to rounding), and empty on the same sides.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-1.f, 2.f);
+  const Bounds cell = box(glm::vec3(0.f), glm::vec3(1.f));
+  int straddling = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const glm::vec3 a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng)), c(u(rng), u(rng), u(rng));
+    const int axis = trial % 3;
+    const float pos = 0.1f + 0.8f * static_cast<float>(trial % 7) / 6.f;
+    const std::array<Bounds, 2> split = split_triangle_bounds(a, b, c, cell, axis, pos);
+    std::array<Bounds, 2> halves{cell, cell};
+    halves[0].hi[axis] = pos;
+    halves[1].lo[axis] = pos;
+    for (int side = 0; side < 2; ++side) {
+      SCOPED_TRACE(testing::Message() << "trial " << trial << " side " << side);
+      const Bounds alone = clip_triangle_bounds(a, b, c, halves[side]);
+      ASSERT_EQ(split[side].empty(), alone.empty());
+      if (alone.empty()) continue;
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR(split[side].lo[k], alone.lo[k], 1e-6f);
+        EXPECT_NEAR(split[side].hi[k], alone.hi[k], 1e-6f);
+        EXPECT_GE(split[side].lo[k], halves[side].lo[k]);
+        EXPECT_LE(split[side].hi[k], halves[side].hi[k]);
+      }
+    }
+    straddling += !split[0].empty() && !split[1].empty();
+  }
+  EXPECT_GT(straddling, 200) << "the trials must exercise triangles cut by the plane";
 }
 
 }  // namespace
