@@ -7,7 +7,7 @@ namespace cohort {
 
 RenderResult render_hash(const MethodInputs& in) {
   WavefrontRender render(in, Launches::compacted, SORT_SLOT_BYTES);
-  SortedTraversal sorted(render, SortKey::hash);
+  SortedTraversal sorted(render, TraversalSortKey::hash);
   RenderResult result = render.run([&](WavefrontPass& p) {
     generate(p);
     if (p.live == 0) return false;

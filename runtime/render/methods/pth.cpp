@@ -9,7 +9,7 @@ namespace cohort {
 
 RenderResult render_pth(const MethodInputs& in) {
   WavefrontRender render(in, Launches::compacted, SORT_SLOT_BYTES);
-  SortedTraversal sorted(render, SortKey::pth);
+  SortedTraversal sorted(render, TraversalSortKey::pth);
   RenderResult result = render.run([&](WavefrontPass& p) {
     generate(p);
     if (p.live == 0) return false;

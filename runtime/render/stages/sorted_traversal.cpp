@@ -7,13 +7,13 @@
 
 namespace cohort {
 
-SortedTraversal::SortedTraversal(const WavefrontRender& render, SortKey key)
+SortedTraversal::SortedTraversal(const WavefrontRender& render, TraversalSortKey key)
     : key_(key), speculative_(render.inputs().settings.speculative) {
   const MethodInputs& in = render.inputs();
   const Device& cl = in.device;
   const std::uint32_t slots = render.pool().slots;
   program_ = cl.build_program(in.cache, "pth", in.scene.build_options);
-  const bool pth = key == SortKey::pth;
+  const bool pth = key == TraversalSortKey::pth;
   // --code pth:N means N levels (issue 25): it and --pth-levels must agree when both are given
   const std::uint32_t requested = requested_pth_levels(in.settings.code, in.settings.pth_levels);
   subtree_ = pth ? choose_subtree(cl.info(), in.scene, requested) : SubtreeChoice{};
@@ -58,7 +58,7 @@ void SortedTraversal::walk(WavefrontPass& p) {
   args.stack_stride = p.pool.slots;
   args.hits = p.pool.hits;
   args.bind(walk_);
-  p.log.launch(p.device, walk_, key_ == SortKey::pth ? "pth" : "hash", count);
+  p.log.launch(p.device, walk_, key_ == TraversalSortKey::pth ? "pth" : "hash", count);
 }
 
 void SortedTraversal::sort(WavefrontPass& p) { sort_->sort(keys_, values_, p.count(), code_.key_bits, &p.sort_seconds); }
