@@ -37,7 +37,7 @@ int write_denoised(const PreparedRender& render, const RenderOutcome& outcome, c
                out.denoised_png.string());
     return 0;
   } catch (const DenoiserUnavailable& e) {
-    fmt::print(stderr, "error: --denoise: {}\nthe undenoised image is written: {}\n", e.what(), out.exr.string());
+    fmt::print(stderr, "cohort: --denoise: {}\nthe undenoised image is written: {}\n", e.what(), out.exr.string());
     return 2;
   }
 }

@@ -71,9 +71,12 @@ std::vector<std::filesystem::path> Denoiser::venv_candidates(const std::filesyst
 
 Denoiser Denoiser::load(const std::vector<std::filesystem::path>& extra_candidates) {
   std::vector<std::string> candidates;
-  if (const char* env = std::getenv("COHORT_OIDN_LIBRARY"); env && *env) candidates.emplace_back(env);
-  candidates.emplace_back("libOpenImageDenoise.so.2");
-  for (const auto& p : extra_candidates) candidates.push_back(p.string());
+  if (const char* env = std::getenv("COHORT_OIDN_LIBRARY"); env && *env) {
+    candidates.emplace_back(env);  // named by the user: that library or none
+  } else {
+    candidates.emplace_back("libOpenImageDenoise.so.2");
+    for (const auto& p : extra_candidates) candidates.push_back(p.string());
+  }
   std::string tried;
   for (const std::string& path : candidates) {
     void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);

@@ -19,9 +19,9 @@ struct DenoiserUnavailable : std::runtime_error {
 
 class Denoiser {
  public:
-  // Loads the library from the first of: $COHORT_OIDN_LIBRARY, the system's
-  // libOpenImageDenoise.so.2, then `extra_candidates` (for example the pyoidn wheel's copy in the
-  // project's virtual environment, which scripts/setup.sh installs). Throws DenoiserUnavailable.
+  // Loads $COHORT_OIDN_LIBRARY when set (that file only), else the first of the system's
+  // libOpenImageDenoise.so.2 and `extra_candidates` (for example the pyoidn wheel's copy in the
+  // project's virtual environment, which scripts/test installs). Throws DenoiserUnavailable.
   static Denoiser load(const std::vector<std::filesystem::path>& extra_candidates = {});
 
   // The pyoidn wheel's library under a virtual environment, if it is there.
