@@ -51,7 +51,9 @@ int write_render(const PreparedRender& render, const RenderOutcome& outcome, con
                  const InterruptGuard& interrupt) {
   const RenderCommand& cmd = render.plan.command;
   const RenderResult& result = outcome.result;
-  write_exr(out.exr, result.image, outcome.aovs ? aov_layers(*outcome.aovs, render.plan.aovs) : std::vector<ExrLayer>{});
+  std::vector<ExrLayer> aovs;
+  if (outcome.aovs) aovs = aov_layers(*outcome.aovs, render.plan.aovs);
+  write_exr(out.exr, result.image, aovs);
   write_png(out.png, result.image);
   if (cmd.verbose) print_details(render, outcome);
   if (result.dropped_samples)

@@ -27,7 +27,8 @@ AovSelection parse_aov_list(const std::string& list) {
     else
       throw InputError(fmt::format("--aov: unknown AOV '{}' (known: albedo, normal, depth)", name));
   }
-  if (!selection.any()) throw InputError(fmt::format("--aov: no AOV named in '{}' (known: albedo, normal, depth)", list));
+  if (!selection.any())
+    throw InputError(fmt::format("--aov: no AOV named in '{}' (known: albedo, normal, depth)", list));
   return selection;
 }
 
