@@ -64,6 +64,9 @@
 #define RENDER_NAIVE_PARAMS(P, G)                                                                             \
   SCENE_PARAMS(P, G) P(IO, co_float4, film) P(IO, uint32_t, counters) P(IO, uint32_t, dropped_samples)
 
+/* ---- aov_kernel.h: first-hit albedo, normal and depth, summed per pixel ------------------------ */
+#define RENDER_AOV_PARAMS(P, G) SCENE_PARAMS(P, G) P(IO, co_float4, aov_albedo) P(IO, co_float4, aov_normal)
+
 /* ---- wavefront_kernels.h --------------------------------------------------------------------
  * `queue` and `use_queue`: with stream compaction a launch index stands for queue[index], else for
  * the slot itself; `count` is the launch's size. */

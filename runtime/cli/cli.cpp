@@ -70,6 +70,10 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
   cmd.add_flag("--no-nee", [&r](std::int64_t) { r.settings.nee = false; }, "Disable next-event estimation");
   cmd.add_flag("--no-mis", [&r](std::int64_t) { r.settings.mis = false; }, "NEE without multiple importance sampling");
   cmd.add_flag("--no-rr", [&r](std::int64_t) { r.settings.russian_roulette = false; }, "Disable Russian roulette");
+  cmd.add_option("--aov", r.aov,
+                 "First-hit AOVs as extra EXR channels: albedo (albedo.R/G/B), normal (N.X/Y/Z), depth (depth.Z)");
+  cmd.add_flag("--denoise", r.denoise,
+               "Also write OUT.denoised.exr and .png, denoised by Open Image Denoise guided by albedo and normal");
   cmd.add_flag("--no-cache", r.no_cache, "Do not read or write the kernel binary cache");
   cmd.add_flag("-v,--verbose", r.verbose, "Report compile times, tree statistics and kernel times");
 }

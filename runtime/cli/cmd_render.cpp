@@ -15,7 +15,8 @@ int render_rank(const RenderCommand& command, const RenderTeam& team) {
     follow_render(render, team);
     return 0;
   }
-  const RenderOutcome outcome = run_render_passes(render, team, out, interrupt);
+  RenderOutcome outcome = run_render_passes(render, team, out, interrupt);
+  outcome.aovs = render_first_hit_aovs(render, outcome.film.samples);
   return write_render(render, outcome, out, interrupt);
 }
 

@@ -27,6 +27,8 @@ struct RenderCommand {
   bool resume = false;
   bool verbose = false;
   bool no_cache = false;
+  std::string aov;        // --aov: comma list of albedo, normal, depth
+  bool denoise = false;   // --denoise: also write OUT.denoised.exr/.png (Open Image Denoise)
   RenderSettings settings;
 };
 

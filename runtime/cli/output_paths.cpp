@@ -26,6 +26,8 @@ OutputPaths output_paths(const std::string& output, const std::filesystem::path&
   paths.exr = fs::path(base).concat(".exr");
   paths.png = fs::path(base).concat(".png");
   paths.checkpoint = fs::path(base).concat(".checkpoint");
+  paths.denoised_exr = fs::path(base).concat(".denoised.exr");
+  paths.denoised_png = fs::path(base).concat(".denoised.png");
   return paths;
 }
 

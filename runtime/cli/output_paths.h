@@ -9,6 +9,7 @@ struct OutputPaths {
   std::filesystem::path exr;
   std::filesystem::path png;
   std::filesystem::path checkpoint;  // --checkpoint / --resume
+  std::filesystem::path denoised_exr, denoised_png;  // --denoise
 };
 
 // "-o NAME", "NAME.exr" or "NAME.png" -> both paths; empty -> the scene's stem in the current

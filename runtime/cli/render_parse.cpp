@@ -3,6 +3,7 @@
 #include "runtime/backend/open_device.h"
 #include "runtime/cli/parse_values.h"
 #include "runtime/cli/render_steps.h"
+#include "runtime/render/aov.h"
 #include "runtime/render/environment_map.h"
 #include "runtime/render/methods.h"
 #include "runtime/util/error.h"
@@ -25,6 +26,7 @@ RenderPlan parse_render(const RenderCommand& command) {
     throw InputError("--stragglers writes its rays to the --stats file: give --stats FILE.json");
   if (command.memory_limit_mib > 0) plan.memory_limit = static_cast<std::uint64_t>(command.memory_limit_mib * 1048576.0);
   plan.backend = parse_backend(command.backend);
+  if (!command.aov.empty()) plan.aovs = parse_aov_list(command.aov);
   return plan;
 }
 

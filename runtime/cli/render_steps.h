@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "runtime/backend/device.h"
@@ -15,6 +16,7 @@
 #include "runtime/cli/interrupt.h"
 #include "runtime/cli/output_paths.h"
 #include "runtime/cli/render_team.h"
+#include "runtime/render/aov.h"
 #include "runtime/render/multi_device.h"
 #include "runtime/render/pass_job.h"
 #include "runtime/render/prepared_scene.h"
@@ -27,6 +29,7 @@ struct RenderPlan {
   bool environment_map = false;  // --env names an image file
   std::uint64_t memory_limit = 0;  // bytes the devices may use; 0: all they have
   Backend backend = Backend::opencl;
+  AovSelection aovs;  // --aov: written to the EXR
   const RenderSettings& settings() const { return command.settings; }
 };
 
@@ -53,12 +56,17 @@ struct RenderOutcome {
   RenderResult result;     // every rank's rays and passes; rank 0's device figures
   nlohmann::json ranks;    // rank_json of every rank, in rank order
   PassJob::ImageMean image_mean;
+  std::optional<AovImages> aovs;  // with --aov or --denoise
 };
 
 // Rank 0: renders the image on its devices and, through `team`, the other ranks; saves and resumes
 // checkpoints at out.checkpoint.
 RenderOutcome run_render_passes(const PreparedRender& render, const RenderTeam& team, const OutputPaths& out,
                                 const InterruptGuard& interrupt);
+
+// Rank 0, after the passes: the AOVs of the image's samples on this rank's first device, when
+// --aov or --denoise asks for them.
+std::optional<AovImages> render_first_hit_aovs(const PreparedRender& render, std::uint32_t samples);
 
 // Any other rank: renders the passes rank 0 assigns and sends it this rank's figures.
 void follow_render(const PreparedRender& render, const RenderTeam& team);
@@ -67,6 +75,10 @@ void follow_render(const PreparedRender& render, const RenderTeam& team);
 // when interrupted).
 int write_render(const PreparedRender& render, const RenderOutcome& outcome, const OutputPaths& out,
                  const InterruptGuard& interrupt);
+
+// --denoise: writes out.denoised_exr and .png; 0, or 2 with a message when Open Image Denoise
+// cannot be loaded or run (the beauty is written by then).
+int write_denoised(const PreparedRender& render, const RenderOutcome& outcome, const OutputPaths& out);
 
 // The JSON figures of the --stats file.
 nlohmann::json rank_json(int rank, const std::string& host, const PreparedScene& prepared,

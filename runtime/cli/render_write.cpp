@@ -51,7 +51,9 @@ int write_render(const PreparedRender& render, const RenderOutcome& outcome, con
                  const InterruptGuard& interrupt) {
   const RenderCommand& cmd = render.plan.command;
   const RenderResult& result = outcome.result;
-  write_exr(out.exr, result.image);
+  std::vector<ExrLayer> aovs;
+  if (outcome.aovs) aovs = aov_layers(*outcome.aovs, render.plan.aovs);
+  write_exr(out.exr, result.image, aovs);
   write_png(out.png, result.image);
   if (cmd.verbose) print_details(render, outcome);
   if (result.dropped_samples)
@@ -70,6 +72,7 @@ int write_render(const PreparedRender& render, const RenderOutcome& outcome, con
     write_file_atomically(cmd.stats_file, stats_json(render, outcome, out).dump(2) + "\n");
     fmt::print("wrote {}\n", cmd.stats_file);
   }
+  if (const int code = write_denoised(render, outcome, out)) return code;
   if (result.interrupted) {
     fmt::print(stderr, "interrupted by signal {} at {} spp: the image so far is saved{}\n", interrupt.signal_number(),
                result.samples, cmd.checkpoint || cmd.resume ? "; --resume continues it" : "");

@@ -5,6 +5,7 @@
 #define COHORT_FEATURE_CONDUCTOR
 #define COHORT_FEATURE_DIELECTRIC
 #define COHORT_FEATURE_PLASTIC
+#include "kernels/common/aov_kernel.h"
 #include "kernels/common/film_kernels.h"
 #include "kernels/common/naive_kernel.h"
 #include "kernels/common/pth_kernels.h"
@@ -36,6 +37,7 @@ DeviceBuffer some_buffer() { return DeviceBuffer(std::make_shared<BufferObject>(
 
 TEST(KernelArgs, OneArgumentPerKernelParameter) {
   EXPECT_EQ(RenderNaiveArgs::arg_count, arity(&render_naive));
+  EXPECT_EQ(RenderAovArgs::arg_count, arity(&render_aov));
   EXPECT_EQ(WfGenerateArgs::arg_count, arity(&wf_generate));
   EXPECT_EQ(WfExtendArgs::arg_count, arity(&wf_extend));
   EXPECT_EQ(WfShadeArgs::arg_count, arity(&wf_shade));

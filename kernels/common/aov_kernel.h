@@ -1,0 +1,41 @@
+/* First-hit AOVs (DECISIONS.md, round 2): the glTF base colour (times its texture) as albedo, the
+ * world-space normal the shading frame uses (flat: the stored geometric normal) and the distance
+ * along the camera ray. One work item per pixel traces the camera rays of this launch's samples,
+ * the very rays path_start gives the beauty's samples, and adds them to its sums in sample order:
+ * the AOVs are the same bits whatever method rendered the beauty and however the samples were
+ * split into launches.
+ *
+ * albedo: rgb summed over the samples (an escaped ray adds 0), w the depth summed over the
+ * samples that hit; normal: xyz summed likewise, w the number of samples that hit. */
+#ifndef COHORT_AOV_KERNEL_H
+#define COHORT_AOV_KERNEL_H
+
+#include "common/kernel_params.h"
+#include "common/pathtrace.h"
+
+CO_KERNEL render_aov(CO_PARAMS(RENDER_AOV_PARAMS)) {
+  uint32_t pixel = co_global_id();
+  RenderParams p = *params;
+  if (pixel >= p.width * p.height) return;
+  SceneView s = SCENE_VIEW(p);
+
+  co_float4 albedo = aov_albedo[pixel];
+  co_float4 normal = aov_normal[pixel];
+  for (uint32_t i = 0u; i < p.samples_per_pass; ++i) {
+    PathState st = path_start(&p, pixel, p.sample_offset + i);
+    HitOut hit = kd_trace(&s.tree, st.org, st.dir, 0.0f, INFINITY, 0);
+    if (hit.triangle == HIT_NONE) continue;
+    const CO_GLOBAL Material* m = &s.materials[s.triangle_material[hit.triangle]];
+    co_vec3 base_color =
+        v3_mul(v3_from4(m->base_color), material_texture(&s, m->base_color_texture, hit.triangle, hit.u, hit.v));
+    co_vec3 n = v3_normalize(triangle_cross(&s.tree.triangles[hit.triangle]));
+    albedo = film_add(albedo, base_color);
+    albedo.w = albedo.w + hit.t; /* the camera ray's direction is a unit vector: t is the distance */
+    normal = film_add(normal, n);
+    normal.w = normal.w + 1.0f;
+  }
+  aov_albedo[pixel] = albedo;
+  aov_normal[pixel] = normal;
+}
+
+#endif

@@ -1,0 +1,45 @@
+// --denoise: Open Image Denoise over the finished beauty, guided by the first-hit albedo and
+// normal, written beside it (OUT.denoised.exr/.png); the beauty itself is never replaced.
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <system_error>
+
+#include "runtime/cli/render_steps.h"
+#include "runtime/image/denoiser.h"
+
+namespace cohort {
+namespace {
+
+// Where the pyoidn wheel may be: $COHORT_VENV (scripts/venv.sh), else the venv beside the binary
+// (build/venv, where scripts/setup.sh puts it).
+std::vector<std::filesystem::path> wheel_candidates() {
+  std::vector<std::filesystem::path> out;
+  if (const char* venv = std::getenv("COHORT_VENV"); venv && *venv) out = Denoiser::venv_candidates(venv);
+  std::error_code ec;
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec)
+    for (auto& p : Denoiser::venv_candidates(exe.parent_path() / "venv")) out.push_back(std::move(p));
+  return out;
+}
+
+}  // namespace
+
+int write_denoised(const PreparedRender& render, const RenderOutcome& outcome, const OutputPaths& out) {
+  if (!render.plan.command.denoise) return 0;
+  try {
+    const Denoiser denoiser = Denoiser::load(wheel_candidates());
+    const AovImages& aovs = *outcome.aovs;
+    const Image denoised = denoiser.denoise(outcome.result.image, &aovs.albedo, &aovs.normal);
+    write_exr(out.denoised_exr, denoised);
+    write_png(out.denoised_png, denoised);
+    fmt::print("denoised with {}\nwrote {}\nwrote {}\n", denoiser.library(), out.denoised_exr.string(),
+               out.denoised_png.string());
+    return 0;
+  } catch (const DenoiserUnavailable& e) {
+    fmt::print(stderr, "cohort: --denoise: {}\nthe undenoised image is written: {}\n", e.what(), out.exr.string());
+    return 2;
+  }
+}
+
+}  // namespace cohort
