@@ -7,13 +7,13 @@
 
 namespace cohort {
 
-SortedTraversal::SortedTraversal(const WavefrontRender& render, SortKey key)
+SortedTraversal::SortedTraversal(const WavefrontRender& render, RayKey key)
     : key_(key), speculative_(render.inputs().settings.speculative) {
   const MethodInputs& in = render.inputs();
   const Device& cl = in.device;
   const std::uint32_t slots = render.pool().slots;
   program_ = cl.build_program(in.cache, "pth", in.scene.build_options);
-  const bool pth = key == SortKey::pth;
+  const bool pth = key == RayKey::pth;
   // --code pth:N means N levels (issue 25): it and --pth-levels must agree when both are given
   const std::uint32_t requested = requested_pth_levels(in.settings.code, in.settings.pth_levels);
   subtree_ = pth ? choose_subtree(cl.info(), in.scene, requested) : SubtreeChoice{};
@@ -57,11 +57,18 @@ void SortedTraversal::walk(WavefrontPass& p) {
   args.traversal_stack = traversal_stack_;
   args.stack_stride = p.pool.slots;
   args.hits = p.pool.hits;
+  args.counters = p.pool.counters;
   args.bind(walk_);
-  p.log.launch(p.device, walk_, key_ == SortKey::pth ? "pth" : "hash", count);
+  p.log.launch(p.device, walk_, key_ == RayKey::pth ? "pth" : "hash", count);
 }
 
-void SortedTraversal::sort(WavefrontPass& p) { sort_->sort(keys_, values_, p.count(), code_.key_bits, &p.sort_seconds); }
+void SortedTraversal::sort(WavefrontPass& p) {
+  // the live count stays on the device: the sort reads it from the queue counter
+  for (auto& [name, event] :
+       sort_->sort_device_count_async(keys_, values_, p.count(), p.pool.counters, COUNTER_QUEUE, code_.key_bits))
+    p.log.add(name, std::move(event));
+  p.out.sort_launches += RadixSort::commands(code_.key_bits);
+}
 
 void SortedTraversal::resume(WavefrontPass& p) {
   const std::uint32_t count = p.count();
@@ -77,6 +84,8 @@ void SortedTraversal::resume(WavefrontPass& p) {
   args.stack_stride = p.pool.slots;
   args.hits = p.pool.hits;
   args.steps = p.pool.steps;
+  args.counters = p.pool.counters;
+  args.use_queue = p.use_queue();
   args.bind(resume_);
   // the speculative kernel votes per work-group: make it one SIMD group
   p.log.launch(p.device, resume_, "resume", count, speculative_ ? SIMD_GROUP : 64);
