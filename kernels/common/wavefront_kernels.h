@@ -14,11 +14,12 @@
  * queue of live slots. */
 CO_KERNEL wf_generate(CO_PARAMS(WF_GENERATE_PARAMS)) {
   uint32_t slot = co_global_id();
-  if (slot >= slot_count || path_item[slot] != ITEM_NONE) return;
-  /* without regeneration the pool refills only once every path has ended */
+  /* without regeneration the pool refills only once every path has ended; and the item counter
+   * stops growing once the pass's items are handed out (it would wrap in long passes). Both tests
+   * are the same for every work item: checked first, they make a launch with nothing to do cheap. */
   if (!regenerate && counters[COUNTER_SURVIVED] != 0u) return;
-  /* the counter stops growing once the pass's items are handed out (it would wrap in long passes) */
   if (counters[COUNTER_NEXT_ITEM] >= item_end) return;
+  if (slot >= slot_count || path_item[slot] != ITEM_NONE) return;
   uint32_t item = co_atomic_inc(&counters[COUNTER_NEXT_ITEM]);
   if (item >= item_end) return;
   RenderParams p = *params;
