@@ -64,10 +64,10 @@ void SortedTraversal::walk(WavefrontPass& p) {
 
 void SortedTraversal::sort(WavefrontPass& p) {
   // the live count stays on the device: the sort reads it from the queue counter
-  for (auto& [name, event] :
-       sort_->sort_device_count_async(keys_, values_, p.count(), p.pool.counters, COUNTER_QUEUE, code_.key_bits))
-    p.log.add(name, std::move(event));
-  p.out.sort_launches += RadixSort::commands(code_.key_bits);
+  SortLaunches launches =
+      sort_->sort_device_count_async(keys_, values_, p.count(), p.pool.counters, COUNTER_QUEUE, code_.key_bits);
+  if (!launches.empty()) p.out.sort_launches += RadixSort::commands(code_.key_bits);  // with the fill
+  for (auto& [name, event] : launches) p.log.add(name, std::move(event));
 }
 
 void SortedTraversal::resume(WavefrontPass& p) {

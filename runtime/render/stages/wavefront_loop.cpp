@@ -66,6 +66,7 @@ RenderResult WavefrontRender::run(const BounceStages& bounce_stages) {
   auto pass = [&](const PassBuffers& b, const RenderParams& p) {
     WavefrontPass wp{cl, in_.settings, pool_, kernels_, scene_, b, results_, launches_};
     wp.items = pixels_ * p.samples_per_pass;
+    wp.live_bound = pool_.slots;
     cl.write(pool_.counters, 0, sizeof(kZeros), kZeros.data(), false);
     std::vector<LaunchLog> unread;  // the launches of the bounces since the last read, by bounce
     std::array<std::uint32_t, COUNTER_WORDS> words{};
@@ -78,7 +79,8 @@ RenderResult WavefrontRender::run(const BounceStages& bounce_stages) {
       cl.read(pool_.counters, 0, sizeof(words), words.data());
       ++wp.out.host_reads;
       wp.items_left = words[COUNTER_NEXT_ITEM] < wp.items;
-      over = !wp.items_left && words[COUNTER_QUEUE] == 0;  // no path survived the last bounce
+      if (!wp.items_left) wp.live_bound = words[COUNTER_QUEUE];  // the paths that survived the last bounce
+      over = !wp.items_left && words[COUNTER_QUEUE] == 0;
       const std::uint32_t first = wp.bounce + 1 - static_cast<std::uint32_t>(unread.size());
       for (std::uint32_t k = 0; k < unread.size(); ++k) {
         const std::uint32_t bounce = first + k;

@@ -43,11 +43,14 @@ struct WavefrontPass {
   std::uint32_t items = 0;   // work items (pixel, sample) of the pass
   std::uint32_t bounce = 0;  // the bounce being enqueued, from 0 in each pass
   bool items_left = true;    // false once a read of the counters showed every item handed out
+  // At least the paths in flight: the pool, until a read shows that no new path can start; from
+  // then on the live count that read found (it can only fall).
+  std::uint32_t live_bound = 0;
 
   std::uint32_t use_queue() const { return launches == Launches::compacted ? 1u : 0u; }
-  // work items of a launch over the paths: every slot, the worst case (with the queue, the kernels
-  // take the live count from the device and the rest leave at once)
-  std::uint32_t count() const { return pool.slots; }
+  // work items of a launch over the paths: the worst case (with the queue, the kernels take the
+  // live count from the device and the rest leave at once); without the queue, every slot
+  std::uint32_t count() const { return launches == Launches::compacted ? live_bound : pool.slots; }
 };
 
 // A method's bounce: enqueues its stages. The loop, not the method, decides when the pass is over.
