@@ -7,7 +7,7 @@ namespace cohort {
 
 RenderResult render_hash(const MethodInputs& in) {
   WavefrontRender render(in, Launches::compacted);
-  SortedTraversal sorted(render, RayKey::hash);
+  SortedTraversal sorted(render, RayOrder::hash);
   RenderResult result = render.run([&](WavefrontPass& p) {
     generate(p, Refill::every_bounce);
     sorted.walk(p);  // the hash code only: no subtree levels

@@ -9,7 +9,7 @@ namespace cohort {
 
 RenderResult render_pth(const MethodInputs& in) {
   WavefrontRender render(in, Launches::compacted);
-  SortedTraversal sorted(render, RayKey::pth);
+  SortedTraversal sorted(render, RayOrder::pth);
   RenderResult result = render.run([&](WavefrontPass& p) {
     generate(p, Refill::every_bounce);
     sorted.walk(p);  // partial traversal heuristic and coherence code

@@ -7,13 +7,13 @@
 
 namespace cohort {
 
-SortedTraversal::SortedTraversal(const WavefrontRender& render, RayKey key)
+SortedTraversal::SortedTraversal(const WavefrontRender& render, RayOrder key)
     : key_(key), speculative_(render.inputs().settings.speculative) {
   const MethodInputs& in = render.inputs();
   const Device& cl = in.device;
   const std::uint32_t slots = render.pool().slots;
   program_ = cl.build_program(in.cache, "pth", in.scene.build_options);
-  const bool pth = key == RayKey::pth;
+  const bool pth = key == RayOrder::pth;
   // --code pth:N means N levels (issue 25): it and --pth-levels must agree when both are given
   const std::uint32_t requested = requested_pth_levels(in.settings.code, in.settings.pth_levels);
   subtree_ = pth ? choose_subtree(cl.info(), in.scene, requested) : SubtreeChoice{};
@@ -59,7 +59,7 @@ void SortedTraversal::walk(WavefrontPass& p) {
   args.hits = p.pool.hits;
   args.counters = p.pool.counters;
   args.bind(walk_);
-  p.log.launch(p.device, walk_, key_ == RayKey::pth ? "pth" : "hash", count);
+  p.log.launch(p.device, walk_, key_ == RayOrder::pth ? "pth" : "hash", count);
 }
 
 void SortedTraversal::sort(WavefrontPass& p) {

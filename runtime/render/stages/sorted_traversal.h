@@ -16,14 +16,14 @@
 namespace cohort {
 
 // What the sort key holds beyond the origin and direction.
-enum class RayKey {
+enum class RayOrder {
   hash,  // origin and direction only (Garanzha & Loop 2010)
   pth,   // with the bits of the partial traversal of the top subtree (Wang & Deng)
 };
 
 class SortedTraversal {
  public:
-  SortedTraversal(const WavefrontRender& render, RayKey key);
+  SortedTraversal(const WavefrontRender& render, RayOrder key);
 
   void walk(WavefrontPass& pass);
   void sort(WavefrontPass& pass);
@@ -32,7 +32,7 @@ class SortedTraversal {
   void report(RenderResult& result) const;
 
  private:
-  RayKey key_;
+  RayOrder key_;
   bool speculative_;
   DeviceProgram program_;
   CodeParams code_{};
