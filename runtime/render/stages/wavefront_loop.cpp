@@ -17,7 +17,9 @@ constexpr std::array<std::uint32_t, COUNTER_COUNT> kZeros{};
 // only tells whether the pass is over; the bounces enqueued after its last path ended cost their
 // launches (every work item leaves at once). Without regeneration a wave takes up to max-depth
 // bounces, with regeneration as many as its items need: there is no useful bound to run to
-// blind, so the loop reads every few bounces.
+// blind, so the loop reads every few bounces. Once every item is handed out the launches cover only
+// the live paths the last read found, so bounces past the end cost little: the interval doubles
+// then, for the long tail of paths that Russian roulette spares.
 constexpr std::size_t kBouncesPerRead = 4;
 static_assert(kBouncesPerRead <= BOUNCE_ROWS, "the rows of the bounces between two reads must fit the ring");
 
@@ -70,16 +72,20 @@ RenderResult WavefrontRender::run(const BounceStages& bounce_stages) {
     cl.write(pool_.counters, 0, sizeof(kZeros), kZeros.data(), false);
     std::vector<LaunchLog> unread;  // the launches of the bounces since the last read, by bounce
     std::array<std::uint32_t, COUNTER_WORDS> words{};
+    std::size_t interval = kBouncesPerRead;
     for (bool over = false; !over; ++wp.bounce) {
       bounce_stages(wp);
       unread.push_back(std::move(wp.log));
       wp.log = LaunchLog{};
-      if (unread.size() < kBouncesPerRead) continue;
+      if (unread.size() < interval) continue;
       // the one blocking read: the counters and the rows of the bounces since the last read
       cl.read(pool_.counters, 0, sizeof(words), words.data());
       ++wp.out.host_reads;
       wp.items_left = words[COUNTER_NEXT_ITEM] < wp.items;
-      if (!wp.items_left) wp.live_bound = words[COUNTER_QUEUE];  // the paths that survived the last bounce
+      if (!wp.items_left) {
+        wp.live_bound = words[COUNTER_QUEUE];  // the paths that survived the last bounce
+        interval = std::min<std::size_t>(interval * 2, BOUNCE_ROWS);
+      }
       over = !wp.items_left && words[COUNTER_QUEUE] == 0;
       const std::uint32_t first = wp.bounce + 1 - static_cast<std::uint32_t>(unread.size());
       for (std::uint32_t k = 0; k < unread.size(); ++k) {
