@@ -13,14 +13,28 @@
 #define TRAVERSAL_DONE 0xffffffffu /* TraversalState.node of a ray pth_resume skips */
 
 /* ---- Counters ------------------------------------------------------------------------------
- * The wavefront kernels' counters[] (one buffer per pool; the host resets and reads it per bounce). */
+ * The wavefront kernels' counters[] (one buffer per pool). The host zeroes it at the start of a
+ * pass and reads it only every few bounces (wavefront_loop.cpp): queue lengths stay on the device,
+ * launches cover the pool and their work items past the count leave at once. */
 #define COUNTER_NEXT_ITEM 0   /* the next work item (pixel, sample) of the pass wf_generate hands out */
 #define COUNTER_QUEUE 1       /* live slots (and the length of the compacted queue) */
 #define COUNTER_SHADOW 2      /* shadow rays queued this bounce */
 #define COUNTER_SIMD_SUM 3    /* sum over groups of 32 traced rays of mean / max nodes, in units of 1e-4 */
 #define COUNTER_SIMD_GROUPS 4 /* groups of 32 traced rays */
 #define COUNTER_MAX_STEPS 5   /* the most KD-tree nodes one ray visited (the straggler figure) */
-#define COUNTER_COUNT 6
+#define COUNTER_SURVIVED 6    /* nonzero when a path lived on after the last bounce: no refill without regeneration */
+#define COUNTER_COUNT 7
+
+/* After the counters, wf_end_bounce keeps one row of figures per bounce, in a ring of BOUNCE_ROWS
+ * rows indexed by the bounce's number: the host reads them with the counters, at least once every
+ * BOUNCE_ROWS bounces. */
+#define BOUNCE_LIVE 0        /* paths traced (extension rays) */
+#define BOUNCE_SHADOW 1      /* shadow rays */
+#define BOUNCE_SIMD_SUM 2    /* COUNTER_SIMD_SUM of the bounce */
+#define BOUNCE_SIMD_GROUPS 3 /* COUNTER_SIMD_GROUPS of the bounce */
+#define BOUNCE_FIGURES 4
+#define BOUNCE_ROWS 64u
+#define COUNTER_WORDS (COUNTER_COUNT + BOUNCE_ROWS * BOUNCE_FIGURES)
 
 /* The megakernel's counters[]. */
 #define NAIVE_COUNTER_RAYS 0      /* rays traced */

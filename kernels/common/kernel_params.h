@@ -69,14 +69,16 @@
 
 /* ---- wavefront_kernels.h --------------------------------------------------------------------
  * `queue` and `use_queue`: with stream compaction a launch index stands for queue[index], else for
- * the slot itself; `count` is the launch's size. */
+ * the slot itself; `count` is the launch's size, and with the queue only its first
+ * counters[COUNTER_QUEUE] indices work (launch_count). */
 #define WF_GENERATE_PARAMS(P, G)                                                                              \
   P(UNIFORM, RenderParams, params) G(PathBuffers, path, PATH_BUFFERS) P(IO, uint32_t, counters)              \
-  P(IO, uint32_t, queue) P(VALUE, uint32_t, use_queue) P(VALUE, uint32_t, slot_count) P(VALUE, uint32_t, item_end)
+  P(IO, uint32_t, queue) P(VALUE, uint32_t, use_queue) P(VALUE, uint32_t, slot_count) P(VALUE, uint32_t, item_end)      \
+  P(VALUE, uint32_t, regenerate)
 
 #define WF_EXTEND_PARAMS(P, G)                                                                                \
   SCENE_PARAMS(P, G) G(PathBuffers, path, PATH_BUFFERS) P(IO, HitOut, hits) P(IN, uint32_t, queue)           \
-  P(VALUE, uint32_t, use_queue) P(VALUE, uint32_t, count) P(IO, uint32_t, steps)
+  P(VALUE, uint32_t, use_queue) P(VALUE, uint32_t, count) P(IO, uint32_t, steps) P(IN, uint32_t, counters)
 
 #define WF_SHADE_PARAMS(P, G)                                                                                 \
   SCENE_PARAMS(P, G) G(PathBuffers, path, PATH_BUFFERS) P(IN, HitOut, hits) P(IN, uint32_t, queue)           \
@@ -94,7 +96,11 @@
 #define WF_ACCUMULATE_PARAMS(P, G)                                                                            \
   P(UNIFORM, RenderParams, params) P(IN, co_float4, results) P(IO, co_float4, film) P(IO, uint32_t, dropped_samples)
 
-#define WF_SIMD_EFFICIENCY_PARAMS(P, G) P(IN, uint32_t, steps) P(VALUE, uint32_t, count) P(IO, uint32_t, counters)
+#define WF_SIMD_EFFICIENCY_PARAMS(P, G)                                                                       \
+  P(IN, uint32_t, steps) P(VALUE, uint32_t, count) P(IO, uint32_t, counters) P(VALUE, uint32_t, use_queue)
+
+/* one work item: the bounce's row of figures, and the per-bounce counters zeroed for wf_finish */
+#define WF_END_BOUNCE_PARAMS(P, G) P(IO, uint32_t, counters) P(VALUE, uint32_t, bounce)
 
 #define WF_SHADOW_MAX_STEPS_PARAMS(P, G) P(IN, uint32_t, steps) P(IO, uint32_t, counters)
 
@@ -106,13 +112,15 @@
   P(IN, uint32_t, path_status) P(IN, uint32_t, queue) P(VALUE, uint32_t, use_queue) P(VALUE, uint32_t, count) \
   P(LOCAL, KdNode, subtree) P(VALUE, uint32_t, subtree_nodes) P(UNIFORM, CodeParams, code_params)            \
   P(IN, float, origin_bounds) P(IO, uint64_t, keys) P(IO, uint32_t, values) P(IO, TraversalState, traversal) \
-  P(IO, SavedStackEntry, traversal_stack) P(VALUE, uint32_t, stack_stride) P(IO, HitOut, hits)
+  P(IO, SavedStackEntry, traversal_stack) P(VALUE, uint32_t, stack_stride) P(IO, HitOut, hits)                \
+  P(IN, uint32_t, counters)
 
 /* pth_resume and pth_resume_speculative */
 #define PTH_RESUME_PARAMS(P, G)                                                                               \
   SCENE_PARAMS(P, G) P(IN, co_float4, path_org) P(IN, co_float4, path_dir) P(IN, uint32_t, sorted_slots)     \
   P(VALUE, uint32_t, count) P(IN, TraversalState, traversal) P(IN, SavedStackEntry, traversal_stack)         \
-  P(VALUE, uint32_t, stack_stride) P(IO, HitOut, hits) P(IO, uint32_t, steps)
+  P(VALUE, uint32_t, stack_stride) P(IO, HitOut, hits) P(IO, uint32_t, steps) P(IN, uint32_t, counters)      \
+  P(VALUE, uint32_t, use_queue)
 
 /* ---- trace_kernels.h: traversal only, for a buffer of rays -------------------------------------- */
 #define TRACE_TREE_PARAMS(P, G)                                                                               \

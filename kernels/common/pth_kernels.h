@@ -16,7 +16,7 @@ CO_KERNEL pth_walk_and_code(CO_PARAMS(PTH_WALK_AND_CODE_PARAMS)) {
   for (uint32_t k = co_local_id(); k < subtree_nodes; k += co_local_size()) subtree[k] = nodes[k];
   co_barrier();
   uint32_t i = co_global_id();
-  if (i >= count) return;
+  if (i >= launch_count(count, counters, use_queue)) return;
   uint32_t slot = slot_of(i, queue, use_queue);
   CodeParams c = *code_params;
   /* rays that are not traced this bounce sort last and are skipped by pth_resume */
@@ -76,7 +76,7 @@ CO_INLINE void load_traversal_stack(CO_GLOBAL const SavedStackEntry* traversal_s
 /* Continues each ray's traversal in sorted order from the state pth_walk_and_code saved. */
 CO_KERNEL pth_resume(CO_PARAMS(PTH_RESUME_PARAMS)) {
   uint32_t i = co_global_id();
-  if (i >= count) return;
+  if (i >= launch_count(count, counters, use_queue)) return;
   uint32_t slot = sorted_slots[i];
   TraversalState state = traversal[slot];
   uint32_t visited = 0u;
@@ -98,6 +98,7 @@ CO_KERNEL pth_resume(CO_PARAMS(PTH_RESUME_PARAMS)) {
  * work item runs the group loop, so the items past `count` join as finished rays. */
 CO_KERNEL pth_resume_speculative(CO_PARAMS(PTH_RESUME_PARAMS)) {
   CO_SHARED uint32_t votes[3];
+  count = launch_count(count, counters, use_queue);
   uint32_t i = co_global_id();
   uint32_t slot = i < count ? sorted_slots[i] : 0u;
   TraversalState state = i < count ? traversal[slot] : traversal_done();

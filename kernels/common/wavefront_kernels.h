@@ -14,6 +14,11 @@
  * queue of live slots. */
 CO_KERNEL wf_generate(CO_PARAMS(WF_GENERATE_PARAMS)) {
   uint32_t slot = co_global_id();
+  /* without regeneration the pool refills only once every path has ended; and the item counter
+   * stops growing once the pass's items are handed out (it would wrap in long passes). Both tests
+   * are the same for every work item: checked first, they make a launch with nothing to do cheap. */
+  if (!regenerate && counters[COUNTER_SURVIVED] != 0u) return;
+  if (counters[COUNTER_NEXT_ITEM] >= item_end) return;
   if (slot >= slot_count || path_item[slot] != ITEM_NONE) return;
   uint32_t item = co_atomic_inc(&counters[COUNTER_NEXT_ITEM]);
   if (item >= item_end) return;
@@ -21,13 +26,14 @@ CO_KERNEL wf_generate(CO_PARAMS(WF_GENERATE_PARAMS)) {
   PathState st = path_start(&p, pixel_of(item, &p), sample_of(item, &p));
   path_item[slot] = item;
   store_path(PATH_ARGS, slot, &st);
-  if (use_queue) queue[co_atomic_inc(&counters[COUNTER_QUEUE])] = slot;
+  uint32_t index = co_atomic_inc(&counters[COUNTER_QUEUE]); /* live slots, queue or not */
+  if (use_queue) queue[index] = slot;
 }
 
 /* Closest hit of every live path's next ray. */
 CO_KERNEL wf_extend(CO_PARAMS(WF_EXTEND_PARAMS)) {
   uint32_t i = co_global_id();
-  if (i >= count) return;
+  if (i >= launch_count(count, counters, use_queue)) return;
   uint32_t slot = slot_of(i, queue, use_queue);
   uint32_t visited = 0u;
   if (path_item[slot] != ITEM_NONE && path_status[slot] == PATH_ALIVE) {
@@ -42,7 +48,7 @@ CO_KERNEL wf_extend(CO_PARAMS(WF_EXTEND_PARAMS)) {
 /* Emission, light sample (queued as a shadow ray), Russian roulette and the next direction. */
 CO_KERNEL wf_shade(CO_PARAMS(WF_SHADE_PARAMS)) {
   uint32_t i = co_global_id();
-  if (i >= count) return;
+  if (i >= launch_count(count, counters, use_queue)) return;
   uint32_t slot = slot_of(i, queue, use_queue);
   uint32_t item = path_item[slot];
   if (item == ITEM_NONE || path_status[slot] != PATH_ALIVE) return;
@@ -90,8 +96,25 @@ CO_KERNEL wf_finish(CO_PARAMS(WF_FINISH_PARAMS)) {
     path_item[slot] = ITEM_NONE;
     return;
   }
+  counters[COUNTER_SURVIVED] = 1u;
   uint32_t index = co_atomic_inc(&counters[COUNTER_QUEUE]);
   if (use_queue) queue[index] = slot;
+}
+
+/* Between shading and wf_finish, one work item: the bounce's figures into its row, and the
+ * counters wf_finish and the next bounce count from zeroed. */
+CO_KERNEL wf_end_bounce(CO_PARAMS(WF_END_BOUNCE_PARAMS)) {
+  if (co_global_id() != 0u) return;
+  CO_GLOBAL uint32_t *row = counters + COUNTER_COUNT + (bounce % BOUNCE_ROWS) * BOUNCE_FIGURES;
+  row[BOUNCE_LIVE] = counters[COUNTER_QUEUE];
+  row[BOUNCE_SHADOW] = counters[COUNTER_SHADOW];
+  row[BOUNCE_SIMD_SUM] = counters[COUNTER_SIMD_SUM];
+  row[BOUNCE_SIMD_GROUPS] = counters[COUNTER_SIMD_GROUPS];
+  counters[COUNTER_QUEUE] = 0u;
+  counters[COUNTER_SHADOW] = 0u;
+  counters[COUNTER_SIMD_SUM] = 0u;
+  counters[COUNTER_SIMD_GROUPS] = 0u;
+  counters[COUNTER_SURVIVED] = 0u;
 }
 
 /* Adds the pass's samples to the film in sample order, as the megakernel does. */
@@ -133,6 +156,7 @@ CO_INLINE uint32_t steps_group_max(CO_GLOBAL const uint32_t* steps, uint32_t fir
 CO_KERNEL wf_simd_efficiency(CO_PARAMS(WF_SIMD_EFFICIENCY_PARAMS)) {
   uint32_t group = co_global_id();
   uint32_t first = group * SIMD_GROUP;
+  count = launch_count(count, counters, use_queue);
   if (first >= count) return;
   uint32_t last = co_umin(first + SIMD_GROUP, count), sum = 0u;
   uint32_t most = steps_group_max(steps, first, last, counters, &sum);

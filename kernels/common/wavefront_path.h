@@ -41,6 +41,12 @@ CO_INLINE uint32_t slot_of(uint32_t i, CO_GLOBAL const uint32_t *queue, uint32_t
   return use_queue ? queue[i] : i;
 }
 
+/* The work items of a launch over `count` indices: with the compacted queue, only the live slots
+ * the device counted (the host launches over the whole pool and never reads the count). */
+CO_INLINE uint32_t launch_count(uint32_t count, CO_GLOBAL const uint32_t *counters, uint32_t use_queue) {
+  return use_queue ? co_umin(count, counters[COUNTER_QUEUE]) : count;
+}
+
 CO_INLINE uint32_t pixel_of(uint32_t item, const RenderParams *p) { return item % (p->width * p->height); }
 CO_INLINE uint32_t sample_of(uint32_t item, const RenderParams *p) {
   return p->sample_offset + item / (p->width * p->height);

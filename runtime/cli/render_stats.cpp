@@ -21,6 +21,12 @@ nlohmann::json device_json(const DeviceRun& run) {
           {"max_nodes_per_ray", r.max_nodes_per_ray}};
 }
 
+// Median and max of a per-pass count.
+nlohmann::json per_pass(const std::vector<std::uint32_t>& counts) {
+  const std::vector<double> values(counts.begin(), counts.end());
+  return {{"median", median(values)}, {"max", counts.empty() ? 0u : *std::max_element(counts.begin(), counts.end())}};
+}
+
 }  // namespace
 
 // One process's serial part (load, build) beside its render time, so scaling losses are visible.
@@ -107,6 +113,10 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
   j["samples_per_second"] =
       r.render_seconds > 0 ? double(r.samples) * cmd.settings.width * cmd.settings.height / r.render_seconds : 0.0;
   j["dropped_samples"] = r.dropped_samples;
+  // the round trips inside a pass (the wavefront loop reads its counters every few bounces), and
+  // the device commands of its ray sorts
+  j["host_reads_per_pass"] = per_pass(r.pass_host_reads);
+  j["sort_launches"] = per_pass(r.pass_sort_launches);
   nlohmann::json kernels;
   for (const auto& [name, seconds] : r.kernel_seconds)
     kernels[name] = {{"seconds", seconds}, {"rays_per_second", seconds > 0 ? double(r.rays) / seconds : 0.0}};

@@ -68,6 +68,9 @@ RenderResult merge_device_results(const std::vector<DeviceRun>& runs) {
     merged.busy_seconds += r.busy_seconds;
     merged.pass_kernel_seconds.insert(merged.pass_kernel_seconds.end(), r.pass_kernel_seconds.begin(),
                                       r.pass_kernel_seconds.end());
+    merged.pass_host_reads.insert(merged.pass_host_reads.end(), r.pass_host_reads.begin(), r.pass_host_reads.end());
+    merged.pass_sort_launches.insert(merged.pass_sort_launches.end(), r.pass_sort_launches.begin(),
+                                     r.pass_sort_launches.end());
     merged.max_nodes_per_ray = std::max(merged.max_nodes_per_ray, r.max_nodes_per_ray);
     merged.pass_stragglers.insert(merged.pass_stragglers.end(), r.pass_stragglers.begin(), r.pass_stragglers.end());
     keep_worst(merged.worst_rays, r.worst_rays, std::max<std::size_t>(r.worst_rays.size(), merged.worst_rays.size()));

@@ -125,6 +125,8 @@ RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const Ren
         keep_worst(result.worst_rays, out.worst_rays, settings.straggler_rays);
       }
       add_seconds(result.kernel_seconds, out.kernel_seconds);
+      result.pass_host_reads.push_back(out.host_reads);
+      result.pass_sort_launches.push_back(out.sort_launches);
       done += count;
       // within a pass the film is a running sum, so launch sizes do not change the image: grow
       // them while they are short, keeping per-launch overhead small

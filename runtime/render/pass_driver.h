@@ -24,6 +24,8 @@ struct PassOutput {
   std::uint64_t rays = 0;
   std::map<std::string, double> kernel_seconds;
   std::uint32_t max_steps = 0;  // the most KD-tree nodes one ray visited
+  std::uint32_t host_reads = 0;     // blocking reads of device memory inside the launch
+  std::uint32_t sort_launches = 0;  // device commands the ray sorts issued
   // with RenderSettings::straggler_rays: nodes visited by every extension ray, and the worst rays
   std::vector<std::uint32_t> extension_steps;
   std::vector<StragglerRay> worst_rays;

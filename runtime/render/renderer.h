@@ -72,6 +72,9 @@ struct RenderResult {
   std::uint32_t passes = 0;                      // sample passes this device rendered
   double busy_seconds = 0;                       // wall time inside those passes
   std::vector<double> pass_kernel_seconds;       // device time of each pass, in the order rendered
+  // per launch of the pass function (a pass may take several): blocking reads of device memory
+  // inside it, and device commands its ray sorts issued
+  std::vector<std::uint32_t> pass_host_reads, pass_sort_launches;
   std::uint32_t max_nodes_per_ray = 0;           // the most KD-tree nodes one ray visited
   std::vector<PassStragglers> pass_stragglers;   // with settings.straggler_rays only
   std::vector<StragglerRay> worst_rays;          // the most nodes first

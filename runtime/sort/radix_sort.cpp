@@ -108,27 +108,39 @@ RadixSort::RadixSort(const Device& cl, const ProgramCache& cache, std::uint32_t 
   tickets_ = cl.allocate("radix sort tickets", kMaxPasses * 4);
 }
 
+namespace {
+void add_launch_seconds(const SortLaunches& launches, std::map<std::string, double>* seconds) {
+  if (seconds)
+    for (const auto& [name, event] : launches) (*seconds)[name] += event.seconds();
+}
+}  // namespace
+
 void RadixSort::sort(const DeviceBuffer& keys, const DeviceBuffer& values, std::uint32_t count, unsigned key_bits,
                      std::map<std::string, double>* seconds) {
-  run(keys, values, count, hist_, kNoCountWord, key_bits, seconds);
+  add_launch_seconds(run(keys, values, count, hist_, kNoCountWord, key_bits), seconds);
 }
 
 void RadixSort::sort_device_count(const DeviceBuffer& keys, const DeviceBuffer& values, std::uint32_t max_count,
                                   const DeviceBuffer& count_word, std::uint32_t count_index, unsigned key_bits,
                                   std::map<std::string, double>* seconds) {
-  if (count_word.size() < (std::size_t(count_index) + 1) * 4)
-    throw std::invalid_argument(fmt::format("radix sort count word {} is outside its buffer", count_index));
-  run(keys, values, max_count, count_word, count_index, key_bits, seconds);
+  add_launch_seconds(sort_device_count_async(keys, values, max_count, count_word, count_index, key_bits), seconds);
 }
 
-void RadixSort::run(const DeviceBuffer& keys, const DeviceBuffer& values, std::uint32_t count,
-                    const DeviceBuffer& count_word, std::uint32_t count_index, unsigned key_bits,
-                    std::map<std::string, double>* seconds) {
+SortLaunches RadixSort::sort_device_count_async(const DeviceBuffer& keys, const DeviceBuffer& values,
+                                                std::uint32_t max_count, const DeviceBuffer& count_word,
+                                                std::uint32_t count_index, unsigned key_bits) {
+  if (count_word.size() < (std::size_t(count_index) + 1) * 4)
+    throw std::invalid_argument(fmt::format("radix sort count word {} is outside its buffer", count_index));
+  return run(keys, values, max_count, count_word, count_index, key_bits);
+}
+
+SortLaunches RadixSort::run(const DeviceBuffer& keys, const DeviceBuffer& values, std::uint32_t count,
+                            const DeviceBuffer& count_word, std::uint32_t count_index, unsigned key_bits) {
   if (count > capacity_)
     throw std::invalid_argument(fmt::format("radix sort of {} pairs exceeds its capacity of {}", count, capacity_));
   if (key_bits > 8 * key_bytes())
     throw std::invalid_argument(fmt::format("radix sort keys have at most {} bits, not {}", 8 * key_bytes(), key_bits));
-  if (count < 2 || key_bits == 0) return;
+  if (count < 2 || key_bits == 0) return {};
   if (keys.size() < std::size_t(count) * key_bytes() || values.size() < std::size_t(count) * 4)
     throw std::invalid_argument(fmt::format("radix sort buffers are smaller than {} pairs", count));
 
@@ -138,7 +150,7 @@ void RadixSort::run(const DeviceBuffer& keys, const DeviceBuffer& values, std::u
   const std::uint32_t tile_stride = std::max<std::uint32_t>(div_up(capacity_, tile), 1);
   // The histogram reads the keys in chunks of several tiles: fewer groups, fewer global atomics.
   const std::uint32_t histogram_groups = div_up(tiles, 4);
-  std::vector<std::pair<const char*, DeviceEvent>> launches;
+  SortLaunches launches;
 
   cl_.fill(hist_, 0, std::size_t(passes.count) * kBins);
   histogram_.set_args(keys, count, count_word, count_index, histogram_groups, passes.count, passes.digit_bits,
@@ -159,8 +171,7 @@ void RadixSort::run(const DeviceBuffer& keys, const DeviceBuffer& values, std::u
                    pass, tile_stride, hist_, lookback_, tickets_);
     launches.emplace_back("sort scatter", cl_.launch(pass_, std::size_t(tiles) * tiling_.group, tiling_.group));
   }
-  if (seconds)
-    for (auto& [name, event] : launches) (*seconds)[name] += event.seconds();
+  return launches;
 }
 
 }  // namespace cohort

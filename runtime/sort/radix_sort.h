@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "runtime/backend/device.h"
 #include "runtime/backend/program_cache.h"
@@ -12,6 +14,9 @@
 namespace cohort {
 
 enum class SortKey { bits32, bits64 };
+
+// A sort's launches by name ("sort histogram", "sort scatter"), for the caller to time when it waits.
+using SortLaunches = std::vector<std::pair<const char*, DeviceEvent>>;
 
 class RadixSort {
  public:
@@ -34,6 +39,10 @@ class RadixSort {
 
   // Device commands (fills and kernel launches) a sort of `key_bits` bits issues: 1 + 1 + passes.
   static std::uint32_t commands(unsigned key_bits);
+  // sort_device_count that hands its launches back instead of waiting for them (a wavefront pass
+  // times them when it next reads the device).
+  SortLaunches sort_device_count_async(const DeviceBuffer& keys, const DeviceBuffer& values, std::uint32_t max_count,
+                                       const DeviceBuffer& count_word, std::uint32_t count_index, unsigned key_bits);
 
   std::uint32_t capacity() const { return capacity_; }
   SortKey key() const { return key_; }
@@ -56,8 +65,8 @@ class RadixSort {
   friend struct RadixSortTestAccess;  // tests force other devices' tilings
   RadixSort(const Device& cl, const ProgramCache& cache, std::uint32_t capacity, SortKey key, Tiling tiling);
   static Tiling choose_tiling(const DeviceInfo& device, SortKey key);
-  void run(const DeviceBuffer& keys, const DeviceBuffer& values, std::uint32_t count, const DeviceBuffer& count_word,
-           std::uint32_t count_index, unsigned key_bits, std::map<std::string, double>* seconds);
+  SortLaunches run(const DeviceBuffer& keys, const DeviceBuffer& values, std::uint32_t count,
+                   const DeviceBuffer& count_word, std::uint32_t count_index, unsigned key_bits);
 
   const Device& cl_;
   std::uint32_t capacity_;

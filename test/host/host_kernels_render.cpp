@@ -26,6 +26,7 @@ const HostProgram& host_render_program() {
        {"wf_accumulate", host_kernel(&wf_accumulate)},
        {"wf_simd_efficiency", host_kernel(&wf_simd_efficiency)},
        {"wf_shadow_max_steps", host_kernel(&wf_shadow_max_steps)},
+       {"wf_end_bounce", host_kernel(&wf_end_bounce)},
        {"pth_walk_and_code", host_kernel(&pth_walk_and_code)},
        {"pth_resume", host_kernel(&pth_resume)},
        {"trace_rays", host_kernel(&trace_rays)},

@@ -46,6 +46,7 @@ TEST(KernelArgs, OneArgumentPerKernelParameter) {
   EXPECT_EQ(WfAccumulateArgs::arg_count, arity(&wf_accumulate));
   EXPECT_EQ(WfSimdEfficiencyArgs::arg_count, arity(&wf_simd_efficiency));
   EXPECT_EQ(WfShadowMaxStepsArgs::arg_count, arity(&wf_shadow_max_steps));
+  EXPECT_EQ(WfEndBounceArgs::arg_count, arity(&wf_end_bounce));
   EXPECT_EQ(PthWalkAndCodeArgs::arg_count, arity(&pth_walk_and_code));
   EXPECT_EQ(PthResumeArgs::arg_count, arity(&pth_resume));
   EXPECT_EQ(PthResumeArgs::arg_count, arity(&pth_resume_speculative));
@@ -67,7 +68,7 @@ TEST(KernelArgs, BindSetsFieldsInSignatureOrder) {
   args.counters = some_buffer();
   DeviceKernel kernel(nullptr, "wf_simd_efficiency");
   args.bind(kernel);
-  ASSERT_EQ(kernel.args().size(), 3u);
+  ASSERT_EQ(kernel.args().size(), 4u);
   const auto* steps = std::get_if<DeviceBuffer>(&kernel.args()[0]);
   const auto* count = std::get_if<ValueArg>(&kernel.args()[1]);
   const auto* counters = std::get_if<DeviceBuffer>(&kernel.args()[2]);

@@ -6,17 +6,15 @@
 namespace cohort {
 
 RenderResult render_hash(const MethodInputs& in) {
-  WavefrontRender render(in, Launches::compacted, SORT_SLOT_BYTES);
+  WavefrontRender render(in, Launches::compacted);
   SortedTraversal sorted(render, RayOrder::hash);
   RenderResult result = render.run([&](WavefrontPass& p) {
-    generate(p);
-    if (p.live == 0) return false;
+    generate(p, Refill::every_bounce);
     sorted.walk(p);  // the hash code only: no subtree levels
     sorted.sort(p);
     sorted.resume(p);
     shade(p);
     finish(p);
-    return true;
   });
   sorted.report(result);
   return result;

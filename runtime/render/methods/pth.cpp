@@ -8,17 +8,15 @@
 namespace cohort {
 
 RenderResult render_pth(const MethodInputs& in) {
-  WavefrontRender render(in, Launches::compacted, SORT_SLOT_BYTES);
+  WavefrontRender render(in, Launches::compacted);
   SortedTraversal sorted(render, RayOrder::pth);
   RenderResult result = render.run([&](WavefrontPass& p) {
-    generate(p);
-    if (p.live == 0) return false;
+    generate(p, Refill::every_bounce);
     sorted.walk(p);  // partial traversal heuristic and coherence code
     sorted.sort(p);
     sorted.resume(p);
     shade(p);
     finish(p);
-    return true;
   });
   sorted.report(result);
   return result;

@@ -7,12 +7,10 @@ namespace cohort {
 RenderResult render_rg(const MethodInputs& in) {
   WavefrontRender render(in, Launches::all_slots);
   return render.run([](WavefrontPass& p) {
-    generate(p);  // regeneration
-    if (p.live == 0) return false;
+    generate(p, Refill::every_bounce);  // regeneration
     extend(p);
     shade(p);
     finish(p);
-    return true;
   });
 }
 

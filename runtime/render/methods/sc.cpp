@@ -7,12 +7,10 @@ namespace cohort {
 RenderResult render_sc(const MethodInputs& in) {
   WavefrontRender render(in, Launches::compacted);
   return render.run([](WavefrontPass& p) {
-    if (p.live == 0) generate(p);
-    if (p.live == 0) return false;
+    generate(p, Refill::when_drained);  // refills once the pool has drained
     extend(p);
     shade(p);
     finish(p);  // compacts the live slots into the queue
-    return true;
   });
 }
 

@@ -14,6 +14,7 @@ void extend(WavefrontPass& p) {
   args.use_queue = p.use_queue();
   args.count = count;
   args.steps = p.pool.steps;
+  args.counters = p.pool.counters;
   args.bind(p.kernels.extend);
   p.log.launch(p.device, p.kernels.extend, "extend", count);
   measure_traversal(p, p.use_queue() ? &p.pool.queue : nullptr, count);

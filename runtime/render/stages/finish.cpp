@@ -1,14 +1,14 @@
-#include <array>
-
 #include "runtime/render/stages/stages.h"
 
 namespace cohort {
 
 void finish(WavefrontPass& p) {
-  // wf_finish counts the live slots from zero (the host memory of a non-blocking write must outlive
-  // the command)
-  static constexpr std::array<std::uint32_t, 1> kZero{};
-  p.device.write(p.pool.counters, COUNTER_QUEUE * sizeof(std::uint32_t), sizeof(kZero), kZero.data(), false);
+  // the bounce's figures, and wf_finish counts the live slots from zero
+  WfEndBounceArgs end;
+  end.counters = p.pool.counters;
+  end.bounce = p.bounce;
+  end.bind(p.kernels.end_bounce);
+  p.log.launch(p.device, p.kernels.end_bounce, "end bounce", 1, 1);
   WfFinishArgs args;
   args.path = p.pool.path;
   args.results = p.results;

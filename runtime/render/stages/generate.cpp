@@ -1,11 +1,9 @@
-#include <algorithm>
-
 #include "runtime/render/stages/stages.h"
 
 namespace cohort {
 
-void generate(WavefrontPass& p) {
-  if (p.remaining == 0) return;
+void generate(WavefrontPass& p, Refill refill) {
+  if (!p.items_left) return;
   WfGenerateArgs args;
   args.params = p.buffers.params;
   args.path = p.pool.path;
@@ -14,11 +12,9 @@ void generate(WavefrontPass& p) {
   args.use_queue = p.use_queue();
   args.slot_count = p.pool.slots;
   args.item_end = p.items;
+  args.regenerate = refill == Refill::every_bounce ? 1u : 0u;
   args.bind(p.kernels.generate);
   p.log.launch(p.device, p.kernels.generate, "generate", p.pool.slots);
-  const std::uint64_t started = std::min<std::uint64_t>(p.pool.slots - p.live, p.remaining);
-  p.remaining -= started;
-  p.live += static_cast<std::uint32_t>(started);
 }
 
 }  // namespace cohort

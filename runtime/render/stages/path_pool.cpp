@@ -8,15 +8,17 @@
 
 namespace cohort {
 
-std::uint32_t choose_pool_size(const Device& device, const RenderSettings& s, std::uint64_t items,
-                               std::size_t bytes_per_slot) {
+std::uint32_t device_pool_size(const DeviceInfo& device, const RenderSettings& s) {
+  // every buffer of every method per slot; the largest: the saved traversal stacks of pth
+  constexpr std::uint64_t kBytesPerSlot = WAVEFRONT_SLOT_BYTES + SORT_SLOT_BYTES + PTH_MAX_LEVELS * sizeof(SavedStackEntry);
+  constexpr std::uint64_t kLargestBufferPerSlot = PTH_MAX_LEVELS * sizeof(SavedStackEntry);
   std::uint64_t slots = s.wavefront_size;
   if (slots == 0) {
-    const std::uint64_t per_cu = device.info().is_gpu ? 8192 : 32768;
-    slots = std::clamp<std::uint64_t>(per_cu * device.info().compute_units, 65536, 1u << 21);
-    slots = std::min<std::uint64_t>(slots, device.info().global_memory / 4 / bytes_per_slot);
+    const std::uint64_t most = device.is_gpu ? 1u << 23 : 1u << 21;
+    slots = std::clamp<std::uint64_t>(std::uint64_t(32768) * device.compute_units, 65536, most);
+    slots = std::min<std::uint64_t>(slots, device.global_memory / 4 / kBytesPerSlot);
+    if (device.max_allocation) slots = std::min<std::uint64_t>(slots, device.max_allocation / kLargestBufferPerSlot);
   }
-  slots = std::min<std::uint64_t>(slots, items);
   return static_cast<std::uint32_t>(std::max<std::uint64_t>(slots, 1));
 }
 
@@ -38,8 +40,8 @@ PathPool::PathPool(const Device& cl, std::uint32_t n) : slots(n) {
   shadow.shadow_contribution = cl.allocate("shadow contributions", f4);
   shadow.shadow_queue = cl.allocate("shadow queue", u);
   queue = cl.allocate("path queue", u);
-  const std::array<std::uint32_t, COUNTER_COUNT> zero{};
-  counters = cl.allocate("queue counters", sizeof(zero), zero.data());
+  const std::array<std::uint32_t, COUNTER_WORDS> zero{};
+  counters = cl.allocate("queue counters and bounce figures", sizeof(zero), zero.data());
 }
 
 }  // namespace cohort

@@ -22,10 +22,13 @@ struct PathPool {
   PathPool(const Device& device, std::uint32_t slots);
 };
 
-// Enough paths in flight to fill the device: a few thousand per compute unit on a GPU, more on a
-// CPU whose "compute units" are cores; never more than a quarter of the device memory, and never
-// more than `items`.
-std::uint32_t choose_pool_size(const Device& device, const RenderSettings& s, std::uint64_t items,
-                               std::size_t bytes_per_slot);
+// The paths a wave holds on this device, before a pass's work items bound it: --wavefront-size, or
+// enough to fill the device. On a GPU 32768 per compute unit, so a large GPU (an H200: 132 units)
+// holds over 4M paths, the wave size at which sorting rays pays (issue 25's gate experiment); on a
+// CPU, whose "compute units" are cores, 32768 per core up to 2M. Never more than a quarter of the
+// device memory and of its largest allocation, counting the state of the most demanding method
+// (pth with its deepest saved stack) for all: the same size for every wavefront method, so their
+// comparison stays fair.
+std::uint32_t device_pool_size(const DeviceInfo& device, const RenderSettings& s);
 
 }  // namespace cohort

@@ -25,13 +25,14 @@ void shade(WavefrontPass& p) {
   shadow.counters = p.pool.counters;
   shadow.steps = p.pool.steps;
   shadow.bind(p.kernels.shadow);
-  p.log.launch(p.device, p.kernels.shadow, "shadow", p.live);  // at most one shadow ray per live path
+  // at most one shadow ray per live path; the kernel reads how many were queued
+  p.log.launch(p.device, p.kernels.shadow, "shadow", p.live_bound);
 
   WfShadowMaxStepsArgs max_steps;
   max_steps.steps = p.pool.steps;
   max_steps.counters = p.pool.counters;
   max_steps.bind(p.kernels.shadow_max_steps);
-  p.log.launch(p.device, p.kernels.shadow_max_steps, "simd efficiency", (p.live + SIMD_GROUP - 1) / SIMD_GROUP);
+  p.log.launch(p.device, p.kernels.shadow_max_steps, "simd efficiency", (p.live_bound + SIMD_GROUP - 1) / SIMD_GROUP);
 }
 
 }  // namespace cohort

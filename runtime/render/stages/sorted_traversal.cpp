@@ -57,11 +57,18 @@ void SortedTraversal::walk(WavefrontPass& p) {
   args.traversal_stack = traversal_stack_;
   args.stack_stride = p.pool.slots;
   args.hits = p.pool.hits;
+  args.counters = p.pool.counters;
   args.bind(walk_);
   p.log.launch(p.device, walk_, key_ == RayOrder::pth ? "pth" : "hash", count);
 }
 
-void SortedTraversal::sort(WavefrontPass& p) { sort_->sort(keys_, values_, p.count(), code_.key_bits, &p.sort_seconds); }
+void SortedTraversal::sort(WavefrontPass& p) {
+  // the live count stays on the device: the sort reads it from the queue counter
+  SortLaunches launches =
+      sort_->sort_device_count_async(keys_, values_, p.count(), p.pool.counters, COUNTER_QUEUE, code_.key_bits);
+  if (!launches.empty()) p.out.sort_launches += RadixSort::commands(code_.key_bits);  // with the fill
+  for (auto& [name, event] : launches) p.log.add(name, std::move(event));
+}
 
 void SortedTraversal::resume(WavefrontPass& p) {
   const std::uint32_t count = p.count();
@@ -77,6 +84,8 @@ void SortedTraversal::resume(WavefrontPass& p) {
   args.stack_stride = p.pool.slots;
   args.hits = p.pool.hits;
   args.steps = p.pool.steps;
+  args.counters = p.pool.counters;
+  args.use_queue = p.use_queue();
   args.bind(resume_);
   // the speculative kernel votes per work-group: make it one SIMD group
   p.log.launch(p.device, resume_, "resume", count, speculative_ ? SIMD_GROUP : 64);

@@ -36,11 +36,21 @@ void collect_stragglers(const Device& cl, const PathPool& pool, const DeviceBuff
 }  // namespace
 
 void measure_traversal(WavefrontPass& p, const DeviceBuffer* slots, std::uint32_t count) {
-  if (p.settings.straggler_rays) collect_stragglers(p.device, p.pool, slots, count, p.settings.straggler_rays, p.out);
+  if (p.settings.straggler_rays) {
+    // a diagnostic that reads every ray's steps anyway: it may read the queue's length too
+    std::uint32_t traced = count;
+    if (p.use_queue()) {
+      p.device.read(p.pool.counters, COUNTER_QUEUE * sizeof(std::uint32_t), sizeof(traced), &traced);
+      ++p.out.host_reads;
+    }
+    collect_stragglers(p.device, p.pool, slots, std::min(traced, count), p.settings.straggler_rays, p.out);
+    ++p.out.host_reads;
+  }
   WfSimdEfficiencyArgs args;
   args.steps = p.pool.steps;
   args.count = count;
   args.counters = p.pool.counters;
+  args.use_queue = p.use_queue();
   args.bind(p.kernels.simd_efficiency);
   p.log.launch(p.device, p.kernels.simd_efficiency, "simd efficiency", (count + SIMD_GROUP - 1) / SIMD_GROUP);
 }

@@ -8,15 +8,29 @@
 namespace cohort {
 namespace {
 
-// Source of the non-blocking counter resets: the host memory of a non-blocking write must outlive
-// the command, so it cannot be a local of the loop.
+// Source of the non-blocking counter reset: the host memory of a non-blocking write must outlive
+// the command, so it cannot be a local of the loop. (The bounce rows after the counters are
+// written before they are read.)
 constexpr std::array<std::uint32_t, COUNTER_COUNT> kZeros{};
 
-// A launch holds one result per (pixel, sample): bound it to ~64 MiB of results, and to the
-// render's spp, which no launch exceeds (small renders then allocate little: Oclgrind's checks
+// Bounces enqueued between two reads of the counters. A read waits for the device to drain, and
+// only tells whether the pass is over; the bounces enqueued after its last path ended cost their
+// launches (every work item leaves at once). Without regeneration a wave takes up to max-depth
+// bounces, with regeneration as many as its items need: there is no useful bound to run to
+// blind, so the loop reads every few bounces. Once every item is handed out the launches cover only
+// the live paths the last read found, so bounces past the end cost little: the interval doubles
+// then, for the long tail of paths that Russian roulette spares.
+constexpr std::size_t kBouncesPerRead = 4;
+static_assert(kBouncesPerRead <= BOUNCE_ROWS, "the rows of the bounces between two reads must fit the ring");
+
+// A pass holds one result per (pixel, sample): ~4M results (64 MiB), or 4 per path slot where the
+// pool is larger, so that regeneration keeps a wave full for several refills; and no more than
+// the render's spp, which no pass exceeds (small renders then allocate little: Oclgrind's checks
 // cost time in proportion to the memory allocated, at every launch).
-std::uint32_t max_samples_per_pass(const RenderSettings& s, std::uint32_t pixels) {
-  std::uint32_t most = std::max<std::uint32_t>(1, (1u << 22) / std::max<std::uint32_t>(pixels, 1));
+std::uint32_t max_samples_per_pass(const RenderSettings& s, std::uint32_t pixels, std::uint32_t pool_slots) {
+  const std::uint64_t results = std::max<std::uint64_t>(1u << 22, std::uint64_t(4) * pool_slots);
+  std::uint32_t most = static_cast<std::uint32_t>(
+      std::clamp<std::uint64_t>(results / std::max<std::uint32_t>(pixels, 1), 1, UINT32_MAX));
   if (s.spp > 0) most = std::min(most, s.spp);
   return most;
 }
@@ -25,16 +39,16 @@ std::uint32_t max_samples_per_pass(const RenderSettings& s, std::uint32_t pixels
 
 // The scene's feature options go to every program that shades or traces, so all methods compile
 // the shared code identically.
-WavefrontRender::WavefrontRender(const MethodInputs& in, Launches launches, std::size_t sort_bytes_per_slot)
+WavefrontRender::WavefrontRender(const MethodInputs& in, Launches launches)
     : in_(in),
       launches_(launches),
       program_(in.device.build_program(in.cache, "wavefront", in.scene.build_options)),
       pixels_(in.settings.width * in.settings.height),
-      max_per_pass_(max_samples_per_pass(in.settings, pixels_)),
-      pool_(in.device,
-            choose_pool_size(in.device, in.settings,
-                             std::uint64_t(pixels_) * std::min(max_per_pass_, std::max<std::uint32_t>(in.settings.spp, 1)),
-                             WAVEFRONT_SLOT_BYTES + sort_bytes_per_slot)),
+      max_per_pass_(max_samples_per_pass(in.settings, pixels_, device_pool_size(in.device.info(), in.settings))),
+      // no more slots than a pass has work items
+      pool_(in.device, static_cast<std::uint32_t>(std::min<std::uint64_t>(
+                           device_pool_size(in.device.info(), in.settings),
+                           std::uint64_t(pixels_) * std::min(max_per_pass_, std::max<std::uint32_t>(in.settings.spp, 1))))),
       results_(in.device.allocate("pass results", std::size_t(pixels_) * max_per_pass_ * sizeof(co_float4))),
       scene_(in.scene.kernel_buffers()) {
   kernels_.generate = program_.kernel("wf_generate");
@@ -45,39 +59,54 @@ WavefrontRender::WavefrontRender(const MethodInputs& in, Launches launches, std:
   kernels_.accumulate = program_.kernel("wf_accumulate");
   kernels_.simd_efficiency = program_.kernel("wf_simd_efficiency");
   kernels_.shadow_max_steps = program_.kernel("wf_shadow_max_steps");
+  kernels_.end_bounce = program_.kernel("wf_end_bounce");
 }
 
-RenderResult WavefrontRender::run(const BounceStages& bounce) {
+RenderResult WavefrontRender::run(const BounceStages& bounce_stages) {
   const Device& cl = in_.device;
   std::vector<IterationStats> iterations;
   auto pass = [&](const PassBuffers& b, const RenderParams& p) {
     WavefrontPass wp{cl, in_.settings, pool_, kernels_, scene_, b, results_, launches_};
     wp.items = pixels_ * p.samples_per_pass;
-    wp.remaining = wp.items;
-    std::array<std::uint32_t, COUNTER_COUNT> counters{};
+    wp.live_bound = pool_.slots;
     cl.write(pool_.counters, 0, sizeof(kZeros), kZeros.data(), false);
-    for (std::size_t iteration = 0;; ++iteration) {
-      if (!bounce(wp)) break;
-      cl.read(pool_.counters, 0, sizeof(counters), counters.data());
-      // the per-bounce counters, from the shadow rays through the SIMD groups
-      cl.write(pool_.counters, COUNTER_SHADOW * sizeof(std::uint32_t),
-               (COUNTER_SIMD_GROUPS - COUNTER_SHADOW + 1) * sizeof(std::uint32_t), kZeros.data(), false);
-
-      if (iterations.size() <= iteration) iterations.resize(iteration + 1);
-      IterationStats& stats = iterations[iteration];
-      stats.live_paths += wp.live;
-      stats.shadow_rays += counters[COUNTER_SHADOW];
-      stats.simd_groups += counters[COUNTER_SIMD_GROUPS];
-      stats.simd_efficiency_sum += counters[COUNTER_SIMD_SUM] * 1e-4;
-      auto seconds = wp.log.collect();
-      add_seconds(seconds, wp.sort_seconds);
-      wp.sort_seconds.clear();
-      add_seconds(stats.kernel_seconds, seconds);
-      add_seconds(wp.out.kernel_seconds, seconds);
-      wp.out.rays += wp.live + counters[COUNTER_SHADOW];
-      wp.out.max_steps = std::max(wp.out.max_steps, counters[COUNTER_MAX_STEPS]);
-      wp.live = counters[COUNTER_QUEUE];
+    std::vector<LaunchLog> unread;  // the launches of the bounces since the last read, by bounce
+    std::array<std::uint32_t, COUNTER_WORDS> words{};
+    std::size_t interval = kBouncesPerRead;
+    for (bool over = false; !over; ++wp.bounce) {
+      bounce_stages(wp);
+      unread.push_back(std::move(wp.log));
+      wp.log = LaunchLog{};
+      if (unread.size() < interval) continue;
+      // the one blocking read: the counters and the rows of the bounces since the last read
+      cl.read(pool_.counters, 0, sizeof(words), words.data());
+      ++wp.out.host_reads;
+      wp.items_left = words[COUNTER_NEXT_ITEM] < wp.items;
+      if (!wp.items_left) {
+        wp.live_bound = words[COUNTER_QUEUE];  // the paths that survived the last bounce
+        interval = std::min<std::size_t>(interval * 2, BOUNCE_ROWS);
+      }
+      over = !wp.items_left && words[COUNTER_QUEUE] == 0;
+      const std::uint32_t first = wp.bounce + 1 - static_cast<std::uint32_t>(unread.size());
+      for (std::uint32_t k = 0; k < unread.size(); ++k) {
+        const std::uint32_t bounce = first + k;
+        const std::uint32_t* row = &words[COUNTER_COUNT + (bounce % BOUNCE_ROWS) * BOUNCE_FIGURES];
+        const auto seconds = unread[k].collect();
+        add_seconds(wp.out.kernel_seconds, seconds);
+        // a bounce that traced nothing ran after the pass was over (its launches left at once)
+        if (row[BOUNCE_LIVE] == 0) continue;
+        if (iterations.size() <= bounce) iterations.resize(bounce + 1);
+        IterationStats& stats = iterations[bounce];
+        stats.live_paths += row[BOUNCE_LIVE];
+        stats.shadow_rays += row[BOUNCE_SHADOW];
+        stats.simd_groups += row[BOUNCE_SIMD_GROUPS];
+        stats.simd_efficiency_sum += row[BOUNCE_SIMD_SUM] * 1e-4;
+        add_seconds(stats.kernel_seconds, seconds);
+        wp.out.rays += row[BOUNCE_LIVE] + row[BOUNCE_SHADOW];
+      }
+      unread.clear();
     }
+    wp.out.max_steps = words[COUNTER_MAX_STEPS];
     WfAccumulateArgs accumulate;
     accumulate.params = b.params;
     accumulate.results = results_;

@@ -1,7 +1,9 @@
 // The loop every wavefront method shares: a pool of path slots (path_pool.h), the wavefront program,
 // and for each sample pass a loop of bounces until no path is live and no work item is left. A
-// method says what one bounce runs, as a sequence of the stages in stages.h and ray_sort.h; the loop
-// reads the queue counters after each bounce and keeps the per-bounce figures of --stats.
+// method says what one bounce runs, as a sequence of the stages in stages.h and sorted_traversal.h.
+// Queue lengths stay on the device (launches cover the pool, work items past the count leave), and
+// each bounce's figures go to a row on the device: the host reads the counters and rows only every
+// few bounces, to learn whether the pass is over, and keeps the per-bounce figures of --stats.
 #pragma once
 
 #include <cstdint>
@@ -23,7 +25,7 @@ namespace cohort {
 enum class Launches { all_slots, compacted };
 
 struct WavefrontKernels {
-  DeviceKernel generate, extend, shade, shadow, finish, accumulate, simd_efficiency, shadow_max_steps;
+  DeviceKernel generate, extend, shade, shadow, finish, accumulate, simd_efficiency, shadow_max_steps, end_bounce;
 };
 
 // One sample pass in flight: what the stages of a bounce share.
@@ -36,25 +38,27 @@ struct WavefrontPass {
   const PassBuffers& buffers;
   const DeviceBuffer& results;  // one radiance per work item of the pass
   Launches launches;
-  LaunchLog log;
+  LaunchLog log;  // this bounce's launches, timed when the host next reads the device
   PassOutput out;
-  std::map<std::string, double> sort_seconds;  // device time of the radix sort's launches
-  std::uint32_t items = 0;                     // work items (pixel, sample) of the pass
-  std::uint64_t remaining = 0;                 // work items no path has taken yet
-  std::uint32_t live = 0;                      // paths in flight
+  std::uint32_t items = 0;   // work items (pixel, sample) of the pass
+  std::uint32_t bounce = 0;  // the bounce being enqueued, from 0 in each pass
+  bool items_left = true;    // false once a read of the counters showed every item handed out
+  // At least the paths in flight: the pool, until a read shows that no new path can start; from
+  // then on the live count that read found (it can only fall).
+  std::uint32_t live_bound = 0;
 
   std::uint32_t use_queue() const { return launches == Launches::compacted ? 1u : 0u; }
-  // work items of a launch over the paths: the live ones, or every slot
-  std::uint32_t count() const { return launches == Launches::compacted ? live : pool.slots; }
+  // work items of a launch over the paths: the worst case (with the queue, the kernels take the
+  // live count from the device and the rest leave at once); without the queue, every slot
+  std::uint32_t count() const { return launches == Launches::compacted ? live_bound : pool.slots; }
 };
 
-// A method's bounce: runs its stages; false when no path is live after it started new ones.
-using BounceStages = std::function<bool(WavefrontPass&)>;
+// A method's bounce: enqueues its stages. The loop, not the method, decides when the pass is over.
+using BounceStages = std::function<void(WavefrontPass&)>;
 
 class WavefrontRender {
  public:
-  // `sort_bytes_per_slot`: what a ray-sorting stage adds to each slot (SORT_SLOT_BYTES), 0 without.
-  WavefrontRender(const MethodInputs& in, Launches launches, std::size_t sort_bytes_per_slot = 0);
+  WavefrontRender(const MethodInputs& in, Launches launches);
 
   const MethodInputs& inputs() const { return in_; }
   const PathPool& pool() const { return pool_; }
