@@ -41,7 +41,8 @@ void print_details(const PreparedRender& render, const RenderOutcome& outcome) {
                result.wavefront_size * result.path_state_bytes / 1048576.0, result.iterations.size(),
                result.simd_efficiency);
   if (!result.code_layout.empty())
-    fmt::print("coherence code: {}; PTH subtree {} levels, {} nodes\n", result.code_layout, result.pth_levels,
+    fmt::print("coherence code: {} ({} bits), sorted from bounce {}; PTH subtree {} levels, {} nodes\n",
+               result.code_layout, result.code_key_bits, result.sort_from_bounce, result.pth_levels,
                result.pth_subtree_nodes);
 }
 

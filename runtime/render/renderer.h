@@ -64,6 +64,8 @@ struct RenderResult {
   std::size_t path_state_bytes = 0;              // device bytes per path slot
   double simd_efficiency = 0;                    // traversal: mean over max steps per 32 rays
   std::string code_layout;                       // hash and pth: the coherence code used
+  std::uint32_t code_key_bits = 0;               // its width (sorted as 32-bit keys up to 32)
+  std::uint32_t sort_from_bounce = 0;            // hash and pth: the first bounce they sort
   std::uint32_t pth_levels = 0;                  // pth: subtree levels in local memory
   std::uint32_t pth_subtree_nodes = 0;
   bool speculative = false;                      // hash/pth: resumed with speculative traversal

@@ -7,7 +7,7 @@ std::string expand_test_kernel_source(std::string_view path) {
 }
 
 ProgramBuild build_test_kernel_program(const ClContext& cl, const ProgramCache& cache, const std::string& file) {
-  return cache.build(cl.context, cl.device, expand_test_kernel_source(file), base_build_options(cl.device));
+  return build_cl_program(cl, cache, expand_test_kernel_source(file), base_build_options(cl.device));
 }
 
 }  // namespace cohort

@@ -7,13 +7,17 @@ namespace cohort {
 
 RenderResult render_hash(const MethodInputs& in) {
   WavefrontRender render(in, Launches::compacted, SORT_SLOT_BYTES);
-  SortedTraversal sorted(render, SortKey::hash);
+  SortedTraversal sorted(render, SortedBy::hash);
   RenderResult result = render.run([&](WavefrontPass& p) {
     generate(p);
     if (p.live == 0) return false;
-    sorted.walk(p);  // the hash code only: no subtree levels
-    sorted.sort(p);
-    sorted.resume(p);
+    if (sorted.sorts(p)) {
+      sorted.walk(p);  // the hash code only: no subtree levels
+      sorted.sort(p);
+      sorted.resume(p);
+    } else {
+      extend(p);
+    }
     shade(p);
     finish(p);
     return true;

@@ -9,13 +9,17 @@ namespace cohort {
 
 RenderResult render_pth(const MethodInputs& in) {
   WavefrontRender render(in, Launches::compacted, SORT_SLOT_BYTES);
-  SortedTraversal sorted(render, SortKey::pth);
+  SortedTraversal sorted(render, SortedBy::pth);
   RenderResult result = render.run([&](WavefrontPass& p) {
     generate(p);
     if (p.live == 0) return false;
-    sorted.walk(p);  // partial traversal heuristic and coherence code
-    sorted.sort(p);
-    sorted.resume(p);
+    if (sorted.sorts(p)) {
+      sorted.walk(p);  // partial traversal heuristic and coherence code
+      sorted.sort(p);
+      sorted.resume(p);
+    } else {
+      extend(p);
+    }
     shade(p);
     finish(p);
     return true;

@@ -57,6 +57,7 @@ RenderResult WavefrontRender::run(const BounceStages& bounce) {
     std::array<std::uint32_t, COUNTER_COUNT> counters{};
     cl.write(pool_.counters, 0, sizeof(kZeros), kZeros.data(), false);
     for (std::size_t iteration = 0;; ++iteration) {
+      wp.bounce = static_cast<std::uint32_t>(iteration) + 1;
       if (!bounce(wp)) break;
       cl.read(pool_.counters, 0, sizeof(counters), counters.data());
       // the per-bounce counters, from the shadow rays through the SIMD groups

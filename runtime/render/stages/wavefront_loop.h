@@ -42,6 +42,7 @@ struct WavefrontPass {
   std::uint32_t items = 0;                     // work items (pixel, sample) of the pass
   std::uint64_t remaining = 0;                 // work items no path has taken yet
   std::uint32_t live = 0;                      // paths in flight
+  std::uint32_t bounce = 0;                    // 1 for the pass's first bounce (its camera rays)
 
   std::uint32_t use_queue() const { return launches == Launches::compacted ? 1u : 0u; }
   // work items of a launch over the paths: the live ones, or every slot
