@@ -21,6 +21,7 @@ nlohmann::json method_json(const MethodFigures& m) {
                       {"kernel_seconds", m.kernel_seconds},
                       {"pass_seconds", {{"median", m.pass_seconds_median}, {"max", m.pass_seconds_max}}},
                       {"max_nodes_per_ray", m.max_nodes_per_ray}};
+  if (!m.auto_pick.empty()) j["auto_pick"] = m.auto_pick;
   if (!m.code_layout.empty())
     j["coherence"] = {{"code", m.code_layout},
                       {"key_bits", m.code_key_bits},

@@ -70,6 +70,7 @@ MethodFigures bench_method(const Device& cl, const ProgramCache& cache, const De
   f.pth_levels = m.pth_levels;
   f.code_key_bits = m.code_key_bits;
   f.sort_from_bounce = m.sort_from_bounce;
+  f.auto_pick = m.auto_choice.method;
   f.kernel_seconds = m.kernel_seconds;
   f.breakdown = time_breakdown(m.kernel_seconds);
   f.render_seconds = m.render_seconds;

@@ -53,6 +53,7 @@ struct MethodFigures {
   std::string code_layout;        // hash and pth
   std::uint32_t pth_levels = 0;
   std::uint32_t code_key_bits = 0, sort_from_bounce = 0;
+  std::string auto_pick;          // auto: the method its probe chose
   // device seconds per stage (time_breakdown) and per kernel, of the repetition with the median rate
   std::map<std::string, double> breakdown;
   std::map<std::string, double> kernel_seconds;

@@ -94,6 +94,14 @@ void print_view(const SceneFigures& s, const ViewFigures& v) {
       fmt::print("  pth / best of naive, sc, rg, sc+rg, hash ({}): {:.2f}x\n", best->method,
                  pth->rays_per_second.median() / best->rays_per_second.median());
   }
+  if (const MethodFigures* automatic = find("auto")) {
+    const MethodFigures* winner = nullptr;
+    for (const MethodFigures& m : v.methods)
+      if (m.method != "auto" && (!winner || m.rays_per_second.median() > winner->rays_per_second.median())) winner = &m;
+    if (winner)
+      fmt::print("  auto picked {} (probe included: {:.2f}x the fastest method by name, {})\n", automatic->auto_pick,
+                 automatic->rays_per_second.median() / winner->rays_per_second.median(), winner->method);
+  }
 }
 
 // --gate: every order's trace rate against generation order, and what its sort costs.

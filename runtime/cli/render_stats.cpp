@@ -47,6 +47,10 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
   j["image_mean"] = {{"rgb", mean.mean}, {"standard_error", mean.standard_error}};
   j["scene"] = cmd.scene.string();
   j["method"] = cmd.settings.method;
+  if (!r.auto_choice.method.empty())
+    j["auto"] = {{"method", r.auto_choice.method},
+                 {"probe_seconds", r.auto_choice.probe_seconds},
+                 {"probe_rays_per_second", r.auto_choice.probe_rays_per_second}};
   nlohmann::json devices = nlohmann::json::array();
   for (const auto& rank : outcome.ranks)
     for (auto d : rank["devices"]) {

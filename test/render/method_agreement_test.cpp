@@ -245,6 +245,31 @@ TEST(Methods, MalformedCodeLayoutsAreInputErrors) {
   }
 }
 
+// auto probes every other method and renders with the fastest: naive's image whatever it picks,
+// and the probe's time is part of the render's.
+TEST(Methods, AutoRendersTheNaiveImageWithTheFastestProbedMethod) {
+  RenderSettings s;
+  s.width = 32;
+  s.height = 24;
+  s.spp = 3;
+  s.seed = 4;
+  const auto path = shipped_scene("cornell-box.gltf");
+  const RenderResult reference = render_scene(path, s);
+  s.method = "auto";
+  const RenderResult r = render_scene(path, s);
+  expect_bitwise_equal(reference, r, "auto");
+  const AutoChoice& a = r.auto_choice;
+  ASSERT_EQ(a.probe_rays_per_second.size(), methods().size() - 1);
+  EXPECT_EQ(a.probe_rays_per_second.count("auto"), 0u);
+  ASSERT_EQ(a.probe_rays_per_second.count(a.method), 1u) << a.method;
+  for (const auto& [name, rate] : a.probe_rays_per_second) {
+    EXPECT_GT(rate, 0.0) << name;
+    EXPECT_LE(rate, a.probe_rays_per_second.at(a.method)) << name;
+  }
+  EXPECT_GT(a.probe_seconds, 0.0);
+  EXPECT_GE(r.render_seconds, a.probe_seconds);
+}
+
 TEST(Methods, UnknownMethodIsAnInputError) {
   EXPECT_THROW(find_method("teleport"), InputError);
   EXPECT_EQ(method_names().size(), methods().size());
