@@ -128,7 +128,7 @@ int run_gate(const BenchCommand& cmd, const std::vector<BenchView>& views, const
         nlohmann::json orders = nlohmann::json::object();
         for (const GateOrder& o : b.orders) {
           const double ms = b.rays / o.rays_per_second.median() * 1e3;
-          fmt::print("    {:16} {:>10.2f} ({:.2f})  {:.3f}x  sort {:.3f} ms ({} bits)  net {:.3f}x\n", o.name,
+          fmt::print("    {:18} {:>8.2f} ({:.2f})  {:.3f}x  sort {:.3f} ms ({} bits)  net {:.3f}x\n", o.name,
                      o.rays_per_second.median() * 1e-6, o.rays_per_second.best() * 1e-6,
                      o.rays_per_second.median() / base, o.sort_ms, o.key_bits, base_ms / (ms + o.sort_ms));
           orders[o.name] = {{"mrays_per_second", rate_json(o.rays_per_second)}, {"key_bits", o.key_bits},
