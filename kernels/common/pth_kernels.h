@@ -1,15 +1,14 @@
 /* The partial traversal heuristic pipeline (Wang & Deng, Figure 3) between regeneration and
  * shading: every live ray walks the top subtree in local memory and gets its coherence code;
- * the host sorts (code, slot) pairs on the device (32-bit codes where the layout fits); pth_resume then continues each traversal in
- * sorted order from the state the walk left, so no node is visited twice and the hit equals a
- * full traversal's. With 0 levels the walk is empty and this is the hash sort of Garanzha & Loop
- * (method `hash`). */
+ * the host sorts (code, slot) pairs on the device (32-bit codes where the layout fits);
+ * pth_resume then continues each traversal in sorted order from the state the walk left, so no
+ * node is visited twice and the hit equals a full traversal's. With 0 levels the walk is empty
+ * and this is the hash sort of Garanzha & Loop (method `hash`). */
 #ifndef COHORT_PTH_KERNELS_H
 #define COHORT_PTH_KERNELS_H
 
 #include "common/wavefront_path.h"
 #include "common/coherence.h"
-
 
 /* The walk of launch index i (< count): saves where the traversal stopped and returns the ray's
  * coherence code; rays that are not traced this bounce get the largest key, so they sort last and
@@ -62,8 +61,8 @@ CO_INLINE uint64_t pth_walk_item(CO_PARAMS(PTH_WALK_PARAMS), const CO_LOCAL KdNo
 }
 
 /* One copy of the subtree per work-group, before any work item may leave. */
-#define PTH_LOAD_SUBTREE()                                                                   \
-  CO_LOCAL_BIND(KdNode, subtree)                                                             \
+#define PTH_LOAD_SUBTREE()                                                                         \
+  CO_LOCAL_BIND(KdNode, subtree)                                                                   \
   for (uint32_t k = co_local_id(); k < subtree_nodes; k += co_local_size()) subtree[k] = nodes[k]; \
   co_barrier();
 

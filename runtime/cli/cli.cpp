@@ -32,8 +32,9 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
   cmd.add_option("--wavefront-size", r.settings.wavefront_size,
                  "Path slots of the wavefront methods (default: chosen from the device)");
   cmd.add_option("--code", r.settings.code,
-                 "Coherence code of hash/pth, most significant part first (default origin:8,pth:10,dir:8), or a "
-                 "preset: paper, hash, origin-first; its pth:N sets the levels pth walks");
+                 "Coherence code of hash/pth, most significant part first: origin:N, origin-uniform:N, end:N, pth:N, "
+                 "dir:N (default: origin-first for hash, pth-32 for pth), or a preset: paper, hash, origin-first, "
+                 "two-point, pth-32; its pth:N sets the levels pth walks; up to 32 bits sort as 32-bit keys");
   cmd.add_option("--pth-levels", r.settings.pth_levels,
                  "KD-tree levels pth walks in local memory (default: 10, fewer if the tree or local memory is smaller)")
       ->check(CLI::Range(1, 16));
