@@ -26,6 +26,16 @@ struct AgreementCase {
 
 class MethodAgreement : public ::testing::TestWithParam<AgreementCase> {};
 
+// A render of the shipped box small enough to repeat for many settings.
+RenderSettings small_box_settings(std::uint32_t seed) {
+  RenderSettings s;
+  s.width = 32;
+  s.height = 24;
+  s.spp = 3;
+  s.seed = seed;
+  return s;
+}
+
 void expect_bitwise_equal(const RenderResult& reference, const RenderResult& other, const char* what) {
   ASSERT_EQ(reference.image.rgb.size(), other.image.rgb.size());
   std::size_t differing = 0;
@@ -149,11 +159,7 @@ TEST(Methods, CodeAndPthLevelsThatDisagreeAreAnInputError) {
 // Layouts of at most 32 bits are sorted as 32-bit keys (pth_walk_and_code32, a 32-bit radix sort),
 // wider ones as 64-bit keys; either way the image is naive's, so the sort kept every slot.
 TEST(Methods, KeyWidthFollowsTheLayoutAndImagesStayBitForBit) {
-  RenderSettings s;
-  s.width = 32;
-  s.height = 24;
-  s.spp = 3;
-  s.seed = 5;
+  RenderSettings s = small_box_settings(5u);
   s.sort_from_bounce = 1;
   const auto path = shipped_scene("cornell-box.gltf");
   const RenderResult reference = render_scene(path, s);
@@ -202,11 +208,7 @@ TEST(Methods, TwoPointLayoutsPlaceTheEndPointBelowTheOrigin) {
 // --sort-from-bounce B: bounces before B trace unsorted through `extend`, B and later are sorted;
 // the image never depends on B.
 TEST(Methods, SortFromBounceKeepsImagesBitForBit) {
-  RenderSettings s;
-  s.width = 32;
-  s.height = 24;
-  s.spp = 3;
-  s.seed = 9;
+  RenderSettings s = small_box_settings(9u);
   s.rr_depth = 2;
   const auto path = shipped_scene("cornell-box.gltf");
   const RenderResult reference = render_scene(path, s);
@@ -248,11 +250,7 @@ TEST(Methods, MalformedCodeLayoutsAreInputErrors) {
 // auto probes every other method and renders with the fastest: naive's image whatever it picks,
 // and the probe's time is part of the render's.
 TEST(Methods, AutoRendersTheNaiveImageWithTheFastestProbedMethod) {
-  RenderSettings s;
-  s.width = 32;
-  s.height = 24;
-  s.spp = 3;
-  s.seed = 4;
+  RenderSettings s = small_box_settings(4u);
   const auto path = shipped_scene("cornell-box.gltf");
   const RenderResult reference = render_scene(path, s);
   s.method = "auto";
