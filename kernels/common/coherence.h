@@ -58,21 +58,32 @@ CO_INLINE uint32_t adaptive_cell(const CO_GLOBAL float* bounds, uint32_t count, 
   return lo;
 }
 
-CO_INLINE uint64_t origin_hash(const CodeParams* c, const CO_GLOBAL float* origin_bounds, co_vec3 org) {
-  if (c->origin_bits == 0u) return 0u;
+/* Cell of p in the uniform grid of `bits` per axis over the scene bounds, in Morton order. */
+CO_INLINE uint64_t uniform_cell_hash(const CodeParams* c, co_vec3 p, uint32_t bits) {
   uint32_t cell[3];
-  uint32_t per_axis = (1u << c->origin_bits) - 1u;
   for (uint32_t a = 0u; a < 3u; ++a) {
-    float x = v3_get(org, a);
-    if (c->origin_adaptive) {
-      cell[a] = adaptive_cell(origin_bounds + a * per_axis, per_axis, x);
-    } else {
-      float lo = a == 0u ? c->lo.x : (a == 1u ? c->lo.y : c->lo.z);
-      float hi = a == 0u ? c->hi.x : (a == 1u ? c->hi.y : c->hi.z);
-      cell[a] = quantize((x - lo) / fmax(hi - lo, 1e-30f), c->origin_bits);
-    }
+    float lo = a == 0u ? c->lo.x : (a == 1u ? c->lo.y : c->lo.z);
+    float hi = a == 0u ? c->hi.x : (a == 1u ? c->hi.y : c->hi.z);
+    cell[a] = quantize((v3_get(p, a) - lo) / fmax(hi - lo, 1e-30f), bits);
   }
   return (morton_spread3(cell[0]) << 2) | (morton_spread3(cell[1]) << 1) | morton_spread3(cell[2]);
+}
+
+CO_INLINE uint64_t origin_hash(const CodeParams* c, const CO_GLOBAL float* origin_bounds, co_vec3 org) {
+  if (c->origin_bits == 0u) return 0u;
+  if (!c->origin_adaptive) return uniform_cell_hash(c, org, c->origin_bits);
+  uint32_t cell[3];
+  uint32_t per_axis = (1u << c->origin_bits) - 1u;
+  for (uint32_t a = 0u; a < 3u; ++a) cell[a] = adaptive_cell(origin_bounds + a * per_axis, per_axis, v3_get(org, a));
+  return (morton_spread3(cell[0]) << 2) | (morton_spread3(cell[1]) << 1) | morton_spread3(cell[2]);
+}
+
+/* The two-point key's second point (Meister et al., "On Ray Reordering Techniques for Faster GPU
+ * Ray Tracing", I3D 2020): where the ray is estimated to end, org + dir * end_t, on the uniform
+ * grid. Rays that will hit nearby geometry from nearby origins trace alike. */
+CO_INLINE uint64_t end_hash(const CodeParams* c, co_vec3 org, co_vec3 dir, float end_t) {
+  if (c->end_bits == 0u) return 0u;
+  return uniform_cell_hash(c, v3_madd(org, dir, end_t), c->end_bits);
 }
 
 /* Octahedral map of a unit direction to [0,1]^2 (Meyer et al. 2010), a grid on the sphere whose
@@ -92,9 +103,18 @@ CO_INLINE uint32_t direction_hash(const CodeParams* c, co_vec3 d) {
   return (morton_spread2(cu) << 1) | morton_spread2(cv);
 }
 
+/* A ray's estimated distance to its hit, for the two-point key: the length of its path's previous
+ * segment (a path's segments in a room are about as long as each other), or where a camera ray
+ * (segment 1) leaves the scene box; never past that exit. */
+CO_INLINE float estimated_end(uint32_t segment, float previous_t, float box_exit) {
+  return segment > 1u ? fmin(previous_t, box_exit) : box_exit;
+}
+
+/* `end_t`: the estimated distance to the ray's hit, for the end part (ignored without one). */
 CO_INLINE uint64_t coherence_code(const CodeParams* c, const CO_GLOBAL float* origin_bounds, co_vec3 org, co_vec3 dir,
-                                  uint32_t pth_bits) {
+                                  uint32_t pth_bits, float end_t) {
   uint64_t code = origin_hash(c, origin_bounds, org) << c->origin_shift;
+  code |= end_hash(c, org, dir, end_t) << c->end_shift;
   code |= (uint64_t)pth_bits << c->pth_shift;
   code |= (uint64_t)direction_hash(c, dir) << c->direction_shift;
   return code;

@@ -37,6 +37,13 @@
 #define CO_DROP_FIRST_(empty, ...) __VA_ARGS__
 #define CO_PARAMS(LIST) CO_DROP_FIRST(LIST(CO_PARAM, CO_PARAM_GROUP))
 
+/* The names of a list, as the arguments of a call to a helper declared with CO_PARAMS(LIST) (a
+ * list without a LOCAL parameter: CUDA has none to pass). */
+#define CO_ARG(kind, T, name) , name
+#define CO_ARG_GROUP(Group, member, LIST) LIST(CO_ARG, CO_ARG_GROUP_NESTED)
+#define CO_ARG_GROUP_NESTED(Group, member, LIST) LIST(CO_ARG, CO_ARG_GROUP_NESTED)
+#define CO_ARGS(LIST) CO_DROP_FIRST(LIST(CO_ARG, CO_ARG_GROUP))
+
 /* ---- Groups -------------------------------------------------------------------------------- */
 
 /* The scene's buffers (scene_view.h makes them a SceneView with the RenderParams). */
@@ -106,14 +113,20 @@
 
 /* ---- pth_kernels.h ----------------------------------------------------------------------------
  * The walk reads the path slots of `queue` (or all), writes (code, slot) pairs for the sort and
- * the traversal state it stopped at; the resume continues in the sorted order. */
-#define PTH_WALK_AND_CODE_PARAMS(P, G)                                                                        \
+ * the traversal state it stopped at; the resume continues in the sorted order. `hits` holds each
+ * path's previous hit (its distance is the two-point key's estimate) until the walk or the resume
+ * writes this bounce's. The two walk kernels differ only in the width of their keys. */
+#define PTH_WALK_PARAMS(P, G)                                                                                 \
   SCENE_PARAMS(P, G) P(IN, co_float4, path_org) P(IN, co_float4, path_dir) P(IN, uint32_t, path_item)        \
-  P(IN, uint32_t, path_status) P(IN, uint32_t, queue) P(VALUE, uint32_t, use_queue) P(VALUE, uint32_t, count) \
-  P(LOCAL, KdNode, subtree) P(VALUE, uint32_t, subtree_nodes) P(UNIFORM, CodeParams, code_params)            \
-  P(IN, float, origin_bounds) P(IO, uint64_t, keys) P(IO, uint32_t, values) P(IO, TraversalState, traversal) \
-  P(IO, SavedStackEntry, traversal_stack) P(VALUE, uint32_t, stack_stride) P(IO, HitOut, hits)                \
-  P(IN, uint32_t, counters)
+  P(IN, uint32_t, path_segment) P(IN, uint32_t, path_status) P(IN, uint32_t, queue)                          \
+  P(VALUE, uint32_t, use_queue) P(VALUE, uint32_t, count) P(VALUE, uint32_t, subtree_nodes)                  \
+  P(UNIFORM, CodeParams, code_params) P(IN, float, origin_bounds) P(IO, uint32_t, values)                    \
+  P(IO, TraversalState, traversal) P(IO, SavedStackEntry, traversal_stack) P(VALUE, uint32_t, stack_stride)  \
+  P(IO, HitOut, hits) P(IN, uint32_t, counters)
+
+#define PTH_WALK_AND_CODE_PARAMS(P, G) G(PthWalk, walk, PTH_WALK_PARAMS) P(LOCAL, KdNode, subtree) P(IO, uint64_t, keys)
+#define PTH_WALK_AND_CODE32_PARAMS(P, G)                                                                      \
+  G(PthWalk, walk, PTH_WALK_PARAMS) P(LOCAL, KdNode, subtree) P(IO, uint32_t, keys)
 
 /* pth_resume and pth_resume_speculative */
 #define PTH_RESUME_PARAMS(P, G)                                                                               \

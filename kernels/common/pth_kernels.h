@@ -1,30 +1,26 @@
 /* The partial traversal heuristic pipeline (Wang & Deng, Figure 3) between regeneration and
  * shading: every live ray walks the top subtree in local memory and gets its coherence code;
- * the host sorts (code, slot) pairs on the device; pth_resume then continues each traversal in
- * sorted order from the state the walk left, so no node is visited twice and the hit equals a
- * full traversal's. With 0 levels the walk is empty and this is the hash sort of Garanzha & Loop
- * (method `hash`). */
+ * the host sorts (code, slot) pairs on the device (32-bit codes where the layout fits);
+ * pth_resume then continues each traversal in sorted order from the state the walk left, so no
+ * node is visited twice and the hit equals a full traversal's. With 0 levels the walk is empty
+ * and this is the hash sort of Garanzha & Loop (method `hash`). */
 #ifndef COHORT_PTH_KERNELS_H
 #define COHORT_PTH_KERNELS_H
 
 #include "common/wavefront_path.h"
 #include "common/coherence.h"
 
-CO_KERNEL pth_walk_and_code(CO_PARAMS(PTH_WALK_AND_CODE_PARAMS)) {
-  /* one copy of the subtree per work-group, before any work item may leave */
-  CO_LOCAL_BIND(KdNode, subtree)
-  for (uint32_t k = co_local_id(); k < subtree_nodes; k += co_local_size()) subtree[k] = nodes[k];
-  co_barrier();
-  uint32_t i = co_global_id();
-  if (i >= launch_count(count, counters, use_queue)) return;
+/* The walk of launch index i (< count): saves where the traversal stopped and returns the ray's
+ * coherence code; rays that are not traced this bounce get the largest key, so they sort last and
+ * pth_resume skips them. */
+CO_INLINE uint64_t pth_walk_item(CO_PARAMS(PTH_WALK_PARAMS), const CO_LOCAL KdNode* subtree, uint32_t i) {
   uint32_t slot = slot_of(i, queue, use_queue);
   CodeParams c = *code_params;
-  /* rays that are not traced this bounce sort last and are skipped by pth_resume */
-  keys[i] = c.key_bits >= 64u ? ~(uint64_t)0 : (((uint64_t)1 << c.key_bits) - (uint64_t)1);
+  uint64_t last = c.key_bits >= 64u ? ~(uint64_t)0 : (((uint64_t)1 << c.key_bits) - (uint64_t)1);
   values[i] = slot;
   if (path_item[slot] == ITEM_NONE || path_status[slot] != PATH_ALIVE) {
     traversal[slot] = traversal_done();
-    return;
+    return last;
   }
   RenderParams p = *params;
   SceneView s = SCENE_VIEW(p);
@@ -39,8 +35,10 @@ CO_KERNEL pth_walk_and_code(CO_PARAMS(PTH_WALK_AND_CODE_PARAMS)) {
     miss.triangle = HIT_NONE;
     hits[slot] = miss;
     traversal[slot] = traversal_done();
-    return;
+    return last;
   }
+  /* the previous hit is still in `hits` until this bounce's is written */
+  float end_t = c.end_bits ? estimated_end(path_segment[slot], hits[slot].t, t1) : 0.0f;
   KdStackEntry stack[PTH_MAX_LEVELS];
   int sp = 0;
   uint32_t node = 0u;
@@ -59,7 +57,28 @@ CO_KERNEL pth_walk_and_code(CO_PARAMS(PTH_WALK_AND_CODE_PARAMS)) {
     e.pad = 0u;
     traversal_stack[(uint32_t)k * stack_stride + slot] = e;
   }
-  keys[i] = coherence_code(&c, origin_bounds, org, dir, bits);
+  return coherence_code(&c, origin_bounds, org, dir, bits, end_t);
+}
+
+/* One copy of the subtree per work-group, before any work item may leave. */
+#define PTH_LOAD_SUBTREE()                                                                         \
+  CO_LOCAL_BIND(KdNode, subtree)                                                                   \
+  for (uint32_t k = co_local_id(); k < subtree_nodes; k += co_local_size()) subtree[k] = nodes[k]; \
+  co_barrier();
+
+/* Keys of more than 32 bits (the paper's layout). */
+CO_KERNEL pth_walk_and_code(CO_PARAMS(PTH_WALK_AND_CODE_PARAMS)) {
+  PTH_LOAD_SUBTREE()
+  uint32_t i = co_global_id();
+  if (i < launch_count(count, counters, use_queue)) keys[i] = pth_walk_item(CO_ARGS(PTH_WALK_PARAMS), subtree, i);
+}
+
+/* Keys of at most 32 bits: half the sort's memory traffic and passes. */
+CO_KERNEL pth_walk_and_code32(CO_PARAMS(PTH_WALK_AND_CODE32_PARAMS)) {
+  PTH_LOAD_SUBTREE()
+  uint32_t i = co_global_id();
+  if (i < launch_count(count, counters, use_queue))
+    keys[i] = (uint32_t)pth_walk_item(CO_ARGS(PTH_WALK_PARAMS), subtree, i);
 }
 
 /* The `depth` stack entries pth_walk_and_code saved for `slot` (entry k of every slot together). */

@@ -136,9 +136,9 @@ typedef struct PunctualLight {
 CO_STATIC_ASSERT(sizeof(PunctualLight) == 64, "PunctualLight must stay 64 bytes");
 
 /* ---- Coherence code (Wang & Deng, section 3) -------------------------------------------------
- * A 64-bit sort key packing three parts; each part's width and position are set on the host
- * (`--code`). Origin and direction cells are Morton-interleaved so that nearby cells get nearby
- * codes. */
+ * A sort key of at most 64 bits (32-bit keys when key_bits <= 32) packing up to four parts; each
+ * part's width and position are set on the host (`--code`). Origin, end point and direction cells
+ * are Morton-interleaved so that nearby cells get nearby codes. */
 typedef struct CodeParams {
   uint32_t origin_bits;      /* per axis, 0..10 */
   uint32_t origin_shift;
@@ -147,11 +147,15 @@ typedef struct CodeParams {
   uint32_t pth_shift;
   uint32_t direction_bits;   /* per octahedral coordinate, 0..16 */
   uint32_t direction_shift;
-  uint32_t key_bits;         /* bits the radix sort must look at */
-  co_float4 lo;              /* uniform origin grid */
+  uint32_t key_bits;         /* bits the radix sort must look at: at most 32 means 32-bit keys */
+  uint32_t end_bits;         /* per axis of the estimated end point (two-point key), 0..10 */
+  uint32_t end_shift;
+  uint32_t pad0;
+  uint32_t pad1;
+  co_float4 lo;              /* uniform origin grid, also the end point's */
   co_float4 hi;
 } CodeParams;
-CO_STATIC_ASSERT(sizeof(CodeParams) == 64, "CodeParams must stay 64 bytes");
+CO_STATIC_ASSERT(sizeof(CodeParams) == 80, "CodeParams must stay 80 bytes");
 
 /* ---- Rays and hits for the traversal-only kernels -------------------------------------------- */
 typedef struct RayIn {

@@ -21,7 +21,12 @@ nlohmann::json method_json(const MethodFigures& m) {
                       {"kernel_seconds", m.kernel_seconds},
                       {"pass_seconds", {{"median", m.pass_seconds_median}, {"max", m.pass_seconds_max}}},
                       {"max_nodes_per_ray", m.max_nodes_per_ray}};
-  if (!m.code_layout.empty()) j["coherence"] = {{"code", m.code_layout}, {"pth_levels", m.pth_levels}};
+  if (!m.auto_pick.empty()) j["auto_pick"] = m.auto_pick;
+  if (!m.code_layout.empty())
+    j["coherence"] = {{"code", m.code_layout},
+                      {"key_bits", m.code_key_bits},
+                      {"sort_from_bounce", m.sort_from_bounce},
+                      {"pth_levels", m.pth_levels}};
   return j;
 }
 
@@ -81,6 +86,7 @@ nlohmann::json bench_json(const Device& d, const BenchOptions& o, const std::vec
                  {"compute_units", device.compute_units}};
   j["settings"] = {{"trace_res", o.trace_res}, {"res", o.res}, {"spp", o.spp}, {"reps", o.reps},
                    {"methods", o.methods}, {"code", o.code}, {"pth_levels", o.pth_levels},
+                   {"sort_from_bounce", o.sort_from_bounce},
                    {"workload", "white sky (bench-protocol.md)"}, {"max_depth", 5}};
   j["scenes"] = scenes_json(scenes);
   return j;

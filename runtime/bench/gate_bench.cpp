@@ -18,53 +18,45 @@ co_vec3 org_of(const RayIn& r) { return v3(r.origin.x, r.origin.y, r.origin.z); 
 co_vec3 dir_of(const RayIn& r) { return v3(r.dir.x, r.dir.y, r.dir.z); }
 
 // Keys of a --code layout (uniform origin grid: the host has no centroid quantiles here); the
-// paper's PTH bits come from the same walk the kernel takes, over the whole node array.
-std::vector<std::uint64_t> layout_keys(const std::string& layout, const KdTree& tree, std::span<const RayIn> rays) {
+// paper's PTH bits come from the same walk the kernel takes, over the whole node array. `end_t`:
+// each ray's distance estimate for an end part (one per ray), or the kernel's estimate when empty:
+// the previous segment's length `previous_t` (bounce 2 on), else where the ray leaves the box.
+std::vector<std::uint64_t> layout_keys(const std::string& layout, const KdTree& tree, std::span<const RayIn> rays,
+                                       unsigned bounce, std::span<const float> previous_t,
+                                       std::span<const float> end_t = {}) {
   const CodeParams c = parse_code_layout(layout, 10, tree.bounds);
   const KdTreeView view = host_view(tree);
   std::vector<std::uint64_t> keys(rays.size());
   for (std::size_t i = 0; i < rays.size(); ++i) {
     const co_vec3 o = org_of(rays[i]), d = dir_of(rays[i]);
+    const co_vec3 inv = kd_inverse(d);
     std::uint32_t bits = 0;
-    if (c.pth_levels) {
-      const co_vec3 inv = kd_inverse(d);
-      float t0, t1;
-      if (kd_begin(&view, o, inv, 0.f, INFINITY, &t0, &t1)) {
-        KdStackEntry stack[KD_MAX_DEPTH];
-        int sp = 0;
-        std::uint32_t node = 0;
-        bits = pth_walk(tree.nodes.data(), std::uint32_t(tree.nodes.size()), c.pth_levels, o, d, inv, &node, &t0,
-                        &t1, stack, &sp);
-      }
+    float t0 = 0, t1 = 0;
+    const bool inside = kd_begin(&view, o, inv, 0.f, INFINITY, &t0, &t1);
+    const float end = !end_t.empty() ? end_t[i] : estimated_end(bounce, bounce > 1 ? previous_t[i] : 0.f, t1);
+    if (c.pth_levels && inside) {
+      KdStackEntry stack[KD_MAX_DEPTH];
+      int sp = 0;
+      std::uint32_t node = 0;
+      bits = pth_walk(tree.nodes.data(), std::uint32_t(tree.nodes.size()), c.pth_levels, o, d, inv, &node, &t0, &t1,
+                      stack, &sp);
     }
-    keys[i] = coherence_code(&c, nullptr, o, d, bits);
+    keys[i] = coherence_code(&c, nullptr, o, d, bits, end);
   }
   return keys;
 }
 
-// Meister et al. 2020: the origin and an estimate of the end point, each 5 bits per axis in Morton
-// order. The estimate here is the exact hit distance (an upper bound on what a real estimate buys);
-// a miss ends where the ray leaves the scene box.
-std::vector<std::uint64_t> two_point_keys(const KdTree& tree, std::span<const RayIn> rays,
-                                          std::span<const ProtocolHit> hits) {
-  const glm::vec3 lo = tree.bounds.lo, extent = glm::max(tree.bounds.hi - tree.bounds.lo, glm::vec3(1e-30f));
+// The exact hit distances: an upper bound on what an estimate buys the two-point key (Meister et
+// al. 2020); a miss ends where the ray leaves the scene box.
+std::vector<float> exact_ends(const KdTree& tree, std::span<const RayIn> rays, std::span<const ProtocolHit> hits) {
   const KdTreeView view = host_view(tree);
-  auto cell = [&](glm::vec3 p) {
-    const glm::vec3 f = (p - lo) / extent;
-    return (morton_spread3(quantize(f.x, 5)) << 2) | (morton_spread3(quantize(f.y, 5)) << 1) |
-           morton_spread3(quantize(f.z, 5));
-  };
-  std::vector<std::uint64_t> keys(rays.size());
+  std::vector<float> t(rays.size(), 0.f);
   for (std::size_t i = 0; i < rays.size(); ++i) {
-    const glm::vec3 o(rays[i].origin.x, rays[i].origin.y, rays[i].origin.z), d(rays[i].dir.x, rays[i].dir.y, rays[i].dir.z);
-    float t = hits[i].triangle == HIT_NONE ? 0.f : hits[i].t;
-    if (hits[i].triangle == HIT_NONE) {
-      float t0, t1;
-      if (kd_begin(&view, org_of(rays[i]), kd_inverse(dir_of(rays[i])), 0.f, INFINITY, &t0, &t1)) t = t1;
-    }
-    keys[i] = (cell(o) << 15) | cell(o + d * t);
+    float t0, t1;
+    if (hits[i].triangle != HIT_NONE) t[i] = hits[i].t;
+    else if (kd_begin(&view, org_of(rays[i]), kd_inverse(dir_of(rays[i])), 0.f, INFINITY, &t0, &t1)) t[i] = t1;
   }
-  return keys;
+  return t;
 }
 
 std::vector<std::uint32_t> order_by(const std::vector<std::uint64_t>& keys) {
@@ -105,6 +97,7 @@ std::vector<GateBounce> gate_bench(const Device& cl, const ProgramCache& cache, 
   std::vector<RayIn> rays = protocol_primary_rays(camera, options.res);
   const float diag = scene.scene.bounds().diagonal();
   std::vector<GateBounce> out;
+  std::vector<float> previous_t;  // each ray's previous segment length, from bounce 2 on
   // waves only shrink after bounce 1
   RadixSort sort64(cl, cache, std::uint32_t(rays.size()));
   RadixSort sort32(cl, cache, std::uint32_t(rays.size()), SortKey::bits32);
@@ -120,10 +113,15 @@ std::vector<GateBounce> gate_bench(const Device& cl, const ProgramCache& cache, 
       unsigned bits;
     };
     std::vector<Keyed> keyed;
-    keyed.push_back({"origin-first", layout_keys("origin-uniform:8,dir:4", tree, rays), 32});
-    keyed.push_back({"direction-first", layout_keys("dir:4,origin-uniform:8", tree, rays), 32});
-    keyed.push_back({"paper", layout_keys("origin-uniform:8,pth:10,dir:8", tree, rays), 60});
-    keyed.push_back({"two-point", two_point_keys(tree, rays, base.closest), 30});
+    auto keys = [&](const char* layout, std::span<const float> end_t = {}) {
+      return layout_keys(layout, tree, rays, bounce, previous_t, end_t);
+    };
+    keyed.push_back({"origin-first", keys("origin-uniform:8,dir:4"), 32});
+    keyed.push_back({"direction-first", keys("dir:4,origin-uniform:8"), 32});
+    keyed.push_back({"paper", keys("origin-uniform:8,pth:10,dir:8"), 60});
+    keyed.push_back({"pth-32", keys("origin-uniform:7,pth:4,dir:1"), 31});
+    keyed.push_back({"two-point", keys("origin-uniform:5,end:5", exact_ends(tree, rays, base.closest)), 30});
+    keyed.push_back({"two-point-estimate", keys("origin-uniform:5,end:5"), 30});
     std::vector<std::uint64_t> shuffled(rays.size());
     std::iota(shuffled.begin(), shuffled.end(), std::uint64_t(0));
     std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(bounce));
@@ -141,6 +139,9 @@ std::vector<GateBounce> gate_bench(const Device& cl, const ProgramCache& cache, 
     out.push_back(std::move(b));
     // the next bounce: diffuse rays from this bounce's hits (generation order)
     rays = protocol_diffuse_rays(rays, base.closest, scene.scene.positions, diag);
+    previous_t.clear();  // the next rays start at this bounce's hits, in order
+    for (const ProtocolHit& h : base.closest)
+      if (h.triangle != HIT_NONE) previous_t.push_back(h.t);
   }
   return out;
 }

@@ -17,7 +17,8 @@
 namespace cohort {
 
 struct GateOrder {
-  std::string name;              // generation, origin-first, direction-first, paper, two-point, random
+  std::string name;  // generation, origin-first, direction-first, paper, pth-32, two-point (exact distance),
+                     // two-point-estimate (the render's estimate), random
   unsigned key_bits = 0;         // 0: no key (generation order)
   RateFigure rays_per_second;    // trace_rays over the rays in this order
   double sort_ms = 0;            // device radix sort of `rays` keys of key_bits (median), with the values

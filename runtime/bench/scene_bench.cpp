@@ -68,6 +68,9 @@ MethodFigures bench_method(const Device& cl, const ProgramCache& cache, const De
   f.simd_efficiency = m.simd_efficiency;
   f.code_layout = m.code_layout;
   f.pth_levels = m.pth_levels;
+  f.code_key_bits = m.code_key_bits;
+  f.sort_from_bounce = m.sort_from_bounce;
+  f.auto_pick = m.auto_choice.method;
   f.kernel_seconds = m.kernel_seconds;
   f.breakdown = time_breakdown(m.kernel_seconds);
   f.render_seconds = m.render_seconds;
@@ -91,6 +94,7 @@ SceneFigures bench_scene(const Device& cl, const ProgramCache& cache, const std:
   settings.spp = options.spp;
   settings.code = options.code;
   settings.pth_levels = options.pth_levels;
+  settings.sort_from_bounce = options.sort_from_bounce;
 
   SceneFigures out;
   out.path = path;

@@ -15,6 +15,7 @@
 #include "runtime/bench/figures.h"
 #include "runtime/backend/device.h"
 #include "runtime/backend/program_cache.h"
+#include "runtime/render/render_settings.h"
 #include "runtime/scene/scene.h"
 
 namespace cohort {
@@ -40,6 +41,7 @@ struct BenchOptions {
   std::vector<std::string> methods;   // white-sky path tracing; empty: none
   std::string code;                   // coherence code of hash/pth; empty: default
   std::uint32_t pth_levels = 0;       // 0: chosen from the device and the tree
+  std::uint32_t sort_from_bounce = RenderSettings{}.sort_from_bounce;  // hash/pth, as render's
 };
 
 struct MethodFigures {
@@ -50,6 +52,8 @@ struct MethodFigures {
   double simd_efficiency = 0;     // wavefront methods: traversal, mean over max steps per 32 rays
   std::string code_layout;        // hash and pth
   std::uint32_t pth_levels = 0;
+  std::uint32_t code_key_bits = 0, sort_from_bounce = 0;
+  std::string auto_pick;          // auto: the method its probe chose
   // device seconds per stage (time_breakdown) and per kernel, of the repetition with the median rate
   std::map<std::string, double> breakdown;
   std::map<std::string, double> kernel_seconds;

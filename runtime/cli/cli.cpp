@@ -32,11 +32,16 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
   cmd.add_option("--wavefront-size", r.settings.wavefront_size,
                  "Path slots of the wavefront methods (default: chosen from the device)");
   cmd.add_option("--code", r.settings.code,
-                 "Coherence code of hash/pth, most significant part first (default origin:8,pth:10,dir:8), or a "
-                 "preset: paper, hash, origin-first; its pth:N sets the levels pth walks");
+                 "Coherence code of hash/pth, most significant part first: origin:N, origin-uniform:N, end:N, pth:N, "
+                 "dir:N (default: origin-first for hash, pth-32 for pth), or a preset: paper, hash, origin-first, "
+                 "two-point, pth-32; its pth:N sets the levels pth walks; up to 32 bits sort as 32-bit keys");
   cmd.add_option("--pth-levels", r.settings.pth_levels,
                  "KD-tree levels pth walks in local memory (default: 10, fewer if the tree or local memory is smaller)")
       ->check(CLI::Range(1, 16));
+  cmd.add_option("--sort-from-bounce", r.settings.sort_from_bounce,
+                 "hash/pth sort the rays of this bounce and later ones (1: camera rays too); earlier bounces trace "
+                 "unsorted (default 2: the gate benchmark finds camera rays in pixel order as fast as any sort)")
+      ->check(CLI::Range(1, 1000));
   cmd.add_option("--stragglers", r.settings.straggler_rays,
                  "Wavefront methods: write the N extension rays that visited the most KD-tree nodes, and each "
                  "pass's maximum and 99.99th percentile, to --stats (a diagnostic; replay with cohort replay)")
@@ -98,6 +103,8 @@ void add_bench_options(CLI::App& cmd, BenchCommand& b) {
   cmd.add_option("--fov", b.fov, "Vertical field of view of the extra view")->check(CLI::Range(0.01f, 179.f));
   cmd.add_option("--code", b.code, "Coherence code of hash/pth (see render --code)");
   cmd.add_option("--pth-levels", b.pth_levels, "Subtree levels of pth")->check(CLI::Range(1, 16));
+  cmd.add_option("--sort-from-bounce", b.sort_from_bounce, "First bounce hash/pth sort (see render --sort-from-bounce)")
+      ->check(CLI::Range(1, 1000));
   cmd.add_option("--device", b.device, "Device index or name substring");
   cmd.add_option("--backend", b.backend, "Device backend: opencl or cuda (the same kernels either way)")
       ->check(CLI::IsMember({"opencl", "cuda"}));

@@ -94,6 +94,14 @@ void print_view(const SceneFigures& s, const ViewFigures& v) {
       fmt::print("  pth / best of naive, sc, rg, sc+rg, hash ({}): {:.2f}x\n", best->method,
                  pth->rays_per_second.median() / best->rays_per_second.median());
   }
+  if (const MethodFigures* automatic = find("auto")) {
+    const MethodFigures* winner = nullptr;
+    for (const MethodFigures& m : v.methods)
+      if (m.method != "auto" && (!winner || m.rays_per_second.median() > winner->rays_per_second.median())) winner = &m;
+    if (winner)
+      fmt::print("  auto picked {} (probe included: {:.2f}x the fastest method by name, {})\n", automatic->auto_pick,
+                 automatic->rays_per_second.median() / winner->rays_per_second.median(), winner->method);
+  }
 }
 
 // --gate: every order's trace rate against generation order, and what its sort costs.
@@ -120,7 +128,7 @@ int run_gate(const BenchCommand& cmd, const std::vector<BenchView>& views, const
         nlohmann::json orders = nlohmann::json::object();
         for (const GateOrder& o : b.orders) {
           const double ms = b.rays / o.rays_per_second.median() * 1e3;
-          fmt::print("    {:16} {:>10.2f} ({:.2f})  {:.3f}x  sort {:.3f} ms ({} bits)  net {:.3f}x\n", o.name,
+          fmt::print("    {:18} {:>8.2f} ({:.2f})  {:.3f}x  sort {:.3f} ms ({} bits)  net {:.3f}x\n", o.name,
                      o.rays_per_second.median() * 1e-6, o.rays_per_second.best() * 1e-6,
                      o.rays_per_second.median() / base, o.sort_ms, o.key_bits, base_ms / (ms + o.sort_ms));
           orders[o.name] = {{"mrays_per_second", rate_json(o.rays_per_second)}, {"key_bits", o.key_bits},
@@ -154,6 +162,7 @@ int run_bench(const BenchCommand& cmd) {
   options.methods = bench_methods(cmd.methods);
   options.code = cmd.code;
   options.pth_levels = cmd.pth_levels;
+  options.sort_from_bounce = cmd.sort_from_bounce;
   const std::vector<BenchView> views = bench_views(cmd);
   const std::unique_ptr<Device> opened = open_device(parse_backend(cmd.backend), cmd.device);
   const Device& device = *opened;

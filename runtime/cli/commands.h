@@ -44,6 +44,7 @@ struct BenchCommand {
   float fov = 0;
   std::string code;
   std::uint32_t pth_levels = 0;
+  std::uint32_t sort_from_bounce = RenderSettings{}.sort_from_bounce;  // render's default
   std::string device;
   std::string backend = "opencl";  // opencl | cuda
   std::string json;

@@ -53,6 +53,10 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
   j["image_mean"] = {{"rgb", mean.mean}, {"standard_error", mean.standard_error}};
   j["scene"] = cmd.scene.string();
   j["method"] = cmd.settings.method;
+  if (!r.auto_choice.method.empty())
+    j["auto"] = {{"method", r.auto_choice.method},
+                 {"probe_seconds", r.auto_choice.probe_seconds},
+                 {"probe_rays_per_second", r.auto_choice.probe_rays_per_second}};
   nlohmann::json devices = nlohmann::json::array();
   for (const auto& rank : outcome.ranks)
     for (auto d : rank["devices"]) {
@@ -125,8 +129,9 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
     j["wavefront"] = {{"slots", r.wavefront_size}, {"bytes_per_path", r.path_state_bytes},
                       {"simd_efficiency", r.simd_efficiency}};
     if (!r.code_layout.empty())
-      j["coherence"] = {{"code", r.code_layout}, {"pth_levels", r.pth_levels}, {"subtree_nodes", r.pth_subtree_nodes},
-                        {"speculative", r.speculative}};
+      j["coherence"] = {{"code", r.code_layout},           {"key_bits", r.code_key_bits},
+                        {"sort_from_bounce", r.sort_from_bounce}, {"pth_levels", r.pth_levels},
+                        {"subtree_nodes", r.pth_subtree_nodes}, {"speculative", r.speculative}};
     nlohmann::json bounces = nlohmann::json::array();
     for (const auto& it : r.iterations)
       bounces.push_back({{"live_paths", it.live_paths}, {"extension_rays", it.live_paths},

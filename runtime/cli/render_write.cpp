@@ -41,8 +41,16 @@ void print_details(const PreparedRender& render, const RenderOutcome& outcome) {
                result.wavefront_size * result.path_state_bytes / 1048576.0, result.iterations.size(),
                result.simd_efficiency);
   if (!result.code_layout.empty())
-    fmt::print("coherence code: {}; PTH subtree {} levels, {} nodes\n", result.code_layout, result.pth_levels,
+    fmt::print("coherence code: {} ({} bits), sorted from bounce {}; PTH subtree {} levels, {} nodes\n",
+               result.code_layout, result.code_key_bits, result.sort_from_bounce, result.pth_levels,
                result.pth_subtree_nodes);
+  if (!result.auto_choice.method.empty()) {
+    std::string rates;
+    for (const auto& [name, rate] : result.auto_choice.probe_rays_per_second)
+      rates += fmt::format("{}{} {:.2f}", rates.empty() ? "" : ", ", name, rate * 1e-6);
+    fmt::print("method auto: {}, the fastest in a 1-spp probe of {:.3f}s (Mrays/s: {})\n", result.auto_choice.method,
+               result.auto_choice.probe_seconds, rates);
+  }
 }
 
 }  // namespace

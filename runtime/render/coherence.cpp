@@ -17,6 +17,17 @@ struct Part {
   std::uint32_t width = 0;
 };
 
+std::string preset_names() {
+  std::string names;
+  for (const CodePreset& p : code_presets()) names += (names.empty() ? "" : ", ") + std::string(p.name);
+  return names;
+}
+
+// Bits a part takes in the key: 3 per axis of a point, 2 per PTH level, 2 per octahedral coordinate.
+unsigned part_bits(const std::string& name, std::uint32_t width) {
+  return name == "pth" || name == "dir" ? 2 * width : 3 * width;
+}
+
 // The parts of a layout or of the preset it names, most significant first.
 std::vector<Part> layout_parts(const std::string& given) {
   std::string layout = given;
@@ -31,7 +42,8 @@ std::vector<Part> layout_parts(const std::string& given) {
     const char* first = item.data() + colon + 1;
     const char* last = item.data() + item.size();
     if (colon == std::string::npos || std::from_chars(first, last, part.width).ptr != last)
-      throw InputError(fmt::format("--code {}: expected parts like origin:8,pth:10,dir:8 or a preset (paper, hash, origin-first)", layout));
+      throw InputError(fmt::format("--code {}: expected parts like origin:8,pth:10,dir:8 or a preset ({})", layout,
+                                   preset_names()));
     parts.push_back(part);
   }
   return parts;
@@ -40,12 +52,15 @@ std::vector<Part> layout_parts(const std::string& given) {
 }  // namespace
 
 const std::vector<CodePreset>& code_presets() {
-  static const std::vector<CodePreset> presets{
-      {"paper", "origin:8,pth:10,dir:8"}, {"hash", "origin:8,dir:8"}, {"origin-first", "origin-uniform:8,dir:4"}};
+  static const std::vector<CodePreset> presets{{"paper", "origin:8,pth:10,dir:8"},
+                                               {"hash", "origin:8,dir:8"},
+                                               {"origin-first", "origin-uniform:8,dir:4"},
+                                               {"two-point", "origin-uniform:5,end:5"},
+                                               {"pth-32", "origin-uniform:7,pth:4,dir:1"}};
   return presets;
 }
 
-std::string default_code_layout(bool with_pth) { return with_pth ? "origin:8,pth:10,dir:8" : "origin:8,dir:8"; }
+std::string default_code_layout(bool with_pth) { return with_pth ? "pth-32" : "origin-first"; }
 
 std::uint32_t layout_pth_levels(const std::string& layout) {
   std::uint32_t levels = 0;
@@ -55,6 +70,7 @@ std::uint32_t layout_pth_levels(const std::string& layout) {
 }
 
 std::uint32_t requested_pth_levels(const std::string& code, std::uint32_t pth_levels) {
+  if (code.empty()) return pth_levels ? pth_levels : layout_pth_levels(default_code_layout(true));
   const std::uint32_t coded = code.empty() ? 0 : layout_pth_levels(code);
   if (coded != 0 && pth_levels != 0 && coded != pth_levels)
     throw InputError(fmt::format("--code {} asks for {} PTH levels and --pth-levels for {}: give one", code, coded,
@@ -73,27 +89,29 @@ CodeParams parse_code_layout(const std::string& layout, std::uint32_t pth_levels
       if (p.width > 10) throw InputError(fmt::format("--code {}: origin takes at most 10 bits per axis", layout));
       c.origin_bits = p.width;
       c.origin_adaptive = p.name == "origin";
-      total += 3 * p.width;
+    } else if (p.name == "end") {
+      if (p.width > 10) throw InputError(fmt::format("--code {}: end takes at most 10 bits per axis", layout));
+      c.end_bits = p.width;
     } else if (p.name == "pth") {
       c.pth_levels = pth_levels ? pth_levels : p.width;
       if (c.pth_levels > 16) throw InputError(fmt::format("--code {}: pth takes at most 16 levels", layout));
-      total += 2 * c.pth_levels;
     } else if (p.name == "dir") {
       if (p.width > 16) throw InputError(fmt::format("--code {}: dir takes at most 16 bits", layout));
       c.direction_bits = p.width;
-      total += 2 * p.width;
     } else {
-      throw InputError(fmt::format("--code {}: unknown part '{}' (origin, origin-uniform, pth, dir)", layout, p.name));
+      throw InputError(
+          fmt::format("--code {}: unknown part '{}' (origin, origin-uniform, end, pth, dir)", layout, p.name));
     }
+    total += part_bits(p.name, p.name == "pth" ? c.pth_levels : p.width);
   }
   if (total > 64) throw InputError(fmt::format("--code {}: {} bits do not fit a 64-bit key", layout, total));
   // the first part is the most significant: shift each part above the ones after it
   unsigned shift = total;
   for (const auto& p : parts) {
-    const unsigned width = p.name == "pth" ? 2 * c.pth_levels : (p.name == "dir" ? 2 * p.width : 3 * p.width);
-    shift -= width;
+    shift -= part_bits(p.name, p.name == "pth" ? c.pth_levels : p.width);
     if (p.name == "pth") c.pth_shift = shift;
     else if (p.name == "dir") c.direction_shift = shift;
+    else if (p.name == "end") c.end_shift = shift;
     else c.origin_shift = shift;
   }
   c.key_bits = total;

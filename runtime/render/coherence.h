@@ -13,14 +13,17 @@
 namespace cohort {
 
 // "origin:8,pth:10,dir:8": parts most significant first, with their widths (origin: bits per axis,
-// pth: levels, dir: bits per octahedral coordinate); "origin-uniform:N" uses a uniform origin grid
-// over the scene bounds instead of centroid quantiles. A layout may also be a named preset (see
+// pth: levels, dir: bits per octahedral coordinate, end: bits per axis of the estimated end point
+// on the uniform grid); "origin-uniform:N" uses a uniform origin grid over the scene bounds instead
+// of centroid quantiles. A layout may also be a named preset (see
 // code_presets). Throws InputError for a malformed layout or more than 64 bits. `pth_levels`
 // replaces the pth width when the layout has a pth part (the subtree may be shallower than asked).
 CodeParams parse_code_layout(const std::string& layout, std::uint32_t pth_levels, const Bounds& bounds);
 
 // Named layouts: "paper" (Wang & Deng's order, origin | PTH | direction, 60 bits), "hash" (Garanzha
-// & Loop's origin | direction), "origin-first" (the 32-bit key the gate benchmark found fastest).
+// & Loop's origin | direction, 40 bits), "origin-first" (the 32-bit key the gate benchmark found
+// fastest), "two-point" (origin and estimated end point, Meister et al. 2020, 30 bits) and
+// "pth-32" (origin-first with the top 4 PTH levels, 31 bits).
 struct CodePreset {
   const char* name;
   const char* layout;
@@ -33,10 +36,11 @@ std::uint32_t layout_pth_levels(const std::string& layout);
 
 // The subtree levels a sorting method walks: `code` (--code, empty for the default) and
 // `pth_levels` (--pth-levels, 0 for the default) must agree when both name them; either alone
-// decides. 0: the device and the tree decide.
+// decides; with neither, the default layout's pth width. 0: the device and the tree decide.
 std::uint32_t requested_pth_levels(const std::string& code, std::uint32_t pth_levels);
 
-// The default layouts: the paper's order (origin | PTH | direction) and the hash sort's.
+// The default layouts, of at most 32 bits (32-bit keys sort in half the time): "pth-32" for pth
+// and "origin-first" for hash, after the gate benchmark (docs/results.md, "Where ordering pays").
 std::string default_code_layout(bool with_pth);
 
 // Per-axis quantiles of triangle centroids: 2^bits - 1 boundaries for each of x, y, z.

@@ -55,6 +55,9 @@ RenderResult merge_device_results(const std::vector<DeviceRun>& runs) {
   merged.wavefront_size = first.wavefront_size;
   merged.path_state_bytes = first.path_state_bytes;
   merged.code_layout = first.code_layout;
+  merged.code_key_bits = first.code_key_bits;
+  merged.sort_from_bounce = first.sort_from_bounce;
+  merged.auto_choice = first.auto_choice;
   merged.pth_levels = first.pth_levels;
   merged.pth_subtree_nodes = first.pth_subtree_nodes;
   merged.speculative = first.speculative;

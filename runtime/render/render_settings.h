@@ -28,6 +28,8 @@ struct RenderSettings {
   std::uint32_t wavefront_size = 0;  // path slots of the wavefront methods; 0: chosen from the device
   std::string code;                  // coherence code layout of hash/pth; empty: the method's default
   std::uint32_t pth_levels = 0;      // subtree levels of pth; 0: chosen from the device and the tree
+  std::uint32_t sort_from_bounce = 2;  // hash/pth sort bounces from this one on (1: camera rays too);
+                                       // the gate benchmark: bounce 1 never pays for its sort
   bool speculative = false;          // hash/pth: resumed traversal postpones leaf tests (Aila & Laine)
   std::uint32_t straggler_rays = 0;  // wavefront methods: keep this many of the extension rays that
                                      // visited the most nodes, and per-pass percentiles (a diagnostic)

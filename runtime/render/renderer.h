@@ -50,6 +50,13 @@ struct PassStragglers {
   std::uint32_t p9999 = 0;  // 99.99th percentile
 };
 
+// What --method auto probed and chose (runtime/render/methods/auto.cpp).
+struct AutoChoice {
+  std::string method;                                   // empty: not auto
+  double probe_seconds = 0;                             // wall time of the probe, in render_seconds
+  std::map<std::string, double> probe_rays_per_second;  // per method probed
+};
+
 struct RenderResult {
   Image image;                 // mean radiance per pixel
   std::uint32_t samples = 0;   // per pixel
@@ -64,6 +71,9 @@ struct RenderResult {
   std::size_t path_state_bytes = 0;              // device bytes per path slot
   double simd_efficiency = 0;                    // traversal: mean over max steps per 32 rays
   std::string code_layout;                       // hash and pth: the coherence code used
+  std::uint32_t code_key_bits = 0;               // its width (sorted as 32-bit keys up to 32)
+  std::uint32_t sort_from_bounce = 0;            // hash and pth: the first bounce they sort
+  AutoChoice auto_choice;                 // --method auto: the probe and its pick
   std::uint32_t pth_levels = 0;                  // pth: subtree levels in local memory
   std::uint32_t pth_subtree_nodes = 0;
   bool speculative = false;                      // hash/pth: resumed with speculative traversal

@@ -27,7 +27,7 @@ TEST(GateBench, EveryOrderFindsTheSameHitsAndHasASortCost) {
       EXPECT_LE(bounces[b].rays, bounces[b - 1].rays);  // rays that missed left the wave
       EXPECT_GT(bounces[b].rays, 0u);
     }
-    ASSERT_EQ(bounces[b].orders.size(), 6u);
+    ASSERT_EQ(bounces[b].orders.size(), 8u);
     EXPECT_EQ(bounces[b].orders[0].name, "generation");
     for (const GateOrder& o : bounces[b].orders) {
       EXPECT_EQ(o.rays_per_second.runs.size(), 3u) << o.name;

@@ -80,6 +80,23 @@ TEST(Cli, RenderWritesExrPngAndStats) {
   EXPECT_EQ(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator()), 3);
 }
 
+TEST(Cli, SortingMethodStatsNameTheCodeItsBitsAndTheFirstSortedBounce) {
+  TempDir dir;
+  const CommandResult r = run("render " + scene("cornell-box.gltf") + " --res 16x16 --spp 1 --method hash --code two-point"
+                              " --sort-from-bounce 3 -o " + (dir.path / "box").string() + " --stats " +
+                              (dir.path / "stats.json").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto j = nlohmann::json::parse(std::ifstream(dir.path / "stats.json"));
+  EXPECT_EQ(j["coherence"]["code"], "two-point");
+  EXPECT_EQ(j["coherence"]["key_bits"], 30);
+  EXPECT_EQ(j["coherence"]["sort_from_bounce"], 3);
+  EXPECT_EQ(run("render " + scene("cornell-box.gltf") + " --method hash --sort-from-bounce 0").code, 2);
+  const CommandResult bad = run("render " + scene("cornell-box.gltf") + " --method hash --code end:11 -o " +
+                                (dir.path / "bad").string());
+  EXPECT_EQ(bad.code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("end takes at most 10 bits"), std::string::npos) << bad.output;
+}
+
 TEST(Cli, AFailedRunLeavesEarlierOutputsUntouched) {
   TempDir dir;
   const fs::path exr = dir.path / "keep.exr";

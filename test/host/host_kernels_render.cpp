@@ -28,6 +28,7 @@ const HostProgram& host_render_program() {
        {"wf_shadow_max_steps", host_kernel(&wf_shadow_max_steps)},
        {"wf_end_bounce", host_kernel(&wf_end_bounce)},
        {"pth_walk_and_code", host_kernel(&pth_walk_and_code)},
+       {"pth_walk_and_code32", host_kernel(&pth_walk_and_code32)},
        {"pth_resume", host_kernel(&pth_resume)},
        {"trace_rays", host_kernel(&trace_rays)},
        {"trace_rays_pth", host_kernel(&trace_rays_pth)},

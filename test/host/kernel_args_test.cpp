@@ -48,6 +48,7 @@ TEST(KernelArgs, OneArgumentPerKernelParameter) {
   EXPECT_EQ(WfShadowMaxStepsArgs::arg_count, arity(&wf_shadow_max_steps));
   EXPECT_EQ(WfEndBounceArgs::arg_count, arity(&wf_end_bounce));
   EXPECT_EQ(PthWalkAndCodeArgs::arg_count, arity(&pth_walk_and_code));
+  EXPECT_EQ(PthWalkAndCode32Args::arg_count, arity(&pth_walk_and_code32));
   EXPECT_EQ(PthResumeArgs::arg_count, arity(&pth_resume));
   EXPECT_EQ(PthResumeArgs::arg_count, arity(&pth_resume_speculative));
   EXPECT_EQ(TraceRaysArgs::arg_count, arity(&trace_rays));

@@ -5,6 +5,8 @@
 #include <cstring>
 #include <filesystem>
 
+#include <fmt/format.h>
+
 #include "render_fixture.h"
 #include "runtime/render/coherence.h"
 #include "runtime/render/methods.h"
@@ -23,6 +25,16 @@ struct AgreementCase {
 };
 
 class MethodAgreement : public ::testing::TestWithParam<AgreementCase> {};
+
+// A render of the shipped box small enough to repeat for many settings.
+RenderSettings small_box_settings(std::uint32_t seed) {
+  RenderSettings s;
+  s.width = 32;
+  s.height = 24;
+  s.spp = 3;
+  s.seed = seed;
+  return s;
+}
 
 void expect_bitwise_equal(const RenderResult& reference, const RenderResult& other, const char* what) {
   ASSERT_EQ(reference.image.rgb.size(), other.image.rgb.size());
@@ -141,6 +153,86 @@ TEST(Methods, CodeAndPthLevelsThatDisagreeAreAnInputError) {
   EXPECT_EQ(requested_pth_levels("paper", 0), 10u);
   EXPECT_EQ(requested_pth_levels("origin-first", 5), 5u);  // no pth part: --pth-levels decides
   EXPECT_EQ(layout_pth_levels("origin-first"), 0u);
+  EXPECT_EQ(requested_pth_levels("", 0), layout_pth_levels(default_code_layout(true)));  // the default's width
+}
+
+// Layouts of at most 32 bits are sorted as 32-bit keys (pth_walk_and_code32, a 32-bit radix sort),
+// wider ones as 64-bit keys; either way the image is naive's, so the sort kept every slot.
+TEST(Methods, KeyWidthFollowsTheLayoutAndImagesStayBitForBit) {
+  RenderSettings s = small_box_settings(5u);
+  s.sort_from_bounce = 1;
+  const auto path = shipped_scene("cornell-box.gltf");
+  const RenderResult reference = render_scene(path, s);
+  struct Case {
+    const char* method;
+    const char* code;
+    std::uint32_t key_bits;
+  };
+  for (const Case& c : {Case{"hash", "origin-first", 32}, Case{"hash", "two-point", 30}, Case{"pth", "pth-32", 31},
+                        Case{"hash", "end:10,dir:1", 32}, Case{"hash", "origin-uniform:8,end:2,dir:1", 32},
+                        Case{"pth", "origin:4,end:4,pth:2,dir:1", 30}, Case{"hash", "origin:8,end:3,dir:1", 35},
+                        Case{"pth", "paper", 60}, Case{"hash", "hash", 40}}) {
+    s.method = c.method;
+    s.code = c.code;
+    const RenderResult r = render_scene(path, s);
+    expect_bitwise_equal(reference, r, c.code);
+    EXPECT_EQ(r.code_key_bits, c.key_bits) << c.code;
+  }
+  // the defaults fit 32 bits
+  s.code.clear();
+  for (const char* method : {"hash", "pth"}) {
+    s.method = method;
+    const RenderResult r = render_scene(path, s);
+    expect_bitwise_equal(reference, r, method);
+    EXPECT_EQ(r.code_layout, default_code_layout(s.method == "pth"));
+    EXPECT_LE(r.code_key_bits, 32u) << method;
+  }
+}
+
+TEST(Methods, TwoPointLayoutsPlaceTheEndPointBelowTheOrigin) {
+  const Bounds box{{0.f, 0.f, 0.f}, {1.f, 1.f, 1.f}};
+  const CodeParams c = parse_code_layout("two-point", 0, box);
+  EXPECT_EQ(c.key_bits, 30u);
+  EXPECT_EQ(c.origin_bits, 5u);
+  EXPECT_EQ(c.origin_adaptive, 0u);
+  EXPECT_EQ(c.origin_shift, 15u);
+  EXPECT_EQ(c.end_bits, 5u);
+  EXPECT_EQ(c.end_shift, 0u);
+  const CodeParams d = parse_code_layout("dir:2,end:3,origin:1", 0, box);
+  EXPECT_EQ(d.key_bits, 16u);
+  EXPECT_EQ(d.direction_shift, 12u);
+  EXPECT_EQ(d.end_shift, 3u);
+  EXPECT_EQ(d.origin_shift, 0u);
+}
+
+// --sort-from-bounce B: bounces before B trace unsorted through `extend`, B and later are sorted;
+// the image never depends on B.
+TEST(Methods, SortFromBounceKeepsImagesBitForBit) {
+  RenderSettings s = small_box_settings(9u);
+  s.rr_depth = 2;
+  const auto path = shipped_scene("cornell-box.gltf");
+  const RenderResult reference = render_scene(path, s);
+  EXPECT_EQ(s.sort_from_bounce, 2u);  // the gate benchmark's choice
+  for (const char* method : {"hash", "pth"}) {
+    for (std::uint32_t from : {1u, 2u, 3u, 1000u}) {
+      s.method = method;
+      s.sort_from_bounce = from;
+      const RenderResult r = render_scene(path, s);
+      const std::string what = fmt::format("{} from bounce {}", method, from);
+      expect_bitwise_equal(reference, r, what.c_str());
+      EXPECT_EQ(r.sort_from_bounce, from);
+      // the walk's launches carry the method's name; extend's "extend"
+      const bool walked = r.kernel_seconds.count(method) != 0, extended = r.kernel_seconds.count("extend") != 0;
+      EXPECT_EQ(walked, from <= r.iterations.size()) << what;
+      EXPECT_EQ(extended, from > 1) << what;
+      ASSERT_GE(r.iterations.size(), 3u);
+      for (std::size_t i = 0; i < r.iterations.size(); ++i) {
+        const auto& k = r.iterations[i].kernel_seconds;
+        EXPECT_EQ(k.count(method) != 0, i + 1 >= from) << what << ", bounce " << i + 1;
+        EXPECT_EQ(k.count("extend") != 0, i + 1 < from) << what << ", bounce " << i + 1;
+      }
+    }
+  }
 }
 
 TEST(Methods, MalformedCodeLayoutsAreInputErrors) {
@@ -148,10 +240,32 @@ TEST(Methods, MalformedCodeLayoutsAreInputErrors) {
   s.width = s.height = 8;
   s.spp = 1;
   s.method = "pth";
-  for (const char* code : {"origin:11", "pth", "dir:8,colour:3", "origin:10,pth:16,dir:16", "papers"}) {
+  for (const char* code : {"origin:11", "pth", "dir:8,colour:3", "origin:10,pth:16,dir:16", "papers", "end:11", "end",
+                           "end:x", "end:-1", "origin:10,end:10,dir:3"}) {
     s.code = code;
     EXPECT_THROW(render_scene(shipped_scene("cornell-box.gltf"), s), InputError) << code;
   }
+}
+
+// auto probes every other method and renders with the fastest: naive's image whatever it picks,
+// and the probe's time is part of the render's.
+TEST(Methods, AutoRendersTheNaiveImageWithTheFastestProbedMethod) {
+  RenderSettings s = small_box_settings(4u);
+  const auto path = shipped_scene("cornell-box.gltf");
+  const RenderResult reference = render_scene(path, s);
+  s.method = "auto";
+  const RenderResult r = render_scene(path, s);
+  expect_bitwise_equal(reference, r, "auto");
+  const AutoChoice& a = r.auto_choice;
+  ASSERT_EQ(a.probe_rays_per_second.size(), methods().size() - 1);
+  EXPECT_EQ(a.probe_rays_per_second.count("auto"), 0u);
+  ASSERT_EQ(a.probe_rays_per_second.count(a.method), 1u) << a.method;
+  for (const auto& [name, rate] : a.probe_rays_per_second) {
+    EXPECT_GT(rate, 0.0) << name;
+    EXPECT_LE(rate, a.probe_rays_per_second.at(a.method)) << name;
+  }
+  EXPECT_GT(a.probe_seconds, 0.0);
+  EXPECT_GE(r.render_seconds, a.probe_seconds);
 }
 
 TEST(Methods, UnknownMethodIsAnInputError) {

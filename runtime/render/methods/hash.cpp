@@ -10,9 +10,13 @@ RenderResult render_hash(const MethodInputs& in) {
   SortedTraversal sorted(render, RayOrder::hash);
   RenderResult result = render.run([&](WavefrontPass& p) {
     generate(p, Refill::every_bounce);
-    sorted.walk(p);  // the hash code only: no subtree levels
-    sorted.sort(p);
-    sorted.resume(p);
+    if (sorted.sorts(p)) {
+      sorted.walk(p);  // the hash code only: no subtree levels
+      sorted.sort(p);
+      sorted.resume(p);
+    } else {
+      extend(p);
+    }
     shade(p);
     finish(p);
   });

@@ -25,5 +25,6 @@ RenderResult render_rg(const MethodInputs& in);
 RenderResult render_sc_rg(const MethodInputs& in);
 RenderResult render_hash(const MethodInputs& in);
 RenderResult render_pth(const MethodInputs& in);
+RenderResult render_auto(const MethodInputs& in);
 
 }  // namespace cohort

@@ -12,9 +12,13 @@ RenderResult render_pth(const MethodInputs& in) {
   SortedTraversal sorted(render, RayOrder::pth);
   RenderResult result = render.run([&](WavefrontPass& p) {
     generate(p, Refill::every_bounce);
-    sorted.walk(p);  // partial traversal heuristic and coherence code
-    sorted.sort(p);
-    sorted.resume(p);
+    if (sorted.sorts(p)) {
+      sorted.walk(p);  // partial traversal heuristic and coherence code
+      sorted.sort(p);
+      sorted.resume(p);
+    } else {
+      extend(p);
+    }
     shade(p);
     finish(p);
   });

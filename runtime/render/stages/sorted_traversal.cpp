@@ -8,7 +8,9 @@
 namespace cohort {
 
 SortedTraversal::SortedTraversal(const WavefrontRender& render, RayOrder key)
-    : key_(key), speculative_(render.inputs().settings.speculative) {
+    : key_(key),
+      speculative_(render.inputs().settings.speculative),
+      sort_from_bounce_(render.inputs().settings.sort_from_bounce) {
   const MethodInputs& in = render.inputs();
   const Device& cl = in.device;
   const std::uint32_t slots = render.pool().slots;
@@ -24,41 +26,52 @@ SortedTraversal::SortedTraversal(const WavefrontRender& render, RayOrder key)
   code_params_ = cl.allocate("code parameters", sizeof(code_), &code_, Access::read_only);
   const auto bounds = origin_boundaries(in.scene, code_.origin_bits);
   origin_bounds_ = cl.allocate("origin grid", bounds.size() * sizeof(float), bounds.data(), Access::read_only);
-  keys_ = cl.allocate("coherence codes", std::size_t(slots) * sizeof(std::uint64_t));
+  const SortKey width = code_.key_bits <= 32 ? SortKey::bits32 : SortKey::bits64;
+  keys_ = cl.allocate("coherence codes", std::size_t(slots) * (width == SortKey::bits32 ? 4 : 8));
   values_ = cl.allocate("sorted slots", std::size_t(slots) * sizeof(std::uint32_t));
   traversal_ = cl.allocate("traversal states", std::size_t(slots) * sizeof(TraversalState));
   traversal_stack_ = cl.allocate("traversal stacks", std::size_t(slots) * sizeof(SavedStackEntry) *
                                                          std::max<std::uint32_t>(code_.pth_levels, 1));
-  sort_.emplace(cl, in.cache, slots);
-  walk_ = program_.kernel("pth_walk_and_code");
+  sort_.emplace(cl, in.cache, slots, width);
+  walk_ = program_.kernel(width == SortKey::bits32 ? "pth_walk_and_code32" : "pth_walk_and_code");
   resume_ = program_.kernel(speculative_ ? "pth_resume_speculative" : "pth_resume");
 }
+
+// the loop counts bounces from 0; --sort-from-bounce from 1 (the camera rays)
+bool SortedTraversal::sorts(const WavefrontPass& p) const { return p.bounce + 1 >= sort_from_bounce_; }
 
 void SortedTraversal::walk(WavefrontPass& p) {
   const std::uint32_t count = p.count();
   const PathBuffers& path = p.pool.path;
-  PthWalkAndCodeArgs args;
-  args.params = p.buffers.params;
-  args.scene = p.scene;
-  args.path_org = path.path_org;
-  args.path_dir = path.path_dir;
-  args.path_item = path.path_item;
-  args.path_status = path.path_status;
-  args.queue = p.pool.queue;
-  args.use_queue = p.use_queue();
-  args.count = count;
-  args.subtree = LocalMemory{std::max<std::size_t>(subtree_.local_bytes, sizeof(KdNode))};
-  args.subtree_nodes = subtree_.nodes;
-  args.code_params = code_params_;
-  args.origin_bounds = origin_bounds_;
-  args.keys = keys_;
-  args.values = values_;
-  args.traversal = traversal_;
-  args.traversal_stack = traversal_stack_;
-  args.stack_stride = p.pool.slots;
-  args.hits = p.pool.hits;
-  args.counters = p.pool.counters;
-  args.bind(walk_);
+  PthWalk w;
+  w.params = p.buffers.params;
+  w.scene = p.scene;
+  w.path_org = path.path_org;
+  w.path_dir = path.path_dir;
+  w.path_item = path.path_item;
+  w.path_segment = path.path_segment;
+  w.path_status = path.path_status;
+  w.queue = p.pool.queue;
+  w.use_queue = p.use_queue();
+  w.count = count;
+  w.subtree_nodes = subtree_.nodes;
+  w.code_params = code_params_;
+  w.origin_bounds = origin_bounds_;
+  w.values = values_;
+  w.traversal = traversal_;
+  w.traversal_stack = traversal_stack_;
+  w.stack_stride = p.pool.slots;
+  w.hits = p.pool.hits;
+  w.counters = p.pool.counters;
+  // the two walk kernels differ only in the width of their keys
+  auto bind = [&](auto args) {
+    args.walk = w;
+    args.subtree = LocalMemory{std::max<std::size_t>(subtree_.local_bytes, sizeof(KdNode))};
+    args.keys = keys_;
+    args.bind(walk_);
+  };
+  if (sort_->key() == SortKey::bits32) bind(PthWalkAndCode32Args{});
+  else bind(PthWalkAndCodeArgs{});
   p.log.launch(p.device, walk_, key_ == RayOrder::pth ? "pth" : "hash", count);
 }
 
@@ -97,6 +110,8 @@ void SortedTraversal::report(RenderResult& result) const {
   result.compile_from_cache = result.compile_from_cache && program_.from_cache;
   result.path_state_bytes += SORT_SLOT_BYTES + sizeof(SavedStackEntry) * code_.pth_levels;
   result.code_layout = layout_;
+  result.code_key_bits = code_.key_bits;
+  result.sort_from_bounce = sort_from_bounce_;
   result.pth_levels = code_.pth_levels;
   result.pth_subtree_nodes = subtree_.nodes;
   result.speculative = speculative_;

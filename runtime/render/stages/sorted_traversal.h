@@ -2,7 +2,7 @@
 // pth_kernels.h): walk (the top KD-tree levels in local memory, then the coherence code), sort (the
 // device radix sort of (code, slot) pairs) and resume (each traversal continues, in sorted order,
 // from the state the walk saved). With the hash key the walk covers no levels: the hash sort of
-// Garanzha & Loop.
+// Garanzha & Loop. Layouts of at most 32 bits are sorted as 32-bit keys (half the sort's traffic).
 #pragma once
 
 #include <cstdint>
@@ -25,6 +25,10 @@ class SortedTraversal {
  public:
   SortedTraversal(const WavefrontRender& render, RayOrder key);
 
+  // Whether this bounce's rays are sorted (--sort-from-bounce); else the method traces them with
+  // `extend` (the gate benchmark: camera rays in pixel order trace about as fast as any sorted
+  // order, so their sort does not pay).
+  bool sorts(const WavefrontPass& pass) const;
   void walk(WavefrontPass& pass);
   void sort(WavefrontPass& pass);
   void resume(WavefrontPass& pass);
@@ -34,6 +38,7 @@ class SortedTraversal {
  private:
   RayOrder key_;
   bool speculative_;
+  std::uint32_t sort_from_bounce_;
   DeviceProgram program_;
   CodeParams code_{};
   SubtreeChoice subtree_;
