@@ -34,7 +34,7 @@ CO_INLINE void store_path(PATH_PARAMS, uint32_t slot, const PathState *st) {
   path_status[slot] = st->status;
 }
 
-#define PATH_ARGS path_org, path_dir, path_throughput, path_radiance, path_prev, path_item, path_segment, path_status
+#define PATH_ARGS CO_ARGS(PATH_BUFFERS)
 
 /* The slot a launch index stands for: the compacted queue's entry, or the index itself. */
 CO_INLINE uint32_t slot_of(uint32_t i, CO_GLOBAL const uint32_t *queue, uint32_t use_queue) {
