@@ -69,7 +69,9 @@ TEST(KernelArgs, BindSetsFieldsInSignatureOrder) {
   args.counters = some_buffer();
   DeviceKernel kernel(nullptr, "wf_simd_efficiency");
   args.bind(kernel);
-  ASSERT_EQ(kernel.args().size(), 4u);
+  ASSERT_EQ(kernel.args().size(), WfSimdEfficiencyArgs::arg_count + 1);  // and co_params_end, last
+  const auto* end = std::get_if<ValueArg>(&kernel.args().back());
+  ASSERT_TRUE(end && end->bytes.size() == 4);
   const auto* steps = std::get_if<DeviceBuffer>(&kernel.args()[0]);
   const auto* count = std::get_if<ValueArg>(&kernel.args()[1]);
   const auto* counters = std::get_if<DeviceBuffer>(&kernel.args()[2]);
