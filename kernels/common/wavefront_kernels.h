@@ -18,7 +18,8 @@ CO_KERNEL wf_generate(CO_PARAMS(WF_GENERATE_PARAMS)) {
    * stops growing once the pass's items are handed out (it would wrap in long passes). Both tests
    * are the same for every work item: checked first, they make a launch with nothing to do cheap. */
   if (!regenerate && counters[COUNTER_SURVIVED] != 0u) return;
-  if (counters[COUNTER_NEXT_ITEM] >= item_end) return;
+  /* an atomic read: other work items of this launch increment the counter */
+  if (co_atomic_load(&counters[COUNTER_NEXT_ITEM]) >= item_end) return;
   if (slot >= slot_count || path_item[slot] != ITEM_NONE) return;
   uint32_t item = co_atomic_inc(&counters[COUNTER_NEXT_ITEM]);
   if (item >= item_end) return;
@@ -96,7 +97,7 @@ CO_KERNEL wf_finish(CO_PARAMS(WF_FINISH_PARAMS)) {
     path_item[slot] = ITEM_NONE;
     return;
   }
-  counters[COUNTER_SURVIVED] = 1u;
+  co_atomic_xchg(&counters[COUNTER_SURVIVED], 1u); /* many items set it: atomically, race-free */
   uint32_t index = co_atomic_inc(&counters[COUNTER_QUEUE]);
   if (use_queue) queue[index] = slot;
 }
