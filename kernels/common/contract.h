@@ -23,7 +23,8 @@
 #define COUNTER_SIMD_GROUPS 4 /* groups of 32 traced rays */
 #define COUNTER_MAX_STEPS 5   /* the most KD-tree nodes one ray visited (the straggler figure) */
 #define COUNTER_SURVIVED 6    /* nonzero when a path lived on after the last bounce: no refill without regeneration */
-#define COUNTER_COUNT 7
+#define COUNTER_ITEMS_HANDED 7 /* COUNTER_NEXT_ITEM as the last bounce ended: wf_generate's early test */
+#define COUNTER_COUNT 8
 
 /* After the counters, wf_end_bounce keeps one row of figures per bounce, in a ring of BOUNCE_ROWS
  * rows indexed by the bounce's number: the host reads them with the counters, at least once every
