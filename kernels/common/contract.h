@@ -83,5 +83,8 @@ CO_STATIC_ASSERT(sizeof(SavedStackEntry) == 16, "SavedStackEntry must stay 16 by
 /* With a ray sort: key and value (twice, for the sort's ping-pong) and the traversal state; the
  * saved stack adds one SavedStackEntry per subtree level. */
 #define SORT_SLOT_BYTES (2u * (8u + 4u) + (uint32_t)sizeof(TraversalState))
+/* pth_gather's sorted copies per slot (--sort-payload gather): origin, direction, traversal state;
+ * besides a second copy of the saved stack */
+#define SORT_GATHER_SLOT_BYTES (2u * 16u + (uint32_t)sizeof(TraversalState))
 
 #endif

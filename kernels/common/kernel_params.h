@@ -127,12 +127,20 @@
 #define PTH_WALK_AND_CODE32_PARAMS(P, G)                                                                      \
   G(PthWalk, walk, PTH_WALK_PARAMS) P(LOCAL, KdNode, subtree) P(IO, uint32_t, keys)
 
-/* pth_resume and pth_resume_speculative */
+/* pth_gather (--sort-payload gather): ray and saved state of sorted item i to position i */
+#define PTH_GATHER_PARAMS(P, G)                                                                               \
+  P(IN, uint32_t, sorted_slots) P(VALUE, uint32_t, count) P(IN, uint32_t, counters) P(VALUE, uint32_t, use_queue) \
+  P(IN, co_float4, path_org) P(IN, co_float4, path_dir) P(IN, TraversalState, traversal)                     \
+  P(IN, SavedStackEntry, traversal_stack) P(VALUE, uint32_t, stack_stride) P(IO, co_float4, sorted_org)        \
+  P(IO, co_float4, sorted_dir) P(IO, TraversalState, sorted_traversal) P(IO, SavedStackEntry, sorted_stack)
+
+/* pth_resume and pth_resume_speculative: `gathered` 1 reads ray and state at the sorted position
+ * (path_org, path_dir, traversal and traversal_stack are then pth_gather's sorted copies) */
 #define PTH_RESUME_PARAMS(P, G)                                                                               \
   SCENE_PARAMS(P, G) P(IN, co_float4, path_org) P(IN, co_float4, path_dir) P(IN, uint32_t, sorted_slots)     \
   P(VALUE, uint32_t, count) P(IN, TraversalState, traversal) P(IN, SavedStackEntry, traversal_stack)         \
   P(VALUE, uint32_t, stack_stride) P(IO, HitOut, hits) P(IO, uint32_t, steps) P(IN, uint32_t, counters)      \
-  P(VALUE, uint32_t, use_queue)
+  P(VALUE, uint32_t, use_queue) P(VALUE, uint32_t, gathered)
 
 /* ---- trace_kernels.h: traversal only, for a buffer of rays -------------------------------------- */
 #define TRACE_TREE_PARAMS(P, G)                                                                               \

@@ -92,19 +92,39 @@ CO_INLINE void load_traversal_stack(CO_GLOBAL const SavedStackEntry* traversal_s
   }
 }
 
+/* Copies each sorted ray's origin, direction and saved traversal state (with its stack) to its
+ * sorted position (--sort-payload gather), so that the resumed traversal reads them contiguously
+ * instead of through the permutation. */
+CO_KERNEL pth_gather(CO_PARAMS(PTH_GATHER_PARAMS)) {
+  uint32_t i = co_global_id();
+  if (i >= launch_count(count, counters, use_queue)) return;
+  uint32_t slot = sorted_slots[i];
+  TraversalState state = traversal[slot];
+  sorted_traversal[i] = state;
+  if (state.node == TRAVERSAL_DONE) return;
+  sorted_org[i] = path_org[slot];
+  sorted_dir[i] = path_dir[slot];
+  for (uint32_t k = 0u; k < state.depth; ++k) sorted_stack[k * stack_stride + i] = traversal_stack[k * stack_stride + slot];
+}
+
+/* Where the resume reads sorted item i's ray and state: at i once pth_gather moved them there,
+ * else at the item's slot. Hits always go to the slot, where shading reads them. */
+CO_INLINE uint32_t resume_source(uint32_t i, uint32_t slot, uint32_t gathered) { return gathered ? i : slot; }
+
 /* Continues each ray's traversal in sorted order from the state pth_walk_and_code saved. */
 CO_KERNEL pth_resume(CO_PARAMS(PTH_RESUME_PARAMS)) {
   uint32_t i = co_global_id();
   if (i >= launch_count(count, counters, use_queue)) return;
   uint32_t slot = sorted_slots[i];
-  TraversalState state = traversal[slot];
+  uint32_t from = resume_source(i, slot, gathered);
+  TraversalState state = traversal[from];
   uint32_t visited = 0u;
   if (state.node != TRAVERSAL_DONE) {
     RenderParams p = *params;
     SceneView s = SCENE_VIEW(p);
     KdStackEntry stack[KD_MAX_DEPTH];
-    load_traversal_stack(traversal_stack, stack_stride, slot, state.depth, stack);
-    hits[slot] = kd_resume(&s.tree, v3_from4(path_org[slot]), v3_from4(path_dir[slot]), 0.0f, INFINITY, 0, state.node,
+    load_traversal_stack(traversal_stack, stack_stride, from, state.depth, stack);
+    hits[slot] = kd_resume(&s.tree, v3_from4(path_org[from]), v3_from4(path_dir[from]), 0.0f, INFINITY, 0, state.node,
                            state.tmin, state.tmax, stack, (int)state.depth, &visited);
   }
   steps[i] = visited;
@@ -120,15 +140,16 @@ CO_KERNEL pth_resume_speculative(CO_PARAMS(PTH_RESUME_PARAMS)) {
   count = launch_count(count, counters, use_queue);
   uint32_t i = co_global_id();
   uint32_t slot = i < count ? sorted_slots[i] : 0u;
-  TraversalState state = i < count ? traversal[slot] : traversal_done();
+  uint32_t from = resume_source(i, slot, gathered);
+  TraversalState state = i < count ? traversal[from] : traversal_done();
   int active = state.node != TRAVERSAL_DONE;
   RenderParams p = *params;
   SceneView s = SCENE_VIEW(p);
   KdStackEntry stack[KD_MAX_DEPTH];
-  if (active) load_traversal_stack(traversal_stack, stack_stride, slot, state.depth, stack);
+  if (active) load_traversal_stack(traversal_stack, stack_stride, from, state.depth, stack);
   KdSpeculativeRay ray;
-  kd_spec_start(&ray, active, active ? v3_from4(path_org[slot]) : v3(0.0f, 0.0f, 1.0f),
-                active ? v3_from4(path_dir[slot]) : v3(0.0f, 0.0f, 1.0f), 0.0f, INFINITY, state.node,
+  kd_spec_start(&ray, active, active ? v3_from4(path_org[from]) : v3(0.0f, 0.0f, 1.0f),
+                active ? v3_from4(path_dir[from]) : v3(0.0f, 0.0f, 1.0f), 0.0f, INFINITY, state.node,
                 state.tmin, state.tmax, (int)state.depth);
   kd_spec_run_group(&s.tree, &ray, stack, votes);
   if (i >= count) return;

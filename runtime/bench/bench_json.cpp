@@ -87,6 +87,7 @@ nlohmann::json bench_json(const Device& d, const BenchOptions& o, const std::vec
   j["settings"] = {{"trace_res", o.trace_res}, {"res", o.res}, {"spp", o.spp}, {"reps", o.reps},
                    {"methods", o.methods}, {"code", o.code}, {"pth_levels", o.pth_levels},
                    {"sort_from_bounce", o.sort_from_bounce},
+                   {"sort_payload", o.sort_payload},
                    {"workload", "white sky (bench-protocol.md)"}, {"max_depth", 5}};
   j["scenes"] = scenes_json(scenes);
   return j;

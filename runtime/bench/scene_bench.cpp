@@ -95,6 +95,7 @@ SceneFigures bench_scene(const Device& cl, const ProgramCache& cache, const std:
   settings.code = options.code;
   settings.pth_levels = options.pth_levels;
   settings.sort_from_bounce = options.sort_from_bounce;
+  settings.sort_payload = options.sort_payload;
 
   SceneFigures out;
   out.path = path;

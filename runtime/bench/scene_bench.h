@@ -42,6 +42,7 @@ struct BenchOptions {
   std::string code;                   // coherence code of hash/pth; empty: default
   std::uint32_t pth_levels = 0;       // 0: chosen from the device and the tree
   std::uint32_t sort_from_bounce = RenderSettings{}.sort_from_bounce;  // hash/pth, as render's
+  std::string sort_payload = RenderSettings{}.sort_payload;            // hash/pth, as render's
 };
 
 struct MethodFigures {

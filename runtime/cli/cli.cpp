@@ -42,6 +42,10 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
                  "hash/pth sort the rays of this bounce and later ones (1: camera rays too); earlier bounces trace "
                  "unsorted (default 2: the gate benchmark finds camera rays in pixel order as fast as any sort)")
       ->check(CLI::Range(1, 1000));
+  cmd.add_option("--sort-payload", r.settings.sort_payload,
+                 "hash/pth: gather (copy each sorted ray and its traversal state to its sorted position, then "
+                 "trace them contiguously) or indirect (trace through the permutation, the default: faster on the H200)")
+      ->check(CLI::IsMember({"gather", "indirect"}));
   cmd.add_option("--stragglers", r.settings.straggler_rays,
                  "Wavefront methods: write the N extension rays that visited the most KD-tree nodes, and each "
                  "pass's maximum and 99.99th percentile, to --stats (a diagnostic; replay with cohort replay)")
@@ -105,6 +109,8 @@ void add_bench_options(CLI::App& cmd, BenchCommand& b) {
   cmd.add_option("--pth-levels", b.pth_levels, "Subtree levels of pth")->check(CLI::Range(1, 16));
   cmd.add_option("--sort-from-bounce", b.sort_from_bounce, "First bounce hash/pth sort (see render --sort-from-bounce)")
       ->check(CLI::Range(1, 1000));
+  cmd.add_option("--sort-payload", b.sort_payload, "hash/pth: gather or indirect (see render --sort-payload)")
+      ->check(CLI::IsMember({"gather", "indirect"}));
   cmd.add_option("--device", b.device, "Device index or name substring");
   cmd.add_option("--backend", b.backend, "Device backend: opencl or cuda (the same kernels either way)")
       ->check(CLI::IsMember({"opencl", "cuda"}));

@@ -163,6 +163,7 @@ int run_bench(const BenchCommand& cmd) {
   options.code = cmd.code;
   options.pth_levels = cmd.pth_levels;
   options.sort_from_bounce = cmd.sort_from_bounce;
+  options.sort_payload = cmd.sort_payload;
   const std::vector<BenchView> views = bench_views(cmd);
   const std::unique_ptr<Device> opened = open_device(parse_backend(cmd.backend), cmd.device);
   const Device& device = *opened;

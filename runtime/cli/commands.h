@@ -45,6 +45,7 @@ struct BenchCommand {
   std::string code;
   std::uint32_t pth_levels = 0;
   std::uint32_t sort_from_bounce = RenderSettings{}.sort_from_bounce;  // render's default
+  std::string sort_payload = RenderSettings{}.sort_payload;
   std::string device;
   std::string backend = "opencl";  // opencl | cuda
   std::string json;

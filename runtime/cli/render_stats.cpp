@@ -131,7 +131,8 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
     if (!r.code_layout.empty())
       j["coherence"] = {{"code", r.code_layout},           {"key_bits", r.code_key_bits},
                         {"sort_from_bounce", r.sort_from_bounce}, {"pth_levels", r.pth_levels},
-                        {"subtree_nodes", r.pth_subtree_nodes}, {"speculative", r.speculative}};
+                        {"subtree_nodes", r.pth_subtree_nodes}, {"speculative", r.speculative},
+                        {"sort_payload", r.sort_payload}};
     nlohmann::json bounces = nlohmann::json::array();
     for (const auto& it : r.iterations)
       bounces.push_back({{"live_paths", it.live_paths}, {"extension_rays", it.live_paths},

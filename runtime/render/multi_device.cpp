@@ -61,6 +61,7 @@ RenderResult merge_device_results(const std::vector<DeviceRun>& runs) {
   merged.pth_levels = first.pth_levels;
   merged.pth_subtree_nodes = first.pth_subtree_nodes;
   merged.speculative = first.speculative;
+  merged.sort_payload = first.sort_payload;
   merged.compile_from_cache = true;
   std::uint64_t groups = 0;
   double efficiency = 0;

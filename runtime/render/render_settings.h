@@ -31,6 +31,9 @@ struct RenderSettings {
   std::uint32_t sort_from_bounce = 2;  // hash/pth sort bounces from this one on (1: camera rays too);
                                        // the gate benchmark: bounce 1 never pays for its sort
   bool speculative = false;          // hash/pth: resumed traversal postpones leaf tests (Aila & Laine)
+  std::string sort_payload = "indirect";  // hash/pth: "indirect" traces through the permutation;
+                                          // "gather" first copies each sorted ray to its sorted
+                                          // position (H200: 3 % faster trace, but the copy costs more)
   std::uint32_t straggler_rays = 0;  // wavefront methods: keep this many of the extension rays that
                                      // visited the most nodes, and per-pass percentiles (a diagnostic)
 };

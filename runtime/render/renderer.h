@@ -77,6 +77,7 @@ struct RenderResult {
   std::uint32_t pth_levels = 0;                  // pth: subtree levels in local memory
   std::uint32_t pth_subtree_nodes = 0;
   bool speculative = false;                      // hash/pth: resumed with speculative traversal
+  std::string sort_payload;                      // hash/pth: "gather" or "indirect" (--sort-payload)
   bool interrupted = false;                      // stopped by stop_requested before the sample count
   std::uint32_t resumed_samples = 0;             // samples taken over from a checkpoint
   std::uint32_t passes = 0;                      // sample passes this device rendered

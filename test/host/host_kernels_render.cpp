@@ -29,6 +29,7 @@ const HostProgram& host_render_program() {
        {"wf_end_bounce", host_kernel(&wf_end_bounce)},
        {"pth_walk_and_code", host_kernel(&pth_walk_and_code)},
        {"pth_walk_and_code32", host_kernel(&pth_walk_and_code32)},
+       {"pth_gather", host_kernel(&pth_gather)},
        {"pth_resume", host_kernel(&pth_resume)},
        {"trace_rays", host_kernel(&trace_rays)},
        {"trace_rays_pth", host_kernel(&trace_rays_pth)},

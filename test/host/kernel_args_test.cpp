@@ -49,6 +49,7 @@ TEST(KernelArgs, OneArgumentPerKernelParameter) {
   EXPECT_EQ(WfEndBounceArgs::arg_count + 1, arity(&wf_end_bounce));
   EXPECT_EQ(PthWalkAndCodeArgs::arg_count + 1, arity(&pth_walk_and_code));
   EXPECT_EQ(PthWalkAndCode32Args::arg_count + 1, arity(&pth_walk_and_code32));
+  EXPECT_EQ(PthGatherArgs::arg_count + 1, arity(&pth_gather));
   EXPECT_EQ(PthResumeArgs::arg_count + 1, arity(&pth_resume));
   EXPECT_EQ(PthResumeArgs::arg_count + 1, arity(&pth_resume_speculative));
   EXPECT_EQ(TraceRaysArgs::arg_count + 1, arity(&trace_rays));

@@ -22,6 +22,7 @@ struct AgreementCase {
   const char* method;
   std::uint32_t wavefront_size;  // 0: the device default; small odd pools force many refills
   bool speculative = false;      // hash/pth: speculative resumed traversal
+  const char* payload = "indirect";  // hash/pth: --sort-payload
 };
 
 class MethodAgreement : public ::testing::TestWithParam<AgreementCase> {};
@@ -58,6 +59,7 @@ TEST_P(MethodAgreement, CornellBoxBitForBit) {
   s.method = GetParam().method;
   s.wavefront_size = GetParam().wavefront_size;
   s.speculative = GetParam().speculative;
+  s.sort_payload = GetParam().payload;
   const RenderResult other = render_scene(path, s);
   expect_bitwise_equal(reference, other, GetParam().method);
   if (GetParam().wavefront_size) {
@@ -81,6 +83,7 @@ TEST_P(MethodAgreement, SharedModelUnderWhiteSkyBitForBit) {
   s.method = GetParam().method;
   s.wavefront_size = GetParam().wavefront_size;
   s.speculative = GetParam().speculative;
+  s.sort_payload = GetParam().payload;
   const RenderResult other = render(cl, cache, scene, prepared.camera, s);
   expect_bitwise_equal(reference, other, GetParam().method);
 }
@@ -93,13 +96,15 @@ INSTANTIATE_TEST_SUITE_P(Methods, MethodAgreement,
                                            AgreementCase{"hash", 0}, AgreementCase{"pth", 0},
                                            AgreementCase{"hash", 129}, AgreementCase{"pth", 1000},
                                            AgreementCase{"pth", 0, true}, AgreementCase{"hash", 129, true},
-                                           AgreementCase{"pth", 1000, true}),
+                                           AgreementCase{"pth", 1000, true}, AgreementCase{"hash", 129, false, "gather"},
+                                           AgreementCase{"pth", 1000, false, "gather"},
+                                           AgreementCase{"pth", 0, true, "gather"}),
                          [](const auto& info) {
                            std::string name = info.param.method;
                            for (char& c : name)
                              if (c == '+') c = '_';
                            return name + "_pool" + std::to_string(info.param.wavefront_size) +
-                                  (info.param.speculative ? "_speculative" : "");
+                                  (info.param.speculative ? "_speculative" : "") + "_" + info.param.payload;
                          });
 
 TEST(Methods, PthWithOtherCodeLayoutsAndSubtreeDepthsStillBitForBit) {
@@ -119,6 +124,8 @@ TEST(Methods, PthWithOtherCodeLayoutsAndSubtreeDepthsStillBitForBit) {
   for (const Case& c : {Case{"pth:4", 4}, Case{"dir:16,pth:6,origin:4", 6}, Case{"origin-uniform:10,pth:12", 12},
                         Case{"pth:16,dir:16", 16}, Case{"paper", 10}, Case{"pth:1,origin-uniform:8,dir:4", 1}}) {
     s.code = c.code;
+    // the gathered copies hold every saved stack entry, up to 16
+    s.sort_payload = c.levels >= 12 ? "gather" : "indirect";
     const RenderResult r = render_scene(path, s);
     expect_bitwise_equal(reference, r, c.code);
     EXPECT_EQ(r.code_layout, c.code);

@@ -9,8 +9,10 @@
 namespace cohort {
 
 std::uint32_t device_pool_size(const DeviceInfo& device, const RenderSettings& s) {
-  // every buffer of every method per slot; the largest: the saved traversal stacks of pth
-  constexpr std::uint64_t kBytesPerSlot = WAVEFRONT_SLOT_BYTES + SORT_SLOT_BYTES + PTH_MAX_LEVELS * sizeof(SavedStackEntry);
+  // every buffer of every method per slot; the largest: the saved traversal stacks of pth (twice
+  // with --sort-payload gather)
+  constexpr std::uint64_t kBytesPerSlot =
+      WAVEFRONT_SLOT_BYTES + SORT_SLOT_BYTES + SORT_GATHER_SLOT_BYTES + 2 * PTH_MAX_LEVELS * sizeof(SavedStackEntry);
   constexpr std::uint64_t kLargestBufferPerSlot = PTH_MAX_LEVELS * sizeof(SavedStackEntry);
   std::uint64_t slots = s.wavefront_size;
   if (slots == 0) {

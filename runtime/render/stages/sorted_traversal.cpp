@@ -10,6 +10,7 @@ namespace cohort {
 SortedTraversal::SortedTraversal(const WavefrontRender& render, RayOrder key)
     : key_(key),
       speculative_(render.inputs().settings.speculative),
+      gather_(render.inputs().settings.sort_payload == "gather"),
       sort_from_bounce_(render.inputs().settings.sort_from_bounce) {
   const MethodInputs& in = render.inputs();
   const Device& cl = in.device;
@@ -32,6 +33,14 @@ SortedTraversal::SortedTraversal(const WavefrontRender& render, RayOrder key)
   traversal_ = cl.allocate("traversal states", std::size_t(slots) * sizeof(TraversalState));
   traversal_stack_ = cl.allocate("traversal stacks", std::size_t(slots) * sizeof(SavedStackEntry) *
                                                          std::max<std::uint32_t>(code_.pth_levels, 1));
+  if (gather_) {
+    const std::uint32_t levels = std::max<std::uint32_t>(code_.pth_levels, 1);
+    sorted_org_ = cl.allocate("sorted ray origins", std::size_t(slots) * sizeof(co_float4));
+    sorted_dir_ = cl.allocate("sorted ray directions", std::size_t(slots) * sizeof(co_float4));
+    sorted_traversal_ = cl.allocate("sorted traversal states", std::size_t(slots) * sizeof(TraversalState));
+    sorted_stack_ = cl.allocate("sorted traversal stacks", std::size_t(slots) * sizeof(SavedStackEntry) * levels);
+    gather_kernel_ = program_.kernel("pth_gather");
+  }
   sort_.emplace(cl, in.cache, slots, width);
   walk_ = program_.kernel(width == SortKey::bits32 ? "pth_walk_and_code32" : "pth_walk_and_code");
   resume_ = program_.kernel(speculative_ ? "pth_resume_speculative" : "pth_resume");
@@ -85,15 +94,34 @@ void SortedTraversal::sort(WavefrontPass& p) {
 
 void SortedTraversal::resume(WavefrontPass& p) {
   const std::uint32_t count = p.count();
+  if (gather_) {
+    PthGatherArgs g;
+    g.sorted_slots = values_;
+    g.count = count;
+    g.counters = p.pool.counters;
+    g.use_queue = p.use_queue();
+    g.path_org = p.pool.path.path_org;
+    g.path_dir = p.pool.path.path_dir;
+    g.traversal = traversal_;
+    g.traversal_stack = traversal_stack_;
+    g.stack_stride = p.pool.slots;
+    g.sorted_org = sorted_org_;
+    g.sorted_dir = sorted_dir_;
+    g.sorted_traversal = sorted_traversal_;
+    g.sorted_stack = sorted_stack_;
+    g.bind(gather_kernel_);
+    p.log.launch(p.device, gather_kernel_, "sort gather", count);  // the payload's share of the reorder
+  }
   PthResumeArgs args;
   args.params = p.buffers.params;
   args.scene = p.scene;
-  args.path_org = p.pool.path.path_org;
-  args.path_dir = p.pool.path.path_dir;
+  args.path_org = gather_ ? sorted_org_ : p.pool.path.path_org;
+  args.path_dir = gather_ ? sorted_dir_ : p.pool.path.path_dir;
   args.sorted_slots = values_;
   args.count = count;
-  args.traversal = traversal_;
-  args.traversal_stack = traversal_stack_;
+  args.traversal = gather_ ? sorted_traversal_ : traversal_;
+  args.traversal_stack = gather_ ? sorted_stack_ : traversal_stack_;
+  args.gathered = gather_ ? 1u : 0u;
   args.stack_stride = p.pool.slots;
   args.hits = p.pool.hits;
   args.steps = p.pool.steps;
@@ -109,6 +137,9 @@ void SortedTraversal::report(RenderResult& result) const {
   result.compile_seconds += program_.seconds;
   result.compile_from_cache = result.compile_from_cache && program_.from_cache;
   result.path_state_bytes += SORT_SLOT_BYTES + sizeof(SavedStackEntry) * code_.pth_levels;
+  if (gather_)
+    result.path_state_bytes += SORT_GATHER_SLOT_BYTES + sizeof(SavedStackEntry) * code_.pth_levels;
+  result.sort_payload = gather_ ? "gather" : "indirect";
   result.code_layout = layout_;
   result.code_key_bits = code_.key_bits;
   result.sort_from_bounce = sort_from_bounce_;

@@ -38,14 +38,17 @@ class SortedTraversal {
  private:
   RayOrder key_;
   bool speculative_;
+  bool gather_;  // --sort-payload gather
   std::uint32_t sort_from_bounce_;
   DeviceProgram program_;
   CodeParams code_{};
   SubtreeChoice subtree_;
   std::string layout_;
   DeviceBuffer code_params_, origin_bounds_, keys_, values_, traversal_, traversal_stack_;
+  // pth_gather's copies in sorted order (only with gather_)
+  DeviceBuffer sorted_org_, sorted_dir_, sorted_traversal_, sorted_stack_;
   std::optional<RadixSort> sort_;
-  DeviceKernel walk_, resume_;
+  DeviceKernel walk_, gather_kernel_, resume_;
 };
 
 }  // namespace cohort
