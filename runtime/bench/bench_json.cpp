@@ -21,11 +21,13 @@ nlohmann::json method_json(const MethodFigures& m) {
                       {"kernel_seconds", m.kernel_seconds},
                       {"pass_seconds", {{"median", m.pass_seconds_median}, {"max", m.pass_seconds_max}}},
                       {"max_nodes_per_ray", m.max_nodes_per_ray}};
+  if (m.wavefront_size) j["wavefront_size"] = m.wavefront_size;
   if (!m.auto_pick.empty()) j["auto_pick"] = m.auto_pick;
   if (!m.code_layout.empty())
     j["coherence"] = {{"code", m.code_layout},
                       {"key_bits", m.code_key_bits},
                       {"sort_from_bounce", m.sort_from_bounce},
+                      {"sort_payload", m.sort_payload},
                       {"pth_levels", m.pth_levels}};
   return j;
 }

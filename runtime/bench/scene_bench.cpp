@@ -71,6 +71,8 @@ MethodFigures bench_method(const Device& cl, const ProgramCache& cache, const De
   f.code_key_bits = m.code_key_bits;
   f.sort_from_bounce = m.sort_from_bounce;
   f.auto_pick = m.auto_choice.method;
+  f.wavefront_size = m.wavefront_size;
+  f.sort_payload = m.sort_payload;
   f.kernel_seconds = m.kernel_seconds;
   f.breakdown = time_breakdown(m.kernel_seconds);
   f.render_seconds = m.render_seconds;

@@ -55,6 +55,8 @@ struct MethodFigures {
   std::uint32_t pth_levels = 0;
   std::uint32_t code_key_bits = 0, sort_from_bounce = 0;
   std::string auto_pick;          // auto: the method its probe chose
+  std::size_t wavefront_size = 0;    // path slots (wavefront methods)
+  std::string sort_payload;          // hash and pth
   // device seconds per stage (time_breakdown) and per kernel, of the repetition with the median rate
   std::map<std::string, double> breakdown;
   std::map<std::string, double> kernel_seconds;
