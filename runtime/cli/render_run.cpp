@@ -64,8 +64,8 @@ RenderOutcome run_render_passes(const PreparedRender& render, const RenderTeam& 
   result.resumed_samples = job.resumed_samples();
   result.dropped_samples = outcome.film.dropped_samples;
   result.interrupted = job.interrupted();
-  // --method auto probes before its device takes a pass, outside the job's clock; the probe counts
-  result.render_seconds = job.seconds() + result.auto_choice.probe_seconds;
+  // (--method auto's probe renders passes of the image: it is inside the job's clock)
+  result.render_seconds = job.seconds();
   result.rays = job.rays();  // every rank's rays
 
   outcome.ranks = nlohmann::json::array();

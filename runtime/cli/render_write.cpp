@@ -48,8 +48,9 @@ void print_details(const PreparedRender& render, const RenderOutcome& outcome) {
     std::string rates;
     for (const auto& [name, rate] : result.auto_choice.probe_rays_per_second)
       rates += fmt::format("{}{} {:.2f}", rates.empty() ? "" : ", ", name, rate * 1e-6);
-    fmt::print("method auto: {}, the fastest in a 1-spp probe of {:.3f}s (Mrays/s: {})\n", result.auto_choice.method,
-               result.auto_choice.probe_seconds, rates);
+    fmt::print("method auto: {}, the fastest of the methods that rendered one pass each, {:.3f}s of the render "
+               "(Mrays/s: {})\n",
+               result.auto_choice.method, result.auto_choice.probe_seconds, rates);
   }
 }
 

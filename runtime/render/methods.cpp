@@ -19,7 +19,7 @@ const std::vector<Method>& methods() {
        render_hash},
       {"pth", "sc+rg, rays sorted by the coherence code of a partial traversal in local memory (Wang & Deng)",
        true, render_pth},
-      {"auto", "a one-sample probe of every method above on this scene and device, then the fastest", false,
+      {"auto", "every method above renders one pass of the image, timed; the fastest renders the rest", false,
        render_auto},
   };
   return table;

@@ -162,15 +162,7 @@ RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const Ren
   // the image goes to the source before this device (and its memory) goes away
   if (image) source.deliver_image(image->read(cl, pixels));
   result.render_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-  if (own_job) {
-    const FilmState film = own_job->finish();
-    result.image = film_image(film);
-    result.samples = film.samples;
-    result.resumed_samples = own_job->resumed_samples();
-    result.dropped_samples = film.dropped_samples;
-    result.interrupted = own_job->interrupted();
-    result.render_seconds = own_job->seconds();
-  }
+  if (own_job) own_job->finish_into(result);
   return result;
 }
 

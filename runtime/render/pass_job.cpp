@@ -105,7 +105,11 @@ PassJob::Offer PassJob::try_next(SamplePass& pass) {
 
 const FilmState* PassJob::device_keeps_image(std::function<std::vector<co_float4>()> read_image) {
   const std::lock_guard lock(mutex_);
-  if (devices_ != 1 || combine_on_host_ || combined_ != 0) return nullptr;
+  // the device continues from the film as combined so far: nothing else may be out (one device
+  // may render the passes in turns, as --method auto's probe does, each time from where the last
+  // turn left the image)
+  if (devices_ != 1 || combine_on_host_ || image_on_device_ || combined_ != handed_out_ || !waiting_.empty())
+    return nullptr;
   image_on_device_ = true;
   read_image_ = std::move(read_image);
   return &film_;
@@ -193,6 +197,16 @@ FilmState PassJob::finish() {
   if (aborted_) throw DeviceError("the render was aborted");
   if (control_.checkpoint) control_.checkpoint(film_);
   return film_;
+}
+
+void PassJob::finish_into(RenderResult& result) {
+  const FilmState film = finish();
+  result.image = film_image(film);
+  result.samples = film.samples;
+  result.resumed_samples = resumed_samples();
+  result.dropped_samples = film.dropped_samples;
+  result.interrupted = interrupted();
+  result.render_seconds = seconds();
 }
 
 PassJob::ImageMean PassJob::image_mean() const {

@@ -53,7 +53,7 @@ struct PassStragglers {
 // What --method auto probed and chose (runtime/render/methods/auto.cpp).
 struct AutoChoice {
   std::string method;                                   // empty: not auto
-  double probe_seconds = 0;                             // wall time of the probe, in render_seconds
+  double probe_seconds = 0;  // the probing methods' pass loops (their passes are part of the image)
   std::map<std::string, double> probe_rays_per_second;  // per method probed
 };
 

@@ -53,7 +53,7 @@ TEST_P(TwoDevices, GiveTheOneDeviceImageBitForBit) {
   EXPECT_EQ(rays, stats["rays"].get<std::uint64_t>());
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, TwoDevices, ::testing::Values("naive", "sc+rg", "pth"),
+INSTANTIATE_TEST_SUITE_P(Methods, TwoDevices, ::testing::Values("naive", "sc+rg", "pth", "auto"),
                          [](const auto& info) { return std::string(info.param) == "sc+rg" ? "sc_rg" : info.param; });
 
 TEST(TwoDevicesCheckpoint, InterruptedAndResumedEqualsOneDevice) {

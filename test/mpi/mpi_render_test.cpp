@@ -89,7 +89,7 @@ TEST_P(MpiRender, TwoRanksGiveTheSingleProcessImageBitForBit) {
   EXPECT_FALSE(fs::exists(dir.path / "two.exr.tmp"));
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, MpiRender, ::testing::Values("naive", "pth"));
+INSTANTIATE_TEST_SUITE_P(Methods, MpiRender, ::testing::Values("naive", "pth", "auto"));
 
 TEST(MpiFailure, AKilledRankEndsTheJobAndTheResumedJobGivesTheSameImage) {
   if (const auto why = skip_reason(); !why.empty()) GTEST_SKIP() << why;

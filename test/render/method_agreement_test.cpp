@@ -254,15 +254,20 @@ TEST(Methods, MalformedCodeLayoutsAreInputErrors) {
   }
 }
 
-// auto probes every other method and renders with the fastest: naive's image whatever it picks,
-// and the probe's time is part of the render's.
+// auto has every other method render one pass of the image, then the fastest the rest: naive's
+// image whatever it picks (the probe's passes are part of it), and the probe's time is part of the
+// render's.
 TEST(Methods, AutoRendersTheNaiveImageWithTheFastestProbedMethod) {
   RenderSettings s = small_box_settings(4u);
+  s.spp = 9;
+  s.pass_samples = 1;  // 9 passes: one for each of the 7 other methods, 2 for the pick
   const auto path = shipped_scene("cornell-box.gltf");
   const RenderResult reference = render_scene(path, s);
   s.method = "auto";
   const RenderResult r = render_scene(path, s);
   expect_bitwise_equal(reference, r, "auto");
+  EXPECT_EQ(r.samples, 9u);
+  EXPECT_EQ(r.passes, 9u) << "every pass rendered once, by the probe or by the pick";
   const AutoChoice& a = r.auto_choice;
   ASSERT_EQ(a.probe_rays_per_second.size(), methods().size() - 1);
   EXPECT_EQ(a.probe_rays_per_second.count("auto"), 0u);
@@ -273,6 +278,21 @@ TEST(Methods, AutoRendersTheNaiveImageWithTheFastestProbedMethod) {
   }
   EXPECT_GT(a.probe_seconds, 0.0);
   EXPECT_GE(r.render_seconds, a.probe_seconds);
+}
+
+// An image of fewer passes than methods: the first methods probe, one pass each, and the image is
+// still naive's.
+TEST(Methods, AutoWithFewerPassesThanMethodsProbesTheFirstOnes) {
+  RenderSettings s = small_box_settings(6u);
+  s.pass_samples = 1;  // 3 passes
+  const auto path = shipped_scene("cornell-box.gltf");
+  const RenderResult reference = render_scene(path, s);
+  s.method = "auto";
+  const RenderResult r = render_scene(path, s);
+  expect_bitwise_equal(reference, r, "auto with 3 passes");
+  EXPECT_EQ(r.passes, 3u);
+  EXPECT_EQ(r.auto_choice.probe_rays_per_second.size(), 3u);
+  EXPECT_EQ(r.auto_choice.probe_rays_per_second.count(r.auto_choice.method), 1u);
 }
 
 TEST(Methods, UnknownMethodIsAnInputError) {
