@@ -28,8 +28,8 @@ struct RenderSettings {
   std::uint32_t wavefront_size = 0;  // path slots of the wavefront methods; 0: chosen from the device
   std::string code;                  // coherence code layout of hash/pth; empty: the method's default
   std::uint32_t pth_levels = 0;      // subtree levels of pth; 0: chosen from the device and the tree
-  std::uint32_t sort_from_bounce = 2;  // hash/pth sort bounces from this one on (1: camera rays too);
-                                       // the gate benchmark: bounce 1 never pays for its sort
+  std::uint32_t sort_from_bounce = 3;  // hash/pth sort bounces from this one on (1: camera rays too);
+                                       // H200: bounces 1 and 2 never pay for their sort
   bool speculative = false;          // hash/pth: resumed traversal postpones leaf tests (Aila & Laine)
   std::string sort_payload = "indirect";  // hash/pth: "indirect" traces through the permutation;
                                           // "gather" first copies each sorted ray to its sorted
