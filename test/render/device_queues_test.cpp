@@ -61,4 +61,24 @@ INSTANTIATE_TEST_SUITE_P(Methods, DeviceQueues, ::testing::Values("wavefront", "
                            return name;
                          });
 
+// Paths of at most max_depth segments in a pool that holds the whole pass: all of them have ended
+// after max_depth bounces, so one read per pass ends it (the white-sky benchmark's case).
+TEST(DeviceQueuesBoundedDepth, OneReadPerPassWhenEveryPathFitsAndDepthIsBounded) {
+  for (const char* method : {"sc", "pth"}) {
+    RenderSettings s;
+    s.width = 32;
+    s.height = 24;
+    s.spp = 2;
+    s.pass_samples = 1;
+    s.max_depth = 5;
+    s.russian_roulette = false;
+    s.method = method;
+    s.wavefront_size = 32 * 24;  // one pass's paths exactly
+    const RenderResult r = render_scene(shipped_scene("cornell-box.gltf"), s);
+    ASSERT_EQ(r.pass_host_reads.size(), 2u) << method;
+    for (std::uint32_t reads : r.pass_host_reads) EXPECT_EQ(reads, 1u) << method;
+    EXPECT_LE(r.iterations.size(), 5u) << method << ": a path traced more segments than max_depth";
+  }
+}
+
 }  // namespace

@@ -23,6 +23,14 @@ constexpr std::array<std::uint32_t, COUNTER_COUNT> kZeros{};
 constexpr std::size_t kBouncesPerRead = 4;
 static_assert(kBouncesPerRead <= BOUNCE_ROWS, "the rows of the bounces between two reads must fit the ring");
 
+// Bounces before the pass's first read. When the pool holds every item of the pass and paths have
+// at most max_depth segments, every path has ended after max_depth bounces: one read then ends the
+// pass (instead of a read after 4 bounces that only learns that the fifth is still to come).
+std::size_t first_read_interval(const RenderSettings& s, std::uint32_t items, std::uint32_t slots) {
+  if (s.max_depth == 0 || items > slots) return kBouncesPerRead;
+  return std::min<std::size_t>(s.max_depth, BOUNCE_ROWS);
+}
+
 // A pass holds one result per (pixel, sample): ~4M results (64 MiB), or 4 per path slot where the
 // pool is larger, so that regeneration keeps a wave full for several refills; and no more than
 // the render's spp, which no pass exceeds (small renders then allocate little: Oclgrind's checks
@@ -72,7 +80,7 @@ RenderResult WavefrontRender::run(const BounceStages& bounce_stages) {
     cl.write(pool_.counters, 0, sizeof(kZeros), kZeros.data(), false);
     std::vector<LaunchLog> unread;  // the launches of the bounces since the last read, by bounce
     std::array<std::uint32_t, COUNTER_WORDS> words{};
-    std::size_t interval = kBouncesPerRead;
+    std::size_t interval = first_read_interval(in_.settings, wp.items, pool_.slots);
     for (bool over = false; !over; ++wp.bounce) {
       bounce_stages(wp);
       unread.push_back(std::move(wp.log));
