@@ -22,8 +22,12 @@ def fastest(view):
     return m, pt[m]
 
 
-def peer_rate(docs, key):
-    return docs[key]["msamples_per_second"]["median"] if key in docs else None
+def peer_rate(docs, key, figure="msamples_per_second"):
+    return docs[key][figure]["median"] if key in docs and figure in docs[key] else None
+
+
+def cpu_rate(figures):
+    return figures["msamples_per_cpu_second"]["median"] if "msamples_per_cpu_second" in figures else None
 
 
 def main():
@@ -43,6 +47,7 @@ def main():
                 m, f = fastest(view) if view else (None, None)
                 row[rt] = None if not f else {
                     "method": m, "msamples_per_second": f["msamples_per_second"]["median"],
+                    "msamples_per_cpu_second": cpu_rate(f),
                     "path_mrays_per_second": f["mrays_per_second"]["median"],
                     "rays_per_sample": f["rays"] / (doc["settings"]["res"] ** 2 * doc["settings"]["spp"]),
                     "kernel_share": sum(f["kernel_seconds"].values()) / f["render_seconds"] if f["render_seconds"] else None,
@@ -52,6 +57,8 @@ def main():
             row["embree_diffuse_mrays_per_second"] = e["diffuse"]["mrays_per_second"]["median"] if e else None
             key = f"{name}-{v['view']}"
             row["mitsuba_scalar_rgb"], row["mitsuba_llvm_ad_rgb"] = peer_rate(scalar, key), peer_rate(llvm, key)
+            row["mitsuba_scalar_rgb_per_cpu_second"] = peer_rate(scalar, key, "msamples_per_cpu_second")
+            row["mitsuba_llvm_ad_rgb_per_cpu_second"] = peer_rate(llvm, key, "msamples_per_cpu_second")
             runs = [rt for rt in ("pocl", "intel") if row[rt]]
             row["faster_runtime"] = max(runs, key=lambda rt: row[rt]["msamples_per_second"]) if runs else None
             rows.append(row)
@@ -76,6 +83,17 @@ def main():
         ms, ml = row["mitsuba_scalar_rgb"], row["mitsuba_llvm_ad_rgb"]
         print(f"| {row['scene']} | {row['view']} | {cells[0]} | {cells[1]} | {f'{ms:.3f}' if ms else '-'} | "
               f"{f'{ml:.3f}' if ml else '-'} | {r(best, ml)} | {r(best, ms)} |")
+    print("\nThe same renders per CPU second of the process (every thread; M samples per CPU second): on a "
+          "loaded machine, less disturbed by other programs than wall time.\n")
+    print("| scene | view | Cohort PoCL | Cohort Intel | Mitsuba scalar_rgb | Mitsuba llvm_ad_rgb | "
+          "best Cohort / llvm_ad_rgb | / scalar_rgb |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|")
+    for row in rows:
+        c = [row[rt]["msamples_per_cpu_second"] if row[rt] else None for rt in ("pocl", "intel")]
+        best = max((x for x in c if x), default=None)
+        ms, ml = row["mitsuba_scalar_rgb_per_cpu_second"], row["mitsuba_llvm_ad_rgb_per_cpu_second"]
+        print(f"| {row['scene']} | {row['view']} | " + " | ".join(f"{x:.3f}" if x else "-" for x in c + [ms, ml]) +
+              f" | {r(best, ml)} | {r(best, ms)} |")
     print("\nWhere the distance goes, on the faster runtime: protocol diffuse rays (traversal alone) against "
           "Embree's, path-tracing rays/s against protocol diffuse rays/s, rays per sample, and the kernels' "
           "share of the render's wall time.\n")
