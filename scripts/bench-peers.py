@@ -13,12 +13,12 @@ import sys
 from bench_data import load, views
 
 
-def fastest(view):
-    """(method, figures) of the view's method with the most samples/s, or (None, None)."""
-    pt = view.get("path_tracing") or {}
+def fastest(view, figure="msamples_per_second"):
+    """(method, figures) of the view's method with the most samples/s (or per CPU second), or (None, None)."""
+    pt = {m: f for m, f in (view.get("path_tracing") or {}).items() if figure in f}
     if not pt:
         return None, None
-    m = max(pt, key=lambda k: pt[k]["msamples_per_second"]["median"])
+    m = max(pt, key=lambda k: pt[k][figure]["median"])
     return m, pt[m]
 
 
@@ -26,8 +26,6 @@ def peer_rate(docs, key, figure="msamples_per_second"):
     return docs[key][figure]["median"] if key in docs and figure in docs[key] else None
 
 
-def cpu_rate(figures):
-    return figures["msamples_per_cpu_second"]["median"] if "msamples_per_cpu_second" in figures else None
 
 
 def main():
@@ -47,12 +45,14 @@ def main():
                 m, f = fastest(view) if view else (None, None)
                 row[rt] = None if not f else {
                     "method": m, "msamples_per_second": f["msamples_per_second"]["median"],
-                    "msamples_per_cpu_second": cpu_rate(f),
                     "path_mrays_per_second": f["mrays_per_second"]["median"],
                     "rays_per_sample": f["rays"] / (doc["settings"]["res"] ** 2 * doc["settings"]["spp"]),
                     "kernel_share": sum(f["kernel_seconds"].values()) / f["render_seconds"] if f["render_seconds"] else None,
                     "protocol_diffuse_mrays_per_second":
                         view["diffuse"]["mrays_per_second"]["median"] if "diffuse" in view else None}
+                m, f = fastest(view, "msamples_per_cpu_second") if view else (None, None)
+                row[rt + "_per_cpu_second"] = None if not f else {
+                    "method": m, "msamples_per_cpu_second": f["msamples_per_cpu_second"]["median"]}
             e = embree_views.get(v["view"])
             row["embree_diffuse_mrays_per_second"] = e["diffuse"]["mrays_per_second"]["median"] if e else None
             key = f"{name}-{v['view']}"
@@ -85,15 +85,16 @@ def main():
               f"{f'{ml:.3f}' if ml else '-'} | {r(best, ml)} | {r(best, ms)} |")
     print("\nThe same renders per CPU second of the process (every thread; M samples per CPU second): on a "
           "loaded machine, less disturbed by other programs than wall time.\n")
-    print("| scene | view | Cohort PoCL | Cohort Intel | Mitsuba scalar_rgb | Mitsuba llvm_ad_rgb | "
+    print("| scene | view | Cohort PoCL (method) | Cohort Intel (method) | Mitsuba scalar_rgb | Mitsuba llvm_ad_rgb | "
           "best Cohort / llvm_ad_rgb | / scalar_rgb |")
     print("|---|---|---:|---:|---:|---:|---:|---:|")
     for row in rows:
-        c = [row[rt]["msamples_per_cpu_second"] if row[rt] else None for rt in ("pocl", "intel")]
-        best = max((x for x in c if x), default=None)
+        c = [row[rt + "_per_cpu_second"] for rt in ("pocl", "intel")]
+        best = max((x["msamples_per_cpu_second"] for x in c if x), default=None)
         ms, ml = row["mitsuba_scalar_rgb_per_cpu_second"], row["mitsuba_llvm_ad_rgb_per_cpu_second"]
-        print(f"| {row['scene']} | {row['view']} | " + " | ".join(f"{x:.3f}" if x else "-" for x in c + [ms, ml]) +
-              f" | {r(best, ml)} | {r(best, ms)} |")
+        print(f"| {row['scene']} | {row['view']} | " +
+              " | ".join(f"{x['msamples_per_cpu_second']:.3f} ({x['method']})" if x else "-" for x in c) + " | " +
+              " | ".join(f"{x:.3f}" if x else "-" for x in (ms, ml)) + f" | {r(best, ml)} | {r(best, ms)} |")
     print("\nWhere the distance goes, on the faster runtime: protocol diffuse rays (traversal alone) against "
           "Embree's, path-tracing rays/s against protocol diffuse rays/s, rays per sample, and the kernels' "
           "share of the render's wall time.\n")
