@@ -59,11 +59,13 @@ def white_sky_scene(ply, camera, res, spp):
 
 
 def timed_render(scene, spp, seed):
-    start = time.perf_counter()
+    """The image, its wall seconds and the process's CPU seconds (every thread, as `cohort bench`'s
+    msamples_per_cpu_second: less disturbed by other programs on a loaded machine)."""
+    start, cpu_start = time.perf_counter(), time.process_time()
     image = mi.render(scene, spp=spp, seed=seed)
     dr.eval(image)  # the JIT variants evaluate lazily: the render ends when its kernel has run
     dr.sync_thread()
-    return image, time.perf_counter() - start
+    return image, time.perf_counter() - start, time.process_time() - cpu_start
 
 
 def main():
@@ -86,12 +88,13 @@ def main():
     start = time.perf_counter()
     scene = mi.load_dict(white_sky_scene(args.ply, camera, args.res, args.spp))
     load_seconds = time.perf_counter() - start
-    rates, image = [], None
+    rates, cpu_rates, image = [], [], None
     if args.variant != "scalar_rgb":
         timed_render(scene, args.spp, 999)  # JIT compile and kernel cache, not timed
     for rep in range(args.reps):
-        image, seconds = timed_render(scene, args.spp, rep)
+        image, seconds, cpu_seconds = timed_render(scene, args.spp, rep)
         rates.append(args.res * args.res * args.spp / seconds * 1e-6)
+        cpu_rates.append(args.res * args.res * args.spp / cpu_seconds * 1e-6)
     exr = os.path.join(args.out, f"{args.name}-mitsuba{'' if args.variant == 'scalar_rgb' else '-' + args.variant}.exr")
     mi.util.write_bitmap(exr, image)
     report = {"peer": "mitsuba", "mitsuba": {"version": mi.__version__, "variant": mi.variant(),
@@ -99,9 +102,11 @@ def main():
               "scene": args.ply, "view": args.view, "camera": camera, "res": args.res, "spp": args.spp,
               "reps": args.reps, "load_seconds": load_seconds,
               "msamples_per_second": {"median": statistics.median(rates), "best": max(rates), "runs": rates},
+              "msamples_per_cpu_second": {"median": statistics.median(cpu_rates), "best": max(cpu_rates),
+                                          "runs": cpu_rates},
               "exr": exr, "ladder": []}
     for spp in [int(s) for s in args.ladder.split(",") if s]:
-        image, seconds = timed_render(scene, spp, 1000 + spp)
+        image, seconds, _ = timed_render(scene, spp, 1000 + spp)
         path = os.path.join(args.out, f"{args.name}-mitsuba-{spp}spp.exr")
         mi.util.write_bitmap(path, image)
         report["ladder"].append({"spp": spp, "seconds": seconds, "exr": path})

@@ -15,6 +15,7 @@ nlohmann::json method_json(const MethodFigures& m) {
   nlohmann::json j = {{"rays", m.rays},
                       {"mrays_per_second", rate_json(m.rays_per_second)},
                       {"msamples_per_second", rate_json(m.samples_per_second)},
+                      {"msamples_per_cpu_second", rate_json(m.samples_per_cpu_second)},
                       {"simd_efficiency", m.simd_efficiency},
                       {"render_seconds", m.render_seconds},
                       {"breakdown_seconds", m.breakdown},

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <ctime>
 
 #include "runtime/bench/trace_bench.h"
 #include "runtime/render/prepared_scene.h"
@@ -49,11 +50,15 @@ MethodFigures bench_method(const Device& cl, const ProgramCache& cache, const De
   std::vector<RenderResult> runs;
   std::vector<double> pass_seconds;
   for (unsigned r = 0; r < std::max(reps, 1u); ++r) {
+    const std::clock_t cpu_start = std::clock();
     RenderResult result = render(cl, cache, scene, camera, settings);
+    const double cpu = double(std::clock() - cpu_start) / CLOCKS_PER_SEC;
     result.image = Image{};  // keep the figures only
     const double s = result.render_seconds;
+    const double samples = double(settings.width) * settings.height * result.samples;
     f.rays_per_second.runs.push_back(s > 0 ? double(result.rays) / s : 0.0);
-    f.samples_per_second.runs.push_back(s > 0 ? double(settings.width) * settings.height * result.samples / s : 0.0);
+    f.samples_per_second.runs.push_back(s > 0 ? samples / s : 0.0);
+    f.samples_per_cpu_second.runs.push_back(cpu > 0 ? samples / cpu : 0.0);
     pass_seconds.insert(pass_seconds.end(), result.pass_kernel_seconds.begin(), result.pass_kernel_seconds.end());
     f.max_nodes_per_ray = std::max(f.max_nodes_per_ray, result.max_nodes_per_ray);
     runs.push_back(std::move(result));

@@ -49,6 +49,9 @@ struct MethodFigures {
   std::string method;
   RateFigure rays_per_second;     // path-tracing rays/s: every ray over the render loop's wall time
   RateFigure samples_per_second;  // res * res * spp over the same time
+  // res * res * spp over the process's CPU seconds (every thread) of the render call: on a CPU
+  // device, a figure that other programs on a loaded machine disturb far less than wall time
+  RateFigure samples_per_cpu_second;
   std::uint64_t rays = 0;         // per render
   double simd_efficiency = 0;     // wavefront methods: traversal, mean over max steps per 32 rays
   std::string code_layout;        // hash and pth

@@ -228,6 +228,7 @@ TEST(Cli, BenchWritesEveryFigureAsJson) {
     EXPECT_GT(pt["rays"].get<std::uint64_t>(), 0u) << m;
     EXPECT_GT(pt["mrays_per_second"]["median"].get<double>(), 0.0) << m;
     EXPECT_GT(pt["msamples_per_second"]["best"].get<double>(), 0.0) << m;
+    EXPECT_GT(pt["msamples_per_cpu_second"]["best"].get<double>(), 0.0) << m;
     EXPECT_TRUE(pt.contains("simd_efficiency")) << m;
     EXPECT_FALSE(pt["breakdown_seconds"].empty()) << m;
   }
