@@ -193,7 +193,9 @@ def large_scenes(root, out):
     ax.set_xscale("log")
     ax.set_xlabel("triangles (" + ", ".join(s["name"] for s in scenes) + ")")
     ax.set_ylabel("path-tracing Mrays/s")
-    ax.set_title(f"{doc.get('device') or 'device'} ({doc.get('backend')}), white sky, interior view", fontsize=9)
+    setting = f", {doc['res']}x{doc['res']} {doc['spp']} spp" if "res" in doc else ""
+    ax.set_title(f"{doc.get('device') or 'device'} ({doc.get('backend')}){setting}, white sky, interior view",
+                 fontsize=9)
     ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "bench-large-scenes.png"), dpi=120)
