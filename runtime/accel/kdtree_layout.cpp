@@ -56,9 +56,9 @@ void flatten(const Subtree& subtree, KdTree& tree) {
   tree.leaf_triangles.assign(leaf_entries, 0u);
   // One level of the breadth-first order at a time: a level is the children of the previous one's
   // inner nodes in order, two each, so prefix counts of inner nodes and leaf entries over the level
-  // give every node its output index, its children's and its leaf list's offset. The prefix counts
-  // are serial (sequential reads of two small arrays); reading the nodes, writing them and copying
-  // leaf lists run in parallel over the level. The same layout as a breadth-first queue.
+  // give every node its output index, its children's and its leaf list's offset. Only the prefix
+  // sums are serial (sequential passes over two arrays); reading the nodes, writing them and
+  // copying leaf lists run in parallel over the level. The same layout as a breadth-first queue.
   struct Entry {
     const Subtree* tree;
     std::uint32_t node;
@@ -71,12 +71,19 @@ void flatten(const Subtree& subtree, KdTree& tree) {
     const std::size_t n = level.size();
     inner_before.resize(n + 1);
     leaf_before.resize(n + 1);
+    // What each node adds (read in parallel: the nodes are scattered), then the prefix sums.
     inner_before[0] = leaf_before[0] = 0;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        const BuildNode& node = level[i].tree->nodes[level[i].node];
+        const bool leaf = node.axis == KD_LEAF;
+        inner_before[i + 1] = !leaf;
+        leaf_before[i + 1] = leaf ? node.b : 0;
+      }
+    });
     for (std::size_t i = 0; i < n; ++i) {
-      const BuildNode& node = level[i].tree->nodes[level[i].node];
-      const bool leaf = node.axis == KD_LEAF;
-      inner_before[i + 1] = inner_before[i] + !leaf;
-      leaf_before[i + 1] = leaf_before[i] + (leaf ? node.b : 0);
+      inner_before[i + 1] += inner_before[i];
+      leaf_before[i + 1] += leaf_before[i];
     }
     const std::size_t children_first = level_first + n;
     if (inner_before[n] > 0) check_fits(children_first + 2 * inner_before[n], KD_MAX_INDEX, "a child node index");
