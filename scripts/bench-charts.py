@@ -5,6 +5,7 @@
   bench-pth-parameters.png   PTH subtree levels and code layouts against rays/s, with the time breakdown stacked
   bench-simd.png             SIMD efficiency of traversal per method
   bench-scaling.png          rays/s and build time against triangle count (Cohort and Embree)
+  bench-large-scenes.png     path-tracing rays/s per method against triangle count (--large of scripts/bench)
 The reference of the error chart is a long Cohort `naive` render; its agreement with Mitsuba 3's
 render at the same spp is printed and written in the chart (relative RMSE and mean ratio).
 Usage (in the venv of scripts/venv.sh): bench-charts.py DIR [--out docs]"""
@@ -175,6 +176,31 @@ def scaling(root, out):
     fig.savefig(os.path.join(out, "bench-scaling.png"), dpi=120)
 
 
+def large_scenes(root, out):
+    path = os.path.join(root, "large", "large-scenes.json")
+    if not os.path.exists(path):
+        return
+    with open(path) as f:
+        doc = json.load(f)
+    scenes = sorted(doc["scenes"], key=lambda s: s["triangles"])
+    if not scenes:
+        return
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    methods = [m for m in METHODS if any(m in s["methods"] for s in scenes)]
+    for m in methods:
+        rows = [(s["triangles"], s["methods"][m]["mrays_per_s"]) for s in scenes if m in s["methods"]]
+        ax.plot([r[0] for r in rows], [r[1] for r in rows], "o-", color=COLORS.get(m), label=m)
+    ax.set_xscale("log")
+    ax.set_xlabel("triangles (" + ", ".join(s["name"] for s in scenes) + ")")
+    ax.set_ylabel("path-tracing Mrays/s")
+    setting = f", {doc['res']}x{doc['res']} {doc['spp']} spp" if "res" in doc else ""
+    ax.set_title(f"{doc.get('device') or 'device'} ({doc.get('backend')}){setting}, white sky, interior view",
+                 fontsize=9)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "bench-large-scenes.png"), dpi=120)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("dir")
@@ -188,6 +214,7 @@ def main():
     error_vs_time(args.dir, args.out)
     pth_parameters(args.dir, args.out)
     scaling(args.dir, args.out)
+    large_scenes(args.dir, args.out)
     print(f"charts in {args.out}: " + ", ".join(sorted(os.path.basename(p) for p in glob.glob(os.path.join(
         args.out, "bench-*.png")))))
 

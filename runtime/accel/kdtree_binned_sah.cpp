@@ -229,7 +229,7 @@ SplitPlane find_binned_plane(const SahContext& c, std::span<const Ref> refs, int
     if (!(c.extent[axis] > 0.f)) continue;  // a flat cell cannot be split along its flat axis
     SplitPlane axis_best;
     boundary[axis] = best_boundary(c, binner, scratch, axis, axis_best);
-    if (axis_best.valid() && (!best.valid() || axis_best.cost < best.cost)) best = axis_best;
+    keep_better(best, axis_best);
   }
   std::array<Ranges, 3> ranges{};
   for (int axis = 0; axis < 3; ++axis) {

@@ -125,8 +125,12 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
   }
   const bool parallel = options_.parallel && count >= kParallelTriangles;
   const SplitPlane plane = find_plane(s, begin, end, context, parallel, inherited);
-  // Wald & Havran's termination criterion: split only when the best plane beats the leaf, K_I N.
-  if (!plane.valid() || !(plane.cost <= options_.intersection_cost * static_cast<float>(count))) {
+  // Wald & Havran's termination criterion, split only when the plane beats the leaf (K_I N), with
+  // the plain SAH (see KdBuildOptions::plain_sah_triangles): for small nodes the chosen plane's,
+  // for the others the best of any candidate's.
+  const bool small = count <= static_cast<std::size_t>(std::max(options_.plain_sah_triangles, 0));
+  const float split_cost = small ? plane.plain_cost : plane.lowest_plain_cost;
+  if (!plane.valid() || !(split_cost <= options_.intersection_cost * static_cast<float>(count))) {
     return make_leaf(out, s, begin, end);
   }
   const bool no_progress = plane.left_count == count && plane.right_count == count;

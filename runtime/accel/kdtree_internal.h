@@ -9,10 +9,12 @@
 // that in O(N log N)", IEEE RT 2006).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -63,7 +65,11 @@ struct SplitPlane {
   int axis = -1;  // -1: no candidate
   float pos = 0.f;
   bool planar_left = true;  // where triangles lying in the plane go
-  float cost = 0.f;
+  float cost = 0.f;        // SAH with the empty-space bonus: what chooses the plane
+  float plain_cost = 0.f;  // the same without the bonus
+  // The lowest plain cost of every candidate the search evaluated (not only of the chosen one):
+  // whether splitting pays at all (see KdBuildOptions::plain_sah_triangles).
+  float lowest_plain_cost = std::numeric_limits<float>::infinity();
   std::uint32_t left_count = 0;  // references on each side, as the search counted them
   std::uint32_t right_count = 0;
   bool valid() const { return axis >= 0; }
@@ -85,12 +91,20 @@ bool make_sah_context(const Bounds& voxel, std::size_t count, const KdBuildOptio
 
 // Wald & Havran's C_V(p) with their lambda(p): cutting off empty space is rewarded, but only when
 // the empty side has volume, otherwise every flat cut at the cell boundary would look like a win.
+// `plain` gets the cost without the bonus.
 inline float plane_cost(const SahContext& c, float p_left, float p_right, std::uint32_t n_left,
-                        std::uint32_t n_right, float width_left, float width_right) {
-  float cost = c.traversal_cost + c.intersection_cost * (p_left * static_cast<float>(n_left) +
-                                                         p_right * static_cast<float>(n_right));
+                        std::uint32_t n_right, float width_left, float width_right, float& plain) {
+  plain = c.traversal_cost + c.intersection_cost * (p_left * static_cast<float>(n_left) +
+                                                    p_right * static_cast<float>(n_right));
   const bool empty_cut = (n_left == 0 && width_left > 0.f) || (n_right == 0 && width_right > 0.f);
-  return empty_cut ? cost * c.empty_factor : cost;
+  return empty_cut ? plain * c.empty_factor : plain;
+}
+
+// Keeps the cheaper of `best` and `other` (ties keep `best`) and the lowest plain cost of both.
+inline void keep_better(SplitPlane& best, const SplitPlane& other) {
+  const float lowest = std::min(best.lowest_plain_cost, other.lowest_plain_cost);
+  if (other.valid() && (!best.valid() || other.cost < best.cost)) best = other;
+  best.lowest_plain_cost = lowest;
 }
 
 // The parts of a candidate's cost that depend only on its axis.
@@ -116,8 +130,11 @@ inline void evaluate_plane(const SahContext& c, const AxisSah& a, float pos, std
   const float p_left = 2.f * (a.face + width_left * a.rim) * c.inv_area;
   const float p_right = 2.f * (a.face + width_right * a.rim) * c.inv_area;
   auto consider = [&](std::uint32_t l, std::uint32_t r, bool planar_left) {
-    const float cost = plane_cost(c, p_left, p_right, l, r, width_left, width_right);
-    if (!best.valid() || cost < best.cost) best = {a.axis, pos, planar_left, cost, l, r};
+    float plain;
+    const float cost = plane_cost(c, p_left, p_right, l, r, width_left, width_right, plain);
+    const float lowest = std::min(best.lowest_plain_cost, plain);
+    if (!best.valid() || cost < best.cost) best = {a.axis, pos, planar_left, cost, plain, lowest, l, r};
+    best.lowest_plain_cost = lowest;
   };
   consider(n_left + n_planar, n_right, true);
   if (n_planar > 0) consider(n_left, n_right + n_planar, false);

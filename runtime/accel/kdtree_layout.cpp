@@ -2,7 +2,10 @@
 // node order with the two children of every inner node adjacent, so one index names both and the
 // top L levels are a prefix of the array (what a kernel caching the top of the tree needs).
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <limits>
@@ -48,44 +51,66 @@ std::array<std::size_t, 2> sizes(const Subtree& subtree) {
 }  // namespace
 
 void flatten(const Subtree& subtree, KdTree& tree) {
-  tree.nodes.clear();
-  tree.leaf_triangles.clear();
   const auto [node_count, leaf_entries] = sizes(subtree);
-  tree.nodes.reserve(node_count);
-  tree.leaf_triangles.reserve(leaf_entries);
-  // `order` is the breadth-first queue and, by position, the output index of every node: the two
-  // children of a node are queued together, so they land next to each other. Entries name their
-  // subtree by an index into `trees` (8 bytes an entry: the queue holds every node).
+  tree.nodes.assign(node_count, KdNode{});
+  tree.leaf_triangles.assign(leaf_entries, 0u);
+  // One level of the breadth-first order at a time: a level is the children of the previous one's
+  // inner nodes in order, two each, so prefix counts of inner nodes and leaf entries over the level
+  // give every node its output index, its children's and its leaf list's offset. Only the prefix
+  // sums are serial (sequential passes over two arrays); reading the nodes, writing them and
+  // copying leaf lists run in parallel over the level. The same layout as a breadth-first queue.
   struct Entry {
-    std::uint32_t tree;
+    const Subtree* tree;
     std::uint32_t node;
   };
-  std::vector<const Subtree*> trees{&subtree};
-  std::vector<Entry> order;
-  order.reserve(node_count);
-  order.push_back({0, 0});
-  auto queue = [&](std::uint32_t parent, std::uint32_t child) {
-    if (child & kSpawnedBit) {
-      const Subtree* spawned = &trees[parent]->spawned[child & ~kSpawnedBit];
-      trees.push_back(spawned);
-      order.push_back({static_cast<std::uint32_t>(trees.size() - 1), 0});
-    } else {
-      order.push_back({parent, child});
+  std::vector<Entry> level{{&subtree, 0}}, next;
+  std::vector<std::size_t> inner_before, leaf_before;
+  std::size_t level_first = 0, leaf_first = 0;
+  constexpr std::size_t kGrain = 4096;
+  while (!level.empty()) {
+    const std::size_t n = level.size();
+    inner_before.resize(n + 1);
+    leaf_before.resize(n + 1);
+    // What each node adds (read in parallel: the nodes are scattered), then the prefix sums.
+    inner_before[0] = leaf_before[0] = 0;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        const BuildNode& node = level[i].tree->nodes[level[i].node];
+        const bool leaf = node.axis == KD_LEAF;
+        inner_before[i + 1] = !leaf;
+        leaf_before[i + 1] = leaf ? node.b : 0;
+      }
+    });
+    for (std::size_t i = 0; i < n; ++i) {
+      inner_before[i + 1] += inner_before[i];
+      leaf_before[i + 1] += leaf_before[i];
     }
-  };
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const auto [tree_index, index] = order[i];
-    const Subtree* in = trees[tree_index];
-    const BuildNode& node = in->nodes[index];
-    if (node.axis == KD_LEAF) {
-      tree.nodes.push_back(leaf_node(node.b, tree.leaf_triangles.size()));
-      const auto first = in->leaf_triangles.begin() + node.a;
-      tree.leaf_triangles.insert(tree.leaf_triangles.end(), first, first + node.b);
-    } else {
-      tree.nodes.push_back(inner_node(node, order.size()));
-      queue(tree_index, node.a);
-      queue(tree_index, node.b);
-    }
+    const std::size_t children_first = level_first + n;
+    if (inner_before[n] > 0) check_fits(children_first + 2 * inner_before[n], KD_MAX_INDEX, "a child node index");
+    next.resize(2 * inner_before[n]);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        const Subtree* in = level[i].tree;
+        const BuildNode& node = in->nodes[level[i].node];
+        if (node.axis == KD_LEAF) {
+          const std::size_t first = leaf_first + leaf_before[i];
+          tree.nodes[level_first + i] = leaf_node(node.b, first);
+          const auto from = in->leaf_triangles.begin() + node.a;
+          std::copy(from, from + node.b, tree.leaf_triangles.begin() + static_cast<std::ptrdiff_t>(first));
+          continue;
+        }
+        const std::size_t child = 2 * inner_before[i];
+        tree.nodes[level_first + i] = inner_node(node, children_first + child);
+        for (std::uint32_t c = 0; c < 2; ++c) {
+          const std::uint32_t index = c == 0 ? node.a : node.b;
+          next[child + c] = (index & kSpawnedBit) ? Entry{&in->spawned[index & ~kSpawnedBit], 0}
+                                                  : Entry{in, index};
+        }
+      }
+    });
+    level_first = children_first;
+    leaf_first += leaf_before[n];
+    level.swap(next);
   }
 }
 
