@@ -2,6 +2,7 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <chrono>
 #include <climits>
 #include <cstring>
@@ -11,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "runtime/render/adaptive.h"
 #include "runtime/util/error.h"
 
 namespace cohort {
@@ -43,9 +45,25 @@ int film_message_bytes(std::size_t pixels) {
 }
 
 void send_assignment(int rank, const SamplePass* pass) {
-  // samples 0: no more passes for this rank
-  const std::uint32_t message[3] = {pass ? pass->index : 0, pass ? pass->first_sample : 0, pass ? pass->samples : 0};
-  check(MPI_Send(message, 3, MPI_UINT32_T, rank, kAssign, MPI_COMM_WORLD), "MPI_Send of a pass assignment");
+  // samples 0: no more passes for this rank; an adaptive pass's pixel list follows the three words
+  std::vector<std::uint32_t> message = {pass ? pass->index : 0, pass ? pass->first_sample : 0, pass ? pass->samples : 0};
+  if (pass && pass->pixels) message.insert(message.end(), pass->pixels->begin(), pass->pixels->end());
+  if (message.size() > std::size_t(INT_MAX)) throw InputError("a pass's pixel list is over one MPI message");
+  check(MPI_Send(message.data(), static_cast<int>(message.size()), MPI_UINT32_T, rank, kAssign, MPI_COMM_WORLD),
+        "MPI_Send of a pass assignment");
+}
+
+// The pass of an assignment message (samples 0: no more passes).
+SamplePass read_assignment(const std::vector<std::uint32_t>& message, PixelList& last_list) {
+  if (message.size() < 3) throw DeviceError("rank 0 sent a pass assignment of fewer than three words");
+  SamplePass pass{message[0], message[1], message[2], nullptr};
+  if (message.size() > 3) {
+    // the passes of one round share one list, as on rank 0 (a device uploads it once per round)
+    if (!last_list || !std::equal(message.begin() + 3, message.end(), last_list->begin(), last_list->end()))
+      last_list = std::make_shared<const std::vector<std::uint32_t>>(message.begin() + 3, message.end());
+    pass.pixels = last_list;
+  }
+  return pass;
 }
 
 PassFilm receive_film(int rank, std::size_t pixels) {
@@ -132,6 +150,7 @@ void AssignedPasses::abort() {
 
 void run_assigned_passes(AssignedPasses& passes, std::size_t pixels) {
   bool asked = false, ended = false;
+  PixelList last_list;
   for (;;) {
     std::unique_lock lock(passes.mutex_);
     if (passes.aborted_) return;  // the failing device's exception is rethrown by DeviceWorkers::join
@@ -151,18 +170,22 @@ void run_assigned_passes(AssignedPasses& passes, std::size_t pixels) {
     }
     if (asked) {
       int flag = 0;
-      check(MPI_Iprobe(0, kAssign, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE), "MPI_Iprobe");
+      MPI_Status status;
+      check(MPI_Iprobe(0, kAssign, MPI_COMM_WORLD, &flag, &status), "MPI_Iprobe");
       if (flag) {
-        std::uint32_t message[3];
-        check(MPI_Recv(message, 3, MPI_UINT32_T, 0, kAssign, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+        int words = 0;
+        check(MPI_Get_count(&status, MPI_UINT32_T, &words), "MPI_Get_count of a pass assignment");
+        std::vector<std::uint32_t> message(static_cast<std::size_t>(std::max(words, 0)));
+        check(MPI_Recv(message.data(), words, MPI_UINT32_T, 0, kAssign, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
               "MPI_Recv of a pass assignment");
+        const SamplePass pass = read_assignment(message, last_list);
         asked = false;
         busy = true;
         const std::lock_guard relock(passes.mutex_);
-        if (message[2] == 0) {
+        if (pass.samples == 0) {
           ended = passes.ended_ = true;
         } else {
-          passes.assigned_.push_back({message[0], message[1], message[2]});
+          passes.assigned_.push_back(pass);
         }
         passes.changed_.notify_all();
       }
