@@ -28,8 +28,8 @@ RenderPlan parse_render(const RenderCommand& command) {
   if (command.memory_limit_mib > 0) plan.memory_limit = static_cast<std::uint64_t>(command.memory_limit_mib * 1048576.0);
   plan.backend = parse_backend(command.backend);
   if (!command.aov.empty()) plan.aovs = parse_aov_list(command.aov);
-  if (!command.target_error.empty()) {
-    settings.target_error = parse_target_error(command.target_error);
+  if (command.target_error) {
+    settings.target_error = parse_target_error(*command.target_error);
     if (settings.spp != 0 && settings.spp <= kAdaptiveFirstRound)
       throw InputError(fmt::format("--target-error needs --spp above {} (every pixel takes the first {} samples before "
                                    "any tile may stop); --spp {} leaves nothing to adapt",

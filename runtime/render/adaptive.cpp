@@ -30,15 +30,18 @@ std::uint32_t round_start(std::uint32_t sample) {
 }
 
 std::vector<double> tile_errors(const FilmState& film) {
-  const TileGrid grid{film.width, film.height};
-  std::vector<double> sum(grid.count(), 0.0);
-  std::vector<std::uint32_t> pixels(grid.count(), 0);
+  // per block of kAdaptiveBlock^2 pixels: the sum of its pixels' relative squared errors
+  const std::uint32_t block_columns = (film.width + kAdaptiveBlock - 1) / kAdaptiveBlock;
+  const std::uint32_t block_rows = (film.height + kAdaptiveBlock - 1) / kAdaptiveBlock;
+  std::vector<double> sum(std::size_t(block_columns) * block_rows, 0.0);
+  std::vector<std::uint32_t> pixels(sum.size(), 0);
   for (std::uint32_t i = 0; i < film.sums.size(); ++i) {
-    const std::uint32_t tile = grid.tile_of(i);
+    const std::uint32_t column = i % film.width, row = i / film.width;
+    const std::size_t block = std::size_t(row / kAdaptiveBlock) * block_columns + column / kAdaptiveBlock;
     const double n = film.pixel_samples.empty() ? film.samples : film.pixel_samples[i];
-    ++pixels[tile];
+    ++pixels[block];
     if (n < 2) {
-      sum[tile] = std::numeric_limits<double>::infinity();
+      sum[block] = std::numeric_limits<double>::infinity();
       continue;
     }
     const co_float4 s = film.sums[i];
@@ -47,10 +50,18 @@ std::vector<double> tile_errors(const FilmState& film) {
     const double y = 0.2126 * s.x + 0.7152 * s.y + 0.0722 * s.z;
     const double mean = y / n;
     const double variance = std::max(0.0, (double(s.w) - y * mean) / (n - 1));  // of one sample
-    sum[tile] += variance / n / (mean * mean + kRelativeErrorFloor);
+    sum[block] += variance / n / (mean * mean + kRelativeErrorFloor);
   }
-  for (std::uint32_t t = 0; t < grid.count(); ++t) sum[t] = std::sqrt(sum[t] / std::max<std::uint32_t>(pixels[t], 1));
-  return sum;
+  // a tile's error: its worst block's RMS (a tile half background, half noise is not averaged down)
+  const TileGrid grid{film.width, film.height};
+  std::vector<double> errors(grid.count(), 0.0);
+  for (std::uint32_t by = 0; by < block_rows; ++by)
+    for (std::uint32_t bx = 0; bx < block_columns; ++bx) {
+      const std::size_t block = std::size_t(by) * block_columns + bx;
+      const std::uint32_t tile = (by * kAdaptiveBlock / kAdaptiveTile) * grid.columns() + bx * kAdaptiveBlock / kAdaptiveTile;
+      errors[tile] = std::max(errors[tile], std::sqrt(sum[block] / std::max<std::uint32_t>(pixels[block], 1)));
+    }
+  return errors;
 }
 
 std::vector<std::uint32_t> pixels_with_samples(const FilmState& film, std::uint32_t at) {

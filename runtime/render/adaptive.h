@@ -19,8 +19,10 @@
 
 namespace cohort {
 
-inline constexpr std::uint32_t kAdaptiveTile = 8;          // tiles of kAdaptiveTile^2 pixels stop together
-inline constexpr std::uint32_t kAdaptiveFirstRound = 16;   // samples every pixel takes
+inline constexpr std::uint32_t kAdaptiveTile = 8;   // tiles of kAdaptiveTile^2 pixels stop together
+inline constexpr std::uint32_t kAdaptiveBlock = 4;  // a tile's error is its worst block's of this size
+static_assert(kAdaptiveTile % kAdaptiveBlock == 0, "a tile is whole blocks");
+inline constexpr std::uint32_t kAdaptiveFirstRound = 16;  // samples every pixel takes
 // The relative squared error of a pixel is its variance over (mean^2 + this), as the relative MSE
 // of the charts (scripts/adaptive.py) and the denoise test: dark pixels do not demand endless samples.
 inline constexpr double kRelativeErrorFloor = 0.01;
@@ -43,10 +45,11 @@ struct TileGrid {
   }
 };
 
-// Estimated relative RMS error of each tile of `film` (film.pixel_samples set): per pixel the
-// variance of its mean, from the film's sums of luminance (x, y, z) and of its square (w), over
-// mean luminance^2 + kRelativeErrorFloor, averaged over the tile's pixels, square-rooted. Tiles
-// with a pixel of fewer than 2 samples get infinity.
+// Estimated relative RMS error of each tile of `film`: per pixel the variance of its mean, from
+// the film's sums of luminance (x, y, z) and of its square (w), over mean luminance^2 +
+// kRelativeErrorFloor; averaged over each 4x4 block and square-rooted; a tile's error is its worst
+// block's (a tile half empty background, half noise is not averaged down). A block with a pixel of
+// fewer than 2 samples has infinite error.
 std::vector<double> tile_errors(const FilmState& film);
 
 // What the round that starts at sample `start` renders, given the film at that point: every
