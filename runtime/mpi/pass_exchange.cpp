@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
+#include <list>
 #include <climits>
 #include <cstring>
 #include <string>
@@ -44,14 +46,53 @@ int film_message_bytes(std::size_t pixels) {
   return static_cast<int>(bytes);
 }
 
-void send_assignment(int rank, const SamplePass* pass) {
+// Assignments rank 0 has sent but MPI may not have delivered: an adaptive pass's pixel list makes
+// one too long to go out eagerly, and a blocking send would wait for a rank that is itself blocked
+// sending rank 0 a film. Each message stays here until its send completes.
+class AssignmentSends {
+ public:
+  AssignmentSends() = default;
+  AssignmentSends(const AssignmentSends&) = delete;
+  AssignmentSends& operator=(const AssignmentSends&) = delete;
+  ~AssignmentSends() {
+    // after a failure: cancel and free what is still out (the job is ending anyway)
+    for (auto& s : sends_) {
+      MPI_Cancel(&s.request);
+      MPI_Request_free(&s.request);
+    }
+  }
+
   // samples 0: no more passes for this rank; an adaptive pass's pixel list follows the three words
-  std::vector<std::uint32_t> message = {pass ? pass->index : 0, pass ? pass->first_sample : 0, pass ? pass->samples : 0};
-  if (pass && pass->pixels) message.insert(message.end(), pass->pixels->begin(), pass->pixels->end());
-  if (message.size() > std::size_t(INT_MAX)) throw InputError("a pass's pixel list is over one MPI message");
-  check(MPI_Send(message.data(), static_cast<int>(message.size()), MPI_UINT32_T, rank, kAssign, MPI_COMM_WORLD),
-        "MPI_Send of a pass assignment");
-}
+  void send(int rank, const SamplePass* pass) {
+    Send s;
+    s.message = {pass ? pass->index : 0, pass ? pass->first_sample : 0, pass ? pass->samples : 0};
+    if (pass && pass->pixels) s.message.insert(s.message.end(), pass->pixels->begin(), pass->pixels->end());
+    if (s.message.size() > std::size_t(INT_MAX)) throw InputError("a pass's pixel list is over one MPI message");
+    check(MPI_Isend(s.message.data(), static_cast<int>(s.message.size()), MPI_UINT32_T, rank, kAssign, MPI_COMM_WORLD,
+                    &s.request),
+          "MPI_Isend of a pass assignment");
+    sends_.push_back(std::move(s));  // the vector's buffer does not move with it
+  }
+
+  // Forgets the sends that completed; true when any did.
+  bool reap() {
+    const std::size_t before = sends_.size();
+    for (auto it = sends_.begin(); it != sends_.end();) {
+      int done = 0;
+      check(MPI_Test(&it->request, &done, MPI_STATUS_IGNORE), "MPI_Test of a pass assignment");
+      it = done ? sends_.erase(it) : std::next(it);
+    }
+    return sends_.size() != before;
+  }
+  bool empty() const { return sends_.empty(); }
+
+ private:
+  struct Send {
+    std::vector<std::uint32_t> message;
+    MPI_Request request = MPI_REQUEST_NULL;
+  };
+  std::list<Send> sends_;
+};
 
 // The pass of an assignment message (samples 0: no more passes).
 SamplePass read_assignment(const std::vector<std::uint32_t>& message, PixelList& last_list) {
@@ -93,8 +134,9 @@ void send_film(const PassFilm& film, std::size_t pixels) {
 void serve_passes(const MpiSession& mpi, PassJob& job, std::size_t pixels) {
   std::deque<int> waiting;  // ranks whose request waits for the window to open
   int told_to_stop = 0;
-  while (!job.aborted() && !(told_to_stop == mpi.size() - 1 && job.finished())) {
-    bool busy = false;
+  AssignmentSends sends;
+  while (!job.aborted() && !(told_to_stop == mpi.size() - 1 && job.finished() && sends.empty())) {
+    bool busy = sends.reap();
     int flag = 0;
     MPI_Status status;
     check(MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status), "MPI_Iprobe");
@@ -115,7 +157,7 @@ void serve_passes(const MpiSession& mpi, PassJob& job, std::size_t pixels) {
       SamplePass pass;
       const PassJob::Offer offer = job.try_next(pass);
       if (offer == PassJob::Offer::wait) break;
-      send_assignment(waiting.front(), offer == PassJob::Offer::pass ? &pass : nullptr);
+      sends.send(waiting.front(), offer == PassJob::Offer::pass ? &pass : nullptr);
       if (offer == PassJob::Offer::end) ++told_to_stop;
       waiting.pop_front();
       busy = true;
