@@ -89,9 +89,9 @@ int write_render(const PreparedRender& render, const RenderOutcome& outcome, con
   std::string spp = fmt::format("{} spp", result.samples);
   if (adaptive) {
     const AdaptiveFigures f = adaptive_figures(outcome.film, render.plan.settings().target_error);
-    spp = fmt::format("{}-{} spp (mean {:.1f}; {} of {} tiles stopped early)", f.min_pixel_samples,
+    spp = fmt::format("{}-{} spp (mean {:.1f}; {} of {} tiles below the target error)", f.min_pixel_samples,
                       f.max_pixel_samples, double(f.samples) / double(std::max<std::size_t>(render.pixels(), 1)),
-                      f.tiles_stopped, f.tiles);
+                      f.tiles_converged, f.tiles);
   }
   fmt::print("rendered {}x{} at {} in {:.2f}s ({:.2f} Mrays/s{})\n", render.plan.settings().width,
              render.plan.settings().height, spp, result.render_seconds, mrays,
