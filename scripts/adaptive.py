@@ -25,6 +25,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.ticker import NullFormatter  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from reference_common import ROOT, references, relative_mse, render_cohort  # noqa: E402
@@ -117,6 +118,7 @@ def chart(results, path):
                     ax.plot(*zip(*pts), styles[series], label=series, ms=4, lw=1)
             ax.set_xscale("log")
             ax.set_yscale("log")
+            ax.xaxis.set_minor_formatter(NullFormatter())
             ax.set_xlabel("seconds (render loop; + AOVs and denoiser when denoised)")
             ax.set_ylabel(label)
             ax.grid(True, which="both", alpha=0.3)
@@ -137,7 +139,13 @@ def main():
     ap.add_argument("--reference-spp", type=int, default=1024, help="Sponza's Cohort reference")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "adaptive-error-vs-time.png"))
     ap.add_argument("--json", default=os.path.join(ROOT, "docs", "adaptive.json"))
+    ap.add_argument("--redraw", action="store_true", help="only draw the chart again from --json")
     args = ap.parse_args()
+    if args.redraw:
+        with open(args.json) as f:
+            chart(json.load(f)["scenes"], args.out)
+        print(f"wrote {args.out}")
+        return 0
     results = {}
     with tempfile.TemporaryDirectory() as tmp:
         for entry in scenes(args):
