@@ -130,12 +130,9 @@ TEST(Adaptive, StoppedAndResumedEqualsAStraightRender) {
   ASSERT_EQ(run(line + "-o " + (dir.path / "full").string()).code, 0);
   // --time ends the first run after some pass, mid-round most likely; it saves its checkpoint
   const fs::path part = dir.path / "part";
-  const CommandResult first = run(line + "--time 0.03 --checkpoint 100 --stats " + (dir.path / "part.json").string() +
-                                  " -o " + part.string());
+  const CommandResult first = run(line + "--time 0.03 --checkpoint 100 -o " + part.string());
   ASSERT_EQ(first.code, 0) << first.output;
-  const auto stats = nlohmann::json::parse(read_all(dir.path / "part.json"));
-  if (stats["adaptive"]["samples"] == nlohmann::json::parse(read_all(dir.path / "part.json"))["adaptive"]["samples"] &&
-      read_all(part.string() + ".exr") == read_all(dir.path / "full.exr"))
+  if (read_all(part.string() + ".exr") == read_all(dir.path / "full.exr"))
     GTEST_SKIP() << "the render finished within --time";
   const CommandResult resumed = run(line + "--resume -o " + part.string());
   ASSERT_EQ(resumed.code, 0) << resumed.output;
