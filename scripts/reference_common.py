@@ -25,8 +25,9 @@ def references():
     return out
 
 
-def render_cohort(cohort, scene, meta, spp, seed, out_exr):
-    """Renders `scene` as the reference was rendered (resolution, depth, environment) to out_exr."""
+def render_cohort(cohort, scene, meta, spp, seed, out_exr, extra=()):
+    """Renders `scene` as the reference was rendered (resolution, depth, environment) to out_exr,
+    with `extra` options added; returns the command's standard output."""
     w, h = meta["resolution"]
     cmd = [cohort, "render", scene, "--res", f"{w}x{h}", "--spp", str(spp), "--max-depth", str(meta["max_depth"]),
            "--seed", str(seed), "-o", out_exr]
@@ -34,7 +35,13 @@ def render_cohort(cohort, scene, meta, spp, seed, out_exr):
         cmd += ["--env", ",".join(str(v) for v in meta["environment"])]
     if "environment_map" in meta:
         cmd += ["--env", os.path.join(ROOT, meta["environment_map"])]
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+    return subprocess.run(cmd + list(extra), check=True, stdout=subprocess.PIPE, text=True).stdout
+
+
+def relative_mse(image, reference):
+    """Relative MSE: per pixel and channel (x - ref)^2 / (ref^2 + 0.01), averaged (the figure of
+    the denoise and adaptive tests, and what --target-error's estimate aims at)."""
+    return float(((image - reference) ** 2 / (reference ** 2 + 0.01)).mean())
 
 
 def accumulate_passes(render_pass, pass_spp, max_spp, seconds):

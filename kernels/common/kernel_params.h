@@ -68,7 +68,8 @@
 
 /* ---- naive_kernel.h ------------------------------------------------------------------------- */
 #define RENDER_NAIVE_PARAMS(P, G)                                                                             \
-  SCENE_PARAMS(P, G) P(IO, co_float4, film) P(IO, uint32_t, counters) P(IO, uint32_t, dropped_samples)
+  SCENE_PARAMS(P, G) P(IO, co_float4, film) P(IO, uint32_t, counters) P(IO, uint32_t, dropped_samples)      \
+  P(IN, uint32_t, pixel_list)
 
 /* ---- aov_kernel.h: first-hit albedo, normal and depth, summed per pixel ------------------------ */
 #define RENDER_AOV_PARAMS(P, G) SCENE_PARAMS(P, G) P(IO, co_float4, aov_albedo) P(IO, co_float4, aov_normal)
@@ -76,11 +77,12 @@
 /* ---- wavefront_kernels.h --------------------------------------------------------------------
  * `queue` and `use_queue`: with stream compaction a launch index stands for queue[index], else for
  * the slot itself; `count` is the launch's size, and with the queue only its first
- * counters[COUNTER_QUEUE] indices work (launch_count). */
+ * counters[COUNTER_QUEUE] indices work (launch_count). `pixel_list`: the pixels of an adaptive
+ * pass (pass_pixel in pathtrace.h), here and in render_naive. */
 #define WF_GENERATE_PARAMS(P, G)                                                                              \
   P(UNIFORM, RenderParams, params) G(PathBuffers, path, PATH_BUFFERS) P(IO, uint32_t, counters)              \
   P(IO, uint32_t, queue) P(VALUE, uint32_t, use_queue) P(VALUE, uint32_t, slot_count) P(VALUE, uint32_t, item_end)      \
-  P(VALUE, uint32_t, regenerate)
+  P(VALUE, uint32_t, regenerate) P(IN, uint32_t, pixel_list)
 
 #define WF_EXTEND_PARAMS(P, G)                                                                                \
   SCENE_PARAMS(P, G) G(PathBuffers, path, PATH_BUFFERS) P(IO, HitOut, hits) P(IN, uint32_t, queue)           \
@@ -89,7 +91,7 @@
 #define WF_SHADE_PARAMS(P, G)                                                                                 \
   SCENE_PARAMS(P, G) G(PathBuffers, path, PATH_BUFFERS) P(IN, HitOut, hits) P(IN, uint32_t, queue)           \
   P(VALUE, uint32_t, use_queue) P(VALUE, uint32_t, count) G(ShadowBuffers, shadow, SHADOW_BUFFERS)           \
-  P(IO, uint32_t, counters)
+  P(IO, uint32_t, counters) P(IN, uint32_t, pixel_list)
 
 #define WF_SHADOW_PARAMS(P, G)                                                                                \
   SCENE_PARAMS(P, G) P(IO, co_float4, path_radiance) G(ShadowBuffers, shadow, SHADOW_BUFFERS)                \
@@ -100,7 +102,8 @@
   P(VALUE, uint32_t, use_queue) P(VALUE, uint32_t, slot_count)
 
 #define WF_ACCUMULATE_PARAMS(P, G)                                                                            \
-  P(UNIFORM, RenderParams, params) P(IN, co_float4, results) P(IO, co_float4, film) P(IO, uint32_t, dropped_samples)
+  P(UNIFORM, RenderParams, params) P(IN, co_float4, results) P(IO, co_float4, film) P(IO, uint32_t, dropped_samples) \
+  P(IN, uint32_t, pixel_list)
 
 #define WF_SIMD_EFFICIENCY_PARAMS(P, G)                                                                       \
   P(IN, uint32_t, steps) P(VALUE, uint32_t, count) P(IO, uint32_t, counters) P(VALUE, uint32_t, use_queue)

@@ -1,4 +1,4 @@
-/* NAIVE: the reference megakernel. One work item per pixel traces this pass's samples of its
+/* NAIVE: the reference megakernel. One work item per pixel of the pass traces this pass's samples of its
  * pixel in sample order and adds each to the film in that order, so the film is the same sum
  * whatever the work-group size or device scheduling. */
 #ifndef COHORT_NAIVE_KERNEL_H
@@ -8,9 +8,10 @@
 #include "common/pathtrace.h"
 
 CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
-  uint32_t pixel = co_global_id();
+  uint32_t k = co_global_id();
   RenderParams p = *params;
-  if (pixel >= p.width * p.height) return;
+  if (k >= pass_pixel_count(&p)) return;
+  uint32_t pixel = pass_pixel(k, pixel_list, &p);
   SceneView s = SCENE_VIEW(p);
 
   co_float4 acc = film[pixel];
@@ -21,7 +22,7 @@ CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
     max_steps = co_umax(max_steps, r.max_steps);
     /* a NaN or infinite sample never reaches the image; it counts as a zero sample */
     if (v3_is_finite(r.radiance))
-      acc = film_add(acc, r.radiance);
+      acc = film_add_sample(acc, r.radiance);
     else
       ++dropped;
   }

@@ -41,6 +41,15 @@ typedef struct ShadowRay {
   int valid;
 } ShadowRay;
 
+/* The pixels a pass renders: every pixel, or (adaptive sampling) the first p->active_pixels entries
+ * of `pixel_list`. Work item or item k of a pass stands for the pass's k-th pixel. */
+CO_INLINE uint32_t pass_pixel_count(const RenderParams* p) {
+  return p->active_pixels ? p->active_pixels : p->width * p->height;
+}
+CO_INLINE uint32_t pass_pixel(uint32_t k, CO_GLOBAL const uint32_t* pixel_list, const RenderParams* p) {
+  return p->active_pixels ? pixel_list[k] : k;
+}
+
 CO_INLINE PathState path_start(const RenderParams* p, uint32_t pixel, uint32_t sample) {
   PathState st;
   uint32_t x = pixel % p->width, y = pixel / p->width;
@@ -392,6 +401,16 @@ CO_INLINE co_float4 film_add(co_float4 acc, co_vec3 r) {
   acc.x = acc.x + r.x;
   acc.y = acc.y + r.y;
   acc.z = acc.z + r.z;
+  return acc;
+}
+
+/* A beauty sample: film_add, and w sums the square of the sample's luminance (Rec. 709), the
+ * per-pixel variance that adaptive sampling estimates its error from (runtime/render/adaptive.h).
+ * One expression per step, FP_CONTRACT off (port.h): the same bits in every kernel and on the host. */
+CO_INLINE co_float4 film_add_sample(co_float4 acc, co_vec3 r) {
+  float y = 0.2126f * r.x + 0.7152f * r.y + 0.0722f * r.z;
+  acc = film_add(acc, r);
+  acc.w = acc.w + y * y;
   return acc;
 }
 

@@ -117,7 +117,10 @@ typedef struct RenderParams {
   float pick_triangles;
   float pick_environment;
   float pick_punctual;
-  uint32_t pad0, pad1, pad2;
+  /* adaptive sampling (runtime/render/adaptive.h): this pass renders the first `active_pixels`
+   * entries of its pixel list only; 0: every pixel, the list unused */
+  uint32_t active_pixels;
+  uint32_t pad1, pad2;
 } RenderParams;
 CO_STATIC_ASSERT(sizeof(RenderParams) == 192, "RenderParams must stay 192 bytes");
 

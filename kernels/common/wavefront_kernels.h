@@ -26,7 +26,7 @@ CO_KERNEL wf_generate(CO_PARAMS(WF_GENERATE_PARAMS)) {
   uint32_t item = co_atomic_inc(&counters[COUNTER_NEXT_ITEM]);
   if (item >= item_end) return;
   RenderParams p = *params;
-  PathState st = path_start(&p, pixel_of(item, &p), sample_of(item, &p));
+  PathState st = path_start(&p, pixel_of(item, pixel_list, &p), sample_of(item, &p));
   path_item[slot] = item;
   store_path(PATH_ARGS, slot, &st);
   uint32_t index = co_atomic_inc(&counters[COUNTER_QUEUE]); /* live slots, queue or not */
@@ -58,7 +58,7 @@ CO_KERNEL wf_shade(CO_PARAMS(WF_SHADE_PARAMS)) {
   RenderParams p = *params;
   SceneView s = SCENE_VIEW(p);
   PathState st = load_path(PATH_ARGS, slot);
-  ShadowRay sr = path_shade(&s, &p, &st, hits[slot], pixel_of(item, &p), sample_of(item, &p));
+  ShadowRay sr = path_shade(&s, &p, &st, hits[slot], pixel_of(item, pixel_list, &p), sample_of(item, &p));
   store_path(PATH_ARGS, slot, &st);
   if (sr.valid) {
     shadow_org[slot] = to4(sr.org, 0.0f);
@@ -123,18 +123,20 @@ CO_KERNEL wf_end_bounce(CO_PARAMS(WF_END_BOUNCE_PARAMS)) {
   counters[COUNTER_ITEMS_HANDED] = counters[COUNTER_NEXT_ITEM];
 }
 
-/* Adds the pass's samples to the film in sample order, as the megakernel does. */
+/* Adds the pass's samples to the film in sample order, as the megakernel does (work item k: the
+ * pass's k-th pixel, whose results are items k, k + n, k + 2n, ...). */
 CO_KERNEL wf_accumulate(CO_PARAMS(WF_ACCUMULATE_PARAMS)) {
-  uint32_t pixel = co_global_id();
+  uint32_t k = co_global_id();
   RenderParams p = *params;
-  uint32_t pixels = p.width * p.height;
-  if (pixel >= pixels) return;
+  uint32_t pixels = pass_pixel_count(&p);
+  if (k >= pixels) return;
+  uint32_t pixel = pass_pixel(k, pixel_list, &p);
   co_float4 acc = film[pixel];
   uint32_t dropped = 0u;
   for (uint32_t i = 0u; i < p.samples_per_pass; ++i) {
-    co_vec3 r = v3_from4(results[i * pixels + pixel]);
+    co_vec3 r = v3_from4(results[i * pixels + k]);
     if (v3_is_finite(r))
-      acc = film_add(acc, r);
+      acc = film_add_sample(acc, r);
     else
       ++dropped;
   }

@@ -47,9 +47,12 @@ CO_INLINE uint32_t launch_count(uint32_t count, CO_GLOBAL const uint32_t *counte
   return use_queue ? co_umin(count, counters[COUNTER_QUEUE]) : count;
 }
 
-CO_INLINE uint32_t pixel_of(uint32_t item, const RenderParams *p) { return item % (p->width * p->height); }
+/* Work item `item` of a pass: sample item / n of the pass's pixel item % n (n: the pass's pixels). */
+CO_INLINE uint32_t pixel_of(uint32_t item, CO_GLOBAL const uint32_t *pixel_list, const RenderParams *p) {
+  return pass_pixel(item % pass_pixel_count(p), pixel_list, p);
+}
 CO_INLINE uint32_t sample_of(uint32_t item, const RenderParams *p) {
-  return p->sample_offset + item / (p->width * p->height);
+  return p->sample_offset + item / pass_pixel_count(p);
 }
 
 #endif

@@ -16,7 +16,8 @@ namespace {
 void add_render_options(CLI::App& cmd, RenderCommand& r) {
   cmd.add_option("scene", r.scene, "Scene file: .gltf, .glb, .obj, .ply (optionally .gz)")->required();
   cmd.add_option("-o,--output", r.output, "Output path: NAME, NAME.exr or NAME.png (both are written)");
-  cmd.add_option("--spp", r.settings.spp, "Samples per pixel (0 with --time: until the time is up)");
+  cmd.add_option("--spp", r.settings.spp,
+                 "Samples per pixel (0 with --time: until the time is up); with --target-error, each pixel's most");
   cmd.add_option("--res", r.resolution, "Image size WxH")->default_val("512x512");
   cmd.add_option("--max-depth", r.settings.max_depth,
                  "Path segments, as Mitsuba's max_depth (1 = emitters seen directly); 0 = unbounded");
@@ -83,6 +84,9 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
                  "First-hit AOVs as extra EXR channels: albedo (albedo.R/G/B), normal (N.X/Y/Z), depth (depth.Z)");
   cmd.add_flag("--denoise", r.denoise,
                "Also write OUT.denoised.exr and .png, denoised by Open Image Denoise guided by albedo and normal");
+  cmd.add_option("--target-error", r.target_error,
+                 "Adaptive sampling: 8x8 tiles stop once their estimated relative error is below E; --spp is then "
+                 "each pixel's most (the image records each pixel's count)");
   cmd.add_flag("--no-cache", r.no_cache, "Do not read or write the kernel binary cache");
   cmd.add_flag("-v,--verbose", r.verbose, "Report compile times, tree statistics and kernel times");
 }

@@ -1,6 +1,9 @@
 // `cohort render`: each rank of the team parses, prepares and renders; rank 0 gathers the image
 // and writes the outputs (render_steps.h).
+#include <chrono>
+
 #include "runtime/cli/render_steps.h"
+#include "runtime/render/adaptive.h"
 
 namespace cohort {
 namespace {
@@ -16,7 +19,10 @@ int render_rank(const RenderCommand& command, const RenderTeam& team) {
     return 0;
   }
   RenderOutcome outcome = run_render_passes(render, team, out, interrupt);
-  outcome.aovs = render_first_hit_aovs(render, outcome.film.samples);
+  // adaptive sampling: the samples every pixel has (a tile that stopped early has fewer than the film's most)
+  const auto aov_start = std::chrono::steady_clock::now();
+  outcome.aovs = render_first_hit_aovs(render, fewest_samples(outcome.film));
+  outcome.aov_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - aov_start).count();
   return write_render(render, outcome, out, interrupt);
 }
 

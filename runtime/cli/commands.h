@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,7 @@ struct RenderCommand {
   bool no_cache = false;
   std::string aov;        // --aov: comma list of albedo, normal, depth
   bool denoise = false;   // --denoise: also write OUT.denoised.exr/.png (Open Image Denoise)
+  std::optional<std::string> target_error;  // --target-error: adaptive sampling (checked in parse_render)
   RenderSettings settings;
 };
 

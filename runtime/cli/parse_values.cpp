@@ -29,6 +29,15 @@ std::pair<std::uint32_t, std::uint32_t> parse_resolution(const std::string& text
   return {w, h};
 }
 
+double parse_target_error(const std::string& text) {
+  double value = 0;
+  if (!parse_number(std::string_view(text), value) || !std::isfinite(value) || value <= 0)
+    throw InputError(fmt::format("--target-error {}: expected a number above 0, the relative error at which a tile "
+                                 "stops (e.g. 0.05)",
+                                 text));
+  return value;
+}
+
 namespace {
 
 // Comma-separated finite numbers; throws with `expected` in the message otherwise.

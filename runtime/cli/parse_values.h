@@ -18,6 +18,9 @@ glm::vec3 parse_rgb(const std::string& option, const std::string& text);
 // a radiance.
 bool is_environment_map_path(const std::string& text);
 
+// --target-error: a finite number above 0.
+double parse_target_error(const std::string& text);
+
 // "a,b,c,d,e,f": six finite numbers (fractions for --camera-bounds).
 std::array<float, 6> parse_six(const std::string& option, const std::string& text);
 

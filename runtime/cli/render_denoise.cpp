@@ -2,6 +2,7 @@
 // normal, written beside it (OUT.denoised.exr/.png); the beauty itself is never replaced.
 #include <fmt/format.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <system_error>
 
@@ -28,13 +29,16 @@ std::vector<std::filesystem::path> wheel_candidates() {
 int write_denoised(const PreparedRender& render, const RenderOutcome& outcome, const OutputPaths& out) {
   if (!render.plan.command.denoise) return 0;
   try {
+    const auto start = std::chrono::steady_clock::now();
     const Denoiser denoiser = Denoiser::load(wheel_candidates());
     const AovImages& aovs = *outcome.aovs;
     const Image denoised = denoiser.denoise(outcome.result.image, &aovs.albedo, &aovs.normal);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     write_exr(out.denoised_exr, denoised);
     write_png(out.denoised_png, denoised);
-    fmt::print("denoised with {}\nwrote {}\nwrote {}\n", denoiser.library(), out.denoised_exr.string(),
-               out.denoised_png.string());
+    // the cost of a denoised image beside the render's seconds (scripts/adaptive.py charts it)
+    fmt::print("denoised with {} in {:.3f}s (first-hit AOVs {:.3f}s)\nwrote {}\nwrote {}\n", denoiser.library(),
+               seconds, outcome.aov_seconds, out.denoised_exr.string(), out.denoised_png.string());
     return 0;
   } catch (const DenoiserUnavailable& e) {
     fmt::print(stderr, "cohort: --denoise: {}\nthe undenoised image is written: {}\n", e.what(), out.exr.string());

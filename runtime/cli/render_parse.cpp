@@ -3,6 +3,7 @@
 #include "runtime/backend/open_device.h"
 #include "runtime/cli/parse_values.h"
 #include "runtime/cli/render_steps.h"
+#include "runtime/render/adaptive.h"
 #include "runtime/render/aov.h"
 #include "runtime/render/environment_map.h"
 #include "runtime/render/methods.h"
@@ -27,6 +28,13 @@ RenderPlan parse_render(const RenderCommand& command) {
   if (command.memory_limit_mib > 0) plan.memory_limit = static_cast<std::uint64_t>(command.memory_limit_mib * 1048576.0);
   plan.backend = parse_backend(command.backend);
   if (!command.aov.empty()) plan.aovs = parse_aov_list(command.aov);
+  if (command.target_error) {
+    settings.target_error = parse_target_error(*command.target_error);
+    if (settings.spp != 0 && settings.spp <= kAdaptiveFirstRound)
+      throw InputError(fmt::format("--target-error needs --spp above {} (every pixel takes the first {} samples before "
+                                   "any tile may stop); --spp {} leaves nothing to adapt",
+                                   kAdaptiveFirstRound, kAdaptiveFirstRound, settings.spp));
+  }
   return plan;
 }
 

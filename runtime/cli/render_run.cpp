@@ -19,10 +19,13 @@ std::uint64_t render_fingerprint(const PreparedRender& render) {
       s.rr_depth, s.nee, s.mis, s.russian_roulette,
       s.environment ? fmt::format("{} {} {}", s.environment->x, s.environment->y, s.environment->z) : "none",
       c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z, c.vfov_degrees, p.tree.triangles.size());
-  // an environment map is named by its file (older checkpoints, without one, keep their fingerprint)
+  // an environment map is named by its file, an adaptive render by its target (older checkpoints,
+  // without either, keep their fingerprint)
+  std::string extra;
   if (p.tables.environment)
-    return fnv1a64(text + "|envmap " + std::filesystem::weakly_canonical(p.tables.environment->source).string());
-  return fnv1a64(text);
+    extra += "|envmap " + std::filesystem::weakly_canonical(p.tables.environment->source).string();
+  if (s.target_error > 0) extra += fmt::format("|target-error {}", s.target_error);
+  return fnv1a64(text + extra);
 }
 
 std::unique_ptr<DeviceWorkers> start_workers(const PreparedRender& render, PassSource& passes) {

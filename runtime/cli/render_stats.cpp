@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "runtime/cli/render_steps.h"
+#include "runtime/render/adaptive.h"
 #include "runtime/render/scene_memory.h"
 #include "runtime/util/median.h"
 
@@ -114,8 +115,18 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
                   {"render_seconds", r.render_seconds}};
   j["rays"] = r.rays;
   j["rays_per_second"] = r.render_seconds > 0 ? static_cast<double>(r.rays) / r.render_seconds : 0.0;
-  j["samples_per_second"] =
-      r.render_seconds > 0 ? double(r.samples) * cmd.settings.width * cmd.settings.height / r.render_seconds : 0.0;
+  const AdaptiveFigures adaptive = adaptive_figures(outcome.film, cmd.settings.target_error);
+  j["samples_per_second"] = r.render_seconds > 0 ? double(adaptive.samples) / r.render_seconds : 0.0;
+  if (cmd.settings.target_error > 0)
+    j["adaptive"] = {{"target_error", cmd.settings.target_error},
+                     {"tile", kAdaptiveTile},
+                     {"samples", adaptive.samples},
+                     {"mean_spp", double(adaptive.samples) / double(std::max<std::size_t>(render.pixels(), 1))},
+                     {"min_pixel_spp", adaptive.min_pixel_samples},
+                     {"max_pixel_spp", adaptive.max_pixel_samples},
+                     {"tiles", adaptive.tiles},
+                     {"tiles_stopped_early", adaptive.tiles_stopped},
+                     {"tiles_below_target", adaptive.tiles_converged}};
   j["dropped_samples"] = r.dropped_samples;
   // the round trips inside a pass (the wavefront loop reads its counters every few bounces), and
   // the device commands of its ray sorts

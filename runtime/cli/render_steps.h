@@ -57,6 +57,7 @@ struct RenderOutcome {
   nlohmann::json ranks;    // rank_json of every rank, in rank order
   PassJob::ImageMean image_mean;
   std::optional<AovImages> aovs;  // with --aov or --denoise
+  double aov_seconds = 0;         // wall time of the AOV render (after the passes, outside render_seconds)
 };
 
 // Rank 0: renders the image on its devices and, through `team`, the other ranks; saves and resumes

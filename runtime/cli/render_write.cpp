@@ -3,6 +3,7 @@
 
 #include "runtime/cli/render_steps.h"
 #include "runtime/image/image.h"
+#include "runtime/render/adaptive.h"
 #include "runtime/render/scene_memory.h"
 #include "runtime/util/atomic_file.h"
 
@@ -34,6 +35,14 @@ void print_details(const PreparedRender& render, const RenderOutcome& outcome) {
   fmt::print("kernel features: {}\n", features.empty() ? std::string("none (Lambertian only)")
                                                        : fmt::format("{}", fmt::join(features, " ")));
   fmt::print("passes: {} of {} spp\n", result.passes, outcome.film.pass_samples);
+  if (const double target = render.plan.settings().target_error; target > 0) {
+    const AdaptiveFigures f = adaptive_figures(outcome.film, target);
+    fmt::print("adaptive: target error {}, {} samples spent ({:.1f} spp mean, {}-{} per pixel), {} of {} {}x{} tiles "
+               "stopped early, {} below the target at the end\n",
+               target, f.samples, double(f.samples) / double(std::max<std::size_t>(render.pixels(), 1)),
+               f.min_pixel_samples, f.max_pixel_samples, f.tiles_stopped, f.tiles, kAdaptiveTile, kAdaptiveTile,
+               f.tiles_converged);
+  }
   for (const auto& [name, seconds] : result.kernel_seconds) fmt::print("kernel {}: {:.3f}s\n", name, seconds);
   if (result.wavefront_size)
     fmt::print("wavefront: {} path slots x {} bytes = {:.1f} MiB, {} bounces, SIMD efficiency {:.3f}\n",
@@ -62,6 +71,12 @@ int write_render(const PreparedRender& render, const RenderOutcome& outcome, con
   const RenderResult& result = outcome.result;
   std::vector<ExrLayer> aovs;
   if (outcome.aovs) aovs = aov_layers(*outcome.aovs, render.plan.aovs);
+  const bool adaptive = render.plan.settings().target_error > 0;
+  if (adaptive) {
+    // each pixel's own sample count: the beauty is each pixel's sum over it
+    const auto& counts = outcome.film.pixel_samples;
+    aovs.push_back({{"samples"}, std::vector<float>(counts.begin(), counts.end())});
+  }
   write_exr(out.exr, result.image, aovs);
   write_png(out.png, result.image);
   if (cmd.verbose) print_details(render, outcome);
@@ -71,8 +86,15 @@ int write_render(const PreparedRender& render, const RenderOutcome& outcome, con
   for (const auto& rank_entry : outcome.ranks) device_count += rank_entry["devices"].size();
   const std::size_t ranks = outcome.ranks.size();
   const double mrays = result.render_seconds > 0 ? double(result.rays) / result.render_seconds * 1e-6 : 0;
-  fmt::print("rendered {}x{} at {} spp in {:.2f}s ({:.2f} Mrays/s{})\n", render.plan.settings().width,
-             render.plan.settings().height, result.samples, result.render_seconds, mrays,
+  std::string spp = fmt::format("{} spp", result.samples);
+  if (adaptive) {
+    const AdaptiveFigures f = adaptive_figures(outcome.film, render.plan.settings().target_error);
+    spp = fmt::format("{}-{} spp (mean {:.1f}; {} of {} tiles below the target error)", f.min_pixel_samples,
+                      f.max_pixel_samples, double(f.samples) / double(std::max<std::size_t>(render.pixels(), 1)),
+                      f.tiles_converged, f.tiles);
+  }
+  fmt::print("rendered {}x{} at {} in {:.2f}s ({:.2f} Mrays/s{})\n", render.plan.settings().width,
+             render.plan.settings().height, spp, result.render_seconds, mrays,
              device_count > 1 ? fmt::format(", {} devices in {} rank{}", device_count, ranks, ranks > 1 ? "s" : "")
                               : std::string());
   fmt::print("wrote {}\nwrote {}\n", out.exr.string(), out.png.string());

@@ -2,7 +2,10 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <chrono>
+#include <iterator>
+#include <list>
 #include <climits>
 #include <cstring>
 #include <string>
@@ -11,6 +14,7 @@
 
 #include <fmt/format.h>
 
+#include "runtime/render/adaptive.h"
 #include "runtime/util/error.h"
 
 namespace cohort {
@@ -42,10 +46,65 @@ int film_message_bytes(std::size_t pixels) {
   return static_cast<int>(bytes);
 }
 
-void send_assignment(int rank, const SamplePass* pass) {
-  // samples 0: no more passes for this rank
-  const std::uint32_t message[3] = {pass ? pass->index : 0, pass ? pass->first_sample : 0, pass ? pass->samples : 0};
-  check(MPI_Send(message, 3, MPI_UINT32_T, rank, kAssign, MPI_COMM_WORLD), "MPI_Send of a pass assignment");
+// Assignments rank 0 has sent but MPI may not have delivered: an adaptive pass's pixel list makes
+// one too long to go out eagerly, and a blocking send would wait for a rank that is itself blocked
+// sending rank 0 a film. Each message stays here until its send completes.
+class AssignmentSends {
+ public:
+  AssignmentSends() = default;
+  AssignmentSends(const AssignmentSends&) = delete;
+  AssignmentSends& operator=(const AssignmentSends&) = delete;
+  ~AssignmentSends() {
+    // after a failure: cancel and free what is still out (the job is ending anyway)
+    for (auto& s : sends_) {
+      MPI_Cancel(&s.request);
+      MPI_Request_free(&s.request);
+    }
+  }
+
+  // samples 0: no more passes for this rank; an adaptive pass's pixel list follows the three words
+  void send(int rank, const SamplePass* pass) {
+    Send s;
+    s.message = {pass ? pass->index : 0, pass ? pass->first_sample : 0, pass ? pass->samples : 0};
+    if (pass && pass->pixels) s.message.insert(s.message.end(), pass->pixels->begin(), pass->pixels->end());
+    if (s.message.size() > std::size_t(INT_MAX)) throw InputError("a pass's pixel list is over one MPI message");
+    check(MPI_Isend(s.message.data(), static_cast<int>(s.message.size()), MPI_UINT32_T, rank, kAssign, MPI_COMM_WORLD,
+                    &s.request),
+          "MPI_Isend of a pass assignment");
+    sends_.push_back(std::move(s));  // the vector's buffer does not move with it
+  }
+
+  // Forgets the sends that completed; true when any did.
+  bool reap() {
+    const std::size_t before = sends_.size();
+    for (auto it = sends_.begin(); it != sends_.end();) {
+      int done = 0;
+      check(MPI_Test(&it->request, &done, MPI_STATUS_IGNORE), "MPI_Test of a pass assignment");
+      it = done ? sends_.erase(it) : std::next(it);
+    }
+    return sends_.size() != before;
+  }
+  bool empty() const { return sends_.empty(); }
+
+ private:
+  struct Send {
+    std::vector<std::uint32_t> message;
+    MPI_Request request = MPI_REQUEST_NULL;
+  };
+  std::list<Send> sends_;
+};
+
+// The pass of an assignment message (samples 0: no more passes).
+SamplePass read_assignment(const std::vector<std::uint32_t>& message, PixelList& last_list) {
+  if (message.size() < 3) throw DeviceError("rank 0 sent a pass assignment of fewer than three words");
+  SamplePass pass{message[0], message[1], message[2], nullptr};
+  if (message.size() > 3) {
+    // the passes of one round share one list, as on rank 0 (a device uploads it once per round)
+    if (!last_list || !std::equal(message.begin() + 3, message.end(), last_list->begin(), last_list->end()))
+      last_list = std::make_shared<const std::vector<std::uint32_t>>(message.begin() + 3, message.end());
+    pass.pixels = last_list;
+  }
+  return pass;
 }
 
 PassFilm receive_film(int rank, std::size_t pixels) {
@@ -75,8 +134,9 @@ void send_film(const PassFilm& film, std::size_t pixels) {
 void serve_passes(const MpiSession& mpi, PassJob& job, std::size_t pixels) {
   std::deque<int> waiting;  // ranks whose request waits for the window to open
   int told_to_stop = 0;
-  while (!job.aborted() && !(told_to_stop == mpi.size() - 1 && job.finished())) {
-    bool busy = false;
+  AssignmentSends sends;
+  while (!job.aborted() && !(told_to_stop == mpi.size() - 1 && job.finished() && sends.empty())) {
+    bool busy = sends.reap();
     int flag = 0;
     MPI_Status status;
     check(MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status), "MPI_Iprobe");
@@ -97,7 +157,7 @@ void serve_passes(const MpiSession& mpi, PassJob& job, std::size_t pixels) {
       SamplePass pass;
       const PassJob::Offer offer = job.try_next(pass);
       if (offer == PassJob::Offer::wait) break;
-      send_assignment(waiting.front(), offer == PassJob::Offer::pass ? &pass : nullptr);
+      sends.send(waiting.front(), offer == PassJob::Offer::pass ? &pass : nullptr);
       if (offer == PassJob::Offer::end) ++told_to_stop;
       waiting.pop_front();
       busy = true;
@@ -132,6 +192,7 @@ void AssignedPasses::abort() {
 
 void run_assigned_passes(AssignedPasses& passes, std::size_t pixels) {
   bool asked = false, ended = false;
+  PixelList last_list;
   for (;;) {
     std::unique_lock lock(passes.mutex_);
     if (passes.aborted_) return;  // the failing device's exception is rethrown by DeviceWorkers::join
@@ -151,18 +212,22 @@ void run_assigned_passes(AssignedPasses& passes, std::size_t pixels) {
     }
     if (asked) {
       int flag = 0;
-      check(MPI_Iprobe(0, kAssign, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE), "MPI_Iprobe");
+      MPI_Status status;
+      check(MPI_Iprobe(0, kAssign, MPI_COMM_WORLD, &flag, &status), "MPI_Iprobe");
       if (flag) {
-        std::uint32_t message[3];
-        check(MPI_Recv(message, 3, MPI_UINT32_T, 0, kAssign, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+        int words = 0;
+        check(MPI_Get_count(&status, MPI_UINT32_T, &words), "MPI_Get_count of a pass assignment");
+        std::vector<std::uint32_t> message(static_cast<std::size_t>(std::max(words, 0)));
+        check(MPI_Recv(message.data(), words, MPI_UINT32_T, 0, kAssign, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
               "MPI_Recv of a pass assignment");
+        const SamplePass pass = read_assignment(message, last_list);
         asked = false;
         busy = true;
         const std::lock_guard relock(passes.mutex_);
-        if (message[2] == 0) {
+        if (pass.samples == 0) {
           ended = passes.ended_ = true;
         } else {
-          passes.assigned_.push_back({message[0], message[1], message[2]});
+          passes.assigned_.push_back(pass);
         }
         passes.changed_.notify_all();
       }

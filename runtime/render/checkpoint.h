@@ -2,6 +2,7 @@
 // so `--resume` continues exactly where a run stopped (the film is the pass-ordered sum of
 // pass_schedule.h and stops at a pass boundary, so a resumed render equals an uninterrupted one bit
 // for bit). Version 2 adds the pass size; version-1 films were one running sum and are refused.
+// Version 3 adds each pixel's sample count (adaptive sampling); version 2 is still read.
 #pragma once
 
 #include <cstdint>
@@ -21,6 +22,9 @@ struct FilmState {
   std::uint32_t pass_samples = 0;  // the pass size of the schedule (pass_schedule.h) a resume continues
   std::uint64_t dropped_samples = 0;
   std::vector<co_float4> sums;  // width * height: the sum of the partial films of the passes, in pass order
+                                // (rgb; w: the sum of the samples' squared luminance, adaptive.h)
+  // adaptive sampling: the samples of each pixel (`samples` is the most); empty: every pixel has `samples`
+  std::vector<std::uint32_t> pixel_samples;
 };
 
 // Written atomically: a crash while saving leaves the previous checkpoint.

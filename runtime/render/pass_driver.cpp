@@ -7,10 +7,13 @@
 #include <optional>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "kernels/common/contract.h"
 #include "runtime/backend/kernel_args.h"
 #include "runtime/render/launch_log.h"
 #include "runtime/render/pass_job.h"
+#include "runtime/util/error.h"
 
 namespace cohort {
 
@@ -89,6 +92,11 @@ RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const Ren
   buffers.params = cl.allocate("render parameters", sizeof(RenderParams), nullptr, Access::read_only);
   buffers.film = cl.allocate("film", std::size_t(pixels) * sizeof(co_float4));
   buffers.dropped = cl.allocate("dropped-sample counter", sizeof(std::uint32_t));
+  // adaptive passes list their pixels here; other renders bind a one-entry buffer they never read
+  buffers.pixel_list = cl.allocate("pass pixel list", std::size_t(settings.target_error > 0 ? pixels : 1) *
+                                                          sizeof(std::uint32_t));
+  // the list in buffers.pixel_list, held so that a new round's list cannot reuse its address
+  std::shared_ptr<const std::vector<std::uint32_t>> listed;
 
   // one device alone keeps the image on the device: no partial film per pass crosses to the host
   std::optional<DeviceImage> image;
@@ -108,6 +116,16 @@ RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const Ren
     cl.fill(buffers.film, 0u, std::size_t(pixels) * 4);  // 4 words per pixel; all-zero bits are 0.0f
     cl.fill(buffers.dropped, 0u, 1);
     PassFilm film{*sample_pass, {}, 0, 0};
+    // a round's passes share one list: uploaded when the round changes
+    const std::vector<std::uint32_t>* pass_pixels = sample_pass->pixels.get();
+    if (pass_pixels && pass_pixels != listed.get()) {
+      if (pass_pixels->empty() || pass_pixels->size() > pixels)
+        throw DeviceError(fmt::format("pass {}: a list of {} pixels for an image of {}", sample_pass->index,
+                                      pass_pixels->size(), pixels));
+      cl.write(buffers.pixel_list, 0, pass_pixels->size() * sizeof(std::uint32_t), pass_pixels->data());
+      listed = sample_pass->pixels;
+    }
+    params.active_pixels = pass_pixels ? static_cast<std::uint32_t>(pass_pixels->size()) : 0u;
     double pass_kernel_seconds = 0;
     std::vector<std::uint32_t> extension_steps;
     for (std::uint32_t done = 0; done < sample_pass->samples;) {

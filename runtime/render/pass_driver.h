@@ -18,6 +18,7 @@ struct PassBuffers {
   DeviceBuffer params;   // RenderParams, sample_offset and samples_per_pass set for this pass
   DeviceBuffer film;     // float4 per pixel: the running sum of the pass's samples
   DeviceBuffer dropped;  // uint: NaN or infinite samples
+  DeviceBuffer pixel_list;  // uint per pixel: an adaptive pass's pixels (RenderParams::active_pixels)
 };
 
 struct PassOutput {
@@ -34,7 +35,8 @@ struct PassOutput {
 // Keeps the `keep` rays that visited the most nodes (ties: the earlier), the most first.
 void keep_worst(std::vector<StragglerRay>& worst, std::vector<StragglerRay> more, std::size_t keep);
 
-// Renders samples [params.sample_offset, + params.samples_per_pass) of every pixel into the film,
+// Renders samples [params.sample_offset, + params.samples_per_pass) of every pixel of the pass
+// (pass_pixel_count: all, or params.active_pixels of buffers.pixel_list) into the film,
 // and waits for its launches before it returns (the parameters are written without blocking).
 // (One launch of a pass: a pass may take several.)
 using PassFunction = std::function<PassOutput(const PassBuffers&, const RenderParams&)>;

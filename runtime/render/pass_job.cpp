@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "runtime/render/adaptive.h"
 #include "runtime/util/error.h"
 
 namespace cohort {
@@ -15,17 +16,21 @@ PassSchedule make_schedule(const RenderSettings& s, const RenderControl& control
     if (s.pass_samples && s.pass_samples != control.resume_from->pass_samples)
       throw InputError(fmt::format("--pass-spp {}: the checkpoint was rendered in passes of {} spp", s.pass_samples,
                                    control.resume_from->pass_samples));
-    return {control.resume_from->pass_samples, control.resume_from->samples, s.spp};
+    return {control.resume_from->pass_samples, control.resume_from->samples, s.spp, s.target_error > 0};
   }
-  return {s.pass_samples ? s.pass_samples : default_pass_samples(s.width, s.height, s.spp), 0, s.spp};
+  return {s.pass_samples ? s.pass_samples : default_pass_samples(s.width, s.height, s.spp), 0, s.spp,
+          s.target_error > 0};
 }
 
 }  // namespace
 
 Image film_image(const FilmState& film) {
   Image image(static_cast<int>(film.width), static_cast<int>(film.height));
-  const float inv = film.samples ? 1.f / static_cast<float>(film.samples) : 0.f;
+  const float uniform = film.samples ? 1.f / static_cast<float>(film.samples) : 0.f;
   for (std::size_t i = 0; i < film.sums.size(); ++i) {
+    // adaptive sampling: each pixel by its own count
+    const std::uint32_t n = film.pixel_samples.empty() ? film.samples : film.pixel_samples[i];
+    const float inv = film.pixel_samples.empty() ? uniform : (n ? 1.f / static_cast<float>(n) : 0.f);
     image.rgb[3 * i + 0] = film.sums[i].x * inv;
     image.rgb[3 * i + 1] = film.sums[i].y * inv;
     image.rgb[3 * i + 2] = film.sums[i].z * inv;
@@ -51,11 +56,31 @@ PassJob::PassJob(const RenderSettings& settings, const ProgressCallback& progres
     if (f.width != settings.width || f.height != settings.height || f.sums.size() != pixels)
       throw InputError(fmt::format("the checkpoint is {}x{}, the render {}x{}", f.width, f.height, settings.width,
                                    settings.height));
+    if (!f.pixel_samples.empty() && f.pixel_samples.size() != pixels)
+      throw InputError(fmt::format("the checkpoint counts samples of {} pixels, the render has {}",
+                                   f.pixel_samples.size(), pixels));
+    if (settings.target_error > 0 && f.pixel_samples.empty() && f.samples > 0)
+      throw InputError("--target-error: the checkpoint was rendered without it");
     film_ = f;
     resumed_samples_ = f.samples;
   } else {
     film_.sums.assign(pixels, co_float4{0, 0, 0, 0});
+    if (settings.target_error > 0) film_.pixel_samples.assign(pixels, 0);
   }
+}
+
+bool PassJob::choose_round_pixels(const SamplePass& pass) {
+  const std::uint32_t start = round_start(pass.first_sample);
+  if (round_chosen_ && start == round_start_) return true;
+  // the decision reads the film at the round's start: every earlier pass must be in it
+  if (combined_ != handed_out_) return false;
+  if (image_on_device_ && read_image_) film_.sums = read_image_();
+  round_pixels_ = std::make_shared<const std::vector<std::uint32_t>>(
+      pass.first_sample == start ? round_pixels(film_, start, settings_.target_error)
+                                 : pixels_with_samples(film_, pass.first_sample));  // resumed inside a round
+  round_start_ = start;
+  round_chosen_ = true;
+  return true;
 }
 
 void PassJob::device_ready() {
@@ -76,9 +101,16 @@ PassJob::Offer PassJob::offer(SamplePass& pass) {
       ended_ = true;
     } else if (const auto p = schedule_.pass(handed_out_)) {
       if (handed_out_ - combined_ >= window_) return Offer::wait;
-      pass = *p;
-      ++handed_out_;
-      return Offer::pass;
+      if (settings_.target_error > 0 && !choose_round_pixels(*p)) return Offer::wait;
+      if (settings_.target_error > 0 && round_pixels_->empty()) {
+        ended_ = true;  // every tile is below the target
+      } else {
+        pass = *p;
+        if (settings_.target_error > 0 && round_pixels_->size() < film_.sums.size()) pass.pixels = round_pixels_;
+        if (settings_.target_error > 0) handed_out_pixels_.emplace(pass.index, pass.pixels);
+        ++handed_out_;
+        return Offer::pass;
+      }
     } else {
       ended_ = true;
     }
@@ -143,8 +175,22 @@ void PassJob::combine(const PassFilm& f) {
     mean[1] += f.sums[i].y;
     mean[2] += f.sums[i].z;
   }
-  for (int c = 0; c < 3; ++c) mean[c] /= std::max(1.0, double(film_.sums.size()) * f.pass.samples);
+  // the pixels as handed out (a film from another rank carries the pass's index and samples only)
+  PixelList pixels;
+  if (const auto it = handed_out_pixels_.find(f.pass.index); it != handed_out_pixels_.end()) {
+    pixels = it->second;
+    handed_out_pixels_.erase(it);
+  }
+  const std::size_t pass_pixels = pixels ? pixels->size() : film_.sums.size();
+  for (int c = 0; c < 3; ++c) mean[c] /= std::max(1.0, double(pass_pixels) * f.pass.samples);
   pass_means_.push_back(mean);
+  if (!film_.pixel_samples.empty()) {
+    if (pixels) {
+      for (const std::uint32_t pixel : *pixels) film_.pixel_samples[pixel] += f.pass.samples;
+    } else {
+      for (auto& n : film_.pixel_samples) n += f.pass.samples;
+    }
+  }
   film_.samples = f.pass.first_sample + f.pass.samples;
   film_.dropped_samples += f.dropped;
 }

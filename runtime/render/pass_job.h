@@ -11,6 +11,7 @@
 #include <map>
 #include <mutex>
 
+#include "runtime/render/adaptive.h"
 #include "runtime/render/pass_source.h"
 #include "runtime/render/renderer.h"
 
@@ -59,6 +60,9 @@ class PassJob final : public PassSource {
 
  private:
   Offer offer(SamplePass& pass);  // with mutex_ held
+  // Adaptive sampling: the pixels of the round `pass` belongs to, chosen once per round from the
+  // film at its start (adaptive.h); false while earlier passes are still out. With mutex_ held.
+  bool choose_round_pixels(const SamplePass& pass);
   void combine(const PassFilm& film);
   double seconds_since_start() const;  // with mutex_ held
 
@@ -89,6 +93,11 @@ class PassJob final : public PassSource {
   std::function<std::vector<co_float4>()> read_image_;
   std::vector<std::array<double, 4>> pass_means_;  // per combined pass: mean r, g, b and its samples
   double last_checkpoint_ = 0;
+  // adaptive sampling: the current round's pixels, and those of each pass handed out, not yet combined
+  PixelList round_pixels_;
+  std::map<std::uint32_t, PixelList> handed_out_pixels_;
+  std::uint32_t round_start_ = 0;
+  bool round_chosen_ = false;
 };
 
 // The mean radiance per pixel of a film.

@@ -6,7 +6,9 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
+#include <vector>
 
 namespace cohort {
 
@@ -14,6 +16,8 @@ struct SamplePass {
   std::uint32_t index = 0;         // position in the schedule: partial films are added in this order
   std::uint32_t first_sample = 0;  // samples [first_sample, first_sample + samples) of every pixel
   std::uint32_t samples = 0;
+  // adaptive sampling (adaptive.h): the pixels the pass renders, ascending; null: every pixel
+  std::shared_ptr<const std::vector<std::uint32_t>> pixels;
 };
 
 // Passes of 1-4 M samples: at least 16 passes when that keeps each above ~1 M samples (load
@@ -24,8 +28,9 @@ std::uint32_t default_pass_samples(std::uint32_t width, std::uint32_t height, st
 
 class PassSchedule {
  public:
-  // spp 0: unbounded (a time limit ends the render)
-  PassSchedule(std::uint32_t pass_samples, std::uint32_t first_sample, std::uint32_t spp);
+  // spp 0: unbounded (a time limit ends the render). `rounds`: adaptive sampling, whose passes also
+  // end at every round's end (adaptive.h), so each round is a whole number of passes.
+  PassSchedule(std::uint32_t pass_samples, std::uint32_t first_sample, std::uint32_t spp, bool rounds = false);
 
   std::optional<SamplePass> pass(std::uint32_t index) const;  // nullopt past the last pass
   std::uint32_t pass_samples() const { return pass_samples_; }
@@ -35,6 +40,7 @@ class PassSchedule {
   std::uint32_t pass_samples_;
   std::uint32_t first_sample_;
   std::uint32_t spp_;
+  bool rounds_;
 };
 
 }  // namespace cohort

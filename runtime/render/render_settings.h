@@ -20,6 +20,8 @@ struct RenderSettings {
   std::uint32_t seed = 0;
   std::uint32_t pass_samples = 0;  // samples per pixel in one pass (pass_schedule.h); 0: the default
   double time_limit = 0;        // seconds; 0 = none. Stops after the pass that crosses it.
+  double target_error = 0;      // adaptive sampling (adaptive.h): tiles stop below this estimated
+                                // relative error and spp is each pixel's most; 0: uniform sampling
   bool nee = true;
   bool mis = true;
   bool russian_roulette = true;

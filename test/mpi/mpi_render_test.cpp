@@ -91,6 +91,26 @@ TEST_P(MpiRender, TwoRanksGiveTheSingleProcessImageBitForBit) {
 
 INSTANTIATE_TEST_SUITE_P(Methods, MpiRender, ::testing::Values("naive", "pth", "auto"));
 
+// --target-error: rank 0 sends each adaptive pass's pixel list with it; the image is the same.
+TEST(MpiAdaptive, TwoRanksGiveTheSingleProcessImageBitForBit) {
+  if (const auto why = skip_reason(); !why.empty()) GTEST_SKIP() << why;
+  TempDir dir("cohort-mpi-");
+  const auto adaptive = [&](const std::string& name) {
+    auto args = render_args(dir.path / name, "naive", "64", "2");
+    args.insert(args.end(), {"--fov", "58", "--target-error", "0.05", "--stats", (dir.path / (name + ".json")).string()});
+    return args;
+  };
+  ASSERT_EQ(wait_exit(spawn(COHORT_BINARY, adaptive("one"))).value_or(-1), 0);
+  const std::string log = (dir.path / "mpirun.log").string();
+  ASSERT_EQ(wait_exit(spawn("mpirun", mpirun_args(adaptive("two")), log), std::chrono::seconds(300)).value_or(-1), 0)
+      << read_all(log);
+  EXPECT_EQ(read_all(dir.path / "one.exr"), read_all(dir.path / "two.exr"));
+  const auto stats = nlohmann::json::parse(read_all(dir.path / "two.json"));
+  EXPECT_GT(stats["adaptive"]["tiles_stopped_early"].get<int>(), 0) << "some tiles stopped: lists were sent";
+  for (const auto& rank : stats["ranks"])
+    EXPECT_GT(rank["devices"][0]["passes"].get<int>(), 0) << "both ranks take passes";
+}
+
 TEST(MpiFailure, AKilledRankEndsTheJobAndTheResumedJobGivesTheSameImage) {
   if (const auto why = skip_reason(); !why.empty()) GTEST_SKIP() << why;
   TempDir dir("cohort-mpi-");

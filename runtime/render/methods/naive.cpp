@@ -24,16 +24,17 @@ RenderResult render_naive(const MethodInputs& in) {
   args.counters = counters;
   bool args_set = false;
   RenderResult result = drive_passes(cl, cache, params, settings, max_per_pass, progress, control,
-                                     [&](const PassBuffers& b, const RenderParams&) {
+                                     [&](const PassBuffers& b, const RenderParams& p) {
     if (!args_set) {
       args.params = b.params;
       args.film = b.film;
       args.dropped_samples = b.dropped;
+      args.pixel_list = b.pixel_list;
       args.bind(kernel);
       args_set = true;
     }
     LaunchLog log;
-    log.launch(cl, kernel, "render_naive", pixels);
+    log.launch(cl, kernel, "render_naive", p.active_pixels ? p.active_pixels : pixels);
     std::array<std::uint32_t, NAIVE_COUNTER_COUNT> read{};
     cl.read(counters, 0, sizeof(read), read.data());
     cl.write(counters, 0, sizeof(kZeros), kZeros.data(), false);

@@ -13,6 +13,7 @@ void generate(WavefrontPass& p, Refill refill) {
   args.slot_count = p.pool.slots;
   args.item_end = p.items;
   args.regenerate = refill == Refill::every_bounce ? 1u : 0u;
+  args.pixel_list = p.buffers.pixel_list;
   args.bind(p.kernels.generate);
   p.log.launch(p.device, p.kernels.generate, "generate", p.pool.slots);
 }

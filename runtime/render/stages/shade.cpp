@@ -14,6 +14,7 @@ void shade(WavefrontPass& p) {
   args.count = count;
   args.shadow = p.pool.shadow;
   args.counters = p.pool.counters;
+  args.pixel_list = p.buffers.pixel_list;
   args.bind(p.kernels.shade);
   p.log.launch(p.device, p.kernels.shade, "shade", count);
 

@@ -75,7 +75,8 @@ RenderResult WavefrontRender::run(const BounceStages& bounce_stages) {
   std::vector<IterationStats> iterations;
   auto pass = [&](const PassBuffers& b, const RenderParams& p) {
     WavefrontPass wp{cl, in_.settings, pool_, kernels_, scene_, b, results_, launches_};
-    wp.items = pixels_ * p.samples_per_pass;
+    const std::uint32_t pass_pixels = p.active_pixels ? p.active_pixels : pixels_;  // pass_pixel_count
+    wp.items = pass_pixels * p.samples_per_pass;
     wp.live_bound = pool_.slots;
     cl.write(pool_.counters, 0, sizeof(kZeros), kZeros.data(), false);
     std::vector<LaunchLog> unread;  // the launches of the bounces since the last read, by bounce
@@ -120,8 +121,9 @@ RenderResult WavefrontRender::run(const BounceStages& bounce_stages) {
     accumulate.results = results_;
     accumulate.film = b.film;
     accumulate.dropped_samples = b.dropped;
+    accumulate.pixel_list = b.pixel_list;
     accumulate.bind(kernels_.accumulate);
-    wp.log.launch(cl, kernels_.accumulate, "accumulate", pixels_);
+    wp.log.launch(cl, kernels_.accumulate, "accumulate", pass_pixels);
     add_seconds(wp.out.kernel_seconds, wp.log.collect());
     return std::move(wp.out);
   };
