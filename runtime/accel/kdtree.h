@@ -19,7 +19,9 @@ struct KdBuildOptions {
   float empty_bonus = 0.8f;        // SAH cost factor (1 - bonus) for splits that cut off empty space
   int max_depth = 0;               // 0: 8 + 1.8 log2(N), capped below KD_MAX_DEPTH
   int leaf_triangles = 1;          // never split a node with this many triangles or fewer
-  // Termination. The empty-space bonus chooses among planes but does not decide whether to split:
+  // Termination. Default (compact false): split when the chosen plane beats a leaf with the
+  // empty-space bonus counted (Wald & Havran): the deepest trees, fastest to trace on the H200.
+  // compact: the bonus chooses among planes but does not decide whether to split:
   // a node splits only when some candidate plane beats a leaf (K_I N) by the plain SAH, and a node
   // of at most this many references only when the chosen plane itself does. With the bonus in the
   // test, cutting off any empty sliver beat a leaf (0.2 (K_T + K_I N) < K_I N), so nearly every
@@ -27,6 +29,9 @@ struct KdBuildOptions {
   // nodes to 5.8M and its SAH cost from 127.97 to 126.71 (docs/results.md; 8 here: 5.2M nodes, but
   // the armadillo's SAH 2.4% above the old build's). 0: the chosen plane's plain cost is never
   // required, only that some plane pays.
+  // On the H200 the compact Sponza tree takes 0.74x the bytes and traces 0.94x as fast (naive, 16 spp
+  // interior; docs/results.md): the first step a memory budget takes (kdtree_budget.cpp).
+  bool compact = false;
   int plain_sah_triangles = 6;
   // Nodes with more triangle references than this choose among `bins - 1` evenly spaced planes per
   // axis (linear time); smaller ones by the exact sweep over every triangle boundary (a sort).

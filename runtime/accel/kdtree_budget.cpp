@@ -1,5 +1,7 @@
-// A KD-tree sized to a memory budget: the default depth limit gives the fastest tree; when its
-// nodes, leaf lists and triangles do not fit, the limit is lowered to the deepest that fits. The
+// A KD-tree sized to a memory budget: the default build gives the fastest tree; when its nodes,
+// leaf lists and triangles do not fit, the compact termination (KdBuildOptions::compact: about
+// 0.74x the bytes, 0.94x the speed on the H200), and if that does not fit either, the compact tree
+// with the depth limit lowered to the deepest that fits. The
 // build is deterministic and the limit only cuts the recursion, so the tree of a lower limit is the
 // same tree cut off (fewer nodes, fewer references): the bytes grow with the limit, and a binary
 // search over it needs a few builds, each cheaper than the first.
@@ -15,12 +17,22 @@ KdTree build_kdtree_within(std::span<const glm::vec3> positions, const KdBuildOp
   KdTree tree = build_kdtree(positions, options);
   if (tree.stats.bytes <= max_bytes) return tree;
   double seconds = tree.stats.build_seconds;
+  KdBuildOptions compact = options;
+  compact.compact = true;
+  if (!options.compact) {
+    tree = build_kdtree(positions, compact);
+    seconds += tree.stats.build_seconds;
+    if (tree.stats.bytes <= max_bytes) {
+      tree.stats.build_seconds = seconds;
+      return tree;
+    }
+  }
   int fits = -1;  // deepest limit known to fit
   KdTree best;
   int lo = 0, hi = kd::effective_max_depth(options, tree.triangles.size()) - 1;
   while (lo <= hi) {
     const int depth = lo + (hi - lo) / 2;
-    KdBuildOptions shallower = options;
+    KdBuildOptions shallower = compact;
     shallower.max_depth = depth;
     KdTree candidate = build_kdtree(positions, shallower);
     seconds += candidate.stats.build_seconds;

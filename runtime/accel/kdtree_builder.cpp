@@ -129,7 +129,7 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
   // the plain SAH (see KdBuildOptions::plain_sah_triangles): for small nodes the chosen plane's,
   // for the others the best of any candidate's.
   const bool small = count <= static_cast<std::size_t>(std::max(options_.plain_sah_triangles, 0));
-  const float split_cost = small ? plane.plain_cost : plane.lowest_plain_cost;
+  const float split_cost = !options_.compact ? plane.cost : small ? plane.plain_cost : plane.lowest_plain_cost;
   if (!plane.valid() || !(split_cost <= options_.intersection_cost * static_cast<float>(count))) {
     return make_leaf(out, s, begin, end);
   }

@@ -44,9 +44,10 @@ TEST(KdTreeQuality, FastBuildSahWithinTwoPercentOfExact) {
 // against 126.0).
 TEST(KdTreeQuality, PlainSahTestForSmallNodesEndsSliverChains) {
   const auto positions = random_soup(20'000, 8);
-  KdBuildOptions any_plane_pays;
+  KdBuildOptions compact, any_plane_pays;
+  compact.compact = any_plane_pays.compact = true;
   any_plane_pays.plain_sah_triangles = 0;
-  const KdTree tree = build_kdtree(positions);
+  const KdTree tree = build_kdtree(positions, compact);
   const KdTree chains = build_kdtree(positions, any_plane_pays);
   EXPECT_LT(static_cast<double>(tree.stats.node_count), 0.8 * static_cast<double>(chains.stats.node_count))
       << "default " << summary(tree) << "\nany plane pays " << summary(chains);
@@ -152,14 +153,22 @@ TEST(KdTreeQuality, BinnedSearchCutsOffEmptySpaceAtTheGeometry) {
   EXPECT_EQ(plane.right_count, 0u);
 }
 
-TEST(KdTreeQuality, BudgetLowersTheDepthUntilTheTreeFits) {
+// A budget takes the compact tree first, then lowers the compact tree's depth until it fits.
+TEST(KdTreeQuality, BudgetTakesTheCompactTreeThenLowersTheDepthUntilTheTreeFits) {
   const std::vector<glm::vec3> p = random_soup(5'000, 9);
   const KdTree full = build_kdtree(p);
-  const std::size_t budget = full.stats.bytes * 8 / 10;
+  KdBuildOptions compact_options;
+  compact_options.compact = true;
+  const KdTree compact = build_kdtree(p, compact_options);
+  ASSERT_LT(compact.stats.bytes, full.stats.bytes);
+  const KdTree first = build_kdtree_within(p, {}, compact.stats.bytes);
+  EXPECT_EQ(first.stats.node_count, compact.stats.node_count) << "the compact tree where it fits";
+  EXPECT_EQ(first.stats.depth, compact.stats.depth);
+  const std::size_t budget = compact.stats.bytes * 8 / 10;
   const KdTree fitted = build_kdtree_within(p, {}, budget);
   EXPECT_LE(fitted.stats.bytes, budget);
-  EXPECT_LT(fitted.stats.depth, full.stats.depth);
-  EXPECT_GT(fitted.stats.bytes, full.stats.bytes / 2) << "the deepest tree that fits, not any";
+  EXPECT_LT(fitted.stats.depth, compact.stats.depth);
+  EXPECT_GT(fitted.stats.bytes, compact.stats.bytes / 2) << "the deepest tree that fits, not any";
   for (const std::string& e : layout_errors(fitted, KD_MAX_DEPTH)) ADD_FAILURE() << e;
   for (const std::string& e : coverage_errors(fitted)) ADD_FAILURE() << e;
   EXPECT_EQ(build_kdtree_within(p, {}, full.stats.bytes).stats.bytes, full.stats.bytes);
