@@ -84,7 +84,9 @@ std::optional<FilmState> load_checkpoint(const std::filesystem::path& path, std:
   film.sums.resize(std::size_t(h.width) * h.height);
   std::memcpy(film.sums.data(), sums.data(), film_bytes);
   film.pixel_samples.resize(c.pixel_counts);
-  std::memcpy(film.pixel_samples.data(), payload.data() + film_bytes, c.pixel_counts * sizeof(std::uint32_t));
+  // (no counts without --target-error: memcpy from or to a null pointer is undefined even for 0 bytes)
+  if (c.pixel_counts)
+    std::memcpy(film.pixel_samples.data(), payload.data() + film_bytes, c.pixel_counts * sizeof(std::uint32_t));
   return film;
 }
 
