@@ -10,7 +10,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -162,9 +164,20 @@ class Device {
 
   // Builds the embedded program `name` ("naive", "wavefront", "pth", "trace", "radix_sort",
   // "film": kernels/NAME.cl or kernels/cuda/NAME.cu) with `defines`, a space-separated list of
-  // -DNAME[=VALUE] (the scene's -DCOHORT_FEATURE_* defines, the sort's sizes), through the cache.
-  virtual DeviceProgram build_program(const ProgramCache& cache, const std::string& name,
-                                      const std::string& defines = {}) const = 0;
+  // -DNAME[=VALUE] (the scene's -DCOHORT_FEATURE_* defines, the sort's sizes), through the cache;
+  // once per device: a later call with the same name and defines gets the same program (kernels are
+  // still made anew from it) at no cost, as --method auto needs when it sets up every method in one
+  // render (loading a cached binary took ~5 ms per program on the H200).
+  DeviceProgram build_program(const ProgramCache& cache, const std::string& name,
+                              const std::string& defines = {}) const {
+    const std::string key = name + '\n' + defines;
+    const std::lock_guard lock(programs_->mutex);
+    if (const auto it = programs_->built.find(key); it != programs_->built.end())
+      return DeviceProgram{it->second, true, 0.0};
+    DeviceProgram program = compile_program(cache, name, defines);
+    programs_->built.emplace(key, program.object);
+    return program;
+  }
   // The options every program of this device is compiled with, besides `defines` (for the record).
   virtual std::string compile_options() const { return {}; }
 
@@ -181,6 +194,18 @@ class Device {
   // Sets `count` 32-bit words from the start of `to` to `value`.
   virtual void fill(const DeviceBuffer& to, std::uint32_t value, std::size_t count) const = 0;
   virtual void finish() const = 0;
+
+ protected:
+  // build_program's first call for a name and defines: compile, or load the cache's binary.
+  virtual DeviceProgram compile_program(const ProgramCache& cache, const std::string& name,
+                                        const std::string& defines) const = 0;
+
+ private:
+  struct Programs {
+    std::mutex mutex;
+    std::map<std::string, std::shared_ptr<ProgramObject>> built;
+  };
+  std::shared_ptr<Programs> programs_ = std::make_shared<Programs>();
 };
 
 }  // namespace cohort

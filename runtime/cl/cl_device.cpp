@@ -70,7 +70,7 @@ DeviceBuffer ClContext::allocate(const std::string& what, std::size_t bytes, con
   return DeviceBuffer(std::make_shared<ClBufferObject>(buffer(what, bytes, data, flags)), std::max<std::size_t>(bytes, 1));
 }
 
-DeviceProgram ClContext::build_program(const ProgramCache& cache, const std::string& name,
+DeviceProgram ClContext::compile_program(const ProgramCache& cache, const std::string& name,
                                        const std::string& defines) const {
   const ProgramBuild build = build_kernel_program(*this, cache, name + ".cl", defines);
   DeviceProgram p;

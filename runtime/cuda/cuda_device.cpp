@@ -159,8 +159,8 @@ class CudaDevice final : public Device {
     return b;
   }
 
-  DeviceProgram build_program(const ProgramCache& cache, const std::string& name,
-                              const std::string& defines) const override {
+  DeviceProgram compile_program(const ProgramCache& cache, const std::string& name,
+                                const std::string& defines) const override {
     const auto t0 = std::chrono::steady_clock::now();
     const std::string source = expand_kernel_source("cuda/" + name + ".cu");
     const auto options = nvrtc_options(cc_major_, cc_minor_, defines);

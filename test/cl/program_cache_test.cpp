@@ -106,3 +106,21 @@ TEST(ProgramCache, NaiveKernelCompiles) {
   const ProgramBuild b = build_kernel_program(cl, cache, "naive.cl");
   EXPECT_NO_THROW(cl::Kernel(b.program, "render_naive"));
 }
+
+// A device builds each program once: a second request (another method of one --method auto render)
+// gets the same program object back at no cost; other defines are another program.
+TEST(ProgramCache, ADeviceBuildsEachProgramOnce) {
+  TempDir dir;
+  const ClContext cl = cpu_context();
+  const ProgramCache cache(dir.path);
+  const Device& device = cl;
+  const DeviceProgram first = device.build_program(cache, "film");
+  const DeviceProgram again = device.build_program(cache, "film");
+  EXPECT_EQ(again.object, first.object);
+  EXPECT_TRUE(again.from_cache);
+  EXPECT_EQ(again.seconds, 0.0);
+  const DeviceProgram other = device.build_program(cache, "film", "-DCOHORT_TEST_A");
+  EXPECT_NE(other.object, first.object);
+  // kernels of the shared program are separate objects: their arguments do not mix
+  EXPECT_NE(first.kernel("film_add").object(), again.kernel("film_add").object());
+}

@@ -69,7 +69,7 @@ DeviceBuffer HostDevice::allocate(const std::string&, std::size_t bytes, const v
   return DeviceBuffer(std::move(b), bytes);
 }
 
-DeviceProgram HostDevice::build_program(const ProgramCache&, const std::string& name,
+DeviceProgram HostDevice::compile_program(const ProgramCache&, const std::string& name,
                                         const std::string& defines) const {
   const bool key32 = defines.find("-DSORT_KEY64=0") != std::string::npos;
   const HostProgram& program =

@@ -37,8 +37,8 @@ class HostDevice final : public Device {
   const DeviceInfo& info() const override { return info_; }
   DeviceBuffer allocate(const std::string& what, std::size_t bytes, const void* data = nullptr,
                         Access access = Access::read_write) const override;
-  DeviceProgram build_program(const ProgramCache& cache, const std::string& name,
-                              const std::string& defines = {}) const override;
+  DeviceProgram compile_program(const ProgramCache& cache, const std::string& name,
+                                const std::string& defines) const override;
   DeviceEvent launch(const DeviceKernel& kernel, std::size_t items, std::size_t group) const override;
   void write(const DeviceBuffer& to, std::size_t offset, std::size_t bytes, const void* data,
              bool blocking = true) const override;
