@@ -42,10 +42,8 @@ typedef struct ShadowRay {
 } ShadowRay;
 
 /* The pixels a pass renders: every pixel, or (adaptive sampling) the first p->active_pixels entries
- * of `pixel_list`. Work item or item k of a pass stands for the pass's k-th pixel. */
-CO_INLINE uint32_t pass_pixel_count(const RenderParams* p) {
-  return p->active_pixels ? p->active_pixels : p->width * p->height;
-}
+ * of `pixel_list` (pass_pixel_count, types.h). Work item or item k of a pass stands for the pass's
+ * k-th pixel. */
 CO_INLINE uint32_t pass_pixel(uint32_t k, CO_GLOBAL const uint32_t* pixel_list, const RenderParams* p) {
   return p->active_pixels ? pixel_list[k] : k;
 }

@@ -124,6 +124,12 @@ typedef struct RenderParams {
 } RenderParams;
 CO_STATIC_ASSERT(sizeof(RenderParams) == 192, "RenderParams must stay 192 bytes");
 
+/* The pixels a pass renders (its work items per sample): every pixel, or the adaptive pass's
+ * active ones. The kernels and the host's launch sizes both use it. */
+CO_INLINE uint32_t pass_pixel_count(const RenderParams* p) {
+  return p->active_pixels ? p->active_pixels : p->width * p->height;
+}
+
 /* ---- KHR_lights_punctual: point and spot lights (delta lights, NEE only) ---------------------- */
 #define PUNCTUAL_POINT 0u
 #define PUNCTUAL_SPOT 1u

@@ -43,13 +43,11 @@ class PassBudget final : public PassSource {
 RenderResult render_auto(const MethodInputs& in) {
   std::optional<PassJob> own_job;
   PassSource& source = in.control.passes ? *in.control.passes : own_job.emplace(in.settings, in.progress, in.control, 1, 1);
-  RenderControl shared;
-  shared.passes = &source;
   const ProgressCallback quiet;  // the job reports progress
   auto run = [&](const Method& m, PassSource& passes) {
     RenderSettings s = in.settings;
     s.method = m.name;
-    RenderControl c = shared;
+    RenderControl c;  // the job holds the checkpoints, the stop and the resumed film
     c.passes = &passes;
     return m.render(MethodInputs{in.device, in.cache, in.scene, in.params, s, quiet, c});
   };

@@ -34,7 +34,7 @@ RenderResult render_naive(const MethodInputs& in) {
       args_set = true;
     }
     LaunchLog log;
-    log.launch(cl, kernel, "render_naive", p.active_pixels ? p.active_pixels : pixels);
+    log.launch(cl, kernel, "render_naive", pass_pixel_count(&p));
     std::array<std::uint32_t, NAIVE_COUNTER_COUNT> read{};
     cl.read(counters, 0, sizeof(read), read.data());
     cl.write(counters, 0, sizeof(kZeros), kZeros.data(), false);

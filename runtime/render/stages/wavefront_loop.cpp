@@ -75,7 +75,7 @@ RenderResult WavefrontRender::run(const BounceStages& bounce_stages) {
   std::vector<IterationStats> iterations;
   auto pass = [&](const PassBuffers& b, const RenderParams& p) {
     WavefrontPass wp{cl, in_.settings, pool_, kernels_, scene_, b, results_, launches_};
-    const std::uint32_t pass_pixels = p.active_pixels ? p.active_pixels : pixels_;  // pass_pixel_count
+    const std::uint32_t pass_pixels = pass_pixel_count(&p);
     wp.items = pass_pixels * p.samples_per_pass;
     wp.live_bound = pool_.slots;
     cl.write(pool_.counters, 0, sizeof(kZeros), kZeros.data(), false);
