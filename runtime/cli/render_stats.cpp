@@ -57,7 +57,8 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
   if (!r.auto_choice.method.empty())
     j["auto"] = {{"method", r.auto_choice.method},
                  {"probe_seconds", r.auto_choice.probe_seconds},
-                 {"probe_rays_per_second", r.auto_choice.probe_rays_per_second}};
+                 {"probe_rays_per_second", r.auto_choice.probe_rays_per_second},
+                 {"final_rays_per_second", r.auto_choice.final_rays_per_second}};
   nlohmann::json devices = nlohmann::json::array();
   for (const auto& rank : outcome.ranks)
     for (auto d : rank["devices"]) {

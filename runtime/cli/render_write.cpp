@@ -54,12 +54,15 @@ void print_details(const PreparedRender& render, const RenderOutcome& outcome) {
                result.code_layout, result.code_key_bits, result.sort_from_bounce, result.pth_levels,
                result.pth_subtree_nodes);
   if (!result.auto_choice.method.empty()) {
-    std::string rates;
-    for (const auto& [name, rate] : result.auto_choice.probe_rays_per_second)
-      rates += fmt::format("{}{} {:.2f}", rates.empty() ? "" : ", ", name, rate * 1e-6);
-    fmt::print("method auto: {}, the fastest of the methods that rendered one pass each, {:.3f}s of the render "
-               "(Mrays/s: {})\n",
-               result.auto_choice.method, result.auto_choice.probe_seconds, rates);
+    auto rates = [](const std::map<std::string, double>& by_method) {
+      std::string text;
+      for (const auto& [name, rate] : by_method) text += fmt::format("{}{} {:.2f}", text.empty() ? "" : ", ", name, rate * 1e-6);
+      return text.empty() ? std::string("none") : text;
+    };
+    fmt::print("method auto: {}, the fastest of the probe ({:.3f}s of the render; Mrays/s at a quarter wave: {}; "
+               "at a full wave, those within 0.8x: {})\n",
+               result.auto_choice.method, result.auto_choice.probe_seconds,
+               rates(result.auto_choice.probe_rays_per_second), rates(result.auto_choice.final_rays_per_second));
   }
 }
 

@@ -10,17 +10,17 @@ namespace cohort {
 
 const std::vector<Method>& methods() {
   static const std::vector<Method> table = {
-      {"naive", "one megakernel, a work item per pixel (the reference)", false, render_naive},
-      {"wavefront", "wavefront stages over the whole pool, refilled when it drains", true, render_wavefront},
-      {"sc", "wavefront with stream compaction of live paths after every bounce", true, render_sc},
-      {"rg", "wavefront with path regeneration into free slots after every bounce", true, render_rg},
-      {"sc+rg", "stream compaction and path regeneration", true, render_sc_rg},
+      {"naive", "one megakernel, a work item per pixel (the reference)", false, naive_method},
+      {"wavefront", "wavefront stages over the whole pool, refilled when it drains", true, wavefront_method},
+      {"sc", "wavefront with stream compaction of live paths after every bounce", true, sc_method},
+      {"rg", "wavefront with path regeneration into free slots after every bounce", true, rg_method},
+      {"sc+rg", "stream compaction and path regeneration", true, sc_rg_method},
       {"hash", "sc+rg, rays sorted by origin and direction hash before traversal (Garanzha & Loop 2010)", true,
-       render_hash},
+       hash_method},
       {"pth", "sc+rg, rays sorted by the coherence code of a partial traversal in local memory (Wang & Deng)",
-       true, render_pth},
-      {"auto", "every method above renders one pass of the image, timed; the fastest renders the rest", false,
-       render_auto},
+       true, pth_method},
+      {"auto", "the methods above take turns at the first launches, timed; the fastest renders the rest", false,
+       auto_method},
   };
   return table;
 }
@@ -41,7 +41,9 @@ RenderResult render(const Device& cl, const ProgramCache& cache, const DeviceSce
                     const RenderSettings& settings, const ProgressCallback& progress, const RenderControl& control) {
   const Method& method = find_method(settings.method);
   const RenderParams params = make_render_params(scene, camera, settings);
-  return method.render(MethodInputs{cl, cache, scene, params, settings, progress, control});
+  const MethodInputs in{cl, cache, scene, params, settings, progress, control};
+  const std::unique_ptr<PassLauncher> launcher = method.set_up(in);
+  return drive_passes(cl, cache, params, settings, progress, control, *launcher);
 }
 
 }  // namespace cohort

@@ -12,7 +12,7 @@ struct Method {
   const char* name;
   const char* description;
   bool wavefront;  // traces from a pool of path slots, one launch per stage (false: the megakernel)
-  RenderResult (*render)(const MethodInputs&);
+  std::unique_ptr<PassLauncher> (*set_up)(const MethodInputs&);
 };
 
 const std::vector<Method>& methods();

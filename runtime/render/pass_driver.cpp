@@ -80,9 +80,8 @@ void keep_worst(std::vector<StragglerRay>& worst, std::vector<StragglerRay> more
 }
 
 RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const RenderParams& base_params,
-                          const RenderSettings& settings,
-                          std::uint32_t max_samples_per_pass, const ProgressCallback& progress,
-                          const RenderControl& control, const PassFunction& pass) {
+                          const RenderSettings& settings, const ProgressCallback& progress,
+                          const RenderControl& control, PassLauncher& launcher) {
   using Clock = std::chrono::steady_clock;
   RenderResult result;
   std::optional<PassJob> own_job;
@@ -108,7 +107,8 @@ RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const Ren
   RenderParams params = base_params;
   cl.finish();  // buffers placed on the device before the clock starts (their upload is not rendering)
   const auto t0 = Clock::now();
-  std::uint32_t per_launch = 1;
+  const std::uint32_t max_samples_per_pass = launcher.max_samples_per_launch();
+  std::uint32_t per_launch = std::clamp<std::uint32_t>(launcher.first_launch_samples(), 1, max_samples_per_pass);
   source.device_ready();
   while (const auto sample_pass = source.next()) {
     const auto pass_start = Clock::now();
@@ -135,7 +135,7 @@ RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const Ren
       // non-blocking: every pass function waits for its launches before it returns (a blocking
       // read of its counters, or its kernel events), so this write has run before `params` changes
       cl.write(buffers.params, 0, sizeof(params), &params, false);
-      const PassOutput out = pass(buffers, params);
+      const PassOutput out = launcher.launch(buffers, params);
       film.rays += out.rays;
       result.max_nodes_per_ray = std::max(result.max_nodes_per_ray, out.max_steps);
       if (settings.straggler_rays) {
@@ -180,6 +180,7 @@ RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const Ren
   // the image goes to the source before this device (and its memory) goes away
   if (image) source.deliver_image(image->read(cl, pixels));
   result.render_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  launcher.report(result);
   if (own_job) own_job->finish_into(result);
   return result;
 }

@@ -35,17 +35,28 @@ struct PassOutput {
 // Keeps the `keep` rays that visited the most nodes (ties: the earlier), the most first.
 void keep_worst(std::vector<StragglerRay>& worst, std::vector<StragglerRay> more, std::size_t keep);
 
-// Renders samples [params.sample_offset, + params.samples_per_pass) of every pixel of the pass
-// (pass_pixel_count: all, or params.active_pixels of buffers.pixel_list) into the film,
-// and waits for its launches before it returns (the parameters are written without blocking).
-// (One launch of a pass: a pass may take several.)
-using PassFunction = std::function<PassOutput(const PassBuffers&, const RenderParams&)>;
+// One method set up on one device (programs built, buffers allocated): what a launch of a sample
+// pass runs, and the method's own figures once the passes are done.
+class PassLauncher {
+ public:
+  virtual ~PassLauncher() = default;
+  // The most samples of a pass one launch may hold (the method's per-launch buffers).
+  virtual std::uint32_t max_samples_per_launch() const = 0;
+  // The first launch's samples: launches then grow (by doubling) while they are short.
+  virtual std::uint32_t first_launch_samples() const { return 1; }
+  // Renders samples [params.sample_offset, + params.samples_per_pass) of every pixel of the pass
+  // (pass_pixel_count: all, or params.active_pixels of buffers.pixel_list), adding them in sample
+  // order to buffers.film, and waits for its launches before it returns (the parameters are
+  // written without blocking). Launch sizes do not change the image: the film is a running sum.
+  virtual PassOutput launch(const PassBuffers& buffers, const RenderParams& params) = 0;
+  // The method's figures (compile time, per-bounce statistics, its settings) into the result.
+  virtual void report(RenderResult& result) const = 0;
+};
 
-// max_samples_per_pass bounds what one launch may hold (a method's per-launch buffers). `cache`
-// builds the film program when this device keeps the image film (PassSource::device_keeps_image).
+// Drives the passes through `launcher`'s launches, then adds its report. `cache` builds the film
+// program when this device keeps the image film (PassSource::device_keeps_image).
 RenderResult drive_passes(const Device& cl, const ProgramCache& cache, const RenderParams& params,
-                          const RenderSettings& settings,
-                          std::uint32_t max_samples_per_pass, const ProgressCallback& progress,
-                          const RenderControl& control, const PassFunction& pass);
+                          const RenderSettings& settings, const ProgressCallback& progress,
+                          const RenderControl& control, PassLauncher& launcher);
 
 }  // namespace cohort

@@ -53,8 +53,9 @@ struct PassStragglers {
 // What --method auto probed and chose (runtime/render/methods/auto.cpp).
 struct AutoChoice {
   std::string method;                                   // empty: not auto
-  double probe_seconds = 0;  // the probing methods' pass loops (their passes are part of the image)
-  std::map<std::string, double> probe_rays_per_second;  // per method probed
+  double probe_seconds = 0;  // the probing methods' launches (their samples are part of the image)
+  std::map<std::string, double> probe_rays_per_second;  // the screen: every method probed
+  std::map<std::string, double> final_rays_per_second;  // the final round: those near the screen's best
 };
 
 struct RenderResult {

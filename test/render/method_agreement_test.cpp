@@ -254,44 +254,59 @@ TEST(Methods, MalformedCodeLayoutsAreInputErrors) {
   }
 }
 
-// auto has every other method render one pass of the image, then the fastest the rest: naive's
-// image whatever it picks (the probe's passes are part of it), and the probe's time is part of the
-// render's.
+// auto: the other methods take turns at the first launches (a screen at a quarter wave, then a
+// full wave for those within 0.8x of the screen's best), the fastest the rest. Naive's image
+// whatever it picks: the probe's launches are part of the image.
 TEST(Methods, AutoRendersTheNaiveImageWithTheFastestProbedMethod) {
   RenderSettings s = small_box_settings(4u);
-  s.spp = 9;
-  s.pass_samples = 1;  // 9 passes: one for each of the 7 other methods, 2 for the pick
+  s.spp = 20;
+  s.wavefront_size = 2 * s.width * s.height;  // a wave of 2 samples per pixel: the screen takes 1
   const auto path = shipped_scene("cornell-box.gltf");
   const RenderResult reference = render_scene(path, s);
   s.method = "auto";
   const RenderResult r = render_scene(path, s);
   expect_bitwise_equal(reference, r, "auto");
-  EXPECT_EQ(r.samples, 9u);
-  EXPECT_EQ(r.passes, 9u) << "every pass rendered once, by the probe or by the pick";
+  EXPECT_EQ(r.samples, 20u);
+  EXPECT_EQ(r.passes, reference.passes) << "the probe splits launches, not passes";
   const AutoChoice& a = r.auto_choice;
-  ASSERT_EQ(a.probe_rays_per_second.size(), methods().size() - 1);
+  ASSERT_EQ(a.probe_rays_per_second.size(), methods().size() - 1) << "every other method screened";
   EXPECT_EQ(a.probe_rays_per_second.count("auto"), 0u);
-  ASSERT_EQ(a.probe_rays_per_second.count(a.method), 1u) << a.method;
+  double fastest_screen = 0;
   for (const auto& [name, rate] : a.probe_rays_per_second) {
     EXPECT_GT(rate, 0.0) << name;
-    EXPECT_LE(rate, a.probe_rays_per_second.at(a.method)) << name;
+    fastest_screen = std::max(fastest_screen, rate);
   }
+  for (const auto& [name, rate] : a.final_rays_per_second) {
+    EXPECT_GE(a.probe_rays_per_second.at(name), 0.8 * fastest_screen) << name << " should have been screened out";
+    EXPECT_GT(rate, 0.0) << name;
+  }
+  // the pick: the final round's fastest, or the screen's when it left one method
+  const auto& deciding = a.final_rays_per_second.empty() ? a.probe_rays_per_second : a.final_rays_per_second;
+  ASSERT_EQ(deciding.count(a.method), 1u) << a.method;
+  for (const auto& [name, rate] : deciding) EXPECT_LE(rate, deciding.at(a.method)) << name;
+  EXPECT_NE(a.final_rays_per_second.size(), 1u) << "a final round of one method times nothing";
   EXPECT_GT(a.probe_seconds, 0.0);
   EXPECT_GE(r.render_seconds, a.probe_seconds);
+  // the pick's own figures: a wavefront pick reports the shared pool
+  if (find_method(a.method).wavefront) {
+    EXPECT_EQ(r.wavefront_size, std::size_t(s.wavefront_size));
+    EXPECT_FALSE(r.iterations.empty());
+  }
 }
 
-// An image of fewer passes than methods: the first methods probe, one pass each, and the image is
-// still naive's.
-TEST(Methods, AutoWithFewerPassesThanMethodsProbesTheFirstOnes) {
+// A render too short for the whole screen: the first methods probe, a launch each, and the image
+// is still naive's.
+TEST(Methods, AutoWithFewerLaunchesThanMethodsProbesTheFirstOnes) {
   RenderSettings s = small_box_settings(6u);
-  s.pass_samples = 1;  // 3 passes
+  s.pass_samples = 1;  // 3 passes of one sample: one launch each
   const auto path = shipped_scene("cornell-box.gltf");
   const RenderResult reference = render_scene(path, s);
   s.method = "auto";
   const RenderResult r = render_scene(path, s);
-  expect_bitwise_equal(reference, r, "auto with 3 passes");
+  expect_bitwise_equal(reference, r, "auto with 3 launches");
   EXPECT_EQ(r.passes, 3u);
   EXPECT_EQ(r.auto_choice.probe_rays_per_second.size(), 3u);
+  EXPECT_TRUE(r.auto_choice.final_rays_per_second.empty());
   EXPECT_EQ(r.auto_choice.probe_rays_per_second.count(r.auto_choice.method), 1u);
 }
 

@@ -4,9 +4,14 @@
 // one bounce runs.
 #pragma once
 
+#include <memory>
+
+#include "runtime/render/pass_driver.h"
 #include "runtime/render/renderer.h"
 
 namespace cohort {
+
+struct WavefrontMemory;
 
 struct MethodInputs {
   const Device& device;
@@ -16,15 +21,19 @@ struct MethodInputs {
   const RenderSettings& settings;
   const ProgressCallback& progress;
   const RenderControl& control;
+  // The pool and results buffer every wavefront method uses alike: auto sets up one for all the
+  // methods it probes. Null: a wavefront method allocates its own.
+  std::shared_ptr<WavefrontMemory> wavefront_memory = nullptr;
 };
 
-RenderResult render_naive(const MethodInputs& in);
-RenderResult render_wavefront(const MethodInputs& in);
-RenderResult render_sc(const MethodInputs& in);
-RenderResult render_rg(const MethodInputs& in);
-RenderResult render_sc_rg(const MethodInputs& in);
-RenderResult render_hash(const MethodInputs& in);
-RenderResult render_pth(const MethodInputs& in);
-RenderResult render_auto(const MethodInputs& in);
+// Each method sets itself up on the device and returns what drive_passes drives.
+std::unique_ptr<PassLauncher> naive_method(const MethodInputs& in);
+std::unique_ptr<PassLauncher> wavefront_method(const MethodInputs& in);
+std::unique_ptr<PassLauncher> sc_method(const MethodInputs& in);
+std::unique_ptr<PassLauncher> rg_method(const MethodInputs& in);
+std::unique_ptr<PassLauncher> sc_rg_method(const MethodInputs& in);
+std::unique_ptr<PassLauncher> hash_method(const MethodInputs& in);
+std::unique_ptr<PassLauncher> pth_method(const MethodInputs& in);
+std::unique_ptr<PassLauncher> auto_method(const MethodInputs& in);
 
 }  // namespace cohort

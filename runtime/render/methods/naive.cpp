@@ -1,5 +1,6 @@
 // naive: the reference megakernel (kernels/common/naive_kernel.h), one launch per pass; a work item
 // traces its pixel's samples through every bounce.
+#include <algorithm>
 #include <array>
 
 #include "kernels/common/contract.h"
@@ -9,42 +10,61 @@
 #include "runtime/render/pass_driver.h"
 
 namespace cohort {
+namespace {
 
-RenderResult render_naive(const MethodInputs& in) {
-  const auto& [cl, cache, scene, params, settings, progress, control] = in;
-  const DeviceProgram build = cl.build_program(cache, "naive", scene.build_options);
-  DeviceKernel kernel = build.kernel("render_naive");
-  static constexpr std::array<std::uint32_t, NAIVE_COUNTER_COUNT> kZeros{};
-  DeviceBuffer counters = cl.allocate("ray counters", sizeof(kZeros), kZeros.data());
-  const std::uint32_t pixels = settings.width * settings.height;
-  // each pass stays far below 2^32 rays so the 32-bit counter cannot wrap
-  const std::uint32_t max_per_pass = std::max<std::uint32_t>(1, (1u << 24) / std::max<std::uint32_t>(pixels, 1));
-  RenderNaiveArgs args;
-  args.scene = scene.kernel_buffers();
-  args.counters = counters;
-  bool args_set = false;
-  RenderResult result = drive_passes(cl, cache, params, settings, max_per_pass, progress, control,
-                                     [&](const PassBuffers& b, const RenderParams& p) {
-    if (!args_set) {
-      args.params = b.params;
-      args.film = b.film;
-      args.dropped_samples = b.dropped;
-      args.pixel_list = b.pixel_list;
-      args.bind(kernel);
-      args_set = true;
+class NaiveMethod final : public PassLauncher {
+ public:
+  explicit NaiveMethod(const MethodInputs& in)
+      : cl_(in.device),
+        program_(cl_.build_program(in.cache, "naive", in.scene.build_options)),
+        kernel_(program_.kernel("render_naive")),
+        counters_(cl_.allocate("ray counters", sizeof(kZeros), kZeros.data())),
+        // each launch stays far below 2^32 rays so the 32-bit counter cannot wrap
+        max_per_launch_(std::max<std::uint32_t>(
+            1, (1u << 24) / std::max<std::uint32_t>(in.settings.width * in.settings.height, 1))) {
+    args_.scene = in.scene.kernel_buffers();
+    args_.counters = counters_;
+  }
+
+  std::uint32_t max_samples_per_launch() const override { return max_per_launch_; }
+
+  PassOutput launch(const PassBuffers& b, const RenderParams& p) override {
+    if (!args_set_) {
+      args_.params = b.params;
+      args_.film = b.film;
+      args_.dropped_samples = b.dropped;
+      args_.pixel_list = b.pixel_list;
+      args_.bind(kernel_);
+      args_set_ = true;
     }
     LaunchLog log;
-    log.launch(cl, kernel, "render_naive", pass_pixel_count(&p));
+    log.launch(cl_, kernel_, "render_naive", pass_pixel_count(&p));
     std::array<std::uint32_t, NAIVE_COUNTER_COUNT> read{};
-    cl.read(counters, 0, sizeof(read), read.data());
-    cl.write(counters, 0, sizeof(kZeros), kZeros.data(), false);
+    cl_.read(counters_, 0, sizeof(read), read.data());
+    cl_.write(counters_, 0, sizeof(kZeros), kZeros.data(), false);
     PassOutput out{read[NAIVE_COUNTER_RAYS], log.collect(), read[NAIVE_COUNTER_MAX_STEPS]};
     out.host_reads = 1;  // the counters, once the megakernel is done
     return out;
-  });
-  result.compile_seconds = build.seconds;
-  result.compile_from_cache = build.from_cache;
-  return result;
-}
+  }
+
+  void report(RenderResult& result) const override {
+    result.compile_seconds += program_.seconds;
+    result.compile_from_cache = program_.from_cache;
+  }
+
+ private:
+  static constexpr std::array<std::uint32_t, NAIVE_COUNTER_COUNT> kZeros{};
+  const Device& cl_;
+  DeviceProgram program_;
+  DeviceKernel kernel_;
+  DeviceBuffer counters_;
+  std::uint32_t max_per_launch_;
+  RenderNaiveArgs args_;
+  bool args_set_ = false;  // the buffers are the same for every launch of a render
+};
+
+}  // namespace
+
+std::unique_ptr<PassLauncher> naive_method(const MethodInputs& in) { return std::make_unique<NaiveMethod>(in); }
 
 }  // namespace cohort

@@ -7,23 +7,24 @@
 
 namespace cohort {
 
-RenderResult render_pth(const MethodInputs& in) {
-  WavefrontRender render(in, Launches::compacted);
-  SortedTraversal sorted(render, RayOrder::pth);
-  RenderResult result = render.run([&](WavefrontPass& p) {
-    generate(p, Refill::every_bounce);
-    if (sorted.sorts(p)) {
-      sorted.walk(p);  // partial traversal heuristic and coherence code
-      sorted.sort(p);
-      sorted.resume(p);
-    } else {
-      extend(p);
-    }
-    shade(p);
-    finish(p);
-  });
-  sorted.report(result);
-  return result;
+std::unique_ptr<PassLauncher> pth_method(const MethodInputs& in) {
+  auto render = std::make_unique<WavefrontRender>(in, Launches::compacted);
+  auto sorted = std::make_shared<SortedTraversal>(*render, RayOrder::pth);
+  render->set_bounce(
+      [sorted](WavefrontPass& p) {
+        generate(p, Refill::every_bounce);
+        if (sorted->sorts(p)) {
+          sorted->walk(p);  // partial traversal heuristic and coherence code
+          sorted->sort(p);
+          sorted->resume(p);
+        } else {
+          extend(p);
+        }
+        shade(p);
+        finish(p);
+      },
+      [sorted](RenderResult& result) { sorted->report(result); });
+  return render;
 }
 
 }  // namespace cohort

@@ -4,14 +4,15 @@
 
 namespace cohort {
 
-RenderResult render_sc(const MethodInputs& in) {
-  WavefrontRender render(in, Launches::compacted);
-  return render.run([](WavefrontPass& p) {
+std::unique_ptr<PassLauncher> sc_method(const MethodInputs& in) {
+  auto render = std::make_unique<WavefrontRender>(in, Launches::compacted);
+  render->set_bounce([](WavefrontPass& p) {
     generate(p, Refill::when_drained);  // refills once the pool has drained
     extend(p);
     shade(p);
     finish(p);  // compacts the live slots into the queue
   });
+  return render;
 }
 
 }  // namespace cohort

@@ -4,14 +4,15 @@
 
 namespace cohort {
 
-RenderResult render_sc_rg(const MethodInputs& in) {
-  WavefrontRender render(in, Launches::compacted);
-  return render.run([](WavefrontPass& p) {
+std::unique_ptr<PassLauncher> sc_rg_method(const MethodInputs& in) {
+  auto render = std::make_unique<WavefrontRender>(in, Launches::compacted);
+  render->set_bounce([](WavefrontPass& p) {
     generate(p, Refill::every_bounce);  // regeneration
     extend(p);
     shade(p);
     finish(p);  // compaction
   });
+  return render;
 }
 
 }  // namespace cohort

@@ -4,14 +4,15 @@
 
 namespace cohort {
 
-RenderResult render_wavefront(const MethodInputs& in) {
-  WavefrontRender render(in, Launches::all_slots);
-  return render.run([](WavefrontPass& p) {
+std::unique_ptr<PassLauncher> wavefront_method(const MethodInputs& in) {
+  auto render = std::make_unique<WavefrontRender>(in, Launches::all_slots);
+  render->set_bounce([](WavefrontPass& p) {
     generate(p, Refill::when_drained);  // refills once the pool has drained
     extend(p);
     shade(p);
     finish(p);
   });
+  return render;
 }
 
 }  // namespace cohort

@@ -45,19 +45,21 @@ std::uint32_t max_samples_per_pass(const RenderSettings& s, std::uint32_t pixels
 
 }  // namespace
 
+WavefrontMemory::WavefrontMemory(const Device& device, const RenderSettings& s)
+    : max_per_launch(max_samples_per_pass(s, s.width * s.height, device_pool_size(device.info(), s))),
+      // no more slots than a launch has work items
+      pool(device, static_cast<std::uint32_t>(std::min<std::uint64_t>(
+                       device_pool_size(device.info(), s),
+                       std::uint64_t(s.width) * s.height * std::min(max_per_launch, std::max<std::uint32_t>(s.spp, 1))))),
+      results(device.allocate("pass results", std::size_t(s.width) * s.height * max_per_launch * sizeof(co_float4))) {}
+
 // The scene's feature options go to every program that shades or traces, so all methods compile
 // the shared code identically.
 WavefrontRender::WavefrontRender(const MethodInputs& in, Launches launches)
     : in_(in),
       launches_(launches),
       program_(in.device.build_program(in.cache, "wavefront", in.scene.build_options)),
-      pixels_(in.settings.width * in.settings.height),
-      max_per_pass_(max_samples_per_pass(in.settings, pixels_, device_pool_size(in.device.info(), in.settings))),
-      // no more slots than a pass has work items
-      pool_(in.device, static_cast<std::uint32_t>(std::min<std::uint64_t>(
-                           device_pool_size(in.device.info(), in.settings),
-                           std::uint64_t(pixels_) * std::min(max_per_pass_, std::max<std::uint32_t>(in.settings.spp, 1))))),
-      results_(in.device.allocate("pass results", std::size_t(pixels_) * max_per_pass_ * sizeof(co_float4))),
+      memory_(in.wavefront_memory ? in.wavefront_memory : std::make_shared<WavefrontMemory>(in.device, in.settings)),
       scene_(in.scene.kernel_buffers()) {
   kernels_.generate = program_.kernel("wf_generate");
   kernels_.extend = program_.kernel("wf_extend");
@@ -70,78 +72,82 @@ WavefrontRender::WavefrontRender(const MethodInputs& in, Launches launches)
   kernels_.end_bounce = program_.kernel("wf_end_bounce");
 }
 
-RenderResult WavefrontRender::run(const BounceStages& bounce_stages) {
+void WavefrontRender::set_bounce(BounceStages bounce, std::function<void(RenderResult&)> report) {
+  bounce_ = std::move(bounce);
+  report_ = std::move(report);
+}
+
+PassOutput WavefrontRender::launch(const PassBuffers& b, const RenderParams& p) {
   const Device& cl = in_.device;
-  std::vector<IterationStats> iterations;
-  auto pass = [&](const PassBuffers& b, const RenderParams& p) {
-    WavefrontPass wp{cl, in_.settings, pool_, kernels_, scene_, b, results_, launches_};
-    const std::uint32_t pass_pixels = pass_pixel_count(&p);
-    wp.items = pass_pixels * p.samples_per_pass;
-    wp.live_bound = pool_.slots;
-    cl.write(pool_.counters, 0, sizeof(kZeros), kZeros.data(), false);
-    std::vector<LaunchLog> unread;  // the launches of the bounces since the last read, by bounce
-    std::array<std::uint32_t, COUNTER_WORDS> words{};
-    std::size_t interval = first_read_interval(in_.settings, wp.items, pool_.slots);
-    for (bool over = false; !over; ++wp.bounce) {
-      bounce_stages(wp);
-      unread.push_back(std::move(wp.log));
-      wp.log = LaunchLog{};
-      if (unread.size() < interval) continue;
-      // the one blocking read: the counters and the rows of the bounces since the last read
-      cl.read(pool_.counters, 0, sizeof(words), words.data());
-      ++wp.out.host_reads;
-      wp.items_left = words[COUNTER_NEXT_ITEM] < wp.items;
-      if (!wp.items_left) {
-        wp.live_bound = words[COUNTER_QUEUE];  // the paths that survived the last bounce
-        interval = std::min<std::size_t>(interval * 2, BOUNCE_ROWS);
-      }
-      over = !wp.items_left && words[COUNTER_QUEUE] == 0;
-      const std::uint32_t first = wp.bounce + 1 - static_cast<std::uint32_t>(unread.size());
-      for (std::uint32_t k = 0; k < unread.size(); ++k) {
-        const std::uint32_t bounce = first + k;
-        const std::uint32_t* row = &words[COUNTER_COUNT + (bounce % BOUNCE_ROWS) * BOUNCE_FIGURES];
-        const auto seconds = unread[k].collect();
-        add_seconds(wp.out.kernel_seconds, seconds);
-        // a bounce that traced nothing ran after the pass was over (its launches left at once)
-        if (row[BOUNCE_LIVE] == 0) continue;
-        if (iterations.size() <= bounce) iterations.resize(bounce + 1);
-        IterationStats& stats = iterations[bounce];
-        stats.live_paths += row[BOUNCE_LIVE];
-        stats.shadow_rays += row[BOUNCE_SHADOW];
-        stats.simd_groups += row[BOUNCE_SIMD_GROUPS];
-        stats.simd_efficiency_sum += row[BOUNCE_SIMD_SUM] * 1e-4;
-        add_seconds(stats.kernel_seconds, seconds);
-        wp.out.rays += row[BOUNCE_LIVE] + row[BOUNCE_SHADOW];
-      }
-      unread.clear();
+  PathPool& pool = memory_->pool;
+  WavefrontPass wp{cl, in_.settings, pool, kernels_, scene_, b, memory_->results, launches_};
+  const std::uint32_t pass_pixels = pass_pixel_count(&p);
+  wp.items = pass_pixels * p.samples_per_pass;
+  wp.live_bound = pool.slots;
+  cl.write(pool.counters, 0, sizeof(kZeros), kZeros.data(), false);
+  std::vector<LaunchLog> unread;  // the launches of the bounces since the last read, by bounce
+  std::array<std::uint32_t, COUNTER_WORDS> words{};
+  std::size_t interval = first_read_interval(in_.settings, wp.items, pool.slots);
+  for (bool over = false; !over; ++wp.bounce) {
+    bounce_(wp);
+    unread.push_back(std::move(wp.log));
+    wp.log = LaunchLog{};
+    if (unread.size() < interval) continue;
+    // the one blocking read: the counters and the rows of the bounces since the last read
+    cl.read(pool.counters, 0, sizeof(words), words.data());
+    ++wp.out.host_reads;
+    wp.items_left = words[COUNTER_NEXT_ITEM] < wp.items;
+    if (!wp.items_left) {
+      wp.live_bound = words[COUNTER_QUEUE];  // the paths that survived the last bounce
+      interval = std::min<std::size_t>(interval * 2, BOUNCE_ROWS);
     }
-    wp.out.max_steps = words[COUNTER_MAX_STEPS];
-    WfAccumulateArgs accumulate;
-    accumulate.params = b.params;
-    accumulate.results = results_;
-    accumulate.film = b.film;
-    accumulate.dropped_samples = b.dropped;
-    accumulate.pixel_list = b.pixel_list;
-    accumulate.bind(kernels_.accumulate);
-    wp.log.launch(cl, kernels_.accumulate, "accumulate", pass_pixels);
-    add_seconds(wp.out.kernel_seconds, wp.log.collect());
-    return std::move(wp.out);
-  };
-  RenderResult result =
-      drive_passes(cl, in_.cache, in_.params, in_.settings, max_per_pass_, in_.progress, in_.control, pass);
-  result.compile_seconds = program_.seconds;
+    over = !wp.items_left && words[COUNTER_QUEUE] == 0;
+    const std::uint32_t first = wp.bounce + 1 - static_cast<std::uint32_t>(unread.size());
+    for (std::uint32_t k = 0; k < unread.size(); ++k) {
+      const std::uint32_t bounce = first + k;
+      const std::uint32_t* row = &words[COUNTER_COUNT + (bounce % BOUNCE_ROWS) * BOUNCE_FIGURES];
+      const auto seconds = unread[k].collect();
+      add_seconds(wp.out.kernel_seconds, seconds);
+      // a bounce that traced nothing ran after the pass was over (its launches left at once)
+      if (row[BOUNCE_LIVE] == 0) continue;
+      if (iterations_.size() <= bounce) iterations_.resize(bounce + 1);
+      IterationStats& stats = iterations_[bounce];
+      stats.live_paths += row[BOUNCE_LIVE];
+      stats.shadow_rays += row[BOUNCE_SHADOW];
+      stats.simd_groups += row[BOUNCE_SIMD_GROUPS];
+      stats.simd_efficiency_sum += row[BOUNCE_SIMD_SUM] * 1e-4;
+      add_seconds(stats.kernel_seconds, seconds);
+      wp.out.rays += row[BOUNCE_LIVE] + row[BOUNCE_SHADOW];
+    }
+    unread.clear();
+  }
+  wp.out.max_steps = words[COUNTER_MAX_STEPS];
+  WfAccumulateArgs accumulate;
+  accumulate.params = b.params;
+  accumulate.results = memory_->results;
+  accumulate.film = b.film;
+  accumulate.dropped_samples = b.dropped;
+  accumulate.pixel_list = b.pixel_list;
+  accumulate.bind(kernels_.accumulate);
+  wp.log.launch(cl, kernels_.accumulate, "accumulate", pass_pixels);
+  add_seconds(wp.out.kernel_seconds, wp.log.collect());
+  return std::move(wp.out);
+}
+
+void WavefrontRender::report(RenderResult& result) const {
+  result.compile_seconds += program_.seconds;
   result.compile_from_cache = program_.from_cache;
   std::uint64_t groups = 0;
   double efficiency = 0;
-  for (const auto& i : iterations) {
+  for (const auto& i : iterations_) {
     groups += i.simd_groups;
     efficiency += i.simd_efficiency_sum;
   }
   result.simd_efficiency = groups ? efficiency / double(groups) : 0;
-  result.iterations = std::move(iterations);
-  result.wavefront_size = pool_.slots;
+  result.iterations = iterations_;
+  result.wavefront_size = memory_->pool.slots;
   result.path_state_bytes = WAVEFRONT_SLOT_BYTES;
-  return result;
+  if (report_) report_(result);
 }
 
 }  // namespace cohort

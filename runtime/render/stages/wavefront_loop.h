@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -56,23 +57,40 @@ struct WavefrontPass {
 // A method's bounce: enqueues its stages. The loop, not the method, decides when the pass is over.
 using BounceStages = std::function<void(WavefrontPass&)>;
 
-class WavefrontRender {
+// What every wavefront method allocates alike: the pool and one radiance per work item of a
+// launch. Sized for the render (not the method), so the methods auto probes share one.
+struct WavefrontMemory {
+  std::uint32_t max_per_launch = 0;  // samples per pixel one launch holds
+  PathPool pool;
+  DeviceBuffer results;
+
+  WavefrontMemory(const Device& device, const RenderSettings& settings);
+};
+
+class WavefrontRender final : public PassLauncher {
  public:
   WavefrontRender(const MethodInputs& in, Launches launches);
 
+  // What one bounce runs, and the figures the method adds to the loop's (e.g. its sort's).
+  void set_bounce(BounceStages bounce, std::function<void(RenderResult&)> report = {});
+
   const MethodInputs& inputs() const { return in_; }
-  const PathPool& pool() const { return pool_; }
-  RenderResult run(const BounceStages& bounce);
+  const PathPool& pool() const { return memory_->pool; }
+
+  std::uint32_t max_samples_per_launch() const override { return memory_->max_per_launch; }
+  PassOutput launch(const PassBuffers& buffers, const RenderParams& params) override;
+  void report(RenderResult& result) const override;
 
  private:
-  const MethodInputs& in_;
+  MethodInputs in_;
   Launches launches_;
   DeviceProgram program_;
-  std::uint32_t pixels_ = 0, max_per_pass_ = 0;
-  PathPool pool_;
-  DeviceBuffer results_;
+  std::shared_ptr<WavefrontMemory> memory_;
   WavefrontKernels kernels_;
   SceneBuffers scene_;
+  BounceStages bounce_;
+  std::function<void(RenderResult&)> report_;
+  std::vector<IterationStats> iterations_;
 };
 
 }  // namespace cohort
