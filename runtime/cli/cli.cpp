@@ -28,8 +28,11 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
                  "rank:NAME (under MPI, one matching device per rank of a machine)");
   cmd.add_option("--backend", r.backend, "Device backend: opencl or cuda (the same kernels either way)")
       ->check(CLI::IsMember({"opencl", "cuda"}));
+  // auto by default: it renders with the fastest method on this scene and device, and its probe's
+  // launches are part of the image (runtime/render/methods/auto.cpp)
   cmd.add_option("--method", r.settings.method, "Rendering method: " + fmt::format("{}", fmt::join(method_names(), ", ")))
-      ->check(CLI::IsMember(method_names()));
+      ->check(CLI::IsMember(method_names()))
+      ->default_val("auto");
   cmd.add_option("--wavefront-size", r.settings.wavefront_size,
                  "Path slots of the wavefront methods (default: chosen from the device)");
   cmd.add_option("--code", r.settings.code,

@@ -60,7 +60,7 @@ void print_details(const PreparedRender& render, const RenderOutcome& outcome) {
       return text.empty() ? std::string("none") : text;
     };
     fmt::print("method auto: {}, the fastest of the probe ({:.3f}s of the render; Mrays/s at a quarter wave: {}; "
-               "at a full wave, those within 0.8x: {})\n",
+               "at a full wave, the fastest within 0.9x: {})\n",
                result.auto_choice.method, result.auto_choice.probe_seconds,
                rates(result.auto_choice.probe_rays_per_second), rates(result.auto_choice.final_rays_per_second));
   }

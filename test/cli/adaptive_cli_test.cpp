@@ -109,7 +109,13 @@ TEST(Adaptive, SameBitsTwiceForEveryMethodAndOnTwoDevices) {
   EXPECT_EQ(a, read_all(dir.path / "b.exr")) << "two runs";
   const CommandResult pth = run(line + "--method pth -o " + (dir.path / "pth").string());
   ASSERT_EQ(pth.code, 0) << pth.output;
-  EXPECT_EQ(a, read_all(dir.path / "pth.exr")) << "naive and pth";
+  EXPECT_EQ(a, read_all(dir.path / "pth.exr")) << "the default method and pth";
+  // auto's probe splits launches by samples (not by rows: adaptive passes list their pixels)
+  for (const char* method : {"naive", "auto"}) {
+    const CommandResult other = run(line + "--method " + method + " -o " + (dir.path / method).string());
+    ASSERT_EQ(other.code, 0) << other.output;
+    EXPECT_EQ(a, read_all(dir.path / (std::string(method) + ".exr"))) << method;
+  }
   EXPECT_NE(pth.output.find("tiles below the target error"), std::string::npos) << pth.output;
 
   const std::string two = "env 'POCL_DEVICES=pthread pthread' ";

@@ -1,14 +1,18 @@
 // auto: the other methods take turns at the launches of the image's first passes, timed; the
 // fastest renders the rest. Every method adds the same bits for the same samples (pass_driver.h:
-// a launch's samples join the pass film in sample order), so the probe's launches are part of the
-// image, not thrown away: the probe costs only the difference between the slower methods and the
-// fastest on the samples each probed (DECISIONS.md, round 2: its time counts).
+// a launch's samples join the pass film in sample order, and a pixel's samples do not depend on
+// which other pixels a launch holds), so the probe's launches are part of the image, not thrown
+// away: the probe costs only the difference between the slower methods and the fastest on the
+// samples each probed (DECISIONS.md, round 2: its time counts).
 //
 // Two rounds keep that difference small. The screen gives each method a quarter of a wave (the
-// samples per pixel that fill the wavefront pool): enough to tell a method that is far behind
-// (the megakernel on a GPU, the wavefront on a CPU), whose full wave would cost the most. The
-// final gives each method within kKeep of the screen's best one full wave, the size at which
-// sorting pays or does not, and picks the fastest there. All methods share one pool.
+// samples per pixel that fill the wavefront pool): enough to tell a method that is far behind,
+// whose full wave would cost the most. The megakernel, first in the table, is screened on one
+// sample of every 8th row (the next method renders the other rows of that sample): it keeps no
+// pool, so a fraction of the image times it, and on a GPU its one-sample launch is the slowest of
+// the screen (each work item's whole path: the launch waits for the longest). The final gives
+// the (at most kFinalists) methods within kKeep of the screen's best one full wave each, the size
+// at which sorting pays or does not, and picks the fastest there. All methods share one pool.
 #include <algorithm>
 #include <chrono>
 #include <deque>
@@ -21,8 +25,12 @@
 namespace cohort {
 namespace {
 
-// Methods at least this fraction of the screen's best rate go on to the final round.
-constexpr double kKeep = 0.8;
+// Methods at least this fraction of the screen's best rate go on to the final round, at most
+// kFinalists of them (the fastest of the screen).
+constexpr double kKeep = 0.9;
+constexpr std::size_t kFinalists = 3;
+// The first method of the screen renders every kScreenRowStride-th row of one sample.
+constexpr std::uint32_t kScreenRowStride = 8;
 
 struct Candidate {
   const Method* method = nullptr;
@@ -58,6 +66,17 @@ class AutoMethod final : public PassLauncher {
       queue_.push_back(c.get());
       candidates_.push_back(std::move(c));
     }
+    // the first screen step's pixel lists: every 8th row, and the other rows
+    std::vector<std::uint32_t> rows, rest;
+    for (std::uint32_t y = 0; y < in.settings.height; ++y)
+      for (std::uint32_t x = 0; x < in.settings.width; ++x)
+        (y % kScreenRowStride == 0 ? rows : rest).push_back(y * in.settings.width + x);
+    if (!rest.empty() && queue_.size() >= 2) {
+      screen_rows_ = {device_.allocate("auto's screen rows", rows.size() * 4, rows.data(), Access::read_only),
+                      static_cast<std::uint32_t>(rows.size())};
+      other_rows_ = {device_.allocate("auto's other rows", rest.size() * 4, rest.data(), Access::read_only),
+                     static_cast<std::uint32_t>(rest.size())};
+    }
   }
 
   std::uint32_t max_samples_per_launch() const override { return max_per_launch_; }
@@ -68,26 +87,23 @@ class AutoMethod final : public PassLauncher {
     PassOutput total;
     for (std::uint32_t done = 0; done < p.samples_per_pass;) {
       const std::uint32_t left = p.samples_per_pass - done;
-      Candidate* c = chosen_ ? chosen_ : queue_.front();
-      const std::uint32_t samples = chosen_ ? left : std::min(round_samples(p), left);
-      if (samples != p.samples_per_pass) {
-        // the launch's own parameters; not blocking: every launch waits for its commands, so this
-        // write has run before sub_params_ changes again
-        sub_params_ = p;
-        sub_params_.sample_offset = p.sample_offset + done;
-        sub_params_.samples_per_pass = samples;
-        device_.write(b.params, 0, sizeof(sub_params_), &sub_params_, false);
+      if (chosen_) {
+        add_output(total, run(*chosen_, b, p, done, left), settings_.straggler_rays);
+        break;
       }
-      const auto start = std::chrono::steady_clock::now();
-      PassOutput out = c->launcher->launch(b, samples == p.samples_per_pass ? p : sub_params_);
-      if (!chosen_) {
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        probe_seconds_ += seconds;
-        (screening_ ? c->screen_rate : c->final_rate) = seconds > 0 ? double(out.rays) / seconds : 0.0;
-        queue_.pop_front();
-        if (queue_.empty()) end_round();
+      // the first screen step splits one sample by rows (not in adaptive passes: they list pixels)
+      if (screening_ && !split_done_ && screen_rows_.pixels && p.active_pixels == 0) {
+        split_done_ = true;
+        for (const PixelRows* rows : {&screen_rows_, &other_rows_}) {
+          PassBuffers subset = b;
+          subset.pixel_list = rows->list;
+          add_output(total, probe(subset, p, done, 1, rows->pixels), settings_.straggler_rays);
+        }
+        done += 1;
+        continue;
       }
-      add_output(total, std::move(out), settings_.straggler_rays);
+      const std::uint32_t samples = std::min(round_samples(p), left);
+      add_output(total, probe(b, p, done, samples, p.active_pixels), settings_.straggler_rays);
       done += samples;
     }
     return total;
@@ -113,6 +129,39 @@ class AutoMethod final : public PassLauncher {
   }
 
  private:
+  // Samples [done, done + samples) of the launch `p` by `c` (its own parameters when they differ).
+  PassOutput run(Candidate& c, const PassBuffers& b, const RenderParams& p, std::uint32_t done, std::uint32_t samples,
+                 std::uint32_t active_pixels) {
+    const bool same = done == 0 && samples == p.samples_per_pass && active_pixels == p.active_pixels;
+    if (!same) {
+      // not blocking: every launch waits for its commands, so this write has run before
+      // sub_params_ changes again
+      sub_params_ = p;
+      sub_params_.sample_offset = p.sample_offset + done;
+      sub_params_.samples_per_pass = samples;
+      sub_params_.active_pixels = active_pixels;
+      device_.write(b.params, 0, sizeof(sub_params_), &sub_params_, false);
+    }
+    return c.launcher->launch(b, same ? p : sub_params_);
+  }
+  PassOutput run(Candidate& c, const PassBuffers& b, const RenderParams& p, std::uint32_t done, std::uint32_t samples) {
+    return run(c, b, p, done, samples, p.active_pixels);
+  }
+
+  // The next method of the round renders a launch, timed.
+  PassOutput probe(const PassBuffers& b, const RenderParams& p, std::uint32_t done, std::uint32_t samples,
+                   std::uint32_t active_pixels) {
+    Candidate& c = *queue_.front();
+    const auto start = std::chrono::steady_clock::now();
+    PassOutput out = run(c, b, p, done, samples, active_pixels);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    probe_seconds_ += seconds;
+    (screening_ ? c.screen_rate : c.final_rate) = seconds > 0 ? double(out.rays) / seconds : 0.0;
+    queue_.pop_front();
+    if (queue_.empty()) end_round();
+    return out;
+  }
+
   // A wave: the samples per pixel of this pass that fill the pool (at least one); the screen
   // takes a quarter of it.
   std::uint32_t round_samples(const RenderParams& p) const {
@@ -141,6 +190,9 @@ class AutoMethod final : public PassLauncher {
     const double fastest = best(true)->screen_rate;
     for (const auto& c : candidates_)
       if (c->screen_rate >= kKeep * fastest) queue_.push_back(c.get());
+    std::stable_sort(queue_.begin(), queue_.end(),
+                     [](const Candidate* x, const Candidate* y) { return x->screen_rate > y->screen_rate; });
+    if (queue_.size() > kFinalists) queue_.resize(kFinalists);
     if (queue_.size() == 1) {  // nothing to compare: the screen's pick
       chosen_ = queue_.front();
       queue_.clear();
@@ -151,6 +203,12 @@ class AutoMethod final : public PassLauncher {
   const RenderSettings& settings_;
   std::vector<std::unique_ptr<Candidate>> candidates_;
   std::deque<Candidate*> queue_;  // the methods still to be timed in this round, in table order
+  struct PixelRows {
+    DeviceBuffer list;
+    std::uint32_t pixels = 0;
+  };
+  PixelRows screen_rows_, other_rows_;
+  bool split_done_ = false;
   bool screening_ = true;
   Candidate* chosen_ = nullptr;
   std::uint32_t pool_slots_ = 1;

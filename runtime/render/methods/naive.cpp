@@ -29,14 +29,12 @@ class NaiveMethod final : public PassLauncher {
   std::uint32_t max_samples_per_launch() const override { return max_per_launch_; }
 
   PassOutput launch(const PassBuffers& b, const RenderParams& p) override {
-    if (!args_set_) {
-      args_.params = b.params;
-      args_.film = b.film;
-      args_.dropped_samples = b.dropped;
-      args_.pixel_list = b.pixel_list;
-      args_.bind(kernel_);
-      args_set_ = true;
-    }
+    // bound at every launch: auto hands a launch its own pixel list
+    args_.params = b.params;
+    args_.film = b.film;
+    args_.dropped_samples = b.dropped;
+    args_.pixel_list = b.pixel_list;
+    args_.bind(kernel_);
     LaunchLog log;
     log.launch(cl_, kernel_, "render_naive", pass_pixel_count(&p));
     std::array<std::uint32_t, NAIVE_COUNTER_COUNT> read{};
@@ -60,7 +58,6 @@ class NaiveMethod final : public PassLauncher {
   DeviceBuffer counters_;
   std::uint32_t max_per_launch_;
   RenderNaiveArgs args_;
-  bool args_set_ = false;  // the buffers are the same for every launch of a render
 };
 
 }  // namespace
