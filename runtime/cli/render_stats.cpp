@@ -126,7 +126,8 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
                      {"max_pixel_spp", adaptive.max_pixel_samples},
                      {"tiles", adaptive.tiles},
                      {"tiles_stopped_early", adaptive.tiles_stopped},
-                     {"tiles_below_target", adaptive.tiles_converged}};
+                     {"tiles_below_target", adaptive.tiles_converged},
+                     {"estimated_error", adaptive.estimated_error}};
   j["dropped_samples"] = r.dropped_samples;
   // the round trips inside a pass (the wavefront loop reads its counters every few bounces), and
   // the device commands of its ray sorts
