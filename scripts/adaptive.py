@@ -13,7 +13,9 @@ the render loop's seconds (--stats render_seconds; load, build and compile exclu
 point adds the median first-hit AOV render and denoiser seconds that `render --denoise` prints.
 Error: relative MSE (per pixel and channel (x - ref)^2 / (ref^2 + 0.01)) and mean FLIP (HDR).
 Equal-time ratios: an adaptive point's error over uniform's at the same seconds, interpolated
-(log-log) between the uniform points of the same run.
+(log-log) between the uniform points of the same run; the same at equal CPU seconds (--stats
+render_cpu_seconds: the process's CPU time over the render loop, every thread's), which a loaded
+machine disturbs less than the wall time.
 
 The Sponza references are Cohort renders with seed 1, the measured renders seed 2: independent,
 so the reference's own noise adds a constant to every curve's expected relative MSE. The script
@@ -80,8 +82,10 @@ def render_once(args, scene, meta, spp, seed, out, extra):
 def render_points(args, scene, meta, extra, jobs):
     """Renders every (out, spp, extra options) job --repeats times, the repeats in turn (one round
     of every job, then the next), so that the machine's load drifts over all of them alike.
-    Returns per job (stats, median render seconds, median denoise seconds or None)."""
+    Returns per job (stats, median render seconds, median render CPU seconds, median denoise seconds
+    or None)."""
     seconds = [[] for _ in jobs]
+    cpu = [[] for _ in jobs]
     denoise = [[] for _ in jobs]
     stats, images = [None] * len(jobs), [None] * len(jobs)
     for _ in range(args.repeats):
@@ -91,15 +95,17 @@ def render_points(args, scene, meta, extra, jobs):
                 raise RuntimeError(f"{out}: a repeat gave other bits")
             images[i] = image
             seconds[i].append(stats[i]["timings"]["render_seconds"])
+            cpu[i].append(stats[i]["timings"]["render_cpu_seconds"])
             if d is not None:
                 denoise[i].append(d)
-    return [(stats[i], float(np.median(seconds[i])), float(np.median(denoise[i])) if denoise[i] else None)
-            for i in range(len(jobs))]
+    return [(stats[i], float(np.median(seconds[i])), float(np.median(cpu[i])),
+             float(np.median(denoise[i])) if denoise[i] else None) for i in range(len(jobs))]
 
 
-def uniform_at(points, seconds, key):
-    """Uniform's `key` at `seconds`, interpolated log-log between its points; None outside them."""
-    pts = sorted((p["seconds"], p[key]) for p in points)
+def uniform_at(points, seconds, key, clock="seconds"):
+    """Uniform's `key` at `seconds` of `clock` (seconds: wall, cpu_seconds: CPU), interpolated
+    log-log between its points; None outside them."""
+    pts = sorted((p[clock], p[key]) for p in points)
     for (t0, e0), (t1, e1) in zip(pts, pts[1:]):
         if t0 <= seconds <= t1 and t1 > t0:
             w = np.log(seconds / t0) / np.log(t1 / t0)
@@ -137,25 +143,26 @@ def measure(args, tmp, entry):
     jobs += [(os.path.join(tmp, f"{name}-adaptive-{target}.exr"), args.adaptive_spp,
               ["--target-error", str(target), "--denoise"]) for target in args.targets]
     results = render_points(args, scene, meta, extra, jobs)
-    for (out, spp, options), (stats, seconds, denoise) in zip(jobs, results):
+    for (out, spp, options), (stats, seconds, cpu, denoise) in zip(jobs, results):
         rel, fl = errors(flip.load(out).astype(np.float64), reference)
         if not options:
-            rows["uniform"].append({"spp": spp, "seconds": seconds, "relative_mse": rel, "flip": fl})
-            print(f"{name} uniform {spp:5d} spp: {seconds:7.3f}s relMSE {rel:.5f} FLIP {fl:.4f}")
+            rows["uniform"].append({"spp": spp, "seconds": seconds, "cpu_seconds": cpu, "relative_mse": rel, "flip": fl})
+            print(f"{name} uniform {spp:5d} spp: {seconds:7.3f}s ({cpu:.3f}s CPU) relMSE {rel:.5f} FLIP {fl:.4f}")
             continue
         target = float(options[1])
         a = stats["adaptive"]
-        point = {"target_error": target, "seconds": seconds, "mean_spp": a["mean_spp"],
+        point = {"target_error": target, "seconds": seconds, "cpu_seconds": cpu, "mean_spp": a["mean_spp"],
                  "estimated_error": a["estimated_error"], "tiles_stopped_early": a["tiles_stopped_early"],
                  "tiles": a["tiles"], "relative_mse": rel, "flip": fl}
         rows["adaptive"].append(point)
-        print(f"{name} adaptive E={target}: {seconds:7.3f}s mean {a['mean_spp']:.1f} spp, estimated error "
+        print(f"{name} adaptive E={target}: {seconds:7.3f}s ({cpu:.3f}s CPU) mean {a['mean_spp']:.1f} spp, estimated error "
               f"{a['estimated_error']:.4f}, {a['tiles_stopped_early']}/{a['tiles']} tiles stopped early, "
               f"relMSE {rel:.5f} FLIP {fl:.4f}")
         if denoise is not None:
             rel, fl = errors(flip.load(out[: -len(".exr")] + ".denoised.exr").astype(np.float64), reference)
-            rows["adaptive+denoised"].append(dict(point, seconds=seconds + denoise, denoise_seconds=denoise,
-                                                  relative_mse=rel, flip=fl))
+            # the denoiser's and AOVs' seconds are wall time (they run after the render loop)
+            rows["adaptive+denoised"].append(dict(point, seconds=seconds + denoise, cpu_seconds=cpu + denoise,
+                                                  denoise_seconds=denoise, relative_mse=rel, flip=fl))
             print(f"{name} adaptive+denoised E={target}: {seconds + denoise:7.3f}s relMSE {rel:.5f} FLIP {fl:.4f}")
     load.append(os.getloadavg()[0])
     for series in ("adaptive", "adaptive+denoised"):
@@ -163,10 +170,13 @@ def measure(args, tmp, entry):
             for key in ("relative_mse", "flip"):
                 u = uniform_at(rows["uniform"], p["seconds"], key)
                 p[f"{key}_vs_uniform_at_equal_time"] = p[key] / u if u else None
-            r = p["relative_mse_vs_uniform_at_equal_time"]
-            f = p["flip_vs_uniform_at_equal_time"]
+                u = uniform_at(rows["uniform"], p["cpu_seconds"], key, "cpu_seconds")
+                p[f"{key}_vs_uniform_at_equal_cpu_time"] = p[key] / u if u else None
+            show = lambda k: "%.3fx" % p[k] if p[k] else "n/a"  # noqa: E731
             print(f"{name} {series} E={p['target_error']}: {p['seconds']:.2f}s, relative MSE "
-                  f"{'%.3f' % r if r else 'n/a'}x uniform's at that time, FLIP {'%.3f' % f if f else 'n/a'}x")
+                  f"{show('relative_mse_vs_uniform_at_equal_time')} uniform's at that time "
+                  f"({show('relative_mse_vs_uniform_at_equal_cpu_time')} at that CPU time), FLIP "
+                  f"{show('flip_vs_uniform_at_equal_time')} ({show('flip_vs_uniform_at_equal_cpu_time')})")
     fit = {}
     if ref_exr.startswith(args.reference_cache):
         a, floor = reference_floor(rows["uniform"])
@@ -186,12 +196,12 @@ def chart(results, path):
             ax = axes[row][col]
             for series, points in r["series"].items():
                 if points:
-                    pts = sorted((p["seconds"], p[key]) for p in points)
+                    pts = sorted((p.get("cpu_seconds", p["seconds"]), p[key]) for p in points)
                     ax.plot(*zip(*pts), styles[series], label=series, ms=4, lw=1)
             ax.set_xscale("log")
             ax.set_yscale("log")
             ax.xaxis.set_minor_formatter(NullFormatter())
-            ax.set_xlabel("seconds (render loop; + AOVs and denoiser when denoised)")
+            ax.set_xlabel("CPU seconds of the render loop (+ AOVs and denoiser)", fontsize=8)
             ax.set_ylabel(label)
             ax.grid(True, which="both", alpha=0.3)
             if row == 0:

@@ -112,7 +112,7 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
                         {"total", memory.total()}, {"bytes_per_triangle", static_cast<double>(memory.total()) / kept}};
   j["timings"] = {{"load_seconds", prepared.load_seconds}, {"build_seconds", ts.build_seconds},
                   {"compile_seconds", r.compile_seconds}, {"compile_from_cache", r.compile_from_cache},
-                  {"render_seconds", r.render_seconds}};
+                  {"render_seconds", r.render_seconds}, {"render_cpu_seconds", r.render_cpu_seconds}};
   j["rays"] = r.rays;
   j["rays_per_second"] = r.render_seconds > 0 ? static_cast<double>(r.rays) / r.render_seconds : 0.0;
   const AdaptiveFigures adaptive = adaptive_figures(outcome.film, cmd.settings.target_error);
