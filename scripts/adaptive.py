@@ -3,13 +3,15 @@
 denoised (--denoise), written to docs/adaptive-error-vs-time.png and docs/adaptive.json.
 
 Scenes: the Cornell box against the Mitsuba 3 reference (test/reference/cornell-box-mitsuba-rgb,
-128x128, depth 6); the Crytek Sponza interior (the benchmark protocol's interior view, white sky)
-and a crop of it looking up at the open roof (the view of the adaptive test), each against a long
-Cohort render (there is no Mitsuba reference of Sponza in the repo; bench-charts.py does the same).
+128x128, depth 6) and the Crytek Sponza interior (the benchmark protocol's interior view, white
+sky) against a long Cohort render (there is no Mitsuba reference of Sponza in the repo;
+bench-charts.py does the same); --scenes sponza-roof adds a crop looking up at the open roof,
+where the sky's clean tiles make any stopping rule win.
 Uniform renders take 16, 32, ... --max-spp samples per pixel; adaptive renders --target-error E for
 E in --targets with --spp --adaptive-spp as each pixel's most. Every render runs --repeats times
 (the image is the same bits each time: only its time varies) and a point's time is the median of
-the render loop's seconds (--stats render_seconds; load, build and compile excluded); a denoised
+the render loop's seconds (--stats render_seconds and render_cpu_seconds; load, build and compile
+excluded; the chart's x axis is the CPU seconds); a denoised
 point adds the median first-hit AOV render and denoiser seconds that `render --denoise` prints.
 Error: relative MSE (per pixel and channel (x - ref)^2 / (ref^2 + 0.01)) and mean FLIP (HDR).
 Equal-time ratios: an adaptive point's error over uniform's at the same seconds, interpolated

@@ -130,8 +130,8 @@ TEST(AdaptiveJob, StopsCleanTilesCountsEachPixelAndEndsWhenEveryTileIsDone) {
   std::vector<std::uint32_t> rendered;  // pixels of each pass handed out
   while (const auto pass = job.next()) {
     // the left half is constant (no more samples needed at once); the right half's samples vary
-    // (variance ~0.5, relative standard deviation ~1.4 per sample, ~0.7 the image's mean: its
-    // share of E = 0.05 asks for ~400 samples): it goes on to --spp
+    // (variance ~0.5: relative standard deviation ~1.4 per sample, the image's mean ~0.7, so
+    // 1.4 * 0.7 / 0.05^2 ~ 400 samples): it goes on to --spp
     PassFilm film{*pass, std::vector<co_float4>(128), 0, 0};
     const std::size_t count = pass->pixels ? pass->pixels->size() : 128;
     rendered.push_back(static_cast<std::uint32_t>(count));
