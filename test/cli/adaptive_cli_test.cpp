@@ -101,6 +101,7 @@ TEST(Adaptive, EmptyBackgroundStopsAfterTheFirstRoundAndTheBoxTakesTheRest) {
   EXPECT_GE(adaptive["tiles_stopped_early"].get<std::size_t>(), background);
   EXPECT_EQ(adaptive["max_pixel_spp"].get<int>(), 128);
   EXPECT_EQ(stats["image"]["spp"].get<int>(), 128) << "the image's spp is the most any pixel took";
+  EXPECT_GT(stats["timings"]["render_cpu_seconds"].get<double>(), 0.0) << "the render loop's CPU time (the charts' clock)";
 }
 
 TEST(Adaptive, SameBitsTwiceForEveryMethodAndOnTwoDevices) {
