@@ -3,7 +3,8 @@
  * along the camera ray. One work item per pixel traces the camera rays of this launch's samples,
  * the very rays path_start gives the beauty's samples, and adds them to its sums in sample order:
  * the AOVs are the same bits whatever method rendered the beauty and however the samples were
- * split into launches.
+ * split into launches. A pixel stops at its own sample count (aov_samples: adaptive sampling's
+ * pixels differ), so its AOVs average the samples its beauty has.
  *
  * albedo: rgb summed over the samples (an escaped ray adds 0), w the depth summed over the
  * samples that hit; normal: xyz summed likewise, w the number of samples that hit. */
@@ -21,7 +22,10 @@ CO_KERNEL render_aov(CO_PARAMS(RENDER_AOV_PARAMS)) {
 
   co_float4 albedo = aov_albedo[pixel];
   co_float4 normal = aov_normal[pixel];
-  for (uint32_t i = 0u; i < p.samples_per_pass; ++i) {
+  uint32_t own = aov_samples[pixel];
+  uint32_t count = own > p.sample_offset ? own - p.sample_offset : 0u;
+  if (count > p.samples_per_pass) count = p.samples_per_pass;
+  for (uint32_t i = 0u; i < count; ++i) {
     PathState st = path_start(&p, pixel, p.sample_offset + i);
     HitOut hit = kd_trace(&s.tree, st.org, st.dir, 0.0f, INFINITY, 0);
     if (hit.triangle == HIT_NONE) continue;

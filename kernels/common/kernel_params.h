@@ -72,7 +72,9 @@
   P(IN, uint32_t, pixel_list)
 
 /* ---- aov_kernel.h: first-hit albedo, normal and depth, summed per pixel ------------------------ */
-#define RENDER_AOV_PARAMS(P, G) SCENE_PARAMS(P, G) P(IO, co_float4, aov_albedo) P(IO, co_float4, aov_normal)
+/* aov_samples: each pixel's sample count (adaptive sampling: its own; else the image's) */
+#define RENDER_AOV_PARAMS(P, G)                                                                               \
+  SCENE_PARAMS(P, G) P(IO, co_float4, aov_albedo) P(IO, co_float4, aov_normal) P(IN, uint32_t, aov_samples)
 
 /* ---- wavefront_kernels.h --------------------------------------------------------------------
  * `queue` and `use_queue`: with stream compaction a launch index stands for queue[index], else for

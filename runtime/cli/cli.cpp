@@ -88,8 +88,10 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
   cmd.add_flag("--denoise", r.denoise,
                "Also write OUT.denoised.exr and .png, denoised by Open Image Denoise guided by albedo and normal");
   cmd.add_option("--target-error", r.target_error,
-                 "Adaptive sampling: 8x8 tiles stop once their estimated relative error is below E; --spp is then "
-                 "each pixel's most (the image records each pixel's count)");
+                 "Adaptive sampling to an image relative RMS error of about E (mean over pixels of the relative "
+                 "squared error, estimated from the samples' variance): 4x4 tiles get samples in proportion to "
+                 "their noise, so noisy tiles end above E and clean ones below; --spp is then each pixel's most "
+                 "(the image records each pixel's count)");
   cmd.add_flag("--no-cache", r.no_cache, "Do not read or write the kernel binary cache");
   cmd.add_flag("-v,--verbose", r.verbose, "Report compile times, tree statistics and kernel times");
 }

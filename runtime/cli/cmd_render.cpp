@@ -21,7 +21,7 @@ int render_rank(const RenderCommand& command, const RenderTeam& team) {
   RenderOutcome outcome = run_render_passes(render, team, out, interrupt);
   // adaptive sampling: the samples every pixel has (a tile that stopped early has fewer than the film's most)
   const auto aov_start = std::chrono::steady_clock::now();
-  outcome.aovs = render_first_hit_aovs(render, fewest_samples(outcome.film));
+  outcome.aovs = render_first_hit_aovs(render, outcome.film);
   outcome.aov_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - aov_start).count();
   return write_render(render, outcome, out, interrupt);
 }

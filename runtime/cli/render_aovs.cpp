@@ -4,11 +4,13 @@
 
 namespace cohort {
 
-std::optional<AovImages> render_first_hit_aovs(const PreparedRender& render, std::uint32_t samples) {
+std::optional<AovImages> render_first_hit_aovs(const PreparedRender& render, const FilmState& film) {
   if (!render.plan.aovs.any() && !render.plan.command.denoise) return std::nullopt;
   const std::unique_ptr<Device> device = render.open_devices(0);
   const DeviceScene scene = upload_scene(*device, render.scene.tree, render.scene.tables);
-  return render_aovs(*device, render.cache, scene, render.scene.camera, render.plan.settings(), samples);
+  return render_aovs(*device, render.cache, scene, render.scene.camera, render.plan.settings(),
+                     film.pixel_samples.empty() ? std::vector<std::uint32_t>(film.sums.size(), film.samples)
+                                                : film.pixel_samples);
 }
 
 }  // namespace cohort

@@ -1,5 +1,7 @@
 #include <fmt/format.h>
 
+#include <ctime>
+
 #include "runtime/cli/progress.h"
 #include "runtime/cli/render_steps.h"
 #include "runtime/render/checkpoint.h"
@@ -53,11 +55,13 @@ RenderOutcome run_render_passes(const PreparedRender& render, const RenderTeam& 
               render.devices.size());
   if (team.size() > 1) job.combine_on_host();  // other ranks send partial films
   std::vector<DeviceRun> runs;
+  const std::clock_t cpu_start = std::clock();
   {
     const auto workers = start_workers(render, job);
     team.serve(job, render.pixels());
     runs = workers->join();
   }
+  const std::clock_t cpu_end = std::clock();
   RenderOutcome outcome{.film = job.finish()};
   reporter.finish();
   RenderResult& result = outcome.result;
@@ -69,6 +73,7 @@ RenderOutcome run_render_passes(const PreparedRender& render, const RenderTeam& 
   result.interrupted = job.interrupted();
   // (--method auto's probe renders passes of the image: it is inside the job's clock)
   result.render_seconds = job.seconds();
+  result.render_cpu_seconds = double(cpu_end - cpu_start) / CLOCKS_PER_SEC;
   result.rays = job.rays();  // every rank's rays
 
   outcome.ranks = nlohmann::json::array();

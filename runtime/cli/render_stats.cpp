@@ -113,7 +113,7 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
                         {"total", memory.total()}, {"bytes_per_triangle", static_cast<double>(memory.total()) / kept}};
   j["timings"] = {{"load_seconds", prepared.load_seconds}, {"build_seconds", ts.build_seconds},
                   {"compile_seconds", r.compile_seconds}, {"compile_from_cache", r.compile_from_cache},
-                  {"render_seconds", r.render_seconds}};
+                  {"render_seconds", r.render_seconds}, {"render_cpu_seconds", r.render_cpu_seconds}};
   j["rays"] = r.rays;
   j["rays_per_second"] = r.render_seconds > 0 ? static_cast<double>(r.rays) / r.render_seconds : 0.0;
   const AdaptiveFigures adaptive = adaptive_figures(outcome.film, cmd.settings.target_error);
@@ -127,7 +127,8 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
                      {"max_pixel_spp", adaptive.max_pixel_samples},
                      {"tiles", adaptive.tiles},
                      {"tiles_stopped_early", adaptive.tiles_stopped},
-                     {"tiles_below_target", adaptive.tiles_converged}};
+                     {"tiles_below_target", adaptive.tiles_converged},
+                     {"estimated_error", adaptive.estimated_error}};
   j["dropped_samples"] = r.dropped_samples;
   // the round trips inside a pass (the wavefront loop reads its counters every few bounces), and
   // the device commands of its ray sorts

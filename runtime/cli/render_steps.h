@@ -67,7 +67,7 @@ RenderOutcome run_render_passes(const PreparedRender& render, const RenderTeam& 
 
 // Rank 0, after the passes: the AOVs of the image's samples on this rank's first device, when
 // --aov or --denoise asks for them.
-std::optional<AovImages> render_first_hit_aovs(const PreparedRender& render, std::uint32_t samples);
+std::optional<AovImages> render_first_hit_aovs(const PreparedRender& render, const FilmState& film);
 
 // Any other rank: renders the passes rank 0 assigns and sends it this rank's figures.
 void follow_render(const PreparedRender& render, const RenderTeam& team);

@@ -37,11 +37,11 @@ void print_details(const PreparedRender& render, const RenderOutcome& outcome) {
   fmt::print("passes: {} of {} spp\n", result.passes, outcome.film.pass_samples);
   if (const double target = render.plan.settings().target_error; target > 0) {
     const AdaptiveFigures f = adaptive_figures(outcome.film, target);
-    fmt::print("adaptive: target error {}, {} samples spent ({:.1f} spp mean, {}-{} per pixel), {} of {} {}x{} tiles "
-               "stopped early, {} below the target at the end\n",
-               target, f.samples, double(f.samples) / double(std::max<std::size_t>(render.pixels(), 1)),
-               f.min_pixel_samples, f.max_pixel_samples, f.tiles_stopped, f.tiles, kAdaptiveTile, kAdaptiveTile,
-               f.tiles_converged);
+    fmt::print("adaptive: target error {}, estimated error {:.4f}, {} samples spent ({:.1f} spp mean, {}-{} per "
+               "pixel), {} of {} {}x{} tiles stopped early, {} at their share of the target at the end\n",
+               target, f.estimated_error, f.samples,
+               double(f.samples) / double(std::max<std::size_t>(render.pixels(), 1)), f.min_pixel_samples,
+               f.max_pixel_samples, f.tiles_stopped, f.tiles, kAdaptiveTile, kAdaptiveTile, f.tiles_converged);
   }
   for (const auto& [name, seconds] : result.kernel_seconds) fmt::print("kernel {}: {:.3f}s\n", name, seconds);
   if (result.wavefront_size)
@@ -92,9 +92,9 @@ int write_render(const PreparedRender& render, const RenderOutcome& outcome, con
   std::string spp = fmt::format("{} spp", result.samples);
   if (adaptive) {
     const AdaptiveFigures f = adaptive_figures(outcome.film, render.plan.settings().target_error);
-    spp = fmt::format("{}-{} spp (mean {:.1f}; {} of {} tiles below the target error)", f.min_pixel_samples,
+    spp = fmt::format("{}-{} spp (mean {:.1f}; estimated relative error {:.4f}, target {})", f.min_pixel_samples,
                       f.max_pixel_samples, double(f.samples) / double(std::max<std::size_t>(render.pixels(), 1)),
-                      f.tiles_converged, f.tiles);
+                      f.estimated_error, render.plan.settings().target_error);
   }
   fmt::print("rendered {}x{} at {} in {:.2f}s ({:.2f} Mrays/s{})\n", render.plan.settings().width,
              render.plan.settings().height, spp, result.render_seconds, mrays,

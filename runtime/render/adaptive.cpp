@@ -29,19 +29,16 @@ std::uint32_t round_start(std::uint32_t sample) {
   return static_cast<std::uint32_t>(start);
 }
 
-std::vector<double> tile_errors(const FilmState& film) {
-  // per block of kAdaptiveBlock^2 pixels: the sum of its pixels' relative squared errors
-  const std::uint32_t block_columns = (film.width + kAdaptiveBlock - 1) / kAdaptiveBlock;
-  const std::uint32_t block_rows = (film.height + kAdaptiveBlock - 1) / kAdaptiveBlock;
-  std::vector<double> sum(std::size_t(block_columns) * block_rows, 0.0);
-  std::vector<std::uint32_t> pixels(sum.size(), 0);
+std::vector<TileNoise> tile_noise(const FilmState& film) {
+  const TileGrid grid{film.width, film.height};
+  std::vector<TileNoise> tiles(grid.count());
+  std::vector<double> sum(grid.count(), 0.0);  // of the pixels' relative squared errors
   for (std::uint32_t i = 0; i < film.sums.size(); ++i) {
-    const std::uint32_t column = i % film.width, row = i / film.width;
-    const std::size_t block = std::size_t(row / kAdaptiveBlock) * block_columns + column / kAdaptiveBlock;
-    const double n = film.pixel_samples.empty() ? film.samples : film.pixel_samples[i];
-    ++pixels[block];
+    const std::uint32_t tile = grid.tile_of(i);
+    const std::uint32_t n = film.pixel_samples.empty() ? film.samples : film.pixel_samples[i];
+    tiles[tile].samples = n;
     if (n < 2) {
-      sum[block] = std::numeric_limits<double>::infinity();
+      sum[tile] = std::numeric_limits<double>::infinity();
       continue;
     }
     const co_float4 s = film.sums[i];
@@ -50,18 +47,26 @@ std::vector<double> tile_errors(const FilmState& film) {
     const double y = 0.2126 * s.x + 0.7152 * s.y + 0.0722 * s.z;
     const double mean = y / n;
     const double variance = std::max(0.0, (double(s.w) - y * mean) / (n - 1));  // of one sample
-    sum[block] += variance / n / (mean * mean + kRelativeErrorFloor);
+    sum[tile] += variance / n / (mean * mean + kRelativeErrorFloor);
   }
-  // a tile's error: its worst block's RMS (a tile half background, half noise is not averaged down)
-  const TileGrid grid{film.width, film.height};
-  std::vector<double> errors(grid.count(), 0.0);
-  for (std::uint32_t by = 0; by < block_rows; ++by)
-    for (std::uint32_t bx = 0; bx < block_columns; ++bx) {
-      const std::size_t block = std::size_t(by) * block_columns + bx;
-      const std::uint32_t tile = (by * kAdaptiveBlock / kAdaptiveTile) * grid.columns() + bx * kAdaptiveBlock / kAdaptiveTile;
-      errors[tile] = std::max(errors[tile], std::sqrt(sum[block] / std::max<std::uint32_t>(pixels[block], 1)));
-    }
-  return errors;
+  for (std::uint32_t t = 0; t < tiles.size(); ++t) tiles[t].error = std::sqrt(sum[t] / grid.tile_pixels(t));
+  return tiles;
+}
+
+std::vector<double> tile_sample_targets(const std::vector<TileNoise>& tiles, const TileGrid& grid,
+                                        double target_error) {
+  std::vector<double> spread(tiles.size());  // s_t: relative standard deviation of one sample
+  double spread_sum = 0, pixels = 0;
+  for (std::uint32_t t = 0; t < tiles.size(); ++t) {
+    spread[t] = tiles[t].error * std::sqrt(double(tiles[t].samples));
+    if (std::isfinite(spread[t])) spread_sum += spread[t] * grid.tile_pixels(t), pixels += grid.tile_pixels(t);
+  }
+  const double mean_spread = pixels > 0 ? spread_sum / pixels : 0;
+  std::vector<double> targets(tiles.size());
+  for (std::uint32_t t = 0; t < tiles.size(); ++t)
+    targets[t] = std::isfinite(spread[t]) ? spread[t] * mean_spread / (target_error * target_error)
+                                          : std::numeric_limits<double>::infinity();
+  return targets;
 }
 
 std::vector<std::uint32_t> pixels_with_samples(const FilmState& film, std::uint32_t at) {
@@ -79,18 +84,13 @@ std::vector<std::uint32_t> round_pixels(const FilmState& film, std::uint32_t sta
     return list;
   }
   const TileGrid grid{film.width, film.height};
-  const std::vector<double> errors = tile_errors(film);
+  const std::vector<double> targets = tile_sample_targets(tile_noise(film), grid, target_error);
   for (std::uint32_t i = 0; i < film.sums.size(); ++i) {
     const bool rendered_last_round = film.pixel_samples.empty() || film.pixel_samples[i] == start;
-    // `!(e < E)`: a tile whose estimate is NaN goes on
-    if (rendered_last_round && !(errors[grid.tile_of(i)] < target_error)) list.push_back(i);
+    // `!(start >= target)`: a NaN target goes on
+    if (rendered_last_round && !(double(start) >= targets[grid.tile_of(i)])) list.push_back(i);
   }
   return list;
-}
-
-std::uint32_t fewest_samples(const FilmState& film) {
-  if (film.pixel_samples.empty()) return film.samples;
-  return *std::min_element(film.pixel_samples.begin(), film.pixel_samples.end());
 }
 
 AdaptiveFigures adaptive_figures(const FilmState& film, double target_error) {
@@ -112,8 +112,16 @@ AdaptiveFigures adaptive_figures(const FilmState& film, double target_error) {
     }
     f.tiles_stopped = static_cast<std::uint32_t>(std::count(stopped.begin(), stopped.end(), true));
   }
-  if (target_error > 0)
-    for (const double e : tile_errors(film)) f.tiles_converged += e < target_error ? 1 : 0;
+  if (target_error > 0) {
+    const std::vector<TileNoise> tiles = tile_noise(film);
+    const std::vector<double> targets = tile_sample_targets(tiles, grid, target_error);
+    double squares = 0;
+    for (std::uint32_t t = 0; t < tiles.size(); ++t) {
+      f.tiles_converged += tiles[t].samples >= targets[t] ? 1 : 0;
+      squares += tiles[t].error * tiles[t].error * grid.tile_pixels(t);
+    }
+    f.estimated_error = std::sqrt(squares / std::max<double>(film.sums.size(), 1));
+  }
   return f;
 }
 

@@ -33,8 +33,12 @@ AovSelection parse_aov_list(const std::string& list) {
 }
 
 AovImages render_aovs(const Device& device, const ProgramCache& cache, const DeviceScene& scene,
-                      const SceneCamera& camera, const RenderSettings& settings, std::uint32_t samples) {
+                      const SceneCamera& camera, const RenderSettings& settings,
+                      const std::vector<std::uint32_t>& pixel_samples) {
   const std::uint32_t pixels = settings.width * settings.height;
+  if (pixel_samples.size() != pixels) throw std::logic_error("render_aovs: one sample count per pixel");
+  const std::uint32_t samples =
+      pixel_samples.empty() ? 0u : *std::max_element(pixel_samples.begin(), pixel_samples.end());
   const DeviceProgram program = device.build_program(cache, "aov", scene.build_options);
   DeviceKernel kernel = program.kernel("render_aov");
   RenderParams params = make_render_params(scene, camera, settings);
@@ -45,6 +49,8 @@ AovImages render_aovs(const Device& device, const ProgramCache& cache, const Dev
   args.aov_normal = device.allocate("normal sums and hits", std::size_t(pixels) * sizeof(co_float4));
   device.fill(args.aov_albedo, 0u, std::size_t(pixels) * 4);
   device.fill(args.aov_normal, 0u, std::size_t(pixels) * 4);
+  args.aov_samples = device.allocate("AOV sample counts", std::size_t(pixels) * sizeof(std::uint32_t),
+                                     pixel_samples.data(), Access::read_only);
   args.bind(kernel);
   // launches of at most ~16M camera rays, short enough for a GPU's watchdog; the sums go on in
   // sample order from one launch to the next, so the split changes no bit
@@ -63,8 +69,8 @@ AovImages render_aovs(const Device& device, const ProgramCache& cache, const Dev
 
   AovImages out{Image(int(settings.width), int(settings.height)), Image(int(settings.width), int(settings.height)),
                 std::vector<float>(pixels)};
-  const float inv = samples ? 1.f / float(samples) : 0.f;
   for (std::uint32_t i = 0; i < pixels; ++i) {
+    const float inv = pixel_samples[i] ? 1.f / float(pixel_samples[i]) : 0.f;
     const co_float4 a = albedo_sums[i], n = normal_sums[i];
     float* albedo = &out.albedo.rgb[std::size_t(i) * 3];
     float* normal = &out.normal.rgb[std::size_t(i) * 3];

@@ -32,10 +32,11 @@ struct AovImages {
   std::vector<float> depth;
 };
 
-// The AOVs of samples [0, samples) of every pixel, on one device; the same bits whatever method
-// rendered the beauty.
+// The AOVs of samples [0, pixel_samples[i]) of each pixel i (the film's counts: adaptive
+// sampling's differ per pixel), on one device; the same bits whatever method rendered the beauty.
 AovImages render_aovs(const Device& device, const ProgramCache& cache, const DeviceScene& scene,
-                      const SceneCamera& camera, const RenderSettings& settings, std::uint32_t samples);
+                      const SceneCamera& camera, const RenderSettings& settings,
+                      const std::vector<std::uint32_t>& pixel_samples);
 
 // The selected AOVs as EXR layers: albedo.R/G/B, N.X/Y/Z, depth.Z.
 std::vector<ExrLayer> aov_layers(const AovImages& aovs, const AovSelection& selection);

@@ -103,7 +103,7 @@ PassJob::Offer PassJob::offer(SamplePass& pass) {
       if (handed_out_ - combined_ >= window_) return Offer::wait;
       if (settings_.target_error > 0 && !choose_round_pixels(*p)) return Offer::wait;
       if (settings_.target_error > 0 && round_pixels_->empty()) {
-        ended_ = true;  // every tile is below the target
+        ended_ = true;  // every tile has its share of samples
       } else {
         pass = *p;
         if (settings_.target_error > 0 && round_pixels_->size() < film_.sums.size()) pass.pixels = round_pixels_;

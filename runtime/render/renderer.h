@@ -64,6 +64,10 @@ struct RenderResult {
   std::uint64_t rays = 0;      // extension + shadow rays
   std::uint64_t dropped_samples = 0;  // NaN or infinite, counted as zero
   double render_seconds = 0;   // wall time of the render loop
+  // this process's CPU time (every thread's: the OpenCL runtime's workers too) from starting the
+  // devices to the last pass (a cold kernel compile included): on a loaded machine it varies
+  // less than the wall time. `cohort render` only, rank 0's process.
+  double render_cpu_seconds = 0;
   double compile_seconds = 0;
   bool compile_from_cache = false;
   std::map<std::string, double> kernel_seconds;  // device time per kernel name

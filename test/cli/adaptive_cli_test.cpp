@@ -1,7 +1,7 @@
 // --target-error (adaptive sampling, runtime/render/adaptive.h): tiles that are clean stop and the
 // samples go where the image is noisy; the image is the same bits twice, for every method, on
 // two devices and after a checkpoint and resume; at an equal sample budget it is closer to a
-// converged image than uniform sampling; bad values are exit 2.
+// converged image than uniform sampling where every tile is noisy; bad values are exit 2.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,6 +15,7 @@
 
 #include "cli/cli_helpers.h"
 #include "runtime/image/image.h"
+#include "runtime/render/adaptive.h"
 
 using namespace cohort_test;
 
@@ -27,19 +28,21 @@ CommandResult run(const std::string& args, const std::string& env = "") {
 // The Cornell box at a wide field of view: the box fills the middle ~60% of the image, the rest
 // is empty background (no environment: every sample there is exactly 0).
 std::string wide_box(const fs::path& out, const std::string& extra = "") {
-  return "render " + shipped_scene("cornell-box.gltf") + " --res 64x64 --fov 58 --spp 128 --seed 3 --target-error 0.05 " +
+  return "render " + shipped_scene("cornell-box.gltf") + " --res 64x64 --fov 58 --spp 128 --seed 3 --target-error 0.02 " +
          extra + " -o " + out.string();
 }
 
-// Each 8x8 tile's sample count (the EXR's `samples` channel; every pixel of a tile has the same).
+constexpr int kTile = int(cohort::kAdaptiveTile);
+
+// Each tile's sample count (the EXR's `samples` channel; every pixel of a tile has the same).
 std::vector<float> tile_samples(const fs::path& exr, int width, int height) {
   const std::vector<float> samples = cohort::read_exr_channel(exr, "samples");
   std::vector<float> tiles;
-  for (int ty = 0; ty < height; ty += 8)
-    for (int tx = 0; tx < width; tx += 8) {
+  for (int ty = 0; ty < height; ty += kTile)
+    for (int tx = 0; tx < width; tx += kTile) {
       const float n = samples[std::size_t(ty) * width + tx];
-      for (int y = ty; y < std::min(ty + 8, height); ++y)
-        for (int x = tx; x < std::min(tx + 8, width); ++x)
+      for (int y = ty; y < std::min(ty + kTile, height); ++y)
+        for (int x = tx; x < std::min(tx + kTile, width); ++x)
           EXPECT_EQ(samples[std::size_t(y) * width + x], n) << "a tile's pixels stop together";
       tiles.push_back(n);
     }
@@ -67,13 +70,14 @@ TEST(Adaptive, EmptyBackgroundStopsAfterTheFirstRoundAndTheBoxTakesTheRest) {
   const fs::path exr = out.string() + ".exr";
   const std::vector<float> tiles = tile_samples(exr, 64, 64);
   const cohort::Image image = cohort::read_exr(exr);
-  std::printf("samples per 8x8 tile:\n%s", tile_map(tiles, 8).c_str());
+  constexpr int columns = 64 / kTile;
+  std::printf("samples per %dx%d tile:\n%s", kTile, kTile, tile_map(tiles, columns).c_str());
   std::size_t background = 0;
   double box_samples = 0, box_tiles = 0;
-  for (int t = 0; t < 64; ++t) {
+  for (int t = 0; t < columns * columns; ++t) {
     bool empty = true;
-    for (int y = t / 8 * 8; y < t / 8 * 8 + 8; ++y)
-      for (int x = t % 8 * 8; x < t % 8 * 8 + 8; ++x)
+    for (int y = t / columns * kTile; y < (t / columns + 1) * kTile; ++y)
+      for (int x = t % columns * kTile; x < (t % columns + 1) * kTile; ++x)
         for (int c = 0; c < 3; ++c) empty = empty && image.pixel(x, y)[c] == 0.f;
     if (empty) {
       ++background;
@@ -90,13 +94,14 @@ TEST(Adaptive, EmptyBackgroundStopsAfterTheFirstRoundAndTheBoxTakesTheRest) {
 
   const auto stats = nlohmann::json::parse(read_all(dir.path / "wide.json"));
   const auto& adaptive = stats["adaptive"];
-  const double spent = std::accumulate(tiles.begin(), tiles.end(), 0.0) * 64;
+  const double spent = std::accumulate(tiles.begin(), tiles.end(), 0.0) * kTile * kTile;
   EXPECT_EQ(adaptive["samples"].get<double>(), spent);
   EXPECT_LT(spent, 0.75 * 128 * 64 * 64) << "a quarter of the uniform budget saved at least";
-  EXPECT_EQ(adaptive["tiles"].get<int>(), 64);
+  EXPECT_EQ(adaptive["tiles"].get<int>(), columns * columns);
   EXPECT_GE(adaptive["tiles_stopped_early"].get<std::size_t>(), background);
   EXPECT_EQ(adaptive["max_pixel_spp"].get<int>(), 128);
   EXPECT_EQ(stats["image"]["spp"].get<int>(), 128) << "the image's spp is the most any pixel took";
+  EXPECT_GT(stats["timings"]["render_cpu_seconds"].get<double>(), 0.0) << "the render loop's CPU time (the charts' clock)";
 }
 
 TEST(Adaptive, SameBitsTwiceForEveryMethodAndOnTwoDevices) {
@@ -116,7 +121,7 @@ TEST(Adaptive, SameBitsTwiceForEveryMethodAndOnTwoDevices) {
     ASSERT_EQ(other.code, 0) << other.output;
     EXPECT_EQ(a, read_all(dir.path / (std::string(method) + ".exr"))) << method;
   }
-  EXPECT_NE(pth.output.find("tiles below the target error"), std::string::npos) << pth.output;
+  EXPECT_NE(pth.output.find("estimated relative error"), std::string::npos) << pth.output;
 
   const std::string two = "env 'POCL_DEVICES=pthread pthread' ";
   if (run("devices", two).output.find("[1]") == std::string::npos) {
@@ -157,32 +162,55 @@ double relative_mse(const cohort::Image& x, const cohort::Image& ref) {
   return sum / double(ref.rgb.size());
 }
 
-TEST(Adaptive, BeatsUniformAtAnEqualSampleBudgetOnTheSponzaInterior) {
-  const fs::path sponza = fs::path(COHORT_SHARED_SCENES) / "crytek-sponza" / "sponza.obj.gz";
-  if (!fs::exists(sponza)) GTEST_SKIP() << sponza << " is absent (../shared holds the real models)";
+// Adaptive (--target-error E, at most --spp 256) against uniform sampling with the same total
+// samples (the adaptive render's mean, rounded), both seed `seed`, each against a reference of
+// `reference_spp` with seed 1 (independent noise). Returns {adaptive, uniform} relative MSE.
+std::pair<double, double> adaptive_and_uniform(const std::string& view, double target_error, int seed,
+                                               int reference_spp, int pixels) {
   TempDir dir("cohort-adaptive-");
-  // a crop of the interior looking up from the galleries at the open roof: the atrium's upper walls
-  // against the white sky (which lights them), about half of each; the sky is exactly 1 in every
-  // sample, so its tiles stop after the first round, and the walls take what uniform sampling
-  // spends on the sky
-  const std::string view = "render " + sponza.string() +
-                           " --white-sky --camera-bounds 0.3,0.3,0.5,0.5,1.3,0.5 --fov 30 --res 32x24 ";
-  const CommandResult reference = run(view + "--spp 512 --seed 1 -o " + (dir.path / "reference").string());
-  ASSERT_EQ(reference.code, 0) << reference.output;
-  const CommandResult adaptive = run(view + "--spp 256 --seed 2 --target-error 0.1 --stats " +
-                                     (dir.path / "adaptive.json").string() + " -o " + (dir.path / "adaptive").string());
-  ASSERT_EQ(adaptive.code, 0) << adaptive.output;
+  const CommandResult reference =
+      run(view + "--spp " + std::to_string(reference_spp) + " --seed 1 -o " + (dir.path / "reference").string());
+  EXPECT_EQ(reference.code, 0) << reference.output;
+  const std::string seed_option = " --seed " + std::to_string(seed);
+  const CommandResult adaptive = run(view + "--spp 256 --target-error " + std::to_string(target_error) + seed_option +
+                                     " --stats " + (dir.path / "adaptive.json").string() + " -o " +
+                                     (dir.path / "adaptive").string());
+  EXPECT_EQ(adaptive.code, 0) << adaptive.output;
   const double spent = nlohmann::json::parse(read_all(dir.path / "adaptive.json"))["adaptive"]["samples"];
-  const int uniform_spp = int(std::lround(spent / (32 * 24)));
-  const CommandResult uniform = run(view + "--spp " + std::to_string(uniform_spp) + " --seed 2 -o " +
-                                    (dir.path / "uniform").string());
-  ASSERT_EQ(uniform.code, 0) << uniform.output;
+  const int uniform_spp = int(std::lround(spent / pixels));
+  const CommandResult uniform =
+      run(view + "--spp " + std::to_string(uniform_spp) + seed_option + " -o " + (dir.path / "uniform").string());
+  EXPECT_EQ(uniform.code, 0) << uniform.output;
   const cohort::Image want = cohort::read_exr(dir.path / "reference.exr");
   const double e_adaptive = relative_mse(cohort::read_exr(dir.path / "adaptive.exr"), want);
   const double e_uniform = relative_mse(cohort::read_exr(dir.path / "uniform.exr"), want);
-  std::printf("Sponza interior crop 32x24, %.0f samples (%d spp uniform): relative MSE adaptive %.5f, uniform %.5f\n",
-              spent, uniform_spp, e_adaptive, e_uniform);
-  EXPECT_LT(e_adaptive, e_uniform);
+  std::printf("%.0f samples (%d spp uniform): relative MSE adaptive %.5f, uniform %.5f (%.3fx)\n", spent, uniform_spp,
+              e_adaptive, e_uniform, e_adaptive / e_uniform);
+  return {e_adaptive, e_uniform};
+}
+
+// Neither view has sky or empty background: every tile is noisy, some more than others, so
+// adaptive sampling wins only by where it puts the samples. Stopping every tile at error E (the
+// allocation before samples went in proportion to each tile's standard deviation) fails both:
+// 1.03x uniform's relative MSE on the Sponza view, 1.07x on the box; the allocation now gives
+// 0.94x and 0.79x. Other seeds (against longer references): 0.99-1.08x before, 0.86-0.93x now
+// on the Sponza view (seeds 2-4); 0.64-1.07x before, 0.61-0.92x now on the box (seeds 2-5).
+TEST(Adaptive, BeatsUniformAtAnEqualSampleBudgetOnTheSponzaInterior) {
+  const fs::path sponza = fs::path(COHORT_SHARED_SCENES) / "crytek-sponza" / "sponza.obj.gz";
+  if (!fs::exists(sponza)) GTEST_SKIP() << sponza << " is absent (../shared holds the real models)";
+  // the benchmark protocol's interior view: galleries, columns and floor, no sky in the frame
+  const auto [adaptive, uniform] = adaptive_and_uniform(
+      "render " + sponza.string() + " --white-sky --camera-bounds 0.25,0.2,0.5,0.75,0.35,0.5 --fov 60 --res 32x24 ",
+      0.1, 3, 512, 32 * 24);
+  EXPECT_LT(adaptive, uniform);
+}
+
+TEST(Adaptive, BeatsUniformAtAnEqualSampleBudgetOnTheCornellBox) {
+  // the box fills the frame; the light's edge pixels (partly the light, 18x brighter than the
+  // ceiling) are the noisiest, the shadowed corners next
+  const auto [adaptive, uniform] =
+      adaptive_and_uniform("render " + shipped_scene("cornell-box.gltf") + " --res 48x48 ", 0.08, 4, 512, 48 * 48);
+  EXPECT_LT(adaptive, uniform);
 }
 
 TEST(Adaptive, BadTargetErrorIsExitTwoNamingTheOption) {

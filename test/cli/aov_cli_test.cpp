@@ -117,3 +117,37 @@ TEST(Aov, UnknownNameIsExitTwoNamingIt) {
   EXPECT_NE(r.output.find("'normals'"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir.path / "bad.exr"));
 }
+
+TEST(Aov, AdaptiveSamplingAveragesEachPixelOverItsOwnSamples) {
+  // --target-error stops tiles at different counts; each pixel's AOVs are those of a uniform
+  // render with its count (the same camera rays, summed in the same order): the same bits
+  TempDir dir;
+  const std::string box = cohort_test::shipped_scene("cornell-box.gltf") + " --res 24x16 --seed 4 --aov depth,albedo,normal ";
+  const CommandResult adaptive =
+      run("render " + box + "--spp 32 --target-error 0.06 -o " + (dir.path / "adaptive").string());
+  ASSERT_EQ(adaptive.code, 0) << adaptive.output;
+  const fs::path exr = dir.path / "adaptive.exr";
+  const std::vector<float> samples = cohort::read_exr_channel(exr, "samples");
+  const std::vector<float> depth = cohort::read_exr_channel(exr, "depth.Z");
+  const char* channels[] = {"albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "depth.Z"};
+  std::vector<float> counts_on_the_box;
+  for (const float n : std::vector<float>{16, 24, 32}) {
+    const fs::path uniform = dir.path / ("uniform-" + std::to_string(int(n)));
+    const CommandResult r = run("render " + box + "--spp " + std::to_string(int(n)) + " -o " + uniform.string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (const char* c : channels) {
+      const std::vector<float> want = cohort::read_exr_channel(uniform.string() + ".exr", c);
+      const std::vector<float> got = cohort::read_exr_channel(exr, c);
+      for (std::size_t i = 0; i < got.size(); ++i) {
+        if (samples[i] != n) continue;
+        ASSERT_EQ(0, std::memcmp(&got[i], &want[i], sizeof(float))) << c << " of pixel " << i << " (" << n << " samples)";
+      }
+    }
+    for (std::size_t i = 0; i < samples.size(); ++i)
+      if (samples[i] == n && std::isfinite(depth[i])) {
+        counts_on_the_box.push_back(n);
+        break;
+      }
+  }
+  EXPECT_GE(counts_on_the_box.size(), 2u) << "pixels on the box stopped at different counts";
+}

@@ -69,28 +69,54 @@ TEST(AdaptiveRounds, PassesEndAtEveryRoundEndAndAResumeContinuesTheSameSchedule)
 
 TEST(AdaptiveError, ZeroForConstantPixelsAndTheRelativeStandardErrorOtherwise) {
   const auto grey = [](std::uint32_t) { return 0.5f; };
-  for (const double e : tile_errors(film_of(16, 8, 16, grey, 0.f))) EXPECT_EQ(e, 0.0);
+  for (const TileNoise& t : tile_noise(film_of(16, 8, 16, grey, 0.f))) {
+    EXPECT_EQ(t.error, 0.0);
+    EXPECT_EQ(t.samples, 16u);
+  }
   // sum of squares raised by 15 * 0.01: sample variance 0.01 over 16 samples, so the mean's
   // variance is 0.01 / 16 and the relative error sqrt(0.01 / 16 / (0.25 + 0.01))
-  const std::vector<double> errors = tile_errors(film_of(16, 8, 16, grey, 15 * 0.01f));
-  ASSERT_EQ(errors.size(), 2u);
-  for (const double e : errors) EXPECT_NEAR(e, std::sqrt(0.01 / 16 / 0.26), 1e-4);
+  const std::vector<TileNoise> tiles = tile_noise(film_of(16, 8, 16, grey, 15 * 0.01f));
+  ASSERT_EQ(tiles.size(), 8u) << "4x4 tiles";
+  for (const TileNoise& t : tiles) EXPECT_NEAR(t.error, std::sqrt(0.01 / 16 / 0.26), 1e-4);
 }
 
-TEST(AdaptiveError, ATileIsAsBadAsItsWorstBlock) {
-  // one noisy 4x4 block in the second tile of an 16x8 image: the tile's error is that block's
+TEST(AdaptiveError, ATileIsTheMeanOfItsPixelsAndEdgeTilesCountTheirOwnPixels) {
+  // 6x4: tiles of 4x4 and 2x4 pixels; one noisy pixel in each
+  FilmState f = film_of(6, 4, 16, [](std::uint32_t) { return 0.5f; }, 0.f);
+  f.sums[0].w += 15 * 0.01f;
+  f.sums[5].w += 15 * 0.01f;
+  const std::vector<TileNoise> tiles = tile_noise(f);
+  ASSERT_EQ(tiles.size(), 2u);
+  EXPECT_NEAR(tiles[0].error, std::sqrt(0.01 / 16 / 0.26 / 16), 1e-5);
+  EXPECT_NEAR(tiles[1].error, std::sqrt(0.01 / 16 / 0.26 / 8), 1e-5);
+}
+
+TEST(AdaptiveTargets, SamplesInProportionToEachTilesStandardDeviationSoTheMeanErrorIsE) {
+  // 16x8, eight 4x4 tiles: tile 0 constant, tile 1 with variance v, tile 2 with 4v, the rest v
   FilmState f = film_of(16, 8, 16, [](std::uint32_t) { return 0.5f; }, 0.f);
-  for (std::uint32_t y = 4; y < 8; ++y)
-    for (std::uint32_t x = 12; x < 16; ++x) f.sums[y * 16 + x].w += 15 * 0.01f;
-  const std::vector<double> errors = tile_errors(f);
-  EXPECT_EQ(errors[0], 0.0);
-  EXPECT_NEAR(errors[1], std::sqrt(0.01 / 16 / 0.26), 1e-4);
-  // the next round renders the noisy tile's pixels only, ascending
-  const std::vector<std::uint32_t> next = round_pixels(f, 16, 0.001);
-  ASSERT_EQ(next.size(), 64u);
-  EXPECT_EQ(next.front(), 8u);
-  EXPECT_EQ(next.back(), 127u);
-  EXPECT_TRUE(round_pixels(f, 16, 0.1).empty()) << "both tiles below a looser target";
+  const float v = 0.01f;
+  for (std::uint32_t i = 0; i < 128; ++i) {
+    const std::uint32_t tile = TileGrid{16, 8}.tile_of(i);
+    if (tile != 0) f.sums[i].w += 15 * v * (tile == 2 ? 4.f : 1.f);
+  }
+  const std::vector<TileNoise> tiles = tile_noise(f);
+  const double s = std::sqrt(v / 0.26);  // relative standard deviation of one sample of a v tile
+  const double mean_s = (0 + 2 * s + 6 * s) / 8;
+  const double e = 0.05;
+  const std::vector<double> targets = tile_sample_targets(tiles, TileGrid{16, 8}, e);
+  EXPECT_EQ(targets[0], 0.0) << "a clean tile needs no more samples";
+  EXPECT_NEAR(targets[1], s * mean_s / (e * e), 1e-3);
+  EXPECT_NEAR(targets[2], 2 * targets[1], 1e-3) << "twice the standard deviation (4x the variance): twice the samples";
+  // with every tile at its target, the mean relative squared error over the pixels is E^2
+  double mean_square = 0;
+  for (std::size_t t = 1; t < 8; ++t) mean_square += (t == 2 ? 4 : 1) * (s * s) / targets[t] / 8;
+  EXPECT_NEAR(mean_square, e * e, 1e-6);  // the film is float
+  // mean_s = s, so targets[1] = s^2 / E^2 = 15.4 and targets[2] = 30.8: at 16 samples the v
+  // tiles stop and tile 2 goes on
+  const std::vector<std::uint32_t> next = round_pixels(f, 16, e);
+  ASSERT_EQ(next.size(), 16u) << "only the noisiest tile goes on";
+  for (const std::uint32_t i : next) EXPECT_EQ((TileGrid{16, 8}.tile_of(i)), 2u);
+  EXPECT_EQ(round_pixels(f, 16, 0.04).size(), 7u * 16) << "E 0.04: targets 24 and 48, every noisy tile goes on";
 }
 
 TEST(AdaptiveJob, StopsCleanTilesCountsEachPixelAndEndsWhenEveryTileIsDone) {
@@ -103,8 +129,9 @@ TEST(AdaptiveJob, StopsCleanTilesCountsEachPixelAndEndsWhenEveryTileIsDone) {
   PassJob job(s, {}, {}, 1, 0);
   std::vector<std::uint32_t> rendered;  // pixels of each pass handed out
   while (const auto pass = job.next()) {
-    // tile 0 is constant (below any target at once); tile 1's samples vary (variance ~0.5, a
-    // relative error of 0.17 at 64 spp): it goes on to --spp
+    // the left half is constant (no more samples needed at once); the right half's samples vary
+    // (variance ~0.5: relative standard deviation ~1.4 per sample, the image's mean ~0.7, so
+    // 1.4 * 0.7 / 0.05^2 ~ 400 samples): it goes on to --spp
     PassFilm film{*pass, std::vector<co_float4>(128), 0, 0};
     const std::size_t count = pass->pixels ? pass->pixels->size() : 128;
     rendered.push_back(static_cast<std::uint32_t>(count));
@@ -126,8 +153,8 @@ TEST(AdaptiveJob, StopsCleanTilesCountsEachPixelAndEndsWhenEveryTileIsDone) {
   EXPECT_EQ(film.samples, 64u);
   const AdaptiveFigures figures = adaptive_figures(film, s.target_error);
   EXPECT_EQ(figures.samples, 64u * 16 + 64u * 64);
-  EXPECT_EQ(figures.tiles, 2u);
-  EXPECT_EQ(figures.tiles_stopped, 1u);
+  EXPECT_EQ(figures.tiles, 8u);
+  EXPECT_EQ(figures.tiles_stopped, 4u);
   // film_image divides each pixel by its own count
   const Image image = film_image(film);
   EXPECT_EQ(image.rgb[0], 0.5f);
