@@ -61,6 +61,9 @@ class Builder {
                                std::array<std::size_t, 2> first, std::array<std::size_t, 2> counts,
                                const std::array<Bounds, 2>& cells, int depth,
                                int bad_refines) const;
+  std::uint32_t build_one_sided(Subtree& out, Scratch& s, std::size_t begin, std::size_t end,
+                                const SplitPlane& plane, const Bounds& voxel, int depth,
+                                int bad_refines) const;
   static std::uint32_t make_leaf(Subtree& out, const Scratch& s, std::size_t begin,
                                  std::size_t end);
 
@@ -137,6 +140,13 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
   bad_refines = no_progress ? bad_refines + 1 : 0;
   if (bad_refines >= kMaxBadRefines) return make_leaf(out, s, begin, end);
 
+  // An exact plane with nothing on one side (an empty-space cut, most of the nodes of the deep
+  // tree): the exact counts say every reference goes to the other side unchanged (none straddles,
+  // so none is clipped), so the child reuses this node's references and sorted extents in place
+  // instead of partitioning them.
+  if (exact(count) && !parallel && (plane.left_count == 0 || plane.right_count == 0)) {
+    return build_one_sided(out, s, begin, end, plane, voxel, depth, bad_refines);
+  }
   const std::size_t right_begin = s.refs.size();
   std::size_t clipped = 0;
   const std::array<std::size_t, 2> counts =
@@ -158,6 +168,29 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
                                     depth + 1, bad_refines);
   s.refs.resize(right_begin);
   out.nodes[index].a = left;  // re-indexed: the recursion grew the vector
+  out.nodes[index].b = right;
+  return index;
+}
+
+// The split of build() whose exact counts put every reference on one side: the same nodes, in the
+// same order, as partitioning them would give.
+std::uint32_t Builder::build_one_sided(Subtree& out, Scratch& s, std::size_t begin,
+                                       std::size_t end, const SplitPlane& plane,
+                                       const Bounds& voxel, int depth, int bad_refines) const {
+  const std::array<Bounds, 2> cells = child_cells(voxel, plane.axis, plane.pos);
+  const std::uint32_t index = checked_offset(out.nodes.size());
+  out.nodes.push_back({static_cast<std::uint32_t>(plane.axis), plane.pos, 0, 0});
+  const bool all_left = plane.right_count == 0;
+  s.extents_inherited = all_left;
+  const std::uint32_t left = all_left
+                                 ? build(out, s, begin, end, cells[0], depth + 1, bad_refines)
+                                 : make_leaf(out, s, begin, begin);
+  s.extents_inherited = !all_left;
+  const std::uint32_t right = all_left
+                                  ? make_leaf(out, s, begin, begin)
+                                  : build(out, s, begin, end, cells[1], depth + 1, bad_refines);
+  s.extents_inherited = false;
+  out.nodes[index].a = left;
   out.nodes[index].b = right;
   return index;
 }
