@@ -190,6 +190,8 @@ void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs
     x.sort();
     // The sorted positions fall into the ranges in order; each range's sweep starts from the
     // counts of the bins below it.
+    AxisCandidates& candidates = scratch.candidates[axis];
+    candidates.clear();
     std::size_t s = 0, e = 0, f = 0;
     std::uint32_t n_left = 0, n_right = c.count;
     int counted = 0;  // bins [0, counted) are in n_left / n_right
@@ -202,13 +204,15 @@ void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs
       const std::size_t ns = in_bins_up_to(x.starts, s, binner, axis, last);
       const std::size_t ne = in_bins_up_to(x.ends, e, binner, axis, last);
       const std::size_t nf = in_bins_up_to(x.flats, f, binner, axis, last);
-      sweep_extents(c, axis, std::span<const float>(x.starts).subspan(s, ns),
-                    std::span<const float>(x.ends).subspan(e, ne),
-                    std::span<const float>(x.flats).subspan(f, nf), n_left, n_right, best);
+      merge_candidates(std::span<const float>(x.starts).subspan(s, ns),
+                       std::span<const float>(x.ends).subspan(e, ne),
+                       std::span<const float>(x.flats).subspan(f, nf), n_left, n_right,
+                       candidates);
       s += ns;
       e += ne;
       f += nf;
     }
+    evaluate_candidates(c, axis, candidates, scratch.costs, best);
   }
 }
 

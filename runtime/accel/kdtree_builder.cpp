@@ -34,8 +34,8 @@ constexpr int kMaxBadRefines = 3;
 struct Scratch {
   std::vector<Ref> refs;
   PlaneScratch plane;
-  // plane.extents are already the sorted extents of the next node's references: its parent swept
-  // them and handed all of them on unchanged (an empty-space cut with nothing clipped, the most
+  // plane.candidates are already the merged candidates of the next node's references: its parent
+  // swept them and handed all of them on unchanged (an empty-space cut with nothing clipped, the most
   // common split in a KD-tree), so the child skips gathering and sorting them again.
   bool extents_inherited = false;
 };
@@ -113,7 +113,7 @@ SplitPlane Builder::find_plane(Scratch& s, std::size_t begin, std::size_t end,
     }
     for (AxisExtents& x : extents) x.sort();
   }
-  return find_best_plane(c, extents);
+  return find_best_plane(c, extents, s.plane.candidates, s.plane.costs, inherited);
 }
 
 std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::size_t end,

@@ -39,14 +39,45 @@ std::uint32_t take_equal(std::span<const float> sorted, std::size_t& i, float po
   return static_cast<std::uint32_t>(i - first);
 }
 
+// evaluate_plane's arithmetic, term for term, for n candidates and both sides of their planar
+// references. Restrict parameters (the outputs alias no input) and no branch, so GCC vectorises it.
+struct CostTerms {
+  float lo, hi, face, rim, inv_area, traversal_cost, intersection_cost, empty_factor;
+};
+
+void candidate_costs(CostTerms t, std::size_t n, const float* __restrict pos,
+                     const float* __restrict left_a, const float* __restrict right_a,
+                     const float* __restrict left_b, const float* __restrict right_b,
+                     float* __restrict cost_a, float* __restrict cost_b, float* __restrict plain_a,
+                     float* __restrict plain_b) {
+  for (std::size_t i = 0; i < n; ++i) {
+    const float width_left = pos[i] - t.lo, width_right = t.hi - pos[i];
+    const float p_left = 2.f * (t.face + width_left * t.rim) * t.inv_area;
+    const float p_right = 2.f * (t.face + width_right * t.rim) * t.inv_area;
+    const float pa =
+        t.traversal_cost + t.intersection_cost * (p_left * left_a[i] + p_right * right_a[i]);
+    const float pb =
+        t.traversal_cost + t.intersection_cost * (p_left * left_b[i] + p_right * right_b[i]);
+    // Bitwise, not short-circuit, and both products taken: a select, not a branch.
+    const bool empty_a =
+        ((left_a[i] == 0.f) & (width_left > 0.f)) | ((right_a[i] == 0.f) & (width_right > 0.f));
+    const bool empty_b =
+        ((left_b[i] == 0.f) & (width_left > 0.f)) | ((right_b[i] == 0.f) & (width_right > 0.f));
+    const float bonus_a = pa * t.empty_factor, bonus_b = pb * t.empty_factor;
+    plain_a[i] = pa;
+    plain_b[i] = pb;
+    cost_a[i] = empty_a ? bonus_a : pa;
+    cost_b[i] = empty_b ? bonus_b : pb;
+  }
+}
+
 }  // namespace
 
-void sweep_extents(const SahContext& c, int axis, std::span<const float> starts,
-                   std::span<const float> ends, std::span<const float> flats, std::uint32_t n_left,
-                   std::uint32_t n_right, SplitPlane& best) {
-  // A flat cell cannot be split along its flat axis: both children would be the cell itself.
-  if (!(c.extent[axis] > 0.f)) return;
-  const AxisSah a = axis_sah(c, axis);
+void merge_candidates(std::span<const float> starts, std::span<const float> ends,
+                      std::span<const float> flats, std::uint32_t n_left, std::uint32_t n_right,
+                      AxisCandidates& out) {
+  out.reserve_more(starts.size() + ends.size() + flats.size());
+  std::size_t n = out.size;
   std::size_t s = 0, e = 0, f = 0;
   while (s < starts.size() || e < ends.size() || f < flats.size()) {
     // The next position of any of the three: the candidates in ascending order.
@@ -58,19 +89,94 @@ void sweep_extents(const SahContext& c, int axis, std::span<const float> starts,
     const std::uint32_t flat = take_equal(flats, f, pos);
     const std::uint32_t starting = take_equal(starts, s, pos);
     n_right -= ending + flat;
-    evaluate_plane(c, a, pos, n_left, n_right, flat, best);
+    out.pos[n] = pos;
+    out.left_a[n] = static_cast<float>(n_left + flat);
+    out.right_a[n] = static_cast<float>(n_right);
+    out.left_b[n] = static_cast<float>(n_left);
+    out.right_b[n] = static_cast<float>(n_right + flat);
+    ++n;
     n_left += starting + flat;
+  }
+  out.size = n;
+}
+
+void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& candidates,
+                         std::vector<float>& costs, SplitPlane& best) {
+  // A flat cell cannot be split along its flat axis: both children would be the cell itself.
+  const std::size_t n = candidates.size;
+  if (!(c.extent[axis] > 0.f) || n == 0) return;
+  const AxisSah a = axis_sah(c, axis);
+  // evaluate_plane's arithmetic, term for term, for every candidate and both sides of the planar
+  // references: costs [0, n) planar left, [n, 2n) planar right, then the plain costs likewise.
+  // Without planar references b is a copy of a, which never beats it (a comes first).
+  if (costs.size() < 4 * n) costs.resize(std::max(4 * n, 2 * costs.size()));
+  float* cost_a = costs.data();
+  float* cost_b = cost_a + n;
+  float* plain_a = cost_b + n;
+  float* plain_b = plain_a + n;
+  const float* pos = candidates.pos.data();
+  candidate_costs({a.lo, a.hi, a.face, a.rim, c.inv_area, c.traversal_cost, c.intersection_cost,
+                   c.empty_factor},
+                  n, pos, candidates.left_a.data(), candidates.right_a.data(),
+                  candidates.left_b.data(), candidates.right_b.data(), cost_a, cost_b, plain_a,
+                  plain_b);
+  // The cheapest cost and lowest plain cost in lanes (x < m ? x : m, a vector minimum), then the
+  // first candidate at the cheapest: what the candidate-by-candidate strict comparison keeps.
+  constexpr std::size_t kLanes = 8;
+  std::array<float, kLanes> cheapest, lowest;
+  cheapest.fill(std::numeric_limits<float>::infinity());
+  lowest.fill(std::numeric_limits<float>::infinity());
+  std::size_t i = 0;
+  for (; i + kLanes <= n; i += kLanes) {
+    for (std::size_t k = 0; k < kLanes; ++k) {
+      const float x = cost_a[i + k] < cost_b[i + k] ? cost_a[i + k] : cost_b[i + k];
+      cheapest[k] = x < cheapest[k] ? x : cheapest[k];
+      const float y = plain_a[i + k] < plain_b[i + k] ? plain_a[i + k] : plain_b[i + k];
+      lowest[k] = y < lowest[k] ? y : lowest[k];
+    }
+  }
+  for (; i < n; ++i) {
+    cheapest[0] = std::min({cheapest[0], cost_a[i], cost_b[i]});
+    lowest[0] = std::min({lowest[0], plain_a[i], plain_b[i]});
+  }
+  const float min_cost = *std::min_element(cheapest.begin(), cheapest.end());
+  best.lowest_plain_cost =
+      std::min(best.lowest_plain_cost, *std::min_element(lowest.begin(), lowest.end()));
+  if (best.valid() && !(min_cost < best.cost)) return;
+  for (i = 0; i < n; ++i) {
+    const bool on_a = cost_a[i] == min_cost;
+    if (on_a || cost_b[i] == min_cost) {
+      best.axis = a.axis;
+      best.pos = pos[i];
+      best.planar_left = on_a;
+      best.cost = min_cost;
+      best.plain_cost = on_a ? plain_a[i] : plain_b[i];
+      best.left_count = static_cast<std::uint32_t>(on_a ? candidates.left_a[i] : candidates.left_b[i]);
+      best.right_count = static_cast<std::uint32_t>(on_a ? candidates.right_a[i] : candidates.right_b[i]);
+      return;
+    }
   }
 }
 
-SplitPlane find_best_plane(const SahContext& context, const NodeExtents& extents) {
+SplitPlane find_best_plane(const SahContext& context, const NodeExtents& extents,
+                           NodeCandidates& candidates, std::vector<float>& costs, bool merged) {
   // Axis order and a strict comparison: the same plane whatever the order of the references.
   SplitPlane best;
   for (int axis = 0; axis < 3; ++axis) {
-    const AxisExtents& x = extents[axis];
-    sweep_extents(context, axis, x.starts, x.ends, x.flats, 0, context.count, best);
+    if (!merged) {
+      const AxisExtents& x = extents[axis];
+      candidates[axis].clear();
+      merge_candidates(x.starts, x.ends, x.flats, 0, context.count, candidates[axis]);
+    }
+    evaluate_candidates(context, axis, candidates[axis], costs, best);
   }
   return best;
+}
+
+SplitPlane find_best_plane(const SahContext& context, const NodeExtents& extents) {
+  NodeCandidates candidates;
+  std::vector<float> costs;
+  return find_best_plane(context, extents, candidates, costs, false);
 }
 
 }  // namespace cohort::kd
