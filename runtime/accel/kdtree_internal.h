@@ -205,13 +205,18 @@ SplitPlane find_binned_plane(const SahContext& context, std::span<const Ref> ref
 // ---- Partition ---------------------------------------------------------------------------------
 // Splits the references refs[begin, end) along `plane` (kdtree_partition.cpp): the left child's
 // are written over the front of the range, the right child's appended to `refs`; straddling
-// references are clipped to each child cell. Both keep the parent's order, also when `parallel`
-// splits a large node in chunks. Returns the counts per child; `clipped` counts the straddling
-// references (0: every child reference is a parent reference unchanged).
+// references are clipped to each child cell. Both keep the parent's order. Returns the counts per
+// child; `clipped` counts the straddling references (0: every child reference is a parent
+// reference unchanged).
 std::array<std::size_t, 2> partition(std::vector<Ref>& refs, std::size_t begin, std::size_t end,
                                      const Bounds& voxel, const SplitPlane& plane,
-                                     std::span<const Triangle> triangles, bool parallel,
-                                     std::size_t& clipped);
+                                     std::span<const Triangle> triangles, std::size_t& clipped);
+
+// The same split for a node whose children are built as parallel tasks: each child's references
+// in a vector of their own, in the parent's order, the work split in chunks across threads.
+std::array<std::vector<Ref>, 2> partition_apart(std::span<const Ref> refs, const Bounds& voxel,
+                                                const SplitPlane& plane,
+                                                std::span<const Triangle> triangles);
 
 std::array<Bounds, 2> child_cells(const Bounds& voxel, int axis, float pos);
 
