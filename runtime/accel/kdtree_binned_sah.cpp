@@ -4,6 +4,7 @@
 // many references reach left of it and how many right of it. The counts are integers, so a
 // parallel count gives the same plane as a serial one.
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
@@ -160,7 +161,8 @@ std::size_t in_bins_up_to(std::span<const float> sorted, std::size_t first, cons
 // counts, evaluates each of them exactly. This recovers the planes at triangle boundaries, which
 // a KD-tree's cost depends on (cutting off empty space tightly) and bin boundaries miss.
 void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs,
-            const std::array<Ranges, 3>& ranges, PlaneScratch& scratch, SplitPlane& best) {
+            const std::array<Ranges, 3>& ranges, bool parallel, PlaneScratch& scratch,
+            SplitPlane& best) {
   for (AxisExtents& x : scratch.extents) x.clear();
   // A lookup per position instead of a search through the ranges.
   const auto bins = static_cast<std::size_t>(binner.bins);
@@ -172,17 +174,39 @@ void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs
       }
     }
   }
-  for (const Ref& r : refs) {
-    for (int axis = 0; axis < 3; ++axis) {
-      const std::uint8_t* refined = scratch.refined.data() + axis * bins;
-      const float lo = r.box.lo[axis] + 0.f, hi = r.box.hi[axis] + 0.f;
-      AxisExtents& x = scratch.extents[axis];
-      if (lo == hi) {
-        if (refined[binner.bin(axis, lo)]) x.flats.push_back(lo);
-        continue;
+  auto gather = [&](std::span<const Ref> part, NodeExtents& extents) {
+    for (const Ref& r : part) {
+      for (int axis = 0; axis < 3; ++axis) {
+        const std::uint8_t* refined = scratch.refined.data() + axis * bins;
+        const float lo = r.box.lo[axis] + 0.f, hi = r.box.hi[axis] + 0.f;
+        AxisExtents& x = extents[axis];
+        if (lo == hi) {
+          if (refined[binner.bin(axis, lo)]) x.flats.push_back(lo);
+          continue;
+        }
+        if (refined[binner.bin(axis, lo)]) x.starts.push_back(lo);
+        if (refined[binner.bin(axis, hi)]) x.ends.push_back(hi);
       }
-      if (refined[binner.bin(axis, lo)]) x.starts.push_back(lo);
-      if (refined[binner.bin(axis, hi)]) x.ends.push_back(hi);
+    }
+  };
+  if (!parallel || refs.size() <= 2 * kParallelGrain) {
+    gather(refs, scratch.extents);
+  } else {
+    // Chunks gathered in parallel and joined; the order does not matter, the lists are sorted.
+    const std::size_t chunks = (refs.size() + kParallelGrain - 1) / kParallelGrain;
+    std::vector<NodeExtents> parts(chunks);
+    tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
+      const std::size_t first = k * kParallelGrain;
+      gather(refs.subspan(first, std::min(kParallelGrain, refs.size() - first)), parts[k]);
+    });
+    for (const NodeExtents& part : parts) {
+      for (int axis = 0; axis < 3; ++axis) {
+        AxisExtents& x = scratch.extents[axis];
+        const AxisExtents& y = part[axis];
+        x.starts.insert(x.starts.end(), y.starts.begin(), y.starts.end());
+        x.ends.insert(x.ends.end(), y.ends.begin(), y.ends.end());
+        x.flats.insert(x.flats.end(), y.flats.begin(), y.flats.end());
+      }
     }
   }
   for (int axis = 0; axis < 3; ++axis) {
@@ -239,7 +263,7 @@ SplitPlane find_binned_plane(const SahContext& c, std::span<const Ref> refs, int
   for (int axis = 0; axis < 3; ++axis) {
     if (c.extent[axis] > 0.f) ranges[axis] = exact_ranges(scratch, bins, axis, boundary[axis]);
   }
-  refine(c, binner, refs, ranges, scratch, best);
+  refine(c, binner, refs, ranges, parallel, scratch, best);
   return best;
 }
 
