@@ -158,42 +158,42 @@ void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& ca
                   n, pos, candidates.left_a.data(), candidates.right_a.data(),
                   candidates.left_b.data(), candidates.right_b.data(), cost_a, cost_b, plain_a,
                   plain_b);
-  // The cheapest cost and lowest plain cost in lanes (x < m ? x : m, a vector minimum), then the
-  // first candidate at the cheapest: what the candidate-by-candidate strict comparison keeps.
-  constexpr std::size_t kLanes = 8;
-  std::array<float, kLanes> cheapest, lowest;
-  cheapest.fill(std::numeric_limits<float>::infinity());
-  lowest.fill(std::numeric_limits<float>::infinity());
+  // evaluate_plane's comparisons in candidate order (planar left before planar right): the first
+  // of the cheapest wins, and an invalid best takes the first candidate whatever its cost.
+  float lowest = best.lowest_plain_cost;
+  std::size_t chosen = n;  // none of these
+  bool chosen_a = true;
+  float chosen_cost = best.cost;
   std::size_t i = 0;
-  for (; i + kLanes <= n; i += kLanes) {
-    for (std::size_t k = 0; k < kLanes; ++k) {
-      const float x = cost_a[i + k] < cost_b[i + k] ? cost_a[i + k] : cost_b[i + k];
-      cheapest[k] = x < cheapest[k] ? x : cheapest[k];
-      const float y = plain_a[i + k] < plain_b[i + k] ? plain_a[i + k] : plain_b[i + k];
-      lowest[k] = y < lowest[k] ? y : lowest[k];
-    }
+  if (!best.valid()) {
+    chosen = 0;
+    chosen_cost = cost_a[0];
   }
   for (; i < n; ++i) {
-    cheapest[0] = std::min({cheapest[0], cost_a[i], cost_b[i]});
-    lowest[0] = std::min({lowest[0], plain_a[i], plain_b[i]});
-  }
-  const float min_cost = *std::min_element(cheapest.begin(), cheapest.end());
-  best.lowest_plain_cost =
-      std::min(best.lowest_plain_cost, *std::min_element(lowest.begin(), lowest.end()));
-  if (best.valid() && !(min_cost < best.cost)) return;
-  for (i = 0; i < n; ++i) {
-    const bool on_a = cost_a[i] == min_cost;
-    if (on_a || cost_b[i] == min_cost) {
-      best.axis = a.axis;
-      best.pos = pos[i];
-      best.planar_left = on_a;
-      best.cost = min_cost;
-      best.plain_cost = on_a ? plain_a[i] : plain_b[i];
-      best.left_count = static_cast<std::uint32_t>(on_a ? candidates.left_a[i] : candidates.left_b[i]);
-      best.right_count = static_cast<std::uint32_t>(on_a ? candidates.right_a[i] : candidates.right_b[i]);
-      return;
+    lowest = std::min(lowest, plain_a[i]);
+    lowest = std::min(lowest, plain_b[i]);
+    if (cost_a[i] < chosen_cost) {
+      chosen = i;
+      chosen_a = true;
+      chosen_cost = cost_a[i];
+    }
+    if (cost_b[i] < chosen_cost) {
+      chosen = i;
+      chosen_a = false;
+      chosen_cost = cost_b[i];
     }
   }
+  best.lowest_plain_cost = lowest;
+  if (chosen == n) return;
+  best.axis = a.axis;
+  best.pos = pos[chosen];
+  best.planar_left = chosen_a;
+  best.cost = chosen_cost;
+  best.plain_cost = chosen_a ? plain_a[chosen] : plain_b[chosen];
+  best.left_count =
+      static_cast<std::uint32_t>(chosen_a ? candidates.left_a[chosen] : candidates.left_b[chosen]);
+  best.right_count = static_cast<std::uint32_t>(chosen_a ? candidates.right_a[chosen]
+                                                         : candidates.right_b[chosen]);
 }
 
 SplitPlane find_best_plane(const SahContext& context, const NodeExtents& extents,
