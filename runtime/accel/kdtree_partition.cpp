@@ -69,8 +69,19 @@ std::array<std::size_t, 2> partition(std::vector<Ref>& refs, std::size_t begin, 
   // Left references overwrite the range in place (never ahead of the one being read), right ones
   // are appended; `refs` may reallocate, so everything goes through indices.
   std::size_t write = begin;
+  const int axis = plane.axis;
   for (std::size_t read = begin; read < end; ++read) {
     const Ref r = refs[read];
+    // place()'s rules, inline for the references on one side (most of them): moved unchanged.
+    const float lo = r.box.lo[axis], hi = r.box.hi[axis];
+    if (lo != hi && !(lo < plane.pos && hi > plane.pos)) {
+      if (lo < plane.pos) {
+        refs[write++] = r;
+      } else {
+        refs.push_back(r);
+      }
+      continue;
+    }
     const Placement where = place(r, plane, voxel, triangles);
     clipped += where.clipped;
     if (where.left) refs[write++] = {where.left_box, r.tri};
