@@ -49,22 +49,29 @@ struct BinCounts {
   }
 };
 
+// Counts the references' bins and keeps them (6 per reference: start and end bin per axis) in
+// `ref_bins`, for refine() to look up instead of binning every reference again.
 void count(const Binner& binner, std::span<const Ref> refs, std::vector<std::uint32_t>& starts,
-           std::vector<std::uint32_t>& ends) {
+           std::vector<std::uint32_t>& ends, std::uint16_t* ref_bins) {
   for (const Ref& r : refs) {
     for (int axis = 0; axis < 3; ++axis) {
-      ++starts[axis * binner.bins + binner.bin(axis, r.box.lo[axis])];
-      ++ends[axis * binner.bins + binner.bin(axis, r.box.hi[axis])];
+      const int lo = binner.bin(axis, r.box.lo[axis]), hi = binner.bin(axis, r.box.hi[axis]);
+      ++starts[axis * binner.bins + lo];
+      ++ends[axis * binner.bins + hi];
+      ref_bins[2 * axis] = static_cast<std::uint16_t>(lo);
+      ref_bins[2 * axis + 1] = static_cast<std::uint16_t>(hi);
     }
+    ref_bins += 6;
   }
 }
 
 void count_all(const Binner& binner, std::span<const Ref> refs, bool parallel,
                PlaneScratch& scratch) {
+  if (scratch.ref_bins.size() < 6 * refs.size()) scratch.ref_bins.resize(6 * refs.size());
   if (!parallel || refs.size() <= 2 * kParallelGrain) {
     scratch.starts.assign(3 * static_cast<std::size_t>(binner.bins), 0u);
     scratch.ends.assign(3 * static_cast<std::size_t>(binner.bins), 0u);
-    count(binner, refs, scratch.starts, scratch.ends);
+    count(binner, refs, scratch.starts, scratch.ends, scratch.ref_bins.data());
     return;
   }
   BinCounts empty;
@@ -72,7 +79,8 @@ void count_all(const Binner& binner, std::span<const Ref> refs, bool parallel,
   BinCounts total = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, refs.size(), kParallelGrain), empty,
       [&](const tbb::blocked_range<std::size_t>& r, BinCounts partial) {
-        count(binner, refs.subspan(r.begin(), r.size()), partial.starts, partial.ends);
+        count(binner, refs.subspan(r.begin(), r.size()), partial.starts, partial.ends,
+              scratch.ref_bins.data() + 6 * r.begin());
         return partial;
       },
       [](BinCounts a, const BinCounts& b) {
@@ -174,30 +182,33 @@ void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs
       }
     }
   }
-  auto gather = [&](std::span<const Ref> part, NodeExtents& extents) {
-    for (const Ref& r : part) {
+  // The bins count_all() kept (binning -0 and +0 alike).
+  auto gather = [&](std::size_t first, std::size_t last, NodeExtents& extents) {
+    for (std::size_t i = first; i < last; ++i) {
+      const Ref& r = refs[i];
+      const std::uint16_t* ref_bins = scratch.ref_bins.data() + 6 * i;
       for (int axis = 0; axis < 3; ++axis) {
         const std::uint8_t* refined = scratch.refined.data() + axis * bins;
         const float lo = r.box.lo[axis] + 0.f, hi = r.box.hi[axis] + 0.f;
         AxisExtents& x = extents[axis];
         if (lo == hi) {
-          if (refined[binner.bin(axis, lo)]) x.flats.push_back(lo);
+          if (refined[ref_bins[2 * axis]]) x.flats.push_back(lo);
           continue;
         }
-        if (refined[binner.bin(axis, lo)]) x.starts.push_back(lo);
-        if (refined[binner.bin(axis, hi)]) x.ends.push_back(hi);
+        if (refined[ref_bins[2 * axis]]) x.starts.push_back(lo);
+        if (refined[ref_bins[2 * axis + 1]]) x.ends.push_back(hi);
       }
     }
   };
   if (!parallel || refs.size() <= 2 * kParallelGrain) {
-    gather(refs, scratch.extents);
+    gather(0, refs.size(), scratch.extents);
   } else {
     // Chunks gathered in parallel and joined; the order does not matter, the lists are sorted.
     const std::size_t chunks = (refs.size() + kParallelGrain - 1) / kParallelGrain;
     std::vector<NodeExtents> parts(chunks);
     tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
       const std::size_t first = k * kParallelGrain;
-      gather(refs.subspan(first, std::min(kParallelGrain, refs.size() - first)), parts[k]);
+      gather(first, std::min(refs.size(), first + kParallelGrain), parts[k]);
     });
     for (const NodeExtents& part : parts) {
       for (int axis = 0; axis < 3; ++axis) {

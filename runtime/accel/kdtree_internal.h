@@ -182,6 +182,7 @@ void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& ca
 struct PlaneScratch {
   std::vector<std::uint32_t> starts, ends;  // binned counts, [axis * bins + bin]
   std::vector<std::uint8_t> refined;        // 1 for the bins the exact sweep covers, same index
+  std::vector<std::uint16_t> ref_bins;      // per reference: start and end bin of each axis
   NodeExtents extents;
   NodeCandidates candidates;
   std::vector<float> costs;  // evaluate_candidates' working memory
