@@ -50,6 +50,7 @@ void sort_floats(std::vector<float>& v) {
     std::sort(v.begin(), v.end());
     return;
   }
+  if (v.size() <= 1) return;
   std::array<float, kRankSort> copy;
   std::copy(v.begin(), v.end(), copy.begin());
   rank_sort(copy.data(), v.data(), v.size());
