@@ -151,8 +151,12 @@ struct AxisCandidates {
   std::vector<float> pos;
   std::vector<float> left_a, right_a, left_b, right_b;
   std::size_t size = 0;
+  bool planar = false;  // some candidate has planar references (else b equals a)
 
-  void clear() { size = 0; }
+  void clear() {
+    size = 0;
+    planar = false;
+  }
   // Room for `more` candidates after the first `size`.
   void reserve_more(std::size_t more) {
     if (pos.size() < size + more) {

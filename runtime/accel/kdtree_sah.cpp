@@ -85,28 +85,19 @@ struct CostTerms {
 __attribute__((target_clones("avx2", "default")))
 #endif
 void candidate_costs(CostTerms t, std::size_t n, const float* __restrict pos,
-                     const float* __restrict left_a, const float* __restrict right_a,
-                     const float* __restrict left_b, const float* __restrict right_b,
-                     float* __restrict cost_a, float* __restrict cost_b, float* __restrict plain_a,
-                     float* __restrict plain_b) {
+                     const float* __restrict left, const float* __restrict right,
+                     float* __restrict cost, float* __restrict plain) {
   for (std::size_t i = 0; i < n; ++i) {
     const float width_left = pos[i] - t.lo, width_right = t.hi - pos[i];
     const float p_left = 2.f * (t.face + width_left * t.rim) * t.inv_area;
     const float p_right = 2.f * (t.face + width_right * t.rim) * t.inv_area;
-    const float pa =
-        t.traversal_cost + t.intersection_cost * (p_left * left_a[i] + p_right * right_a[i]);
-    const float pb =
-        t.traversal_cost + t.intersection_cost * (p_left * left_b[i] + p_right * right_b[i]);
+    const float c = t.traversal_cost + t.intersection_cost * (p_left * left[i] + p_right * right[i]);
     // Bitwise, not short-circuit, and both products taken: a select, not a branch.
-    const bool empty_a =
-        ((left_a[i] == 0.f) & (width_left > 0.f)) | ((right_a[i] == 0.f) & (width_right > 0.f));
-    const bool empty_b =
-        ((left_b[i] == 0.f) & (width_left > 0.f)) | ((right_b[i] == 0.f) & (width_right > 0.f));
-    const float bonus_a = pa * t.empty_factor, bonus_b = pb * t.empty_factor;
-    plain_a[i] = pa;
-    plain_b[i] = pb;
-    cost_a[i] = empty_a ? bonus_a : pa;
-    cost_b[i] = empty_b ? bonus_b : pb;
+    const bool empty =
+        ((left[i] == 0.f) & (width_left > 0.f)) | ((right[i] == 0.f) & (width_right > 0.f));
+    const float bonus = c * t.empty_factor;
+    plain[i] = c;
+    cost[i] = empty ? bonus : c;
   }
 }
 
@@ -133,6 +124,7 @@ void merge_candidates(std::span<const float> starts, std::span<const float> ends
     out.right_a[n] = static_cast<float>(n_right);
     out.left_b[n] = static_cast<float>(n_left);
     out.right_b[n] = static_cast<float>(n_right + flat);
+    out.planar |= flat > 0;
     ++n;
     n_left += starting + flat;
   }
@@ -154,11 +146,18 @@ void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& ca
   float* plain_a = cost_b + n;
   float* plain_b = plain_a + n;
   const float* pos = candidates.pos.data();
-  candidate_costs({a.lo, a.hi, a.face, a.rim, c.inv_area, c.traversal_cost, c.intersection_cost,
-                   c.empty_factor},
-                  n, pos, candidates.left_a.data(), candidates.right_a.data(),
-                  candidates.left_b.data(), candidates.right_b.data(), cost_a, cost_b, plain_a,
-                  plain_b);
+  const CostTerms terms{a.lo,           a.hi,           a.face,
+                        a.rim,          c.inv_area,     c.traversal_cost,
+                        c.intersection_cost, c.empty_factor};
+  candidate_costs(terms, n, pos, candidates.left_a.data(), candidates.right_a.data(), cost_a,
+                  plain_a);
+  if (candidates.planar) {
+    candidate_costs(terms, n, pos, candidates.left_b.data(), candidates.right_b.data(), cost_b,
+                    plain_b);
+  } else {  // no planar references: b would be a copy of a
+    cost_b = cost_a;
+    plain_b = plain_a;
+  }
   // evaluate_plane's comparisons in candidate order (planar left before planar right): the first
   // of the cheapest wins, and an invalid best takes the first candidate whatever its cost.
   float lowest = best.lowest_plain_cost;
