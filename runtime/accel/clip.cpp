@@ -78,22 +78,62 @@ Polygon clip_to_box(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, 
   return poly[cur];
 }
 
-// The polygon's bounds rounded outward to float and clamped to `box`; empty when nothing is left.
-Bounds bounds_within(const Polygon& poly, const Bounds& box) {
-  Bounds result;
-  if (poly.n == 0) return result;
-  glm::dvec3 lo(std::numeric_limits<double>::infinity());
-  glm::dvec3 hi(-std::numeric_limits<double>::infinity());
-  for (std::size_t i = 0; i < poly.n; ++i) {
-    lo = glm::min(lo, poly.v[i]);
-    hi = glm::max(hi, poly.v[i]);
+// The double-precision bounds of a set of points, taken in the order given (glm::min keeps the
+// first of equal values, so the order matters for -0 and +0; this keeps the polygon's order).
+struct PointBounds {
+  glm::dvec3 lo{std::numeric_limits<double>::infinity()};
+  glm::dvec3 hi{-std::numeric_limits<double>::infinity()};
+  bool any = false;
+
+  void add(const glm::dvec3& p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+    any = true;
   }
+};
+
+// The points' bounds rounded outward to float and clamped to `box`; empty when there are none.
+Bounds bounds_within(const PointBounds& points, const Bounds& box) {
+  Bounds result;
+  if (!points.any) return result;
   for (int axis = 0; axis < 3; ++axis) {
-    result.lo[axis] = std::max(round_down(lo[axis]), box.lo[axis]);
-    result.hi[axis] = std::min(round_up(hi[axis]), box.hi[axis]);
+    result.lo[axis] = std::max(round_down(points.lo[axis]), box.lo[axis]);
+    result.hi[axis] = std::min(round_up(points.hi[axis]), box.hi[axis]);
     if (result.lo[axis] > result.hi[axis]) return Bounds{};  // only a rounding sliver was left
   }
   return result;
+}
+
+Bounds bounds_within(const Polygon& poly, const Bounds& box) {
+  PointBounds points;
+  for (std::size_t i = 0; i < poly.n; ++i) points.add(poly.v[i]);
+  return bounds_within(points, box);
+}
+
+// clip_plane(in, axis, plane, -1.0) and clip_plane(in, axis, plane, 1.0) at once, keeping only the
+// bounds of the points each would output, in the same order: the same boxes without writing the
+// two polygons.
+std::array<PointBounds, 2> split_bounds(const Polygon& in, int axis, double plane) {
+  std::array<PointBounds, 2> out;
+  constexpr std::array<double, 2> kSign{-1.0, 1.0};
+  const glm::dvec3* prev = &in.v[in.n - 1];
+  std::array<double, 2> d_prev{kSign[0] * ((*prev)[axis] - plane),
+                               kSign[1] * ((*prev)[axis] - plane)};
+  for (std::size_t i = 0; i < in.n; ++i) {
+    const glm::dvec3& cur = in.v[i];
+    for (int side = 0; side < 2; ++side) {
+      const double d_cur = kSign[side] * (cur[axis] - plane);
+      if ((d_prev[side] >= 0.0) != (d_cur >= 0.0)) {
+        glm::dvec3 p = *prev + (cur - *prev) * (d_prev[side] / (d_prev[side] - d_cur));
+        p[axis] = plane;
+        out[side].add(p);
+      }
+      if (d_cur >= 0.0) out[side].add(cur);
+      d_prev[side] = d_cur;
+    }
+    prev = &cur;
+  }
+  return out;
 }
 
 }  // namespace
@@ -110,10 +150,8 @@ std::array<Bounds, 2> split_triangle_bounds(const glm::vec3& a, const glm::vec3&
   std::array<Bounds, 2> children{cell, cell};
   children[0].hi[axis] = pos;
   children[1].lo[axis] = pos;
-  std::array<Polygon, 2> side;
   if (inside.n == 0) return {Bounds{}, Bounds{}};
-  clip_plane(inside, axis, pos, -1.0, side[0]);
-  clip_plane(inside, axis, pos, 1.0, side[1]);
+  const std::array<PointBounds, 2> side = split_bounds(inside, axis, pos);
   return {bounds_within(side[0], children[0]), bounds_within(side[1], children[1])};
 }
 

@@ -2,7 +2,9 @@
 #include "runtime/accel/kdtree.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -27,19 +29,47 @@ bool has_area(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
 co_float4 to_float4(const glm::vec3& p) { return {p.x, p.y, p.z, 0.f}; }
 
 // Keeps the good triangles in input order; returns how many were dropped.
+bool is_good(std::span<const glm::vec3> positions, std::size_t i) {
+  const glm::vec3& a = positions[3 * i];
+  const glm::vec3& b = positions[3 * i + 1];
+  const glm::vec3& c = positions[3 * i + 2];
+  return is_finite(a) && is_finite(b) && is_finite(c) && has_area(a, b, c);
+}
+
+constexpr std::size_t kTriangleChunk = 65536;  // input triangles per task
+
+// In parallel over fixed chunks: which triangles are good and each chunk's count and bounds, then
+// the kept triangles written at their chunk's prefix offset. The chunk bounds are joined in chunk
+// order, so the result is the serial one (the first of equal extremes kept) for any thread count.
 std::size_t keep_good_triangles(std::span<const glm::vec3> positions, KdTree& tree) {
   const std::size_t input = positions.size() / 3;
-  for (std::size_t i = 0; i < input; ++i) {
-    const glm::vec3& a = positions[3 * i];
-    const glm::vec3& b = positions[3 * i + 1];
-    const glm::vec3& c = positions[3 * i + 2];
-    if (!is_finite(a) || !is_finite(b) || !is_finite(c) || !has_area(a, b, c)) continue;
-    tree.triangles.push_back({to_float4(a), to_float4(b), to_float4(c)});
-    tree.source_index.push_back(static_cast<std::uint32_t>(i));
-    tree.bounds.extend(a);
-    tree.bounds.extend(b);
-    tree.bounds.extend(c);
+  const std::size_t chunks = (input + kTriangleChunk - 1) / kTriangleChunk;
+  std::vector<std::uint8_t> good(input);
+  std::vector<std::size_t> kept(chunks + 1, 0);
+  std::vector<Bounds> bounds(chunks);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
+    for (std::size_t i = k * kTriangleChunk; i < std::min(input, (k + 1) * kTriangleChunk); ++i) {
+      good[i] = is_good(positions, i);
+      if (!good[i]) continue;
+      ++kept[k + 1];
+      for (int v = 0; v < 3; ++v) bounds[k].extend(positions[3 * i + v]);
+    }
+  });
+  for (std::size_t k = 0; k < chunks; ++k) {
+    kept[k + 1] += kept[k];
+    tree.bounds.extend(bounds[k]);
   }
+  tree.triangles.resize(kept[chunks]);
+  tree.source_index.resize(kept[chunks]);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
+    std::size_t out = kept[k];
+    for (std::size_t i = k * kTriangleChunk; i < std::min(input, (k + 1) * kTriangleChunk); ++i) {
+      if (!good[i]) continue;
+      tree.triangles[out] = {to_float4(positions[3 * i]), to_float4(positions[3 * i + 1]),
+                             to_float4(positions[3 * i + 2])};
+      tree.source_index[out++] = static_cast<std::uint32_t>(i);
+    }
+  });
   return input - tree.triangles.size();
 }
 

@@ -4,6 +4,7 @@
 // many references reach left of it and how many right of it. The counts are integers, so a
 // parallel count gives the same plane as a serial one.
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
@@ -48,22 +49,29 @@ struct BinCounts {
   }
 };
 
+// Counts the references' bins and keeps them (6 per reference: start and end bin per axis) in
+// `ref_bins`, for refine() to look up instead of binning every reference again.
 void count(const Binner& binner, std::span<const Ref> refs, std::vector<std::uint32_t>& starts,
-           std::vector<std::uint32_t>& ends) {
+           std::vector<std::uint32_t>& ends, std::uint16_t* ref_bins) {
   for (const Ref& r : refs) {
     for (int axis = 0; axis < 3; ++axis) {
-      ++starts[axis * binner.bins + binner.bin(axis, r.box.lo[axis])];
-      ++ends[axis * binner.bins + binner.bin(axis, r.box.hi[axis])];
+      const int lo = binner.bin(axis, r.box.lo[axis]), hi = binner.bin(axis, r.box.hi[axis]);
+      ++starts[axis * binner.bins + lo];
+      ++ends[axis * binner.bins + hi];
+      ref_bins[2 * axis] = static_cast<std::uint16_t>(lo);
+      ref_bins[2 * axis + 1] = static_cast<std::uint16_t>(hi);
     }
+    ref_bins += 6;
   }
 }
 
 void count_all(const Binner& binner, std::span<const Ref> refs, bool parallel,
                PlaneScratch& scratch) {
+  if (scratch.ref_bins.size() < 6 * refs.size()) scratch.ref_bins.resize(6 * refs.size());
   if (!parallel || refs.size() <= 2 * kParallelGrain) {
     scratch.starts.assign(3 * static_cast<std::size_t>(binner.bins), 0u);
     scratch.ends.assign(3 * static_cast<std::size_t>(binner.bins), 0u);
-    count(binner, refs, scratch.starts, scratch.ends);
+    count(binner, refs, scratch.starts, scratch.ends, scratch.ref_bins.data());
     return;
   }
   BinCounts empty;
@@ -71,7 +79,8 @@ void count_all(const Binner& binner, std::span<const Ref> refs, bool parallel,
   BinCounts total = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, refs.size(), kParallelGrain), empty,
       [&](const tbb::blocked_range<std::size_t>& r, BinCounts partial) {
-        count(binner, refs.subspan(r.begin(), r.size()), partial.starts, partial.ends);
+        count(binner, refs.subspan(r.begin(), r.size()), partial.starts, partial.ends,
+              scratch.ref_bins.data() + 6 * r.begin());
         return partial;
       },
       [](BinCounts a, const BinCounts& b) {
@@ -160,7 +169,8 @@ std::size_t in_bins_up_to(std::span<const float> sorted, std::size_t first, cons
 // counts, evaluates each of them exactly. This recovers the planes at triangle boundaries, which
 // a KD-tree's cost depends on (cutting off empty space tightly) and bin boundaries miss.
 void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs,
-            const std::array<Ranges, 3>& ranges, PlaneScratch& scratch, SplitPlane& best) {
+            const std::array<Ranges, 3>& ranges, bool parallel, PlaneScratch& scratch,
+            SplitPlane& best) {
   for (AxisExtents& x : scratch.extents) x.clear();
   // A lookup per position instead of a search through the ranges.
   const auto bins = static_cast<std::size_t>(binner.bins);
@@ -172,17 +182,42 @@ void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs
       }
     }
   }
-  for (const Ref& r : refs) {
-    for (int axis = 0; axis < 3; ++axis) {
-      const std::uint8_t* refined = scratch.refined.data() + axis * bins;
-      const float lo = r.box.lo[axis] + 0.f, hi = r.box.hi[axis] + 0.f;
-      AxisExtents& x = scratch.extents[axis];
-      if (lo == hi) {
-        if (refined[binner.bin(axis, lo)]) x.flats.push_back(lo);
-        continue;
+  // The bins count_all() kept (binning -0 and +0 alike).
+  auto gather = [&](std::size_t first, std::size_t last, NodeExtents& extents) {
+    for (std::size_t i = first; i < last; ++i) {
+      const Ref& r = refs[i];
+      const std::uint16_t* ref_bins = scratch.ref_bins.data() + 6 * i;
+      for (int axis = 0; axis < 3; ++axis) {
+        const std::uint8_t* refined = scratch.refined.data() + axis * bins;
+        const float lo = r.box.lo[axis] + 0.f, hi = r.box.hi[axis] + 0.f;
+        AxisExtents& x = extents[axis];
+        if (lo == hi) {
+          if (refined[ref_bins[2 * axis]]) x.flats.push_back(lo);
+          continue;
+        }
+        if (refined[ref_bins[2 * axis]]) x.starts.push_back(lo);
+        if (refined[ref_bins[2 * axis + 1]]) x.ends.push_back(hi);
       }
-      if (refined[binner.bin(axis, lo)]) x.starts.push_back(lo);
-      if (refined[binner.bin(axis, hi)]) x.ends.push_back(hi);
+    }
+  };
+  if (!parallel || refs.size() <= 2 * kParallelGrain) {
+    gather(0, refs.size(), scratch.extents);
+  } else {
+    // Chunks gathered in parallel and joined; the order does not matter, the lists are sorted.
+    const std::size_t chunks = (refs.size() + kParallelGrain - 1) / kParallelGrain;
+    std::vector<NodeExtents> parts(chunks);
+    tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
+      const std::size_t first = k * kParallelGrain;
+      gather(first, std::min(refs.size(), first + kParallelGrain), parts[k]);
+    });
+    for (const NodeExtents& part : parts) {
+      for (int axis = 0; axis < 3; ++axis) {
+        AxisExtents& x = scratch.extents[axis];
+        const AxisExtents& y = part[axis];
+        x.starts.insert(x.starts.end(), y.starts.begin(), y.starts.end());
+        x.ends.insert(x.ends.end(), y.ends.begin(), y.ends.end());
+        x.flats.insert(x.flats.end(), y.flats.begin(), y.flats.end());
+      }
     }
   }
   for (int axis = 0; axis < 3; ++axis) {
@@ -190,6 +225,8 @@ void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs
     x.sort();
     // The sorted positions fall into the ranges in order; each range's sweep starts from the
     // counts of the bins below it.
+    AxisCandidates& candidates = scratch.candidates[axis];
+    candidates.clear();
     std::size_t s = 0, e = 0, f = 0;
     std::uint32_t n_left = 0, n_right = c.count;
     int counted = 0;  // bins [0, counted) are in n_left / n_right
@@ -202,13 +239,15 @@ void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs
       const std::size_t ns = in_bins_up_to(x.starts, s, binner, axis, last);
       const std::size_t ne = in_bins_up_to(x.ends, e, binner, axis, last);
       const std::size_t nf = in_bins_up_to(x.flats, f, binner, axis, last);
-      sweep_extents(c, axis, std::span<const float>(x.starts).subspan(s, ns),
-                    std::span<const float>(x.ends).subspan(e, ne),
-                    std::span<const float>(x.flats).subspan(f, nf), n_left, n_right, best);
+      merge_candidates(std::span<const float>(x.starts).subspan(s, ns),
+                       std::span<const float>(x.ends).subspan(e, ne),
+                       std::span<const float>(x.flats).subspan(f, nf), n_left, n_right,
+                       candidates);
       s += ns;
       e += ne;
       f += nf;
     }
+    evaluate_candidates(c, axis, candidates, scratch.costs, best);
   }
 }
 
@@ -235,7 +274,7 @@ SplitPlane find_binned_plane(const SahContext& c, std::span<const Ref> refs, int
   for (int axis = 0; axis < 3; ++axis) {
     if (c.extent[axis] > 0.f) ranges[axis] = exact_ranges(scratch, bins, axis, boundary[axis]);
   }
-  refine(c, binner, refs, ranges, scratch, best);
+  refine(c, binner, refs, ranges, parallel, scratch, best);
   return best;
 }
 

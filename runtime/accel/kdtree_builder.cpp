@@ -6,6 +6,8 @@
 // TBB tasks, built into their own pointer-free Subtree kept in a fixed slot of their parent's, so
 // the tree is the same bits whatever the thread count and timing.
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
@@ -34,8 +36,8 @@ constexpr int kMaxBadRefines = 3;
 struct Scratch {
   std::vector<Ref> refs;
   PlaneScratch plane;
-  // plane.extents are already the sorted extents of the next node's references: its parent swept
-  // them and handed all of them on unchanged (an empty-space cut with nothing clipped, the most
+  // plane.candidates are already the merged candidates of the next node's references: its parent
+  // swept them and handed all of them on unchanged (an empty-space cut with nothing clipped, the most
   // common split in a KD-tree), so the child skips gathering and sorting them again.
   bool extents_inherited = false;
 };
@@ -58,9 +60,12 @@ class Builder {
   SplitPlane find_plane(Scratch& s, std::size_t begin, std::size_t end, const SahContext& c,
                         bool parallel, bool inherited) const;
   void build_children_parallel(Subtree& out, std::uint32_t index, Scratch& s,
-                               std::array<std::size_t, 2> first, std::array<std::size_t, 2> counts,
+                               std::array<std::vector<Ref>, 2> children,
                                const std::array<Bounds, 2>& cells, int depth,
                                int bad_refines) const;
+  std::uint32_t build_one_sided(Subtree& out, Scratch& s, std::size_t begin, std::size_t end,
+                                const SplitPlane& plane, const Bounds& voxel, int depth,
+                                int bad_refines) const;
   static std::uint32_t make_leaf(Subtree& out, const Scratch& s, std::size_t begin,
                                  std::size_t end);
 
@@ -95,9 +100,9 @@ SplitPlane Builder::find_plane(Scratch& s, std::size_t begin, std::size_t end,
   if (!exact(count)) {
     // A bin per four references is enough: the exact sweep inside the best bins and at the ends
     // of the geometry finds the planes that matter (on the bunny: 3% fewer instructions than a
-    // bin per reference, SAH 75.03 against 75.09).
+    // bin per reference, SAH 75.03 against 75.09). At most 65536: bin indices are kept as 16 bits.
     const int bins = static_cast<int>(std::clamp<std::size_t>(
-        count / 4, 8, static_cast<std::size_t>(std::max(options_.bins, 8))));
+        count / 4, 8, static_cast<std::size_t>(std::clamp(options_.bins, 8, 65536))));
     return find_binned_plane(c, std::span<const Ref>(s.refs).subspan(begin, count), bins,
                              parallel, s.plane);
   }
@@ -110,7 +115,7 @@ SplitPlane Builder::find_plane(Scratch& s, std::size_t begin, std::size_t end,
     }
     for (AxisExtents& x : extents) x.sort();
   }
-  return find_best_plane(c, extents);
+  return find_best_plane(c, extents, s.plane.candidates, s.plane.costs, inherited);
 }
 
 std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::size_t end,
@@ -137,19 +142,30 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
   bad_refines = no_progress ? bad_refines + 1 : 0;
   if (bad_refines >= kMaxBadRefines) return make_leaf(out, s, begin, end);
 
+  // An exact plane with nothing on one side (an empty-space cut, most of the nodes of the deep
+  // tree): the exact counts say every reference goes to the other side unchanged (none straddles,
+  // so none is clipped), so the child reuses this node's references and sorted extents in place
+  // instead of partitioning them.
+  if (exact(count) && !parallel && (plane.left_count == 0 || plane.right_count == 0)) {
+    return build_one_sided(out, s, begin, end, plane, voxel, depth, bad_refines);
+  }
+  const std::array<Bounds, 2> cells = child_cells(voxel, plane.axis, plane.pos);
+  if (parallel) {
+    std::array<std::vector<Ref>, 2> children = partition_apart(
+        std::span<const Ref>(s.refs).subspan(begin, count), voxel, plane, triangles_);
+    const std::uint32_t index = checked_offset(out.nodes.size());
+    out.nodes.push_back({static_cast<std::uint32_t>(plane.axis), plane.pos, 0, 0});
+    build_children_parallel(out, index, s, std::move(children), cells, depth, bad_refines);
+    return index;
+  }
   const std::size_t right_begin = s.refs.size();
   std::size_t clipped = 0;
   const std::array<std::size_t, 2> counts =
-      partition(s.refs, begin, end, voxel, plane, triangles_, parallel, clipped);
+      partition(s.refs, begin, end, voxel, plane, triangles_, clipped);
   // The extents of this node are those of a child that got every reference unchanged.
   const bool hand_on = exact(count) && clipped == 0 && (counts[0] == 0 || counts[1] == 0);
-  const std::array<Bounds, 2> cells = child_cells(voxel, plane.axis, plane.pos);
   const std::uint32_t index = checked_offset(out.nodes.size());
   out.nodes.push_back({static_cast<std::uint32_t>(plane.axis), plane.pos, 0, 0});
-  if (parallel) {
-    build_children_parallel(out, index, s, {begin, right_begin}, counts, cells, depth, bad_refines);
-    return index;
-  }
   s.extents_inherited = hand_on && counts[0] > 0;
   const std::uint32_t left =
       build(out, s, begin, begin + counts[0], cells[0], depth + 1, bad_refines);
@@ -162,21 +178,44 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
   return index;
 }
 
-// Each child gets a stack of its own and is built as a task into its own Subtree, kept in the
-// parent's `spawned` (never copied: kdtree_layout.cpp walks them in place); the parent's stack is
-// freed first (a node large enough for this has the stack to itself: it is the root or a
-// child of another parallel split).
+// The split of build() whose exact counts put every reference on one side: the same nodes, in the
+// same order, as partitioning them would give.
+std::uint32_t Builder::build_one_sided(Subtree& out, Scratch& s, std::size_t begin,
+                                       std::size_t end, const SplitPlane& plane,
+                                       const Bounds& voxel, int depth, int bad_refines) const {
+  const std::array<Bounds, 2> cells = child_cells(voxel, plane.axis, plane.pos);
+  const std::uint32_t index = checked_offset(out.nodes.size());
+  out.nodes.push_back({static_cast<std::uint32_t>(plane.axis), plane.pos, 0, 0});
+  const bool all_left = plane.right_count == 0;
+  s.extents_inherited = all_left;
+  const std::uint32_t left = all_left
+                                 ? build(out, s, begin, end, cells[0], depth + 1, bad_refines)
+                                 : make_leaf(out, s, begin, begin);
+  s.extents_inherited = !all_left;
+  const std::uint32_t right = all_left
+                                  ? make_leaf(out, s, begin, begin)
+                                  : build(out, s, begin, end, cells[1], depth + 1, bad_refines);
+  s.extents_inherited = false;
+  out.nodes[index].a = left;
+  out.nodes[index].b = right;
+  return index;
+}
+
+// Each child gets its references (partition_apart) as a stack of its own and is built as a task
+// into its own Subtree, kept in the parent's `spawned` (never copied: kdtree_layout.cpp walks them
+// in place); the parent's stack is freed first (a node large enough for this has the stack to
+// itself: it is the root or a child of another parallel split).
 void Builder::build_children_parallel(Subtree& out, std::uint32_t index, Scratch& s,
-                                      std::array<std::size_t, 2> first,
-                                      std::array<std::size_t, 2> counts,
+                                      std::array<std::vector<Ref>, 2> children,
                                       const std::array<Bounds, 2>& cells, int depth,
                                       int bad_refines) const {
-  std::array<Scratch, 2> child;
-  for (int c = 0; c < 2; ++c) {
-    const auto from = s.refs.begin() + static_cast<std::ptrdiff_t>(first[c]);
-    child[c].refs.assign(from, from + static_cast<std::ptrdiff_t>(counts[c]));
-  }
   std::vector<Ref>().swap(s.refs);
+  std::array<Scratch, 2> child;
+  std::array<std::size_t, 2> counts{};
+  for (int c = 0; c < 2; ++c) {
+    counts[c] = children[c].size();
+    child[c].refs = std::move(children[c]);
+  }
   const auto first_spawned = checked_offset(out.spawned.size());
   if (first_spawned + 2 > kSpawnedBit) throw std::length_error("KD-tree has too many subtrees");
   out.spawned.resize(out.spawned.size() + 2);
@@ -191,14 +230,22 @@ void Builder::build_children_parallel(Subtree& out, std::uint32_t index, Scratch
 }
 
 // The root: every kept triangle with its own bounds, in input order.
-std::vector<Ref> root_refs(std::span<const Triangle> triangles) {
+std::vector<Ref> root_refs(std::span<const Triangle> triangles, bool parallel) {
   std::vector<Ref> refs(triangles.size());
-  for (std::uint32_t i = 0; i < triangles.size(); ++i) {
-    Bounds box;
-    box.extend(vertex(triangles[i].v0));
-    box.extend(vertex(triangles[i].v1));
-    box.extend(vertex(triangles[i].v2));
-    refs[i] = {box, i};
+  auto fill = [&](std::size_t first, std::size_t last) {
+    for (std::size_t i = first; i < last; ++i) {
+      Bounds box;
+      box.extend(vertex(triangles[i].v0));
+      box.extend(vertex(triangles[i].v1));
+      box.extend(vertex(triangles[i].v2));
+      refs[i] = {box, static_cast<std::uint32_t>(i)};
+    }
+  };
+  if (parallel) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, refs.size(), kParallelTriangles),
+                      [&](const tbb::blocked_range<std::size_t>& r) { fill(r.begin(), r.end()); });
+  } else {
+    fill(0, refs.size());
   }
   return refs;
 }
@@ -220,7 +267,7 @@ Subtree build_subtree(std::span<const Triangle> triangles, const Bounds& bounds,
   const int max_depth = effective_max_depth(options, triangles.size());
   const Builder builder(triangles, options, max_depth);
   Scratch scratch;
-  scratch.refs = root_refs(triangles);
+  scratch.refs = root_refs(triangles, options.parallel);
   builder.build(out, scratch, 0, triangles.size(), bounds, 0, 0);
   return out;
 }

@@ -140,24 +140,65 @@ inline void evaluate_plane(const SahContext& c, const AxisSah& a, float pos, std
   if (n_planar > 0) consider(n_left, n_right + n_planar, false);
 }
 
+// One axis's candidate planes in ascending order with the counts Wald & Havran's sweep gives each:
+// references entirely left of the plane, reaching right of it, and lying in it. They depend on the
+// references only, not on the cell, so a child that gets every reference unchanged (an empty-space
+// cut) evaluates its parent's candidates again in its own cell without sorting or merging.
+// Each candidate is evaluated twice, with the planar references on the left (a) and on the right
+// (b); the counts are floats, as the SAH uses them (exact below 2^24), so the evaluation is a
+// plain loop the compiler vectorises.
+struct AxisCandidates {
+  std::vector<float> pos;
+  std::vector<float> left_a, right_a, left_b, right_b;
+  std::size_t size = 0;
+  bool planar = false;  // some candidate has planar references (else b equals a)
+
+  void clear() {
+    size = 0;
+    planar = false;
+  }
+  // Room for `more` candidates after the first `size`.
+  void reserve_more(std::size_t more) {
+    if (pos.size() < size + more) {
+      for (std::vector<float>* v : {&pos, &left_a, &right_a, &left_b, &right_b}) {
+        v->resize(std::max(size + more, 2 * v->size()));
+      }
+    }
+  }
+};
+
+using NodeCandidates = std::array<AxisCandidates, 3>;
+
 // Wald & Havran's incremental sweep over one axis's sorted extents, starting from n_left references
 // entirely before the first position and n_right reaching past it: at each position the extents
 // ending there leave the right side, the flat ones sit in the plane, and those starting there join
-// the left side after the evaluation. Updates `best` (kdtree_sah.cpp).
-void sweep_extents(const SahContext& c, int axis, std::span<const float> starts,
-                   std::span<const float> ends, std::span<const float> flats, std::uint32_t n_left,
-                   std::uint32_t n_right, SplitPlane& best);
+// the left side. Appends the candidates to `out` (kdtree_sah.cpp).
+void merge_candidates(std::span<const float> starts, std::span<const float> ends,
+                      std::span<const float> flats, std::uint32_t n_left, std::uint32_t n_right,
+                      AxisCandidates& out);
+
+// evaluate_plane over the candidates of `axis`, in their order: the same plane (first of the
+// cheapest) and lowest plain cost, computed a vector of candidates at a time (kdtree_sah.cpp).
+void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& candidates,
+                         std::vector<float>& costs, SplitPlane& best);
 
 // Working memory of the plane searches, reused from node to node by one task.
 struct PlaneScratch {
   std::vector<std::uint32_t> starts, ends;  // binned counts, [axis * bins + bin]
   std::vector<std::uint8_t> refined;        // 1 for the bins the exact sweep covers, same index
+  std::vector<std::uint16_t> ref_bins;      // per reference: start and end bin of each axis
   NodeExtents extents;
+  NodeCandidates candidates;
+  std::vector<float> costs;  // evaluate_candidates' working memory
 };
 
 // The best plane of Wald & Havran's sweep (their FindPlane) over a node's sorted extents: exact,
 // every boundary of a reference's extent is a candidate (kdtree_sah.cpp).
 SplitPlane find_best_plane(const SahContext& context, const NodeExtents& extents);
+// The same with the candidates merged into `candidates` (kept for a child that inherits them), or,
+// with `merged`, evaluating those already there.
+SplitPlane find_best_plane(const SahContext& context, const NodeExtents& extents,
+                           NodeCandidates& candidates, std::vector<float>& costs, bool merged);
 
 // The best of `bins - 1` evenly spaced planes per axis, counted from binned reference extents in
 // time linear in the node, and of the exact candidates inside the two bins around each axis's best
@@ -169,13 +210,18 @@ SplitPlane find_binned_plane(const SahContext& context, std::span<const Ref> ref
 // ---- Partition ---------------------------------------------------------------------------------
 // Splits the references refs[begin, end) along `plane` (kdtree_partition.cpp): the left child's
 // are written over the front of the range, the right child's appended to `refs`; straddling
-// references are clipped to each child cell. Both keep the parent's order, also when `parallel`
-// splits a large node in chunks. Returns the counts per child; `clipped` counts the straddling
-// references (0: every child reference is a parent reference unchanged).
+// references are clipped to each child cell. Both keep the parent's order. Returns the counts per
+// child; `clipped` counts the straddling references (0: every child reference is a parent
+// reference unchanged).
 std::array<std::size_t, 2> partition(std::vector<Ref>& refs, std::size_t begin, std::size_t end,
                                      const Bounds& voxel, const SplitPlane& plane,
-                                     std::span<const Triangle> triangles, bool parallel,
-                                     std::size_t& clipped);
+                                     std::span<const Triangle> triangles, std::size_t& clipped);
+
+// The same split for a node whose children are built as parallel tasks: each child's references
+// in a vector of their own, in the parent's order, the work split in chunks across threads.
+std::array<std::vector<Ref>, 2> partition_apart(std::span<const Ref> refs, const Bounds& voxel,
+                                                const SplitPlane& plane,
+                                                std::span<const Triangle> triangles);
 
 std::array<Bounds, 2> child_cells(const Bounds& voxel, int axis, float pos);
 

@@ -65,17 +65,19 @@ void flatten(const Subtree& subtree, KdTree& tree) {
   };
   std::vector<Entry> level{{&subtree, 0}}, next;
   std::vector<std::size_t> inner_before, leaf_before;
+  std::vector<BuildNode> level_nodes;  // the level's nodes, read once from their subtrees
   std::size_t level_first = 0, leaf_first = 0;
   constexpr std::size_t kGrain = 4096;
   while (!level.empty()) {
     const std::size_t n = level.size();
     inner_before.resize(n + 1);
     leaf_before.resize(n + 1);
+    level_nodes.resize(n);
     // What each node adds (read in parallel: the nodes are scattered), then the prefix sums.
     inner_before[0] = leaf_before[0] = 0;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t i = r.begin(); i != r.end(); ++i) {
-        const BuildNode& node = level[i].tree->nodes[level[i].node];
+        const BuildNode& node = level_nodes[i] = level[i].tree->nodes[level[i].node];
         const bool leaf = node.axis == KD_LEAF;
         inner_before[i + 1] = !leaf;
         leaf_before[i + 1] = leaf ? node.b : 0;
@@ -91,7 +93,7 @@ void flatten(const Subtree& subtree, KdTree& tree) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t i = r.begin(); i != r.end(); ++i) {
         const Subtree* in = level[i].tree;
-        const BuildNode& node = in->nodes[level[i].node];
+        const BuildNode& node = level_nodes[i];
         if (node.axis == KD_LEAF) {
           const std::size_t first = leaf_first + leaf_before[i];
           tree.nodes[level_first + i] = leaf_node(node.b, first);

@@ -59,59 +59,69 @@ Placement place(const Ref& r, const SplitPlane& plane, const Bounds& voxel,
   return out;
 }
 
-// Large nodes: fixed-size chunks split on their own, then concatenated in chunk order, so the
-// result is the serial one whatever the thread count.
-std::array<std::size_t, 2> partition_parallel(std::vector<Ref>& refs, std::size_t begin,
-                                              std::size_t end, const SplitPlane& plane,
-                                              const Bounds& voxel,
-                                              std::span<const Triangle> triangles,
-                                              std::size_t& clipped) {
-  const std::size_t chunks = (end - begin + kParallelChunk - 1) / kParallelChunk;
-  std::vector<std::array<std::vector<Ref>, 2>> parts(chunks);
-  std::vector<std::size_t> clipped_in(chunks, 0);
-  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
-    const std::size_t first = begin + k * kParallelChunk;
-    const std::size_t last = std::min(end, first + kParallelChunk);
-    for (std::size_t i = first; i < last; ++i) {
-      const Placement where = place(refs[i], plane, voxel, triangles);
-      clipped_in[k] += where.clipped;
-      if (where.left) parts[k][0].push_back({where.left_box, refs[i].tri});
-      if (where.right) parts[k][1].push_back({where.right_box, refs[i].tri});
-    }
-  });
-  for (std::size_t c : clipped_in) clipped += c;
-  std::size_t write = begin;
-  for (const auto& part : parts) {
-    std::copy(part[0].begin(), part[0].end(), refs.begin() + static_cast<std::ptrdiff_t>(write));
-    write += part[0].size();
-  }
-  const std::size_t right_begin = refs.size();
-  for (const auto& part : parts) refs.insert(refs.end(), part[1].begin(), part[1].end());
-  return {write - begin, refs.size() - right_begin};
-}
-
 }  // namespace
 
 std::array<std::size_t, 2> partition(std::vector<Ref>& refs, std::size_t begin, std::size_t end,
                                      const Bounds& voxel, const SplitPlane& plane,
-                                     std::span<const Triangle> triangles, bool parallel,
-                                     std::size_t& clipped) {
+                                     std::span<const Triangle> triangles, std::size_t& clipped) {
   clipped = 0;
-  if (parallel && end - begin >= 2 * kParallelChunk) {
-    return partition_parallel(refs, begin, end, plane, voxel, triangles, clipped);
-  }
   const std::size_t right_begin = refs.size();
   // Left references overwrite the range in place (never ahead of the one being read), right ones
   // are appended; `refs` may reallocate, so everything goes through indices.
   std::size_t write = begin;
+  const int axis = plane.axis;
   for (std::size_t read = begin; read < end; ++read) {
     const Ref r = refs[read];
+    // place()'s rules, inline for the references on one side (most of them): moved unchanged.
+    const float lo = r.box.lo[axis], hi = r.box.hi[axis];
+    if (lo != hi && !(lo < plane.pos && hi > plane.pos)) {
+      if (lo < plane.pos) {
+        refs[write++] = r;
+      } else {
+        refs.push_back(r);
+      }
+      continue;
+    }
     const Placement where = place(r, plane, voxel, triangles);
     clipped += where.clipped;
     if (where.left) refs[write++] = {where.left_box, r.tri};
     if (where.right) refs.push_back({where.right_box, r.tri});
   }
   return {write - begin, refs.size() - right_begin};
+}
+
+}  // namespace cohort::kd
+
+namespace cohort::kd {
+
+// Fixed-size chunks split on their own, then concatenated in chunk order, so the result is the
+// serial one whatever the thread count; each child's references are copied once, into its own
+// vector.
+std::array<std::vector<Ref>, 2> partition_apart(std::span<const Ref> refs, const Bounds& voxel,
+                                                const SplitPlane& plane,
+                                                std::span<const Triangle> triangles) {
+  const std::size_t chunks = (refs.size() + kParallelChunk - 1) / kParallelChunk;
+  std::vector<std::array<std::vector<Ref>, 2>> parts(chunks);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
+    const std::size_t first = k * kParallelChunk;
+    const std::size_t last = std::min(refs.size(), first + kParallelChunk);
+    for (std::size_t i = first; i < last; ++i) {
+      const Placement where = place(refs[i], plane, voxel, triangles);
+      if (where.left) parts[k][0].push_back({where.left_box, refs[i].tri});
+      if (where.right) parts[k][1].push_back({where.right_box, refs[i].tri});
+    }
+  });
+  std::array<std::vector<Ref>, 2> children;
+  for (int c = 0; c < 2; ++c) {
+    std::size_t total = 0;
+    for (const auto& part : parts) total += part[c].size();
+    children[c].reserve(total);
+    for (auto& part : parts) {
+      children[c].insert(children[c].end(), part[c].begin(), part[c].end());
+      std::vector<Ref>().swap(part[c]);
+    }
+  }
+  return children;
 }
 
 }  // namespace cohort::kd

@@ -24,10 +24,44 @@ bool make_sah_context(const Bounds& voxel, std::size_t count, const KdBuildOptio
   return true;
 }
 
+namespace {
+
+// Sorting by rank: each value goes where the count of smaller values (and of equal ones before
+// it) puts it. Quadratic, but without a data-dependent branch: the comparisons vectorise, where a
+// comparison sort of the small arrays of the exact sweep mispredicts about every other branch
+// (the sort was the build's largest share of time). The result is the sorted array, as std::sort
+// gives it (equal floats are the same bits: -0 was made +0).
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void rank_sort(const float* __restrict in, float* __restrict out, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) {
+    const float x = in[i];
+    std::uint32_t rank = 0;
+    for (std::size_t j = 0; j < i; ++j) rank += in[j] <= x ? 1u : 0u;
+    for (std::size_t j = i + 1; j < n; ++j) rank += in[j] < x ? 1u : 0u;
+    out[rank] = x;
+  }
+}
+
+void sort_floats(std::vector<float>& v) {
+  constexpr std::size_t kRankSort = 48;
+  if (v.size() > kRankSort) {
+    std::sort(v.begin(), v.end());
+    return;
+  }
+  if (v.size() <= 1) return;
+  std::array<float, kRankSort> copy;
+  std::copy(v.begin(), v.end(), copy.begin());
+  rank_sort(copy.data(), v.data(), v.size());
+}
+
+}  // namespace
+
 void AxisExtents::sort() {
-  std::sort(starts.begin(), starts.end());
-  std::sort(ends.begin(), ends.end());
-  std::sort(flats.begin(), flats.end());
+  sort_floats(starts);
+  sort_floats(ends);
+  sort_floats(flats);
 }
 
 namespace {
@@ -39,14 +73,41 @@ std::uint32_t take_equal(std::span<const float> sorted, std::size_t& i, float po
   return static_cast<std::uint32_t>(i - first);
 }
 
+// evaluate_plane's arithmetic, term for term, for n candidates and both sides of their planar
+// references. Restrict parameters (the outputs alias no input) and no branch, so GCC vectorises it.
+struct CostTerms {
+  float lo, hi, face, rim, inv_area, traversal_cost, intersection_cost, empty_factor;
+};
+
+// On x86 with GCC also compiled for AVX2 (8 candidates a vector), chosen at load time; AVX2 alone
+// does not enable fused multiply-add, so both versions compute the same bits.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void candidate_costs(CostTerms t, std::size_t n, const float* __restrict pos,
+                     const float* __restrict left, const float* __restrict right,
+                     float* __restrict cost, float* __restrict plain) {
+  for (std::size_t i = 0; i < n; ++i) {
+    const float width_left = pos[i] - t.lo, width_right = t.hi - pos[i];
+    const float p_left = 2.f * (t.face + width_left * t.rim) * t.inv_area;
+    const float p_right = 2.f * (t.face + width_right * t.rim) * t.inv_area;
+    const float c = t.traversal_cost + t.intersection_cost * (p_left * left[i] + p_right * right[i]);
+    // Bitwise, not short-circuit, and both products taken: a select, not a branch.
+    const bool empty =
+        ((left[i] == 0.f) & (width_left > 0.f)) | ((right[i] == 0.f) & (width_right > 0.f));
+    const float bonus = c * t.empty_factor;
+    plain[i] = c;
+    cost[i] = empty ? bonus : c;
+  }
+}
+
 }  // namespace
 
-void sweep_extents(const SahContext& c, int axis, std::span<const float> starts,
-                   std::span<const float> ends, std::span<const float> flats, std::uint32_t n_left,
-                   std::uint32_t n_right, SplitPlane& best) {
-  // A flat cell cannot be split along its flat axis: both children would be the cell itself.
-  if (!(c.extent[axis] > 0.f)) return;
-  const AxisSah a = axis_sah(c, axis);
+void merge_candidates(std::span<const float> starts, std::span<const float> ends,
+                      std::span<const float> flats, std::uint32_t n_left, std::uint32_t n_right,
+                      AxisCandidates& out) {
+  out.reserve_more(starts.size() + ends.size() + flats.size());
+  std::size_t n = out.size;
   std::size_t s = 0, e = 0, f = 0;
   while (s < starts.size() || e < ends.size() || f < flats.size()) {
     // The next position of any of the three: the candidates in ascending order.
@@ -58,19 +119,102 @@ void sweep_extents(const SahContext& c, int axis, std::span<const float> starts,
     const std::uint32_t flat = take_equal(flats, f, pos);
     const std::uint32_t starting = take_equal(starts, s, pos);
     n_right -= ending + flat;
-    evaluate_plane(c, a, pos, n_left, n_right, flat, best);
+    out.pos[n] = pos;
+    out.left_a[n] = static_cast<float>(n_left + flat);
+    out.right_a[n] = static_cast<float>(n_right);
+    out.left_b[n] = static_cast<float>(n_left);
+    out.right_b[n] = static_cast<float>(n_right + flat);
+    out.planar |= flat > 0;
+    ++n;
     n_left += starting + flat;
   }
+  out.size = n;
 }
 
-SplitPlane find_best_plane(const SahContext& context, const NodeExtents& extents) {
+void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& candidates,
+                         std::vector<float>& costs, SplitPlane& best) {
+  // A flat cell cannot be split along its flat axis: both children would be the cell itself.
+  const std::size_t n = candidates.size;
+  if (!(c.extent[axis] > 0.f) || n == 0) return;
+  const AxisSah a = axis_sah(c, axis);
+  // evaluate_plane's arithmetic, term for term, for every candidate and both sides of the planar
+  // references: costs [0, n) planar left, [n, 2n) planar right, then the plain costs likewise.
+  // Without planar references b is a copy of a, which never beats it (a comes first).
+  if (costs.size() < 4 * n) costs.resize(std::max(4 * n, 2 * costs.size()));
+  float* cost_a = costs.data();
+  float* cost_b = cost_a + n;
+  float* plain_a = cost_b + n;
+  float* plain_b = plain_a + n;
+  const float* pos = candidates.pos.data();
+  const CostTerms terms{a.lo,           a.hi,           a.face,
+                        a.rim,          c.inv_area,     c.traversal_cost,
+                        c.intersection_cost, c.empty_factor};
+  candidate_costs(terms, n, pos, candidates.left_a.data(), candidates.right_a.data(), cost_a,
+                  plain_a);
+  if (candidates.planar) {
+    candidate_costs(terms, n, pos, candidates.left_b.data(), candidates.right_b.data(), cost_b,
+                    plain_b);
+  } else {  // no planar references: b would be a copy of a
+    cost_b = cost_a;
+    plain_b = plain_a;
+  }
+  // evaluate_plane's comparisons in candidate order (planar left before planar right): the first
+  // of the cheapest wins, and an invalid best takes the first candidate whatever its cost.
+  float lowest = best.lowest_plain_cost;
+  std::size_t chosen = n;  // none of these
+  bool chosen_a = true;
+  float chosen_cost = best.cost;
+  std::size_t i = 0;
+  if (!best.valid()) {
+    chosen = 0;
+    chosen_cost = cost_a[0];
+  }
+  for (; i < n; ++i) {
+    lowest = std::min(lowest, plain_a[i]);
+    lowest = std::min(lowest, plain_b[i]);
+    if (cost_a[i] < chosen_cost) {
+      chosen = i;
+      chosen_a = true;
+      chosen_cost = cost_a[i];
+    }
+    if (cost_b[i] < chosen_cost) {
+      chosen = i;
+      chosen_a = false;
+      chosen_cost = cost_b[i];
+    }
+  }
+  best.lowest_plain_cost = lowest;
+  if (chosen == n) return;
+  best.axis = a.axis;
+  best.pos = pos[chosen];
+  best.planar_left = chosen_a;
+  best.cost = chosen_cost;
+  best.plain_cost = chosen_a ? plain_a[chosen] : plain_b[chosen];
+  best.left_count =
+      static_cast<std::uint32_t>(chosen_a ? candidates.left_a[chosen] : candidates.left_b[chosen]);
+  best.right_count = static_cast<std::uint32_t>(chosen_a ? candidates.right_a[chosen]
+                                                         : candidates.right_b[chosen]);
+}
+
+SplitPlane find_best_plane(const SahContext& context, const NodeExtents& extents,
+                           NodeCandidates& candidates, std::vector<float>& costs, bool merged) {
   // Axis order and a strict comparison: the same plane whatever the order of the references.
   SplitPlane best;
   for (int axis = 0; axis < 3; ++axis) {
-    const AxisExtents& x = extents[axis];
-    sweep_extents(context, axis, x.starts, x.ends, x.flats, 0, context.count, best);
+    if (!merged) {
+      const AxisExtents& x = extents[axis];
+      candidates[axis].clear();
+      merge_candidates(x.starts, x.ends, x.flats, 0, context.count, candidates[axis]);
+    }
+    evaluate_candidates(context, axis, candidates[axis], costs, best);
   }
   return best;
+}
+
+SplitPlane find_best_plane(const SahContext& context, const NodeExtents& extents) {
+  NodeCandidates candidates;
+  std::vector<float> costs;
+  return find_best_plane(context, extents, candidates, costs, false);
 }
 
 }  // namespace cohort::kd

@@ -1,10 +1,16 @@
 // Statistics of a flattened KD-tree. The SAH cost is the expected cost of a random ray that meets
 // the root box (MacDonald & Booth 1990): every node is reached with probability area(node) /
 // area(root), an inner node costs K_T and a leaf K_I per triangle.
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+
 #include "runtime/accel/kdtree_internal.h"
 
 namespace cohort::kd {
 namespace {
+
+constexpr std::size_t kStatsChunk = 16384;  // nodes per task and per partial sum
 
 double area(const Bounds& box) {
   const glm::dvec3 e = glm::dvec3(box.hi) - glm::dvec3(box.lo);
@@ -27,29 +33,58 @@ void compute_stats(KdTree& tree, const KdBuildOptions& options) {
   s.node_count = tree.nodes.size();
   s.leaf_count = s.empty_leaf_count = s.leaf_references = 0;
   s.sah_cost = 0;
-  // Breadth-first order puts every parent before its children: one forward pass carries the boxes.
-  std::vector<Bounds> box(tree.nodes.size());
-  std::vector<int> depth(tree.nodes.size(), 0);
-  if (!tree.nodes.empty()) box[0] = tree.bounds;
+  // Breadth-first order: each level is the children of the previous level's inner nodes, in order,
+  // so one level at a time carries the boxes down. A level's nodes are read in parallel in chunks
+  // of fixed size whose partial sums are added in chunk order: the same figures for any thread
+  // count (summed per chunk, so the SAH cost may differ in its last bits from a node-by-node sum).
   const double root_area = tree.bounds.empty() ? 0.0 : area(tree.bounds);
-  for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
-    const KdNode node = tree.nodes[i];
-    const double weight = root_area > 0.0 ? area(box[i]) / root_area : 1.0;
-    if (kd_is_leaf(node)) {
-      const std::uint32_t count = kd_leaf_count(node);
-      ++s.leaf_count;
-      s.empty_leaf_count += count == 0;
-      s.leaf_references += count;
-      s.sah_cost += weight * options.intersection_cost * count;
-      s.depth = std::max(s.depth, depth[i]);
-      continue;
+  struct Partial {
+    double sah = 0;
+    std::size_t leaves = 0, empty = 0, references = 0, inner = 0;
+  };
+  std::vector<Bounds> level_box, next_box;
+  if (!tree.nodes.empty()) level_box.push_back(tree.bounds);
+  std::size_t first = 0;
+  for (int depth = 0; !level_box.empty(); ++depth) {
+    const std::size_t n = level_box.size();
+    const std::size_t children_first = first + n;
+    const std::size_t chunks = (n + kStatsChunk - 1) / kStatsChunk;
+    std::vector<Partial> partial(chunks);
+    // The next level holds two children per inner node of this one: at most 2n.
+    next_box.resize(2 * n);
+    tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
+      Partial& p = partial[k];
+      for (std::size_t i = k * kStatsChunk; i < std::min(n, (k + 1) * kStatsChunk); ++i) {
+        const KdNode node = tree.nodes[first + i];
+        const double weight = root_area > 0.0 ? area(level_box[i]) / root_area : 1.0;
+        if (kd_is_leaf(node)) {
+          const std::uint32_t count = kd_leaf_count(node);
+          ++p.leaves;
+          p.empty += count == 0;
+          p.references += count;
+          p.sah += weight * options.intersection_cost * count;
+          continue;
+        }
+        ++p.inner;
+        p.sah += weight * options.traversal_cost;
+        const std::array<Bounds, 2> children = split_box(level_box[i], node);
+        const std::size_t left = kd_left_child(node) - children_first;
+        next_box[left] = children[0];
+        next_box[left + 1] = children[1];
+      }
+    });
+    std::size_t inner = 0;
+    for (const Partial& p : partial) {
+      s.sah_cost += p.sah;
+      s.leaf_count += p.leaves;
+      s.empty_leaf_count += p.empty;
+      s.leaf_references += p.references;
+      inner += p.inner;
     }
-    s.sah_cost += weight * options.traversal_cost;
-    const std::array<Bounds, 2> children = split_box(box[i], node);
-    for (std::uint32_t c = 0; c < 2; ++c) {
-      box[kd_left_child(node) + c] = children[c];
-      depth[kd_left_child(node) + c] = depth[i] + 1;
-    }
+    if (inner < n) s.depth = depth;  // this level has leaves
+    next_box.resize(2 * inner);
+    level_box.swap(next_box);
+    first = children_first;
   }
   const std::size_t filled = s.leaf_count - s.empty_leaf_count;
   s.average_leaf_triangles = filled ? static_cast<double>(s.leaf_references) / filled : 0.0;
