@@ -59,9 +59,9 @@ void print_details(const PreparedRender& render, const RenderOutcome& outcome) {
       for (const auto& [name, rate] : by_method) text += fmt::format("{}{} {:.2f}", text.empty() ? "" : ", ", name, rate * 1e-6);
       return text.empty() ? std::string("none") : text;
     };
-    fmt::print("method auto: {}, the fastest of the probe ({:.3f}s of the render; Mrays/s at a quarter wave: {}; "
+    fmt::print("method auto: {}, {} ({:.3f}s of the render; Mrays/s at a quarter wave: {}; "
                "at a full wave, the fastest within 0.9x: {})\n",
-               result.auto_choice.method, result.auto_choice.probe_seconds,
+               result.auto_choice.method, result.auto_choice.reason, result.auto_choice.probe_seconds,
                rates(result.auto_choice.probe_rays_per_second), rates(result.auto_choice.final_rays_per_second));
   }
 }

@@ -53,6 +53,7 @@ struct PassStragglers {
 // What --method auto probed and chose (runtime/render/methods/auto.cpp).
 struct AutoChoice {
   std::string method;                                   // empty: not auto
+  std::string reason;                                   // why: the fastest probed, or a default
   double probe_seconds = 0;  // the probing methods' launches (their samples are part of the image)
   std::map<std::string, double> probe_rays_per_second;  // the screen: every method probed
   std::map<std::string, double> final_rays_per_second;  // the final round: those near the screen's best

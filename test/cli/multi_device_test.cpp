@@ -16,7 +16,9 @@ const std::string kTwoDevices = "POCL_DEVICES=pthread pthread";
 
 std::string render_line(const fs::path& out, const std::string& method, const std::string& extra = "") {
   return std::string(COHORT_BINARY) + " render " + shipped_scene("cornell-box.gltf") +
-         " --res 32x32 --spp 64 --pass-spp 1 --seed 5 --max-depth 6 --method " + method + " -o " + out.string() + " " + extra;
+         " --res 32x32 --spp 64 --pass-spp 1 --seed 5 --max-depth 6 --method " + method + " -o " + out.string() +
+         // a pool of one sample per pixel: auto's screen (6 spp) is short enough to probe at 64 spp
+         " --wavefront-size 1024 " + extra;
 }
 
 // Skips (returns false) where the OpenCL platform does not give two devices for POCL_DEVICES.
@@ -51,6 +53,9 @@ TEST_P(TwoDevices, GiveTheOneDeviceImageBitForBit) {
   }
   EXPECT_EQ(passes, 64u) << "64 spp at 32x32 is 64 passes of one sample";
   EXPECT_EQ(rays, stats["rays"].get<std::uint64_t>());
+  if (std::string(GetParam()) == "auto") {
+    EXPECT_EQ(stats["auto"]["reason"], "the fastest of the probe");
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, TwoDevices, ::testing::Values("naive", "sc+rg", "pth", "auto"),

@@ -66,9 +66,13 @@ class MpiRender : public ::testing::TestWithParam<const char*> {};
 TEST_P(MpiRender, TwoRanksGiveTheSingleProcessImageBitForBit) {
   if (const auto why = skip_reason(); !why.empty()) GTEST_SKIP() << why;
   TempDir dir("cohort-mpi-");
-  ASSERT_EQ(wait_exit(spawn(COHORT_BINARY, render_args(dir.path / "one", GetParam(), "32"))).value_or(-1), 0);
-  auto args = render_args(dir.path / "two", GetParam(), "32");
-  args.insert(args.end(), {"--stats", (dir.path / "two.json").string()});
+  // auto probes where its screen is at most an eighth of the render: 6 spp with a one-sample pool
+  const std::string spp = std::string(GetParam()) == "auto" ? "48" : "32";
+  auto one = render_args(dir.path / "one", GetParam(), spp);
+  one.insert(one.end(), {"--wavefront-size", "4096"});
+  ASSERT_EQ(wait_exit(spawn(COHORT_BINARY, one)).value_or(-1), 0);
+  auto args = render_args(dir.path / "two", GetParam(), spp);
+  args.insert(args.end(), {"--wavefront-size", "4096", "--stats", (dir.path / "two.json").string()});
   const std::string log = (dir.path / "mpirun.log").string();
   ASSERT_EQ(wait_exit(spawn("mpirun", mpirun_args(args), log), std::chrono::seconds(300)).value_or(-1), 0)
       << read_all(log);
@@ -83,7 +87,10 @@ TEST_P(MpiRender, TwoRanksGiveTheSingleProcessImageBitForBit) {
     EXPECT_GT(rank["render_seconds"].get<double>(), 0);
     for (const auto& d : rank["devices"]) passes += d["passes"].get<std::uint64_t>();
   }
-  EXPECT_EQ(passes, 32u) << "every pass rendered once, by one rank";
+  EXPECT_EQ(passes, std::stoull(spp)) << "every pass rendered once, by one rank";
+  if (std::string(GetParam()) == "auto") {
+    EXPECT_EQ(stats["auto"]["reason"], "the fastest of the probe");
+  }
   for (const auto& rank : stats["ranks"])
     EXPECT_GT(rank["devices"][0]["passes"].get<int>(), 0) << "both ranks take passes";
   EXPECT_FALSE(fs::exists(dir.path / "two.exr.tmp"));

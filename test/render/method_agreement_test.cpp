@@ -260,14 +260,14 @@ TEST(Methods, MalformedCodeLayoutsAreInputErrors) {
 // whatever it picks: the probe's launches are part of the image.
 TEST(Methods, AutoRendersTheNaiveImageWithTheFastestProbedMethod) {
   RenderSettings s = small_box_settings(4u);
-  s.spp = 20;
+  s.spp = 64;  // the screen (6 spp) is at most an eighth of the render: it probes
   s.wavefront_size = 2 * s.width * s.height;  // a wave of 2 samples per pixel: the screen takes 1
   const auto path = shipped_scene("cornell-box.gltf");
   const RenderResult reference = render_scene(path, s);
   s.method = "auto";
   const RenderResult r = render_scene(path, s);
   expect_bitwise_equal(reference, r, "auto");
-  EXPECT_EQ(r.samples, 20u);
+  EXPECT_EQ(r.samples, 64u);
   EXPECT_EQ(r.passes, reference.passes) << "the probe splits launches, not passes";
   const AutoChoice& a = r.auto_choice;
   ASSERT_EQ(a.probe_rays_per_second.size(), methods().size() - 1) << "every other method screened";
@@ -287,6 +287,7 @@ TEST(Methods, AutoRendersTheNaiveImageWithTheFastestProbedMethod) {
   for (const auto& [name, rate] : deciding) EXPECT_LE(rate, deciding.at(a.method)) << name;
   EXPECT_NE(a.final_rays_per_second.size(), 1u) << "a final round of one method times nothing";
   EXPECT_LE(a.final_rays_per_second.size(), 3u) << "at most the screen's three fastest";
+  EXPECT_EQ(a.reason, "the fastest of the probe");
   EXPECT_GT(a.probe_seconds, 0.0);
   EXPECT_GE(r.render_seconds, a.probe_seconds);
   // the pick's own figures: a wavefront pick reports the shared pool
@@ -296,21 +297,42 @@ TEST(Methods, AutoRendersTheNaiveImageWithTheFastestProbedMethod) {
   }
 }
 
-// A render too short for the whole screen: the first methods probe, a launch each, and the image
-// is still naive's.
+// A render too short for the whole screen: only the first methods probe, a launch each (here a
+// time-bounded render, whose length auto cannot know), and the image is still naive's.
 TEST(Methods, AutoWithFewerLaunchesThanMethodsProbesTheFirstOnes) {
   RenderSettings s = small_box_settings(6u);
-  s.pass_samples = 1;  // 3 passes of one sample: one launch each
-  const auto path = shipped_scene("cornell-box.gltf");
-  const RenderResult reference = render_scene(path, s);
+  s.pass_samples = 1;  // passes of one sample: one launch each
   s.method = "auto";
-  const RenderResult r = render_scene(path, s);
-  expect_bitwise_equal(reference, r, "auto with 3 launches");
-  EXPECT_EQ(r.passes, 3u);
+  s.spp = 0;  // until stopped: after 3 passes
+  RenderControl control;
+  std::uint32_t checks = 0;
+  control.stop_requested = [&] { return ++checks > 3; };
+  const auto path = shipped_scene("cornell-box.gltf");
+  const RenderResult r = render_scene(path, s, control);
+  ASSERT_EQ(r.passes, 3u);
+  s.method = "naive";
+  s.spp = r.samples;
+  expect_bitwise_equal(render_scene(path, s), r, "auto with 3 launches");
   // the first launch: naive on every 8th row, wavefront on the others; then sc, then rg
   EXPECT_EQ(r.auto_choice.probe_rays_per_second.size(), 4u);
   EXPECT_TRUE(r.auto_choice.final_rays_per_second.empty());
   EXPECT_EQ(r.auto_choice.probe_rays_per_second.count(r.auto_choice.method), 1u);
+  EXPECT_EQ(r.auto_choice.reason, "the fastest of the probe");
+}
+
+// A render whose screen would take more than an eighth of its samples takes the device's default
+// without probing (on a CPU, the megakernel): a 3-spp render on PoCL.
+TEST(Methods, AutoTakesTheDevicesDefaultForAShortRender) {
+  RenderSettings s = small_box_settings(6u);
+  const auto path = shipped_scene("cornell-box.gltf");
+  const RenderResult reference = render_scene(path, s);
+  s.method = "auto";
+  const RenderResult r = render_scene(path, s);
+  expect_bitwise_equal(reference, r, "auto, short render");
+  EXPECT_EQ(r.auto_choice.method, "naive");
+  EXPECT_NE(r.auto_choice.reason.find("too short to probe"), std::string::npos) << r.auto_choice.reason;
+  EXPECT_TRUE(r.auto_choice.probe_rays_per_second.empty());
+  EXPECT_EQ(r.auto_choice.probe_seconds, 0.0);
 }
 
 TEST(Methods, UnknownMethodIsAnInputError) {

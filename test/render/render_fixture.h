@@ -26,12 +26,13 @@ inline RenderResult render_prepared(const PreparedScene& prepared, const RenderS
   return render(cl, cache, scene, prepared.camera, settings);
 }
 
-inline RenderResult render_scene(const std::filesystem::path& path, const RenderSettings& settings) {
+inline RenderResult render_scene(const std::filesystem::path& path, const RenderSettings& settings,
+                                 const RenderControl& control = {}) {
   const PreparedScene prepared = prepare_scene(path);
   const ClContext cl(select_device(""));
   const ProgramCache cache(ProgramCache::default_directory());
   const DeviceScene scene = upload_scene(cl, prepared.tree, prepared.tables);
-  return render(cl, cache, scene, prepared.camera, settings);
+  return render(cl, cache, scene, prepared.camera, settings, {}, control);
 }
 
 // Mean over pixels and the standard error of that mean, from the spread of per-pixel estimates

@@ -13,10 +13,17 @@
 // the screen (each work item's whole path: the launch waits for the longest). The final gives
 // the (at most kFinalists) methods within kKeep of the screen's best one full wave each, the size
 // at which sorting pays or does not, and picks the fastest there. All methods share one pool.
+//
+// A short render cannot pay for the probe: where the screen would take more than 1/kShortRender
+// of the render's samples per pixel, auto takes the device's default without probing, the method
+// measured fastest on that kind of device (docs/results.md): the megakernel on a CPU (per CPU
+// second on every bench scene), sc+rg on a GPU (within 1 % of the fastest on the H200).
 #include <algorithm>
 #include <chrono>
 #include <deque>
 #include <memory>
+
+#include <fmt/format.h>
 
 #include "runtime/render/launch_log.h"
 #include "runtime/render/methods.h"
@@ -31,6 +38,8 @@ constexpr double kKeep = 0.9;
 constexpr std::size_t kFinalists = 3;
 // The first method of the screen renders every kScreenRowStride-th row of one sample.
 constexpr std::uint32_t kScreenRowStride = 8;
+// The screen may take at most this fraction (its inverse) of the render's samples per pixel.
+constexpr std::uint32_t kShortRender = 8;
 
 struct Candidate {
   const Method* method = nullptr;
@@ -77,6 +86,7 @@ class AutoMethod final : public PassLauncher {
       other_rows_ = {device_.allocate("auto's other rows", rest.size() * 4, rest.data(), Access::read_only),
                      static_cast<std::uint32_t>(rest.size())};
     }
+    take_default_if_short(in);
   }
 
   std::uint32_t max_samples_per_launch() const override { return max_per_launch_; }
@@ -121,6 +131,7 @@ class AutoMethod final : public PassLauncher {
     pick->launcher->report(result);
     AutoChoice& a = result.auto_choice;
     a.method = pick->method->name;
+    a.reason = reason_.empty() ? "the fastest of the probe" : reason_;
     a.probe_seconds = probe_seconds_;
     for (const auto& c : candidates_) {
       if (c->screen_rate >= 0) a.probe_rays_per_second[c->method->name] = c->screen_rate;
@@ -129,6 +140,22 @@ class AutoMethod final : public PassLauncher {
   }
 
  private:
+  // The screen's samples per pixel over the whole image against the render's: too many, and the
+  // device's default renders it all.
+  void take_default_if_short(const MethodInputs& in) {
+    const std::uint32_t pixels = std::max<std::uint32_t>(in.settings.width * in.settings.height, 1);
+    const std::uint32_t quarter_wave = std::max<std::uint32_t>(std::clamp<std::uint32_t>(pool_slots_ / pixels, 1, max_per_launch_) / 4, 1);
+    const auto others = static_cast<std::uint32_t>(candidates_.size());
+    const std::uint32_t screen = screen_rows_.pixels ? 1 + (others - 2) * quarter_wave : others * quarter_wave;
+    if (in.settings.spp == 0 || std::uint64_t(screen) * kShortRender <= in.settings.spp) return;
+    const std::string fallback = in.device.info().is_gpu ? "sc+rg" : "naive";
+    for (const auto& c : candidates_)
+      if (c->method->name == fallback) chosen_ = c.get();
+    queue_.clear();
+    reason_ = fmt::format("the default on a {}: the render ({} spp) is too short to probe (the screen takes {} spp)",
+                          in.device.info().is_gpu ? "GPU" : "CPU", in.settings.spp, screen);
+  }
+
   // Samples [done, done + samples) of the launch `p` by `c` (its own parameters when they differ).
   PassOutput run(Candidate& c, const PassBuffers& b, const RenderParams& p, std::uint32_t done, std::uint32_t samples,
                  std::uint32_t active_pixels) {
@@ -214,6 +241,7 @@ class AutoMethod final : public PassLauncher {
   std::uint32_t pool_slots_ = 1;
   std::uint32_t max_per_launch_ = UINT32_MAX;
   double probe_seconds_ = 0;
+  std::string reason_;  // why the pick, when it was not probed
   RenderParams sub_params_{};
 };
 
