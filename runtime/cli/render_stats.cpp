@@ -57,6 +57,7 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
   if (!r.auto_choice.method.empty())
     j["auto"] = {{"method", r.auto_choice.method},
                  {"reason", r.auto_choice.reason},
+                 {"screen_rows", r.auto_choice.screen_rows},
                  {"probe_seconds", r.auto_choice.probe_seconds},
                  {"probe_rays_per_second", r.auto_choice.probe_rays_per_second},
                  {"final_rays_per_second", r.auto_choice.final_rays_per_second}};

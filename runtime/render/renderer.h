@@ -54,6 +54,7 @@ struct PassStragglers {
 struct AutoChoice {
   std::string method;                                   // empty: not auto
   std::string reason;                                   // why: the fastest probed, or a default
+  bool screen_rows = false;  // the megakernel's screen took every 8th row of one sample
   double probe_seconds = 0;  // the probing methods' launches (their samples are part of the image)
   std::map<std::string, double> probe_rays_per_second;  // the screen: every method probed
   std::map<std::string, double> final_rays_per_second;  // the final round: those near the screen's best

@@ -313,10 +313,29 @@ TEST(Methods, AutoWithFewerLaunchesThanMethodsProbesTheFirstOnes) {
   s.method = "naive";
   s.spp = r.samples;
   expect_bitwise_equal(render_scene(path, s), r, "auto with 3 launches");
-  // the first launch: naive on every 8th row, wavefront on the others; then sc, then rg
-  EXPECT_EQ(r.auto_choice.probe_rays_per_second.size(), 4u);
+  // a launch each: naive, wavefront, sc (every 8th row of 32x24 is too few pixels to screen on)
+  EXPECT_EQ(r.auto_choice.probe_rays_per_second.size(), 3u);
+  EXPECT_FALSE(r.auto_choice.screen_rows);
   EXPECT_TRUE(r.auto_choice.final_rays_per_second.empty());
   EXPECT_EQ(r.auto_choice.probe_rays_per_second.count(r.auto_choice.method), 1u);
+  EXPECT_EQ(r.auto_choice.reason, "the fastest of the probe");
+}
+
+// An image whose every 8th row holds 4096 pixels: the megakernel screens on those rows of one
+// sample and wavefront renders the other rows of it, and the image is still naive's.
+TEST(Methods, AutoScreensTheMegakernelOnEveryEighthRow) {
+  RenderSettings s = small_box_settings(8u);
+  s.width = 256;
+  s.height = 128;
+  s.spp = 48;  // the screen: 1 + 5 spp, an eighth of the render
+  s.wavefront_size = s.width * s.height;
+  const auto path = shipped_scene("cornell-box.gltf");
+  const RenderResult reference = render_scene(path, s);
+  s.method = "auto";
+  const RenderResult r = render_scene(path, s);
+  expect_bitwise_equal(reference, r, "auto, rows screen");
+  EXPECT_TRUE(r.auto_choice.screen_rows);
+  EXPECT_EQ(r.auto_choice.probe_rays_per_second.size(), methods().size() - 1);
   EXPECT_EQ(r.auto_choice.reason, "the fastest of the probe");
 }
 

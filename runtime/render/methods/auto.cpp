@@ -8,9 +8,10 @@
 // Two rounds keep that difference small. The screen gives each method a quarter of a wave (the
 // samples per pixel that fill the wavefront pool): enough to tell a method that is far behind,
 // whose full wave would cost the most. The megakernel, first in the table, is screened on one
-// sample of every 8th row (the next method renders the other rows of that sample): it keeps no
-// pool, so a fraction of the image times it, and on a GPU its one-sample launch is the slowest of
-// the screen (each work item's whole path: the launch waits for the longest). The final gives
+// sample of every 8th row where those rows are enough pixels (the next method renders the other
+// rows of that sample): it keeps no pool, so a fraction of the image times it, and on a GPU its
+// one-sample launch is the slowest of the screen (each work item's whole path: the launch waits
+// for the longest). The final gives
 // the (at most kFinalists) methods within kKeep of the screen's best one full wave each, the size
 // at which sorting pays or does not, and picks the fastest there. All methods share one pool.
 //
@@ -22,6 +23,7 @@
 #include <chrono>
 #include <deque>
 #include <memory>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -36,8 +38,11 @@ namespace {
 // kFinalists of them (the fastest of the screen).
 constexpr double kKeep = 0.9;
 constexpr std::size_t kFinalists = 3;
-// The first method of the screen renders every kScreenRowStride-th row of one sample.
+// The first method of the screen renders every kScreenRowStride-th row of one sample, where those
+// rows hold at least kScreenRowsMinPixels pixels (fewer, and a launch's fixed costs would decide
+// its rate: on 2 CPU cores a 2048-pixel screen timed the megakernel at 0.4-0.7x its rate).
 constexpr std::uint32_t kScreenRowStride = 8;
+constexpr std::uint32_t kScreenRowsMinPixels = 4096;
 // The screen may take at most this fraction (its inverse) of the render's samples per pixel.
 constexpr std::uint32_t kShortRender = 8;
 
@@ -80,7 +85,7 @@ class AutoMethod final : public PassLauncher {
     for (std::uint32_t y = 0; y < in.settings.height; ++y)
       for (std::uint32_t x = 0; x < in.settings.width; ++x)
         (y % kScreenRowStride == 0 ? rows : rest).push_back(y * in.settings.width + x);
-    if (!rest.empty() && queue_.size() >= 2) {
+    if (!rest.empty() && rows.size() >= kScreenRowsMinPixels && queue_.size() >= 2) {
       screen_rows_ = {device_.allocate("auto's screen rows", rows.size() * 4, rows.data(), Access::read_only),
                       static_cast<std::uint32_t>(rows.size())};
       other_rows_ = {device_.allocate("auto's other rows", rest.size() * 4, rest.data(), Access::read_only),
@@ -104,7 +109,11 @@ class AutoMethod final : public PassLauncher {
       // the first screen step splits one sample by rows (not in adaptive passes: they list pixels)
       if (screening_ && !split_done_ && screen_rows_.pixels && p.active_pixels == 0) {
         split_done_ = true;
-        for (const PixelRows* rows : {&screen_rows_, &other_rows_}) {
+        // the second method takes the other rows first: the render's first launch pays the
+        // one-time costs (first use of buffers and kernels), and the megakernel's small launch
+        // would weigh them most
+        std::swap(queue_[0], queue_[1]);
+        for (const PixelRows* rows : {&other_rows_, &screen_rows_}) {
           PassBuffers subset = b;
           subset.pixel_list = rows->list;
           add_output(total, probe(subset, p, done, 1, rows->pixels), settings_.straggler_rays);
@@ -132,6 +141,7 @@ class AutoMethod final : public PassLauncher {
     AutoChoice& a = result.auto_choice;
     a.method = pick->method->name;
     a.reason = reason_.empty() ? "the fastest of the probe" : reason_;
+    a.screen_rows = split_done_ && screen_rows_.pixels;
     a.probe_seconds = probe_seconds_;
     for (const auto& c : candidates_) {
       if (c->screen_rate >= 0) a.probe_rays_per_second[c->method->name] = c->screen_rate;
