@@ -66,8 +66,8 @@ class MpiRender : public ::testing::TestWithParam<const char*> {};
 TEST_P(MpiRender, TwoRanksGiveTheSingleProcessImageBitForBit) {
   if (const auto why = skip_reason(); !why.empty()) GTEST_SKIP() << why;
   TempDir dir("cohort-mpi-");
-  // auto probes where its screen is at most an eighth of the render: 6 spp with a one-sample pool
-  const std::string spp = std::string(GetParam()) == "auto" ? "48" : "32";
+  // auto probes where its screen is at most an eighth of the render: 7 spp with a one-sample pool
+  const std::string spp = std::string(GetParam()) == "auto" ? "56" : "32";
   auto one = render_args(dir.path / "one", GetParam(), spp);
   one.insert(one.end(), {"--wavefront-size", "4096"});
   ASSERT_EQ(wait_exit(spawn(COHORT_BINARY, one)).value_or(-1), 0);
