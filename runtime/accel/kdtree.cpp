@@ -84,8 +84,9 @@ KdTree build_kdtree(std::span<const glm::vec3> positions, const KdBuildOptions& 
   }
   KdTree tree;
   tree.stats.dropped_triangles = keep_good_triangles(positions, tree);
-  kd::flatten(kd::build_subtree(tree.triangles, tree.bounds, options), tree);
-  kd::compute_stats(tree, options);
+  const kd::Subtree subtree = kd::build_subtree(tree.triangles, tree.bounds, options);
+  kd::flatten(subtree, tree);
+  kd::compute_stats(subtree, tree, options);
   tree.stats.build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return tree;

@@ -67,7 +67,8 @@ class Builder {
                                 const SplitPlane& plane, const Bounds& voxel, int depth,
                                 int bad_refines) const;
   static std::uint32_t make_leaf(Subtree& out, const Scratch& s, std::size_t begin,
-                                 std::size_t end);
+                                 std::size_t end, const Bounds& voxel, int depth);
+  static std::uint32_t add_inner(Subtree& out, const SplitPlane& plane, const Bounds& voxel);
 
   std::span<const Triangle> triangles_;
   const KdBuildOptions& options_;
@@ -85,12 +86,26 @@ std::uint32_t checked_offset(std::size_t value) {
 }
 
 std::uint32_t Builder::make_leaf(Subtree& out, const Scratch& s, std::size_t begin,
-                                 std::size_t end) {
+                                 std::size_t end, const Bounds& voxel, int depth) {
   const std::uint32_t index = checked_offset(out.nodes.size());
   checked_offset(out.leaf_triangles.size() + (end - begin));
   out.nodes.push_back({KD_LEAF, 0.f, static_cast<std::uint32_t>(out.leaf_triangles.size()),
                        static_cast<std::uint32_t>(end - begin)});
   for (std::size_t i = begin; i < end; ++i) out.leaf_triangles.push_back(s.refs[i].tri);
+  SubtreeSums& sums = out.sums;
+  ++sums.leaves;
+  sums.empty_leaves += begin == end;
+  sums.references += end - begin;
+  if (end > begin) sums.leaf_reference_area += cell_area(voxel) * static_cast<double>(end - begin);
+  sums.depth = std::max(sums.depth, depth);
+  return index;
+}
+
+std::uint32_t Builder::add_inner(Subtree& out, const SplitPlane& plane, const Bounds& voxel) {
+  const std::uint32_t index = checked_offset(out.nodes.size());
+  out.nodes.push_back({static_cast<std::uint32_t>(plane.axis), plane.pos, 0, 0});
+  ++out.sums.inner;
+  out.sums.inner_area += cell_area(voxel);
   return index;
 }
 
@@ -126,7 +141,7 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
   SahContext context;
   if (count <= leaf_size || depth >= max_depth_ ||
       !make_sah_context(voxel, count, options_, context)) {
-    return make_leaf(out, s, begin, end);
+    return make_leaf(out, s, begin, end, voxel, depth);
   }
   const bool parallel = options_.parallel && count >= kParallelTriangles;
   const SplitPlane plane = find_plane(s, begin, end, context, parallel, inherited);
@@ -136,11 +151,11 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
   const bool small = count <= static_cast<std::size_t>(std::max(options_.plain_sah_triangles, 0));
   const float split_cost = !options_.compact ? plane.cost : small ? plane.plain_cost : plane.lowest_plain_cost;
   if (!plane.valid() || !(split_cost <= options_.intersection_cost * static_cast<float>(count))) {
-    return make_leaf(out, s, begin, end);
+    return make_leaf(out, s, begin, end, voxel, depth);
   }
   const bool no_progress = plane.left_count == count && plane.right_count == count;
   bad_refines = no_progress ? bad_refines + 1 : 0;
-  if (bad_refines >= kMaxBadRefines) return make_leaf(out, s, begin, end);
+  if (bad_refines >= kMaxBadRefines) return make_leaf(out, s, begin, end, voxel, depth);
 
   // An exact plane with nothing on one side (an empty-space cut, most of the nodes of the deep
   // tree): the exact counts say every reference goes to the other side unchanged (none straddles,
@@ -153,8 +168,7 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
   if (parallel) {
     std::array<std::vector<Ref>, 2> children = partition_apart(
         std::span<const Ref>(s.refs).subspan(begin, count), voxel, plane, triangles_);
-    const std::uint32_t index = checked_offset(out.nodes.size());
-    out.nodes.push_back({static_cast<std::uint32_t>(plane.axis), plane.pos, 0, 0});
+    const std::uint32_t index = add_inner(out, plane, voxel);
     build_children_parallel(out, index, s, std::move(children), cells, depth, bad_refines);
     return index;
   }
@@ -164,8 +178,7 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
       partition(s.refs, begin, end, voxel, plane, triangles_, clipped);
   // The extents of this node are those of a child that got every reference unchanged.
   const bool hand_on = exact(count) && clipped == 0 && (counts[0] == 0 || counts[1] == 0);
-  const std::uint32_t index = checked_offset(out.nodes.size());
-  out.nodes.push_back({static_cast<std::uint32_t>(plane.axis), plane.pos, 0, 0});
+  const std::uint32_t index = add_inner(out, plane, voxel);
   s.extents_inherited = hand_on && counts[0] > 0;
   const std::uint32_t left =
       build(out, s, begin, begin + counts[0], cells[0], depth + 1, bad_refines);
@@ -184,16 +197,15 @@ std::uint32_t Builder::build_one_sided(Subtree& out, Scratch& s, std::size_t beg
                                        std::size_t end, const SplitPlane& plane,
                                        const Bounds& voxel, int depth, int bad_refines) const {
   const std::array<Bounds, 2> cells = child_cells(voxel, plane.axis, plane.pos);
-  const std::uint32_t index = checked_offset(out.nodes.size());
-  out.nodes.push_back({static_cast<std::uint32_t>(plane.axis), plane.pos, 0, 0});
+  const std::uint32_t index = add_inner(out, plane, voxel);
   const bool all_left = plane.right_count == 0;
   s.extents_inherited = all_left;
   const std::uint32_t left = all_left
                                  ? build(out, s, begin, end, cells[0], depth + 1, bad_refines)
-                                 : make_leaf(out, s, begin, begin);
+                                 : make_leaf(out, s, begin, begin, cells[0], depth + 1);
   s.extents_inherited = !all_left;
   const std::uint32_t right = all_left
-                                  ? make_leaf(out, s, begin, begin)
+                                  ? make_leaf(out, s, begin, begin, cells[1], depth + 1)
                                   : build(out, s, begin, end, cells[1], depth + 1, bad_refines);
   s.extents_inherited = false;
   out.nodes[index].a = left;

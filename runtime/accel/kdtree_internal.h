@@ -239,10 +239,37 @@ struct BuildNode {
 // (built by another task), else a node of the same Subtree.
 constexpr std::uint32_t kSpawnedBit = 1u << 31;
 
+// A cell's surface area in double precision, as the SAH statistics sum it.
+inline double cell_area(const Bounds& box) {
+  const glm::dvec3 e = glm::dvec3(box.hi) - glm::dvec3(box.lo);
+  return 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
+}
+
+// What the statistics need of the nodes, summed as the builder makes them (each node's cell is at
+// hand there), so no pass over the finished tree is needed. Sums of cell areas, not yet divided by
+// the root's: the SAH cost is (K_T inner_area + K_I leaf_reference_area) / area(root).
+struct SubtreeSums {
+  double inner_area = 0;           // the cells of the inner nodes
+  double leaf_reference_area = 0;  // each leaf's cell times its triangle count
+  std::size_t inner = 0, leaves = 0, empty_leaves = 0, references = 0;
+  int depth = 0;  // deepest leaf (root = depth 0)
+
+  void add(const SubtreeSums& other) {
+    inner_area += other.inner_area;
+    leaf_reference_area += other.leaf_reference_area;
+    inner += other.inner;
+    leaves += other.leaves;
+    empty_leaves += other.empty_leaves;
+    references += other.references;
+    depth = std::max(depth, other.depth);
+  }
+};
+
 struct Subtree {
   std::vector<BuildNode> nodes;  // nodes[0] is the root
   std::vector<std::uint32_t> leaf_triangles;
   std::vector<Subtree> spawned;  // subtrees built in parallel, kept in place instead of copied
+  SubtreeSums sums;              // of `nodes` only, not of `spawned`
 };
 
 // The recursive SAH build over the kept triangles (kdtree_builder.cpp).
@@ -263,8 +290,9 @@ int effective_max_depth(const KdBuildOptions& options, std::size_t triangle_coun
 // std::length_error when an index does not fit the 30 bits of KdNode::word0.
 void flatten(const Subtree& subtree, KdTree& tree);
 
-// Fills tree.stats from the flattened tree, except dropped_triangles and build_seconds.
-void compute_stats(KdTree& tree, const KdBuildOptions& options);
+// Fills tree.stats from the sums of the subtree and those it spawned (joined in their fixed
+// order: the same figures for any thread count), except dropped_triangles and build_seconds.
+void compute_stats(const Subtree& subtree, KdTree& tree, const KdBuildOptions& options);
 
 inline glm::vec3 vertex(const co_float4& v) { return {v.x, v.y, v.z}; }
 

@@ -72,9 +72,31 @@ void check_leaf(const KdTree& tree, std::size_t i, std::vector<bool>& seen, Erro
   }
 }
 
-void check_stats(const KdTree& tree, std::size_t leaves, std::size_t references, int depth,
-                 Errors& errors) {
+// The SAH cost of the flattened tree with the default costs, node by node (the builder sums it
+// as it goes; this is the independent figure it must match).
+double layout_sah(const KdTree& tree, const std::vector<Bounds>& cell) {
+  const KdBuildOptions costs;
+  auto area = [](const Bounds& b) {
+    const glm::dvec3 e = glm::dvec3(b.hi) - glm::dvec3(b.lo);
+    return 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
+  };
+  const double root = tree.bounds.empty() ? 0.0 : area(tree.bounds);
+  double sah = 0;
+  for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
+    const KdNode node = tree.nodes[i];
+    const double cost = kd_is_leaf(node) ? costs.intersection_cost * kd_leaf_count(node) : costs.traversal_cost;
+    sah += (root > 0.0 ? area(cell[i]) / root : 1.0) * cost;
+  }
+  return sah;
+}
+
+void check_stats(const KdTree& tree, std::size_t leaves, std::size_t empty_leaves,
+                 std::size_t references, int depth, double sah, Errors& errors) {
   const KdTreeStats& s = tree.stats;
+  if (s.empty_leaf_count != empty_leaves)
+    errors.add("stats.empty_leaf_count {} != {}", s.empty_leaf_count, empty_leaves);
+  if (!(std::abs(s.sah_cost - sah) <= 1e-9 * std::max(1.0, sah)))
+    errors.add("stats.sah_cost {} != {} (default costs)", s.sah_cost, sah);
   if (s.node_count != tree.nodes.size())
     errors.add("stats.node_count {} != {}", s.node_count, tree.nodes.size());
   if (s.leaf_count != leaves) errors.add("stats.leaf_count {} != {}", s.leaf_count, leaves);
@@ -146,7 +168,7 @@ std::vector<std::string> layout_errors(const KdTree& tree, int max_depth) {
   std::vector<Bounds> cell(tree.nodes.size());
   std::vector<bool> seen(tree.triangles.size(), false);
   cell[0] = tree.bounds;
-  std::size_t inner_rank = 0, leaves = 0, refs = 0;
+  std::size_t inner_rank = 0, leaves = 0, empty_leaves = 0, refs = 0;
   int deepest = 0;
   for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
     const KdNode node = tree.nodes[i];
@@ -154,6 +176,7 @@ std::vector<std::string> layout_errors(const KdTree& tree, int max_depth) {
       errors.add("node {}: depth {} after depth {}", i, depth[i], depth[i - 1]);
     if (kd_is_leaf(node)) {
       ++leaves;
+      empty_leaves += kd_leaf_count(node) == 0;
       refs += kd_leaf_count(node);
       deepest = std::max(deepest, depth[i]);
       check_leaf(tree, i, seen, errors);
@@ -176,7 +199,7 @@ std::vector<std::string> layout_errors(const KdTree& tree, int max_depth) {
   for (std::size_t tri = 0; tri < seen.size(); ++tri) {
     if (!seen[tri]) errors.add("triangle {} is in no leaf", tri);
   }
-  check_stats(tree, leaves, refs, deepest, errors);
+  check_stats(tree, leaves, empty_leaves, refs, deepest, layout_sah(tree, cell), errors);
   return errors.list;
 }
 

@@ -12,7 +12,8 @@ namespace cohort::test {
 // Device layout: children in range and adjacent, breadth-first order (the k-th inner node has its
 // children at 2k + 1 and 2k + 2, depths never decrease), every node but the root referenced exactly
 // once, splits inside their cells, leaf lists in range, depth <= max_depth, stats consistent with
-// the arrays, every kept triangle in at least one leaf.
+// the arrays (counts, depth and the SAH cost with the default costs, recomputed node by node), every
+// kept triangle in at least one leaf.
 std::vector<std::string> layout_errors(const KdTree& tree, int max_depth);
 
 // Every triangle appears in every leaf whose cell interior it overlaps (cells shrunk by a relative
