@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <chrono>
@@ -59,8 +60,9 @@ std::size_t keep_good_triangles(std::span<const glm::vec3> positions, KdTree& tr
     kept[k + 1] += kept[k];
     tree.bounds.extend(bounds[k]);
   }
-  tree.triangles.resize(kept[chunks]);
-  tree.source_index.resize(kept[chunks]);
+  // Sizing clears the new memory, one thread per vector: side by side.
+  tbb::parallel_invoke([&] { tree.triangles.resize(kept[chunks]); },
+                       [&] { tree.source_index.resize(kept[chunks]); });
   tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
     std::size_t out = kept[k];
     for (std::size_t i = k * kTriangleChunk; i < std::min(input, (k + 1) * kTriangleChunk); ++i) {
