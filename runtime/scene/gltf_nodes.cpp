@@ -84,7 +84,8 @@ class NodeWalker {
         scene_(scene),
         builder_(scene),
         emitter_(model, file, scene, builder_),
-        on_path_(model.nodes.size(), false) {}
+        on_path_(model.nodes.size(), false),
+        instances_below_(model.nodes.size(), 0) {}
 
   void walk() {
     if (model_.nodes.empty()) {
@@ -93,7 +94,13 @@ class NodeWalker {
         emitter_.emit_mesh(static_cast<int>(m), glm::dmat4(1.0));
       return;
     }
-    for (int root : root_nodes()) visit(root, glm::dmat4(1.0), 0);
+    const std::vector<int> roots = root_nodes();
+    // Counted on the graph first (each node once), so a DAG that expands past the limit is refused in
+    // microseconds instead of after emitting millions of mesh instances.
+    std::size_t instances = 0;
+    for (int root : roots) instances = saturating_add(instances, count_instances(root, 0));
+    if (instances > kMaxNodeVisits) throw too_many_instances();
+    for (int root : roots) visit(root, glm::dmat4(1.0), 0);
   }
 
   void finish() { emitter_.finish(); }
@@ -141,7 +148,30 @@ class NodeWalker {
     on_path_[i] = false;
   }
 
-  void check_node(int index, int depth) {
+  static std::size_t saturating_add(std::size_t a, std::size_t b) {
+    return std::min(a + b, kMaxNodeVisits + 1);  // both operands are at most kMaxNodeVisits + 1
+  }
+
+  InputError too_many_instances() const {
+    return InputError(
+        fmt::format("{}: node graph expands to more than {} node instances", file_, kMaxNodeVisits));
+  }
+
+  // Instances of the subtree at index when expanded as visit() walks it (saturated past the limit),
+  // memoised per node; checks the node, cycles and depth on the way, as visit() does.
+  std::size_t count_instances(int index, int depth) {
+    check_node(index, depth, /*count_visit=*/false);
+    const auto i = static_cast<std::size_t>(index);
+    if (instances_below_[i] != 0) return instances_below_[i];
+    std::size_t count = 1;
+    on_path_[i] = true;
+    for (int child : model_.nodes[i].children) count = saturating_add(count, count_instances(child, depth + 1));
+    on_path_[i] = false;
+    instances_below_[i] = count;
+    return count;
+  }
+
+  void check_node(int index, int depth, bool count_visit = true) {
     if (index < 0 || static_cast<std::size_t>(index) >= model_.nodes.size())
       throw InputError(
           fmt::format("{}: node {} does not exist ({} nodes)", file_, index, model_.nodes.size()));
@@ -149,9 +179,7 @@ class NodeWalker {
       throw InputError(fmt::format("{}: node {} is its own ancestor (cyclic node graph)", file_, index));
     if (depth > kMaxDepth)
       throw InputError(fmt::format("{}: node hierarchy deeper than {} levels", file_, kMaxDepth));
-    if (++visits_ > kMaxNodeVisits)
-      throw InputError(
-          fmt::format("{}: node graph expands to more than {} node instances", file_, kMaxNodeVisits));
+    if (count_visit && ++visits_ > kMaxNodeVisits) throw too_many_instances();
   }
 
   void take_camera(int index, const glm::dmat4& world) {
@@ -229,6 +257,7 @@ class NodeWalker {
   SceneBuilder builder_;
   PrimitiveEmitter emitter_;
   std::vector<bool> on_path_;
+  std::vector<std::size_t> instances_below_;  // 0 until counted
   std::size_t visits_ = 0;
 };
 

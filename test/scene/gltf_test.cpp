@@ -129,6 +129,17 @@ TEST(Gltf, MeshesAreInstancedPerNodePath) {
   EXPECT_EQ(s.positions[6].x, 20.f);
 }
 
+TEST(Gltf, SharedSubtreesExpandToEveryPath) {
+  TempDir dir;
+  GltfWriter g;
+  // Six levels of a node whose two children are both the level below: 64 paths to the mesh, each an
+  // instance (the loader counts instances on the graph before walking it, and must count them right).
+  int below = g.node({{"mesh", g.mesh(g.positions(kQuad), g.indices(kQuadIndices))}});
+  for (int level = 0; level < 6; ++level) below = g.node({{"children", {below, below}}});
+  g.roots({below, below});
+  EXPECT_EQ(load_scene(g.write_gltf(dir.path(), "dag")).triangle_count(), 2u * 128u);
+}
+
 TEST(Gltf, NegativeScaleKeepsTheFrontFace) {
   TempDir dir;
   GltfWriter g;
