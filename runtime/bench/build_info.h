@@ -1,5 +1,5 @@
-// What build produced this binary, for benchmark reports. The commit is read at configure time
-// (runtime/CMakeLists.txt); re-run cmake after committing for an exact figure.
+// What build produced this binary, for benchmark reports. The commit is read at every build
+// (cmake/GitCommit.cmake), so it names the commit the binary was built from.
 #pragma once
 
 namespace cohort {
