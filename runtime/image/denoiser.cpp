@@ -9,7 +9,8 @@
 #include <system_error>
 
 namespace cohort {
-namespace {
+// Named, not anonymous: Denoiser::Api (a class with linkage) holds these types.
+namespace oidn {
 
 using OIDNDevice = struct OIDNDeviceImpl*;
 using OIDNFilter = struct OIDNFilterImpl*;
@@ -28,9 +29,12 @@ struct LibraryHandle {
   }
 };
 
-}  // namespace
+}  // namespace oidn
 
 struct Denoiser::Api {
+  using LibraryHandle = oidn::LibraryHandle;
+  using OIDNDevice = oidn::OIDNDevice;
+  using OIDNFilter = oidn::OIDNFilter;
   std::unique_ptr<LibraryHandle> library;
   std::string path;
   OIDNDevice (*new_device)(int) = nullptr;
@@ -86,7 +90,7 @@ Denoiser Denoiser::load(const std::vector<std::filesystem::path>& extra_candidat
       continue;
     }
     auto api = std::make_shared<Api>();
-    api->library = std::make_unique<LibraryHandle>(handle);
+    api->library = std::make_unique<oidn::LibraryHandle>(handle);
     api->path = path;
     bind(handle, path, "oidnNewDevice", api->new_device);
     bind(handle, path, "oidnCommitDevice", api->commit_device);
@@ -122,28 +126,28 @@ Image Denoiser::denoise(const Image& beauty, const Image* albedo, const Image* n
   if (beauty.rgb.empty()) return out;
 
   // RAII for the device and the filter: released on every path out
-  const std::unique_ptr<OIDNDeviceImpl, void (*)(OIDNDevice)> device(api.new_device(kDeviceTypeCpu),
+  const std::unique_ptr<oidn::OIDNDeviceImpl, void (*)(oidn::OIDNDevice)> device(api.new_device(oidn::kDeviceTypeCpu),
                                                                      api.release_device);
   auto check = [&](const char* step) {
     const char* message = nullptr;
-    if (api.device_error(device.get(), &message) != kErrorNone)
+    if (api.device_error(device.get(), &message) != oidn::kErrorNone)
       throw DenoiserUnavailable(fmt::format("Open Image Denoise ({}): {} failed: {}", api.path, step,
                                             message ? message : "unknown error"));
   };
   if (!device) throw DenoiserUnavailable(fmt::format("Open Image Denoise ({}): no CPU device", api.path));
   api.commit_device(device.get());
   check("creating the CPU device");
-  const std::unique_ptr<OIDNFilterImpl, void (*)(OIDNFilter)> filter(api.new_filter(device.get(), "RT"),
+  const std::unique_ptr<oidn::OIDNFilterImpl, void (*)(oidn::OIDNFilter)> filter(api.new_filter(device.get(), "RT"),
                                                                      api.release_filter);
   check("creating the RT filter");
   const auto w = static_cast<std::size_t>(beauty.width), h = static_cast<std::size_t>(beauty.height);
   // OIDN reads the shared inputs only; the const_casts hand it the pointers its C API asks for
-  api.set_shared_image(filter.get(), "color", const_cast<float*>(beauty.rgb.data()), kFormatFloat3, w, h, 0, 0, 0);
+  api.set_shared_image(filter.get(), "color", const_cast<float*>(beauty.rgb.data()), oidn::kFormatFloat3, w, h, 0, 0, 0);
   if (albedo)
-    api.set_shared_image(filter.get(), "albedo", const_cast<float*>(albedo->rgb.data()), kFormatFloat3, w, h, 0, 0, 0);
+    api.set_shared_image(filter.get(), "albedo", const_cast<float*>(albedo->rgb.data()), oidn::kFormatFloat3, w, h, 0, 0, 0);
   if (normal)
-    api.set_shared_image(filter.get(), "normal", const_cast<float*>(normal->rgb.data()), kFormatFloat3, w, h, 0, 0, 0);
-  api.set_shared_image(filter.get(), "output", out.rgb.data(), kFormatFloat3, w, h, 0, 0, 0);
+    api.set_shared_image(filter.get(), "normal", const_cast<float*>(normal->rgb.data()), oidn::kFormatFloat3, w, h, 0, 0, 0);
+  api.set_shared_image(filter.get(), "output", out.rgb.data(), oidn::kFormatFloat3, w, h, 0, 0, 0);
   api.set_filter_bool(filter.get(), "hdr", true);
   api.commit_filter(filter.get());
   check("setting up the RT filter");

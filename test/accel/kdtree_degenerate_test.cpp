@@ -16,7 +16,6 @@ namespace cohort::test {
 namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr float kInf = std::numeric_limits<float>::infinity();
 
 double peak_rss_mib() {
   rusage usage{};

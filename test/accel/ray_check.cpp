@@ -14,7 +14,6 @@
 namespace cohort::test {
 namespace {
 
-constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr std::size_t kMaxExamples = 8;
 constexpr std::size_t kRecheckEvery = 50;
 

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -13,6 +14,8 @@
 #include "runtime/accel/kdtree.h"
 
 namespace cohort::test {
+
+inline constexpr float kInf = std::numeric_limits<float>::infinity();
 
 struct TestRay {
   glm::vec3 org;

@@ -47,8 +47,6 @@ std::vector<std::size_t> indices(const std::vector<DeviceInfo>& devices) {
   return out;
 }
 
-}  // namespace
-
 TEST_F(DeviceChoice, EmptySpecPrefersAGpuThenTheEnvironment) {
   EXPECT_EQ(select_device(kDevices, "").device_index, 1u);
   EXPECT_EQ(select_device({kDevices[0]}, "").device_index, 0u);  // no GPU: the CPU
@@ -81,3 +79,5 @@ TEST_F(DeviceChoice, SeveralDevices) {
   EXPECT_THROW(select_devices(kDevices, "0,"), InputError);                // an empty item
   EXPECT_THROW(select_devices(kDevices, "all:amd"), InputError);
 }
+
+}  // namespace
