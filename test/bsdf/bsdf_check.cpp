@@ -11,7 +11,6 @@
 namespace cohort::bsdf_test {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kAzimuth = 0.7;  // radians; not a multiple of the phi bin width
 }  // namespace
 

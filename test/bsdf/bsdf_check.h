@@ -13,6 +13,8 @@
 
 namespace cohort::bsdf_test {
 
+inline constexpr double kPi = 3.14159265358979323846;
+
 // ---- Random numbers: SplitMix64 (Steele et al. 2014), 24-bit floats in [0, 1) as rng_next --------
 struct TestRng {
   std::uint64_t state;

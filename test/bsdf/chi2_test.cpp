@@ -39,8 +39,6 @@ struct Summary {
 
 class Chi2 : public ::testing::TestWithParam<std::size_t> {};
 
-}  // namespace
-
 TEST_P(Chi2, SampleMatchesPdf) {
   const Config& c = configs()[GetParam()];
   const auto queries = make_queries(c, kSamples, 1000 + GetParam());
@@ -60,6 +58,8 @@ TEST_P(Chi2, SampleMatchesPdf) {
 
 INSTANTIATE_TEST_SUITE_P(AllBsdfs, Chi2, ::testing::Range(std::size_t(0), configs().size()),
                          [](const ::testing::TestParamInfo<std::size_t>& info) { return configs()[info.param].name; });
+
+}  // namespace
 
 // ---- The test must be able to fail ----------------------------------------------------------------
 

@@ -15,8 +15,6 @@ using namespace cohort::bsdf_test;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 float rel_diff(float a, float b) {
   const float m = std::max(std::abs(a), std::abs(b));
   return m > 0 ? std::abs(a - b) / m : 0.0f;

@@ -21,7 +21,7 @@ using namespace cohort::bsdf_test;
 
 namespace {
 
-constexpr std::size_t kSamples = 1u << 18;
+constexpr std::size_t kDeviceSamples = 1u << 18;
 
 struct Device {
   std::unique_ptr<ClContext> cl;
@@ -122,7 +122,7 @@ TEST(BsdfDevice, AgreesWithHostAndFitsPdf) {
   const double threshold = sidak_alpha(0.01, static_cast<int>(configs.size()));
   for (std::size_t ci = 0; ci < configs.size(); ++ci) {
     const Config& c = configs[ci];
-    const auto queries = make_queries(c, kSamples, 500 + ci);
+    const auto queries = make_queries(c, kDeviceSamples, 500 + ci);
     const auto dev = run_on_device(queries);
     Agreement a;
     std::vector<BsdfSample> dev_samples(dev.size());
@@ -147,7 +147,7 @@ TEST(BsdfDevice, AgreesWithHostAndFitsPdf) {
     } else {
       // OpenCL lets a GPU divide within 2.5 ulp and take sqrt within 3 ulp unless told otherwise;
       // a lobe decision may then flip where u sits within an ulp of a threshold
-      EXPECT_LE(a.flag_mismatches, kSamples / 100000) << c.name;
+      EXPECT_LE(a.flag_mismatches, kDeviceSamples / 100000) << c.name;
       EXPECT_LE(a.far, a.values / 100000) << c.name;
     }
     ASSERT_TRUE(rep.chi2.error.empty()) << c.name << ": " << rep.chi2.error;

@@ -7,10 +7,6 @@
 
 using namespace cohort::bsdf_test;
 
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
-
 TEST(Microfacet, SinCosOfTwoPiUIsAccurate) {
   double worst = 0;
   for (int i = 0; i <= (1 << 20); ++i) {

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "accel/ray_check.h"
+#include "cl/scene_paths.h"
 #include "accel/straggler_check.h"
 #include "runtime/cl/context.h"
 #include "runtime/cl/kernel_program.h"
@@ -19,6 +20,9 @@ using namespace cohort;
 using namespace cohort::test;
 
 namespace {
+
+using cohort::cl_test::shipped;
+using cohort::cl_test::shared;
 
 struct DeviceTrace {
   std::vector<HitOut> hits;
@@ -175,8 +179,6 @@ void check(const fs::path& path, std::uint32_t levels) {
   EXPECT_GT(hits, rays.size() / 10);
 }
 
-fs::path shipped(const char* name) { return fs::path(COHORT_SOURCE_DIR) / "scenes" / name; }
-fs::path shared(const char* rel) { return fs::path(COHORT_SHARED_SCENES) / rel; }
 
 }  // namespace
 

@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include "accel/ray_check.h"
+#include "cl/scene_paths.h"
 #include "runtime/bench/trace_bench.h"
 #include "runtime/cl/cl_error.h"
 #include "runtime/cl/context.h"
@@ -19,6 +20,8 @@ using namespace cohort;
 using namespace cohort::test;
 
 namespace {
+
+using cohort::cl_test::shared;
 
 std::vector<HitOut> trace_on_device(const KdTree& tree, const std::vector<TestRay>& rays, bool any_hit,
                                     const std::vector<float>& tmax) {
@@ -100,7 +103,6 @@ void check_scene(const fs::path& path, std::size_t ray_count) {
   EXPECT_GT(hits, rays.size() / 10);  // the rays must actually exercise the tree
 }
 
-fs::path shared(const char* rel) { return fs::path(COHORT_SHARED_SCENES) / rel; }
 
 }  // namespace
 

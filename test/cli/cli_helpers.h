@@ -42,6 +42,11 @@ inline CommandResult run_shell(const std::string& command) {
   return r;
 }
 
+// `cohort ARGS` through the shell; `env` (variable assignments, or an `env ...` prefix) goes before it.
+inline CommandResult run_cohort(const std::string& args, const std::string& env = "") {
+  return run_shell(env + std::string(COHORT_BINARY) + " " + args);
+}
+
 struct TempDir {
   fs::path path;
   explicit TempDir(const std::string& prefix = "cohort-test-")
