@@ -34,7 +34,7 @@ constexpr int kMaxBadRefines = 3;
 // One task's working memory: the reference stack and the event lists of the exact sweep, reused
 // from node to node.
 struct Scratch {
-  RefVector refs;
+  std::vector<Ref> refs;
   PlaneScratch plane;
   // plane.candidates are already the merged candidates of the next node's references: its parent
   // swept them and handed all of them on unchanged (an empty-space cut with nothing clipped, the most
@@ -60,7 +60,7 @@ class Builder {
   SplitPlane find_plane(Scratch& s, std::size_t begin, std::size_t end, const SahContext& c,
                         bool parallel, bool inherited) const;
   void build_children_parallel(Subtree& out, std::uint32_t index, Scratch& s,
-                               std::array<RefVector, 2> children,
+                               std::array<std::vector<Ref>, 2> children,
                                const std::array<Bounds, 2>& cells, int depth,
                                int bad_refines) const;
   std::uint32_t build_one_sided(Subtree& out, Scratch& s, std::size_t begin, std::size_t end,
@@ -166,7 +166,7 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
   }
   const std::array<Bounds, 2> cells = child_cells(voxel, plane.axis, plane.pos);
   if (parallel) {
-    std::array<RefVector, 2> children = partition_apart(
+    std::array<std::vector<Ref>, 2> children = partition_apart(
         std::span<const Ref>(s.refs).subspan(begin, count), voxel, plane, triangles_);
     const std::uint32_t index = add_inner(out, plane, voxel);
     build_children_parallel(out, index, s, std::move(children), cells, depth, bad_refines);
@@ -218,10 +218,10 @@ std::uint32_t Builder::build_one_sided(Subtree& out, Scratch& s, std::size_t beg
 // in place); the parent's stack is freed first (a node large enough for this has the stack to
 // itself: it is the root or a child of another parallel split).
 void Builder::build_children_parallel(Subtree& out, std::uint32_t index, Scratch& s,
-                                      std::array<RefVector, 2> children,
+                                      std::array<std::vector<Ref>, 2> children,
                                       const std::array<Bounds, 2>& cells, int depth,
                                       int bad_refines) const {
-  RefVector().swap(s.refs);
+  std::vector<Ref>().swap(s.refs);
   std::array<Scratch, 2> child;
   std::array<std::size_t, 2> counts{};
   for (int c = 0; c < 2; ++c) {
@@ -242,8 +242,8 @@ void Builder::build_children_parallel(Subtree& out, std::uint32_t index, Scratch
 }
 
 // The root: every kept triangle with its own bounds, in input order.
-RefVector root_refs(std::span<const Triangle> triangles, bool parallel) {
-  RefVector refs(triangles.size());  // written below, by the threads that fill it
+std::vector<Ref> root_refs(std::span<const Triangle> triangles, bool parallel) {
+  std::vector<Ref> refs(triangles.size());
   auto fill = [&](std::size_t first, std::size_t last) {
     for (std::size_t i = first; i < last; ++i) {
       Bounds box;

@@ -61,7 +61,7 @@ Placement place(const Ref& r, const SplitPlane& plane, const Bounds& voxel,
 
 }  // namespace
 
-std::array<std::size_t, 2> partition(RefVector& refs, std::size_t begin, std::size_t end,
+std::array<std::size_t, 2> partition(std::vector<Ref>& refs, std::size_t begin, std::size_t end,
                                      const Bounds& voxel, const SplitPlane& plane,
                                      std::span<const Triangle> triangles, std::size_t& clipped) {
   clipped = 0;
@@ -94,11 +94,12 @@ std::array<std::size_t, 2> partition(RefVector& refs, std::size_t begin, std::si
 
 namespace cohort::kd {
 
-// Fixed-size chunks split on their own, then copied in chunk order, so the result is the serial one
-// whatever the thread count; each child's references are copied once, into its own vector, by the
-// chunks in parallel.
-std::array<RefVector, 2> partition_apart(std::span<const Ref> refs, const Bounds& voxel, const SplitPlane& plane,
-                                         std::span<const Triangle> triangles) {
+// Fixed-size chunks split on their own, then concatenated in chunk order, so the result is the
+// serial one whatever the thread count; each child's references are copied once, into its own
+// vector.
+std::array<std::vector<Ref>, 2> partition_apart(std::span<const Ref> refs, const Bounds& voxel,
+                                                const SplitPlane& plane,
+                                                std::span<const Triangle> triangles) {
   const std::size_t chunks = (refs.size() + kParallelChunk - 1) / kParallelChunk;
   std::vector<std::array<std::vector<Ref>, 2>> parts(chunks);
   tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
@@ -110,17 +111,16 @@ std::array<RefVector, 2> partition_apart(std::span<const Ref> refs, const Bounds
       if (where.right) parts[k][1].push_back({where.right_box, refs[i].tri});
     }
   });
-  std::array<RefVector, 2> children;
-  std::vector<std::array<std::size_t, 2>> offsets(chunks + 1, {0, 0});
-  for (std::size_t k = 0; k < chunks; ++k)
-    for (int c = 0; c < 2; ++c) offsets[k + 1][c] = offsets[k][c] + parts[k][c].size();
-  for (int c = 0; c < 2; ++c) children[c].resize(offsets[chunks][c]);  // writes nothing
-  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
-    for (int c = 0; c < 2; ++c) {
-      std::copy(parts[k][c].begin(), parts[k][c].end(), children[c].begin() + offsets[k][c]);
-      std::vector<Ref>().swap(parts[k][c]);
+  std::array<std::vector<Ref>, 2> children;
+  for (int c = 0; c < 2; ++c) {
+    std::size_t total = 0;
+    for (const auto& part : parts) total += part[c].size();
+    children[c].reserve(total);
+    for (auto& part : parts) {
+      children[c].insert(children[c].end(), part[c].begin(), part[c].end());
+      std::vector<Ref>().swap(part[c]);
     }
-  });
+  }
   return children;
 }
 
