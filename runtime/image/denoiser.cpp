@@ -113,6 +113,7 @@ Denoiser Denoiser::load(const std::vector<std::filesystem::path>& extra_candidat
 const std::string& Denoiser::library() const { return api_->path; }
 
 Image Denoiser::denoise(const Image& beauty, const Image* albedo, const Image* normal) const {
+  using namespace oidn;
   const Api& api = *api_;
   auto same_size = [&](const Image* guide, const char* name) {
     if (guide && (guide->width != beauty.width || guide->height != beauty.height))
@@ -126,28 +127,28 @@ Image Denoiser::denoise(const Image& beauty, const Image* albedo, const Image* n
   if (beauty.rgb.empty()) return out;
 
   // RAII for the device and the filter: released on every path out
-  const std::unique_ptr<oidn::OIDNDeviceImpl, void (*)(oidn::OIDNDevice)> device(api.new_device(oidn::kDeviceTypeCpu),
+  const std::unique_ptr<OIDNDeviceImpl, void (*)(OIDNDevice)> device(api.new_device(kDeviceTypeCpu),
                                                                      api.release_device);
   auto check = [&](const char* step) {
     const char* message = nullptr;
-    if (api.device_error(device.get(), &message) != oidn::kErrorNone)
+    if (api.device_error(device.get(), &message) != kErrorNone)
       throw DenoiserUnavailable(fmt::format("Open Image Denoise ({}): {} failed: {}", api.path, step,
                                             message ? message : "unknown error"));
   };
   if (!device) throw DenoiserUnavailable(fmt::format("Open Image Denoise ({}): no CPU device", api.path));
   api.commit_device(device.get());
   check("creating the CPU device");
-  const std::unique_ptr<oidn::OIDNFilterImpl, void (*)(oidn::OIDNFilter)> filter(api.new_filter(device.get(), "RT"),
+  const std::unique_ptr<OIDNFilterImpl, void (*)(OIDNFilter)> filter(api.new_filter(device.get(), "RT"),
                                                                      api.release_filter);
   check("creating the RT filter");
   const auto w = static_cast<std::size_t>(beauty.width), h = static_cast<std::size_t>(beauty.height);
   // OIDN reads the shared inputs only; the const_casts hand it the pointers its C API asks for
-  api.set_shared_image(filter.get(), "color", const_cast<float*>(beauty.rgb.data()), oidn::kFormatFloat3, w, h, 0, 0, 0);
+  api.set_shared_image(filter.get(), "color", const_cast<float*>(beauty.rgb.data()), kFormatFloat3, w, h, 0, 0, 0);
   if (albedo)
-    api.set_shared_image(filter.get(), "albedo", const_cast<float*>(albedo->rgb.data()), oidn::kFormatFloat3, w, h, 0, 0, 0);
+    api.set_shared_image(filter.get(), "albedo", const_cast<float*>(albedo->rgb.data()), kFormatFloat3, w, h, 0, 0, 0);
   if (normal)
-    api.set_shared_image(filter.get(), "normal", const_cast<float*>(normal->rgb.data()), oidn::kFormatFloat3, w, h, 0, 0, 0);
-  api.set_shared_image(filter.get(), "output", out.rgb.data(), oidn::kFormatFloat3, w, h, 0, 0, 0);
+    api.set_shared_image(filter.get(), "normal", const_cast<float*>(normal->rgb.data()), kFormatFloat3, w, h, 0, 0, 0);
+  api.set_shared_image(filter.get(), "output", out.rgb.data(), kFormatFloat3, w, h, 0, 0, 0);
   api.set_filter_bool(filter.get(), "hdr", true);
   api.commit_filter(filter.get());
   check("setting up the RT filter");

@@ -99,7 +99,9 @@ class NodeWalker {
     // microseconds instead of after emitting millions of mesh instances.
     std::size_t instances = 0;
     for (int root : roots) instances = saturating_add(instances, count_instances(root, 0));
-    if (instances > kMaxNodeVisits) throw too_many_instances();
+    if (instances > kMaxNodeVisits)
+      throw InputError(
+          fmt::format("{}: node graph expands to more than {} node instances", file_, kMaxNodeVisits));
     for (int root : roots) visit(root, glm::dmat4(1.0), 0);
   }
 
@@ -152,15 +154,11 @@ class NodeWalker {
     return std::min(a + b, kMaxNodeVisits + 1);  // both operands are at most kMaxNodeVisits + 1
   }
 
-  InputError too_many_instances() const {
-    return InputError(
-        fmt::format("{}: node graph expands to more than {} node instances", file_, kMaxNodeVisits));
-  }
-
   // Instances of the subtree at index when expanded as visit() walks it (saturated past the limit),
-  // memoised per node; checks the node, cycles and depth on the way, as visit() does.
+  // memoised per node; checks the node, cycles and depth on the way, as visit() does. walk() visits
+  // only a graph whose count is within the limit, so visit() needs no count of its own.
   std::size_t count_instances(int index, int depth) {
-    check_node(index, depth, /*count_visit=*/false);
+    check_node(index, depth);
     const auto i = static_cast<std::size_t>(index);
     if (instances_below_[i] != 0) return instances_below_[i];
     std::size_t count = 1;
@@ -171,7 +169,7 @@ class NodeWalker {
     return count;
   }
 
-  void check_node(int index, int depth, bool count_visit = true) {
+  void check_node(int index, int depth) {
     if (index < 0 || static_cast<std::size_t>(index) >= model_.nodes.size())
       throw InputError(
           fmt::format("{}: node {} does not exist ({} nodes)", file_, index, model_.nodes.size()));
@@ -179,7 +177,6 @@ class NodeWalker {
       throw InputError(fmt::format("{}: node {} is its own ancestor (cyclic node graph)", file_, index));
     if (depth > kMaxDepth)
       throw InputError(fmt::format("{}: node hierarchy deeper than {} levels", file_, kMaxDepth));
-    if (count_visit && ++visits_ > kMaxNodeVisits) throw too_many_instances();
   }
 
   void take_camera(int index, const glm::dmat4& world) {
@@ -258,7 +255,6 @@ class NodeWalker {
   PrimitiveEmitter emitter_;
   std::vector<bool> on_path_;
   std::vector<std::size_t> instances_below_;  // 0 until counted
-  std::size_t visits_ = 0;
 };
 
 }  // namespace

@@ -8,7 +8,7 @@
 #include <filesystem>
 
 #include "accel/ray_check.h"
-#include "cl/scene_paths.h"
+#include "host/scene_paths.h"
 #include "accel/straggler_check.h"
 #include "runtime/cl/context.h"
 #include "runtime/cl/kernel_program.h"
@@ -20,9 +20,6 @@ using namespace cohort;
 using namespace cohort::test;
 
 namespace {
-
-using cohort::cl_test::shipped;
-using cohort::cl_test::shared;
 
 struct DeviceTrace {
   std::vector<HitOut> hits;

@@ -8,7 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include "accel/ray_check.h"
-#include "cl/scene_paths.h"
+#include "host/scene_paths.h"
 #include "runtime/bench/trace_bench.h"
 #include "runtime/cl/cl_error.h"
 #include "runtime/cl/context.h"
@@ -20,8 +20,6 @@ using namespace cohort;
 using namespace cohort::test;
 
 namespace {
-
-using cohort::cl_test::shared;
 
 std::vector<HitOut> trace_on_device(const KdTree& tree, const std::vector<TestRay>& rays, bool any_hit,
                                     const std::vector<float>& tmax) {

@@ -61,7 +61,7 @@ std::string tile_map(const std::vector<float>& tiles, int columns) {
 TEST(Adaptive, EmptyBackgroundStopsAfterTheFirstRoundAndTheBoxTakesTheRest) {
   TempDir dir("cohort-adaptive-");
   const fs::path out = dir.path / "wide";
-  const CommandResult r = run_cohort(wide_box(out, "--stats " + (dir.path / "wide.json").string()));
+  const CommandResult r = run(wide_box(out, "--stats " + (dir.path / "wide.json").string()));
   ASSERT_EQ(r.code, 0) << r.output;
   const fs::path exr = out.string() + ".exr";
   const std::vector<float> tiles = tile_samples(exr, 64, 64);
@@ -104,27 +104,27 @@ TEST(Adaptive, SameBitsTwiceForEveryMethodAndOnTwoDevices) {
   TempDir dir("cohort-adaptive-");
   const std::string line = "render " + shipped_scene("cornell-box.gltf") +
                            " --res 40x24 --fov 58 --spp 64 --pass-spp 4 --seed 5 --target-error 0.05 ";
-  ASSERT_EQ(run_cohort(line + "-o " + (dir.path / "a").string()).code, 0);
-  ASSERT_EQ(run_cohort(line + "-o " + (dir.path / "b").string()).code, 0);
+  ASSERT_EQ(run(line + "-o " + (dir.path / "a").string()).code, 0);
+  ASSERT_EQ(run(line + "-o " + (dir.path / "b").string()).code, 0);
   const std::string a = read_all(dir.path / "a.exr");
   EXPECT_EQ(a, read_all(dir.path / "b.exr")) << "two runs";
-  const CommandResult pth = run_cohort(line + "--method pth -o " + (dir.path / "pth").string());
+  const CommandResult pth = run(line + "--method pth -o " + (dir.path / "pth").string());
   ASSERT_EQ(pth.code, 0) << pth.output;
   EXPECT_EQ(a, read_all(dir.path / "pth.exr")) << "the default method and pth";
   // auto's probe splits launches by samples (not by rows: adaptive passes list their pixels)
   for (const char* method : {"naive", "auto"}) {
-    const CommandResult other = run_cohort(line + "--method " + method + " -o " + (dir.path / method).string());
+    const CommandResult other = run(line + "--method " + method + " -o " + (dir.path / method).string());
     ASSERT_EQ(other.code, 0) << other.output;
     EXPECT_EQ(a, read_all(dir.path / (std::string(method) + ".exr"))) << method;
   }
   EXPECT_NE(pth.output.find("estimated relative error"), std::string::npos) << pth.output;
 
   const std::string two = "env 'POCL_DEVICES=pthread pthread' ";
-  if (run_cohort("devices", two).output.find("[1]") == std::string::npos) {
+  if (run("devices", two).output.find("[1]") == std::string::npos) {
     std::printf("POCL_DEVICES=\"pthread pthread\" does not give two devices here: one device only\n");
     return;
   }
-  const CommandResult r = run_cohort(line + "--device all --method sc+rg -o " + (dir.path / "two").string(), two);
+  const CommandResult r = run(line + "--device all --method sc+rg -o " + (dir.path / "two").string(), two);
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("2 devices"), std::string::npos) << r.output;
   EXPECT_EQ(a, read_all(dir.path / "two.exr")) << "one device and two";
@@ -134,14 +134,14 @@ TEST(Adaptive, StoppedAndResumedEqualsAStraightRender) {
   TempDir dir("cohort-adaptive-");
   const std::string line = "render " + shipped_scene("cornell-box.gltf") +
                            " --res 64x64 --fov 58 --spp 128 --pass-spp 2 --seed 7 --target-error 0.05 ";
-  ASSERT_EQ(run_cohort(line + "-o " + (dir.path / "full").string()).code, 0);
+  ASSERT_EQ(run(line + "-o " + (dir.path / "full").string()).code, 0);
   // --time ends the first run after some pass, mid-round most likely; it saves its checkpoint
   const fs::path part = dir.path / "part";
-  const CommandResult first = run_cohort(line + "--time 0.03 --checkpoint 100 -o " + part.string());
+  const CommandResult first = run(line + "--time 0.03 --checkpoint 100 -o " + part.string());
   ASSERT_EQ(first.code, 0) << first.output;
   if (read_all(part.string() + ".exr") == read_all(dir.path / "full.exr"))
     GTEST_SKIP() << "the render finished within --time";
-  const CommandResult resumed = run_cohort(line + "--resume -o " + part.string());
+  const CommandResult resumed = run(line + "--resume -o " + part.string());
   ASSERT_EQ(resumed.code, 0) << resumed.output;
   EXPECT_NE(resumed.output.find("resuming"), std::string::npos) << resumed.output;
   EXPECT_EQ(read_all(part.string() + ".exr"), read_all(dir.path / "full.exr"));
@@ -165,17 +165,17 @@ std::pair<double, double> adaptive_and_uniform(const std::string& view, double t
                                                int reference_spp, int pixels) {
   TempDir dir("cohort-adaptive-");
   const CommandResult reference =
-      run_cohort(view + "--spp " + std::to_string(reference_spp) + " --seed 1 -o " + (dir.path / "reference").string());
+      run(view + "--spp " + std::to_string(reference_spp) + " --seed 1 -o " + (dir.path / "reference").string());
   EXPECT_EQ(reference.code, 0) << reference.output;
   const std::string seed_option = " --seed " + std::to_string(seed);
-  const CommandResult adaptive = run_cohort(view + "--spp 256 --target-error " + std::to_string(target_error) + seed_option +
+  const CommandResult adaptive = run(view + "--spp 256 --target-error " + std::to_string(target_error) + seed_option +
                                      " --stats " + (dir.path / "adaptive.json").string() + " -o " +
                                      (dir.path / "adaptive").string());
   EXPECT_EQ(adaptive.code, 0) << adaptive.output;
   const double spent = nlohmann::json::parse(read_all(dir.path / "adaptive.json"))["adaptive"]["samples"];
   const int uniform_spp = int(std::lround(spent / pixels));
   const CommandResult uniform =
-      run_cohort(view + "--spp " + std::to_string(uniform_spp) + seed_option + " -o " + (dir.path / "uniform").string());
+      run(view + "--spp " + std::to_string(uniform_spp) + seed_option + " -o " + (dir.path / "uniform").string());
   EXPECT_EQ(uniform.code, 0) << uniform.output;
   const cohort::Image want = cohort::read_exr(dir.path / "reference.exr");
   const double e_adaptive = relative_mse(cohort::read_exr(dir.path / "adaptive.exr"), want);
@@ -213,11 +213,11 @@ TEST(Adaptive, BadTargetErrorIsExitTwoNamingTheOption) {
   TempDir dir("cohort-adaptive-");
   const std::string line = "render " + shipped_scene("cornell-box.gltf") + " --res 8x8 -o " + (dir.path / "x").string();
   for (const char* bad : {"0", "-0.1", "nan", "inf", "0.1x", "''"}) {
-    const CommandResult r = run_cohort(line + " --spp 32 --target-error " + bad);
+    const CommandResult r = run(line + " --spp 32 --target-error " + bad);
     EXPECT_EQ(r.code, 2) << bad << ": " << r.output;
     EXPECT_NE(r.output.find("--target-error"), std::string::npos) << bad << ": " << r.output;
   }
-  const CommandResult within_first_round = run_cohort(line + " --spp 16 --target-error 0.1");
+  const CommandResult within_first_round = run(line + " --spp 16 --target-error 0.1");
   EXPECT_EQ(within_first_round.code, 2) << within_first_round.output;
   EXPECT_NE(within_first_round.output.find("--spp"), std::string::npos) << within_first_round.output;
   EXPECT_FALSE(fs::exists(dir.path / "x.exr")) << "nothing is written";

@@ -13,7 +13,7 @@
 
 namespace fs = std::filesystem;
 using cohort_test::CommandResult;
-using cohort_test::run_cohort;
+using cohort_test::run;
 using cohort_test::TempDir;
 
 namespace {
@@ -41,7 +41,7 @@ std::string plane_render(const fs::path& dir, const std::string& camera_bounds, 
 
 TEST(Aov, AlbedoNormalAndDepthOfAPlane) {
   TempDir dir;
-  const CommandResult r = run_cohort(plane_render(dir.path, "0.5,0.5,0.5,0.5,0.5,0", "plane"));
+  const CommandResult r = run(plane_render(dir.path, "0.5,0.5,0.5,0.5,0.5,0", "plane"));
   ASSERT_EQ(r.code, 0) << r.output;
   const fs::path exr = dir.path / "plane.exr";
   for (const char* c : {"albedo.R", "albedo.G", "albedo.B"})
@@ -63,7 +63,7 @@ TEST(Aov, AlbedoNormalAndDepthOfAPlane) {
 TEST(Aov, EscapedRaysHaveInfiniteDepthAndNoAlbedo) {
   TempDir dir;
   // looking from the eye at (0, 0, 4) up, away from the plane: the centre pixel sees the sky
-  const CommandResult r = run_cohort(plane_render(dir.path, "0.5,0.5,0.5,0.5,0.5,1", "sky"));
+  const CommandResult r = run(plane_render(dir.path, "0.5,0.5,0.5,0.5,0.5,1", "sky"));
   ASSERT_EQ(r.code, 0) << r.output;
   const fs::path exr = dir.path / "sky.exr";
   EXPECT_TRUE(std::isinf(cohort::read_exr_channel(exr, "depth.Z")[kSide * kSide / 2]));
@@ -79,9 +79,9 @@ TEST(Aov, EveryMethodWritesTheSameBits) {
   for (const std::string method : {"naive", "wavefront", "sc+rg", "pth", "two-devices"}) {
     const fs::path out = dir.path / ("box-" + method);
     const std::string how = method == "two-devices" ? "--pass-spp 1 --device all" : "--method " + method;
-    const CommandResult r = cohort_test::run_shell(
-        (method == "two-devices" ? "env 'POCL_DEVICES=pthread pthread' " : "") + std::string(COHORT_BINARY) +
-        " render " + box + " --res 24x16 --spp 3 --aov depth,albedo,normal " + how + " -o " + out.string());
+    const CommandResult r =
+        run("render " + box + " --res 24x16 --spp 3 --aov depth,albedo,normal " + how + " -o " + out.string(),
+                   method == "two-devices" ? "env 'POCL_DEVICES=pthread pthread' " : "");
     ASSERT_EQ(r.code, 0) << method << ": " << r.output;
     std::vector<std::vector<float>> these;
     for (const char* c : channels) these.push_back(cohort::read_exr_channel(out.string() + ".exr", c));
@@ -101,7 +101,7 @@ TEST(Aov, EveryMethodWritesTheSameBits) {
 
 TEST(Aov, OnlyTheNamedAovsAreWritten) {
   TempDir dir;
-  const CommandResult r = run_cohort("render " + cohort_test::shipped_scene("cornell-box.gltf") +
+  const CommandResult r = run("render " + cohort_test::shipped_scene("cornell-box.gltf") +
                               " --res 8x8 --spp 1 --aov depth -o " + (dir.path / "d").string());
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_EQ(cohort::read_exr_channel(dir.path / "d.exr", "depth.Z").size(), 64u);
@@ -110,7 +110,7 @@ TEST(Aov, OnlyTheNamedAovsAreWritten) {
 
 TEST(Aov, UnknownNameIsExitTwoNamingIt) {
   TempDir dir;
-  const CommandResult r = run_cohort("render " + cohort_test::shipped_scene("cornell-box.gltf") +
+  const CommandResult r = run("render " + cohort_test::shipped_scene("cornell-box.gltf") +
                               " --res 8x8 --spp 1 --aov albedo,normals -o " + (dir.path / "bad").string());
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("'normals'"), std::string::npos) << r.output;
@@ -123,7 +123,7 @@ TEST(Aov, AdaptiveSamplingAveragesEachPixelOverItsOwnSamples) {
   TempDir dir;
   const std::string box = cohort_test::shipped_scene("cornell-box.gltf") + " --res 24x16 --seed 4 --aov depth,albedo,normal ";
   const CommandResult adaptive =
-      run_cohort("render " + box + "--spp 32 --target-error 0.06 -o " + (dir.path / "adaptive").string());
+      run("render " + box + "--spp 32 --target-error 0.06 -o " + (dir.path / "adaptive").string());
   ASSERT_EQ(adaptive.code, 0) << adaptive.output;
   const fs::path exr = dir.path / "adaptive.exr";
   const std::vector<float> samples = cohort::read_exr_channel(exr, "samples");
@@ -132,7 +132,7 @@ TEST(Aov, AdaptiveSamplingAveragesEachPixelOverItsOwnSamples) {
   std::vector<float> counts_on_the_box;
   for (const float n : std::vector<float>{16, 24, 32}) {
     const fs::path uniform = dir.path / ("uniform-" + std::to_string(int(n)));
-    const CommandResult r = run_cohort("render " + box + "--spp " + std::to_string(int(n)) + " -o " + uniform.string());
+    const CommandResult r = run("render " + box + "--spp " + std::to_string(int(n)) + " -o " + uniform.string());
     ASSERT_EQ(r.code, 0) << r.output;
     for (const char* c : channels) {
       const std::vector<float> want = cohort::read_exr_channel(uniform.string() + ".exr", c);

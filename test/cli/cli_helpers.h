@@ -43,7 +43,7 @@ inline CommandResult run_shell(const std::string& command) {
 }
 
 // `cohort ARGS` through the shell; `env` (variable assignments, or an `env ...` prefix) goes before it.
-inline CommandResult run_cohort(const std::string& args, const std::string& env = "") {
+inline CommandResult run(const std::string& args, const std::string& env = "") {
   return run_shell(env + std::string(COHORT_BINARY) + " " + args);
 }
 

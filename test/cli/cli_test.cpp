@@ -10,7 +10,7 @@
 
 namespace fs = std::filesystem;
 using cohort_test::CommandResult;
-using cohort_test::run_cohort;
+using cohort_test::run;
 using cohort_test::TempDir;
 
 namespace {
@@ -20,42 +20,42 @@ std::string scene(const std::string& name) { return cohort_test::shipped_scene(n
 }  // namespace
 
 TEST(Cli, HelpAndVersionExitZero) {
-  EXPECT_EQ(run_cohort("--help").code, 0);
-  const CommandResult v = run_cohort("--version");
+  EXPECT_EQ(run("--help").code, 0);
+  const CommandResult v = run("--version");
   EXPECT_EQ(v.code, 0);
   EXPECT_NE(v.output.find("cohort"), std::string::npos);
 }
 
 TEST(Cli, MissingSceneFileIsExitTwoNamingTheFile) {
-  const CommandResult r = run_cohort("render /nonexistent/nothing-here.gltf");
+  const CommandResult r = run("render /nonexistent/nothing-here.gltf");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("nothing-here.gltf"), std::string::npos) << r.output;
 }
 
 TEST(Cli, UnknownOptionIsExitTwo) {
-  const CommandResult r = run_cohort("render " + scene("cornell-box.gltf") + " --no-such-option");
+  const CommandResult r = run("render " + scene("cornell-box.gltf") + " --no-such-option");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("no-such-option"), std::string::npos) << r.output;
 }
 
 TEST(Cli, BadResolutionIsExitTwo) {
   for (const char* res : {"0x10", "abc", "10x", "100000x10", "-5x5"}) {
-    const CommandResult r = run_cohort("render " + scene("cornell-box.gltf") + " --res " + res);
+    const CommandResult r = run("render " + scene("cornell-box.gltf") + " --res " + res);
     EXPECT_EQ(r.code, 2) << res << ": " << r.output;
     EXPECT_NE(r.output.find("--res"), std::string::npos) << r.output;
   }
 }
 
 TEST(Cli, UnknownMethodAndMissingCommandAreExitTwo) {
-  EXPECT_EQ(run_cohort("render " + scene("cornell-box.gltf") + " --method teleport").code, 2);
-  EXPECT_EQ(run_cohort("").code, 2);
+  EXPECT_EQ(run("render " + scene("cornell-box.gltf") + " --method teleport").code, 2);
+  EXPECT_EQ(run("").code, 2);
 }
 
 TEST(Cli, BackendCudaWithoutAGpuIsExitTwoSayingWhy) {
-  EXPECT_EQ(run_cohort("render " + scene("cornell-box.gltf") + " --backend metal").code, 2);
+  EXPECT_EQ(run("render " + scene("cornell-box.gltf") + " --backend metal").code, 2);
   TempDir dir;
   const CommandResult r =
-      run_cohort("render " + scene("cornell-box.gltf") + " --backend cuda --res 8x8 --spp 1 -o " + (dir.path / "box").string());
+      run("render " + scene("cornell-box.gltf") + " --backend cuda --res 8x8 --spp 1 -o " + (dir.path / "box").string());
   if (r.code == 0) GTEST_SKIP() << "this machine has a CUDA GPU: it rendered";
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("--backend cuda"), std::string::npos) << r.output;
@@ -64,7 +64,7 @@ TEST(Cli, BackendCudaWithoutAGpuIsExitTwoSayingWhy) {
 
 TEST(Cli, RenderWritesExrPngAndStats) {
   TempDir dir;
-  const CommandResult r = run_cohort("render " + scene("cornell-box.gltf") + " --res 24x16 --spp 2 -o " + (dir.path / "box").string() +
+  const CommandResult r = run("render " + scene("cornell-box.gltf") + " --res 24x16 --spp 2 -o " + (dir.path / "box").string() +
                     " --stats " + (dir.path / "stats.json").string());
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_TRUE(fs::exists(dir.path / "box.exr"));
@@ -81,7 +81,7 @@ TEST(Cli, RenderWritesExrPngAndStats) {
 
 TEST(Cli, SortingMethodStatsNameTheCodeItsBitsAndTheFirstSortedBounce) {
   TempDir dir;
-  const CommandResult r = run_cohort("render " + scene("cornell-box.gltf") + " --res 16x16 --spp 1 --method hash --code two-point"
+  const CommandResult r = run("render " + scene("cornell-box.gltf") + " --res 16x16 --spp 1 --method hash --code two-point"
                               " --sort-from-bounce 3 -o " + (dir.path / "box").string() + " --stats " +
                               (dir.path / "stats.json").string());
   ASSERT_EQ(r.code, 0) << r.output;
@@ -89,8 +89,8 @@ TEST(Cli, SortingMethodStatsNameTheCodeItsBitsAndTheFirstSortedBounce) {
   EXPECT_EQ(j["coherence"]["code"], "two-point");
   EXPECT_EQ(j["coherence"]["key_bits"], 30);
   EXPECT_EQ(j["coherence"]["sort_from_bounce"], 3);
-  EXPECT_EQ(run_cohort("render " + scene("cornell-box.gltf") + " --method hash --sort-from-bounce 0").code, 2);
-  const CommandResult bad = run_cohort("render " + scene("cornell-box.gltf") + " --method hash --code end:11 -o " +
+  EXPECT_EQ(run("render " + scene("cornell-box.gltf") + " --method hash --sort-from-bounce 0").code, 2);
+  const CommandResult bad = run("render " + scene("cornell-box.gltf") + " --method hash --code end:11 -o " +
                                 (dir.path / "bad").string());
   EXPECT_EQ(bad.code, 2) << bad.output;
   EXPECT_NE(bad.output.find("end takes at most 10 bits"), std::string::npos) << bad.output;
@@ -100,7 +100,7 @@ TEST(Cli, AFailedRunLeavesEarlierOutputsUntouched) {
   TempDir dir;
   const fs::path exr = dir.path / "keep.exr";
   std::ofstream(exr) << "earlier result";
-  const CommandResult r = run_cohort("render /nonexistent.gltf -o " + exr.string());
+  const CommandResult r = run("render /nonexistent.gltf -o " + exr.string());
   EXPECT_EQ(r.code, 2);
   std::ifstream in(exr);
   std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -108,13 +108,13 @@ TEST(Cli, AFailedRunLeavesEarlierOutputsUntouched) {
 }
 
 TEST(Cli, OutputIntoAMissingDirectoryFailsBeforeRendering) {
-  const CommandResult r = run_cohort("render " + scene("cornell-box.gltf") + " -o /nonexistent-dir/x.exr");
+  const CommandResult r = run("render " + scene("cornell-box.gltf") + " -o /nonexistent-dir/x.exr");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("nonexistent-dir"), std::string::npos) << r.output;
 }
 
 TEST(Cli, InfoPrintsSceneAndTree) {
-  const CommandResult r = run_cohort("info " + scene("cornell-box.gltf"));
+  const CommandResult r = run("info " + scene("cornell-box.gltf"));
   ASSERT_EQ(r.code, 0) << r.output;
   for (const char* word : {"triangles:", "materials:", "lights:", "bounds:", "kd-tree:", "memory:"})
     EXPECT_NE(r.output.find(word), std::string::npos) << word << "\n" << r.output;
@@ -126,7 +126,7 @@ TEST(Cli, BadEnvironmentMapIsExitTwoNamingTheFile) {
   std::ofstream(garbage) << "this is not an OpenEXR file";
   for (const std::string& env : {garbage.string(), std::string("/nonexistent/sky.exr")}) {
     const CommandResult r =
-        run_cohort("render " + scene("cornell-box.gltf") + " --res 8x8 --spp 1 --env " + env + " -o " + (dir.path / "o").string());
+        run("render " + scene("cornell-box.gltf") + " --res 8x8 --spp 1 --env " + env + " -o " + (dir.path / "o").string());
     EXPECT_EQ(r.code, 2) << r.output;
     EXPECT_NE(r.output.find(fs::path(env).filename().string()), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(dir.path / "o.exr"));
@@ -136,24 +136,24 @@ TEST(Cli, BadEnvironmentMapIsExitTwoNamingTheFile) {
 TEST(Cli, EnvironmentMapRendersAndInfoCountsPunctualLights) {
   TempDir dir;
   const std::string sky = std::string(COHORT_SOURCE_DIR) + "/scenes/reference/sky.exr";
-  const CommandResult r = run_cohort("render " + scene("reference/envmap.gltf") + " --res 16x16 --spp 2 -v --env " + sky +
+  const CommandResult r = run("render " + scene("reference/envmap.gltf") + " --res 16x16 --spp 2 -v --env " + sky +
                               " -o " + (dir.path / "o").string());
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("kernel features: envmap"), std::string::npos) << r.output;
-  const CommandResult info = run_cohort("info " + scene("reference/punctual.gltf"));
+  const CommandResult info = run("info " + scene("reference/punctual.gltf"));
   ASSERT_EQ(info.code, 0) << info.output;
   EXPECT_NE(info.output.find("1 point, 1 spot"), std::string::npos) << info.output;
 }
 
 TEST(Cli, DevicesListsPocl) {
-  const CommandResult r = run_cohort("devices");
+  const CommandResult r = run("devices");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("compute units"), std::string::npos) << r.output;
 }
 
 TEST(Cli, ASceneThatDoesNotFitTheDeviceFailsWithTheSizes) {
   TempDir dir;
-  const CommandResult r = run_cohort("render " + scene("furnace-sphere.gltf") + " --res 8x8 --spp 1 --memory-limit 0.01 -o " +
+  const CommandResult r = run("render " + scene("furnace-sphere.gltf") + " --res 8x8 --spp 1 --memory-limit 0.01 -o " +
                               (dir.path / "x").string());
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("needs at least 0.27 MiB"), std::string::npos) << r.output;
@@ -165,13 +165,13 @@ TEST(Cli, MemoryLimitAndTreeBudgetMakeTheTreeShallowerToFit) {
   // The furnace sphere needs 0.5 MiB with the default tree (0.27 MiB with a single leaf).
   TempDir dir;
   const auto stats = dir.path / "s.json";
-  const CommandResult full = run_cohort("render " + scene("furnace-sphere.gltf") + " --res 8x8 --spp 1 -o " +
+  const CommandResult full = run("render " + scene("furnace-sphere.gltf") + " --res 8x8 --spp 1 -o " +
                                  (dir.path / "a").string() + " --stats " + stats.string());
   ASSERT_EQ(full.code, 0) << full.output;
   const auto full_stats = nlohmann::json::parse(std::ifstream(stats));
   for (const char* limit : {"--memory-limit 0.35", "--tree-budget 0.2"}) {
     SCOPED_TRACE(limit);
-    const CommandResult r = run_cohort("render " + scene("furnace-sphere.gltf") + " --res 8x8 --spp 1 " + limit + " -o " +
+    const CommandResult r = run("render " + scene("furnace-sphere.gltf") + " --res 8x8 --spp 1 " + limit + " -o " +
                                 (dir.path / "b").string() + " --stats " + stats.string());
     ASSERT_EQ(r.code, 0) << r.output;
     const auto s = nlohmann::json::parse(std::ifstream(stats));
@@ -184,21 +184,21 @@ TEST(Cli, MemoryLimitAndTreeBudgetMakeTheTreeShallowerToFit) {
 
 TEST(Cli, TimeLimitStopsTheRender) {
   TempDir dir;
-  const CommandResult r = run_cohort("render " + scene("cornell-box.gltf") + " --res 16x16 --spp 0 --time 0.5 -o " +
+  const CommandResult r = run("render " + scene("cornell-box.gltf") + " --res 16x16 --spp 0 --time 0.5 -o " +
                               (dir.path / "t").string() + " --stats " + (dir.path / "t.json").string());
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream in(dir.path / "t.json");
   const auto j = nlohmann::json::parse(in);
   EXPECT_GT(j["image"]["spp"].get<int>(), 0);
   EXPECT_GE(j["timings"]["render_seconds"].get<double>(), 0.5);
-  EXPECT_EQ(run_cohort("render " + scene("cornell-box.gltf") + " --spp 0").code, 2);  // --spp 0 needs --time
+  EXPECT_EQ(run("render " + scene("cornell-box.gltf") + " --spp 0").code, 2);  // --spp 0 needs --time
 }
 
 // `cohort bench` at a tiny size: the JSON holds every figure the benchmark scripts and charts read.
 TEST(Cli, BenchWritesEveryFigureAsJson) {
   TempDir dir;
   const fs::path json = dir.path / "bench.json";
-  const CommandResult r = run_cohort("bench " + scene("cornell-box.gltf") +
+  const CommandResult r = run("bench " + scene("cornell-box.gltf") +
                               " --res 8 --trace-res 16 --spp 1 --reps 3 --json " + json.string());
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("pth / naive"), std::string::npos) << r.output;
@@ -240,7 +240,7 @@ TEST(Cli, BenchWritesEveryFigureAsJson) {
 TEST(Cli, BenchInteriorViewAndTraversalOnly) {
   TempDir dir;
   const fs::path json = dir.path / "bench.json";
-  const CommandResult r = run_cohort("bench " + scene("cornell-box.gltf") + " --view exterior,interior --methods none " +
+  const CommandResult r = run("bench " + scene("cornell-box.gltf") + " --view exterior,interior --methods none " +
                               "--trace-res 8 --backend opencl --json " + json.string());
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream in(json);
@@ -256,11 +256,11 @@ TEST(Cli, BenchInteriorViewAndTraversalOnly) {
 // bench opens its device as render does: --backend cuda without a GPU is an error saying why,
 // before any scene is loaded or file written, not an unknown option.
 TEST(Cli, BenchBackendCudaWithoutAGpuIsExitTwoSayingWhy) {
-  EXPECT_EQ(run_cohort("bench --backend metal --methods none --trace-res 8").code, 2);
+  EXPECT_EQ(run("bench --backend metal --methods none --trace-res 8").code, 2);
   TempDir dir;
   const fs::path json = dir.path / "bench.json";
   const CommandResult r =
-      run_cohort("bench " + scene("cornell-box.gltf") + " --backend cuda --methods none --trace-res 8 --json " + json.string());
+      run("bench " + scene("cornell-box.gltf") + " --backend cuda --methods none --trace-res 8 --json " + json.string());
   if (r.code == 0) GTEST_SKIP() << "this machine has a CUDA GPU: it measured";
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("--backend cuda"), std::string::npos) << r.output;
@@ -268,10 +268,10 @@ TEST(Cli, BenchBackendCudaWithoutAGpuIsExitTwoSayingWhy) {
 }
 
 TEST(Cli, BenchRejectsBadOptionsWithExitTwo) {
-  EXPECT_EQ(run_cohort("bench --methods naive,nonsense --trace-res 8").code, 2);
-  EXPECT_EQ(run_cohort("bench --reps 1").code, 2);  // the protocol asks for at least 3
-  EXPECT_EQ(run_cohort("bench --view sideways").code, 2);
-  const CommandResult r = run_cohort("bench /nonexistent/mesh.ply --methods none");
+  EXPECT_EQ(run("bench --methods naive,nonsense --trace-res 8").code, 2);
+  EXPECT_EQ(run("bench --reps 1").code, 2);  // the protocol asks for at least 3
+  EXPECT_EQ(run("bench --view sideways").code, 2);
+  const CommandResult r = run("bench /nonexistent/mesh.ply --methods none");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.output.find("mesh.ply"), std::string::npos) << r.output;
 }
@@ -279,9 +279,9 @@ TEST(Cli, BenchRejectsBadOptionsWithExitTwo) {
 TEST(Cli, ExportWritesSubdividedTriangles) {
   TempDir dir;
   const fs::path ply = dir.path / "box.ply";
-  const CommandResult r = run_cohort("export " + scene("cornell-box.gltf") + " -o " + ply.string() + " --subdivide 1");
+  const CommandResult r = run("export " + scene("cornell-box.gltf") + " -o " + ply.string() + " --subdivide 1");
   ASSERT_EQ(r.code, 0) << r.output;
-  const CommandResult info = run_cohort("info " + ply.string());
+  const CommandResult info = run("info " + ply.string());
   ASSERT_EQ(info.code, 0) << info.output;
   EXPECT_NE(info.output.find("triangles: 152 "), std::string::npos) << info.output;  // 38 x 4
 }

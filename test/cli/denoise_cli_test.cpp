@@ -14,7 +14,7 @@
 
 namespace fs = std::filesystem;
 using cohort_test::CommandResult;
-using cohort_test::run_cohort;
+using cohort_test::run;
 using cohort_test::TempDir;
 
 namespace {
@@ -42,17 +42,17 @@ TEST(Denoise, CornellBoxAt16SppIsCloserToTheReference) {
   TempDir dir;
   const std::string res = " --res 48x48 ";
   const fs::path noisy = dir.path / "noisy", plain = dir.path / "plain";
-  const CommandResult r = run_cohort("render " + kBox + res + "--spp 16 --seed 2 --denoise -o " + noisy.string());
+  const CommandResult r = run("render " + kBox + res + "--spp 16 --seed 2 --denoise -o " + noisy.string());
   if (r.code == 2 && r.output.find("Open Image Denoise was not found") != std::string::npos &&
       !std::getenv("COHORT_REQUIRE_OIDN"))
     GTEST_SKIP() << "no Open Image Denoise here (scripts/test installs it): " << r.output;
   ASSERT_EQ(r.code, 0) << r.output;
   // the denoised image is an extra output: the beauty is the same bits as without --denoise
-  ASSERT_EQ(run_cohort("render " + kBox + res + "--spp 16 --seed 2 -o " + plain.string()).code, 0);
+  ASSERT_EQ(run("render " + kBox + res + "--spp 16 --seed 2 -o " + plain.string()).code, 0);
   EXPECT_EQ(cohort_test::read_all(noisy.string() + ".exr"), cohort_test::read_all(plain.string() + ".exr"));
 
   const fs::path reference = dir.path / "reference";
-  const CommandResult ref = run_cohort("render " + kBox + res + "--spp 512 --seed 1 -o " + reference.string());
+  const CommandResult ref = run("render " + kBox + res + "--spp 512 --seed 1 -o " + reference.string());
   ASSERT_EQ(ref.code, 0) << ref.output;
   const cohort::Image want = cohort::read_exr(reference.string() + ".exr");
   const cohort::Image before = cohort::read_exr(noisy.string() + ".exr");
@@ -66,7 +66,7 @@ TEST(Denoise, CornellBoxAt16SppIsCloserToTheReference) {
 TEST(Denoise, MissingLibraryIsExitTwoAndTheImageIsStillWritten) {
   TempDir dir;
   const fs::path out = dir.path / "box";
-  const CommandResult r = run_cohort("render " + kBox + " --res 16x16 --spp 1 --denoise -o " + out.string(),
+  const CommandResult r = run("render " + kBox + " --res 16x16 --spp 1 --denoise -o " + out.string(),
                               "COHORT_OIDN_LIBRARY=" + (dir.path / "no-such-libOpenImageDenoise.so.2").string() + " ");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("Open Image Denoise was not found"), std::string::npos) << r.output;

@@ -23,7 +23,7 @@ std::string render_line(const fs::path& out, const std::string& method, const st
 
 // Skips (returns false) where the OpenCL platform does not give two devices for POCL_DEVICES.
 bool two_devices_present() {
-  const CommandResult r = run_shell("env '" + kTwoDevices + "' " + std::string(COHORT_BINARY) + " devices");
+  const CommandResult r = run("devices", "env '" + kTwoDevices + "' ");
   return r.output.find("[1]") != std::string::npos;
 }
 
@@ -67,8 +67,8 @@ TEST(TwoDevicesCheckpoint, InterruptedAndResumedEqualsOneDevice) {
   const std::vector<std::string> args = {"render", shipped_scene("cornell-box.gltf"), "--res", "64x64", "--spp",
                                          "256", "--pass-spp", "4", "--seed", "9", "--device", "all", "-o", (dir.path / "part").string(),
                                          "--checkpoint", "0.05"};
-  const CommandResult one = run_shell(std::string(COHORT_BINARY) + " render " + shipped_scene("cornell-box.gltf") +
-                                      " --res 64x64 --spp 256 --pass-spp 4 --seed 9 -o " + (dir.path / "one").string());
+  const CommandResult one = run("render " + shipped_scene("cornell-box.gltf") +
+                                       " --res 64x64 --spp 256 --pass-spp 4 --seed 9 -o " + (dir.path / "one").string());
   ASSERT_EQ(one.code, 0) << one.output;
   const pid_t pid = spawn(COHORT_BINARY, args, "", {kTwoDevices});
   wait_for_file(dir.path / "part.checkpoint");
@@ -84,13 +84,13 @@ TEST(TwoDevicesCheckpoint, InterruptedAndResumedEqualsOneDevice) {
 }
 
 TEST(DeviceList, NamesWhatIsWrong) {
-  const CommandResult repeated = run_shell(std::string(COHORT_BINARY) + " render " +
-                                           shipped_scene("cornell-box.gltf") + " --res 8x8 --spp 1 --device 0,0 -o " +
-                                           (fs::temp_directory_path() / "cohort-never-written").string());
+  const CommandResult repeated = run("render " + shipped_scene("cornell-box.gltf") +
+                                            " --res 8x8 --spp 1 --device 0,0 -o " +
+                                            (fs::temp_directory_path() / "cohort-never-written").string());
   EXPECT_EQ(repeated.code, 2) << repeated.output;
   EXPECT_NE(repeated.output.find("listed twice"), std::string::npos) << repeated.output;
-  const CommandResult unknown = run_shell(std::string(COHORT_BINARY) + " render " +
-                                          shipped_scene("cornell-box.gltf") + " --res 8x8 --spp 1 --device all:nosuchgpu");
+  const CommandResult unknown =
+      run("render " + shipped_scene("cornell-box.gltf") + " --res 8x8 --spp 1 --device all:nosuchgpu");
   EXPECT_EQ(unknown.code, 2) << unknown.output;
   EXPECT_NE(unknown.output.find("nosuchgpu"), std::string::npos) << unknown.output;
 }

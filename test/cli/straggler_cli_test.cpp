@@ -11,7 +11,7 @@
 #include "cli/cli_helpers.h"
 
 using cohort_test::CommandResult;
-using cohort_test::run_cohort;
+using cohort_test::run;
 using cohort_test::TempDir;
 
 namespace {
@@ -27,7 +27,7 @@ TEST(Stragglers, StatsReportPassTimesAndTheMostNodesOneRayVisited) {
   TempDir dir;
   const std::string box = cohort_test::shipped_scene("cornell-box.gltf");
   const auto stats = dir.path / "s.json";
-  const CommandResult r = run_cohort("render " + box + " --res 24x16 --spp 4 --pass-spp 1 --method wavefront --stragglers 3 " +
+  const CommandResult r = run("render " + box + " --res 24x16 --spp 4 --pass-spp 1 --method wavefront --stragglers 3 " +
                               "--stats " + stats.string() + " -o " + (dir.path / "img").string());
   ASSERT_EQ(r.code, 0) << r.output;
   const auto j = read_json(stats);
@@ -46,7 +46,7 @@ TEST(Stragglers, StatsReportPassTimesAndTheMostNodesOneRayVisited) {
   EXPECT_EQ(pass_max, worst[0]["nodes"].get<std::uint32_t>());
 
   // the same rays on the host visit the same number of nodes
-  const CommandResult replay = run_cohort("replay " + box + " " + stats.string());
+  const CommandResult replay = run("replay " + box + " " + stats.string());
   ASSERT_EQ(replay.code, 0) << replay.output;
   int lines = 0;
   std::istringstream out(replay.output);
@@ -62,16 +62,16 @@ TEST(Stragglers, StatsReportPassTimesAndTheMostNodesOneRayVisited) {
 TEST(Stragglers, MisuseIsExitTwoSayingWhy) {
   TempDir dir;
   const std::string box = cohort_test::shipped_scene("cornell-box.gltf");
-  const CommandResult naive = run_cohort("render " + box + " --res 8x8 --spp 1 --stragglers 2 --stats " +
+  const CommandResult naive = run("render " + box + " --res 8x8 --spp 1 --stragglers 2 --stats " +
                                   (dir.path / "s.json").string() + " -o " + (dir.path / "a").string());
   EXPECT_EQ(naive.code, 2) << naive.output;
   EXPECT_NE(naive.output.find("--method wavefront"), std::string::npos) << naive.output;
   const CommandResult no_stats =
-      run_cohort("render " + box + " --res 8x8 --spp 1 --method sc --stragglers 2 -o " + (dir.path / "b").string());
+      run("render " + box + " --res 8x8 --spp 1 --method sc --stragglers 2 -o " + (dir.path / "b").string());
   EXPECT_EQ(no_stats.code, 2) << no_stats.output;
   std::ofstream(dir.path / "bad.json") << "{\"stragglers\": {\"worst\": [{\"nodes\": 1, \"org\": [\"0x1p+0\", \"zero\", "
                                           "\"0\"], \"dir\": [\"1\", \"0\", \"0\"], \"tmin\": \"0\", \"tmax\": \"inf\"}]}}";
-  const CommandResult bad = run_cohort("replay " + box + " " + (dir.path / "bad.json").string());
+  const CommandResult bad = run("replay " + box + " " + (dir.path / "bad.json").string());
   EXPECT_EQ(bad.code, 2) << bad.output;
   EXPECT_NE(bad.output.find("bad.json"), std::string::npos) << bad.output;
   EXPECT_NE(bad.output.find("zero"), std::string::npos) << bad.output;
