@@ -47,7 +47,7 @@ CO_INLINE uint32_t kd_spec_vote_bits(const KdSpeculativeRay* r) {
 /* One step of the walk: visit an inner node, or postpone the leaf found. */
 CO_INLINE void kd_spec_walk_step(const KdTreeView* tree, KdSpeculativeRay* r, KdStackEntry* stack) {
   if (r->done || !r->walking || r->waiting) return;
-  if (r->hit.t < r->t0) {  /* kd_resume stops here; a pending leaf, in front, is still tested */
+  if (kd_beyond_hit(r->hit.t, r->t0)) {  /* kd_resume stops here; a pending leaf, in front, is still tested */
     r->walking = 0;
     r->sp = 0;
     if (!r->has_leaf) r->done = 1;
@@ -79,7 +79,7 @@ CO_INLINE void kd_spec_walk_step(const KdTreeView* tree, KdSpeculativeRay* r, Kd
 CO_INLINE void kd_spec_leaf_phase(const KdTreeView* tree, KdSpeculativeRay* r) {
   if (r->done) return;
   if (r->has_leaf) {
-    if (r->hit.t < r->leaf_t0) {
+    if (kd_beyond_hit(r->hit.t, r->leaf_t0)) {
       r->done = 1;
       return;
     }

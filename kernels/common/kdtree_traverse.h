@@ -32,7 +32,20 @@ typedef struct KdStackEntry {
   float tmin, tmax;
 } KdStackEntry;
 
-/* Intersects the triangles of one leaf, narrowing *hit. Returns 1 at the first hit when any_hit. */
+/* The closest hit is the least (t, triangle index) over every triangle the ray meets, whatever the
+ * tree: a tie in t goes to the lower index, and a cell is skipped only when it starts beyond the
+ * best t by more than the few ulps by which kd_inner_step widens the cell intervals
+ * (KD_TERMINATION_SLACK). So any tree over the same triangles (the deep or the compact one, a
+ * shallower one under a memory budget) gives every ray the same hit bit for bit, where the first hit
+ * found in front-to-back order would differ between trees at ties on shared edges and vertices
+ * (docs/design.md, "The closest hit does not depend on the tree"). */
+#define KD_TERMINATION_SLACK 1.00001f
+
+/* True when a cell entered at t0 lies wholly beyond the closest hit so far, hit_t. */
+CO_INLINE int kd_beyond_hit(float hit_t, float t0) { return hit_t * KD_TERMINATION_SLACK < t0; }
+
+/* Intersects the triangles of one leaf, narrowing *hit to the least (t, index); any_hit keeps the
+ * first hit before hit->t and returns 1 there. */
 CO_INLINE int kd_intersect_leaf(const KdTreeView* tree, KdNode leaf, const WatertightRay* wr,
                                 float ray_tmin, HitOut* hit, int any_hit) {
   uint32_t first = kd_leaf_first(leaf), count = kd_leaf_count(leaf);
@@ -40,8 +53,11 @@ CO_INLINE int kd_intersect_leaf(const KdTreeView* tree, KdNode leaf, const Water
     uint32_t tri = tree->leaf_triangles[first + i];
     CO_GLOBAL const Triangle* tp = &tree->triangles[tri];
     float t, u, v;
-    if (intersect_triangle(wr, v3_from4(tp->v0), v3_from4(tp->v1), v3_from4(tp->v2), ray_tmin, hit->t,
-                           &t, &u, &v)) {
+    /* closest hit: also t equal to the best, which then goes to the lower index; a ray's own
+     * tmax (no triangle yet) stays exclusive */
+    if (intersect_triangle(wr, v3_from4(tp->v0), v3_from4(tp->v1), v3_from4(tp->v2), ray_tmin,
+                           any_hit ? hit->t : INFINITY, &t, &u, &v) &&
+        (t < hit->t || (t == hit->t && tri < hit->triangle && hit->triangle != HIT_NONE))) {
       hit->t = t; hit->u = u; hit->v = v; hit->triangle = tri;
       if (any_hit) return 1;
     }
@@ -109,7 +125,7 @@ CO_INLINE HitOut kd_resume(const KdTreeView* tree, co_vec3 org, co_vec3 dir, flo
   WatertightRay wr = watertight_ray(org, dir);
   uint32_t visited = 0u;
   for (;;) {
-    if (hit.t < t0) break;  /* the closest hit lies before this cell */
+    if (kd_beyond_hit(hit.t, t0)) break;  /* the closest hit lies before this cell */
     KdNode node = tree->nodes[node_index];
     ++visited;
     if (!kd_is_leaf(node)) {

@@ -60,6 +60,8 @@ Outcome compare_closest(const KdTree& tree, const TestRay& ray, const HitOut& ex
                         const HitOut& got, TieRule rule) {
   if ((expected.triangle == HIT_NONE) != (got.triangle == HIT_NONE)) return Outcome::kMismatch;
   if (expected.triangle == HIT_NONE) return Outcome::kAgree;
+  if (rule == TieRule::kIdentical)
+    return got.triangle == expected.triangle && got.t == expected.t ? Outcome::kAgree : Outcome::kMismatch;
   if (!close(got.t, expected.t)) return Outcome::kMismatch;
   if (got.triangle == expected.triangle) return Outcome::kAgree;
   // A different triangle is fine at a genuine tie: the same t, bit for bit.

@@ -32,7 +32,8 @@ std::vector<TestRay> make_feature_rays(const KdTree& tree, std::size_t count, st
 
 KdTreeView view_of(const KdTree& tree);
 
-// Every triangle through intersect_triangle, the closest hit on (tmin, tmax).
+// Every triangle through intersect_triangle, the closest hit on (tmin, tmax): the least t, and of
+// equal t the lowest triangle index.
 HitOut brute_force(const KdTree& tree, const TestRay& ray, float tmin, float tmax);
 
 // The same answer, faster: a triangle whose generous bounding sphere the ray (a half-line from the
@@ -66,6 +67,8 @@ struct RayCheck {
 
 // How a different triangle than brute force's may still agree.
 enum class TieRule {
+  kIdentical,  // never: the traversal's promise (kdtree_traverse.h, KD_TERMINATION_SLACK) is the
+               // least (t, triangle index), which is what the brute force finds
   kExact,  // only when its t equals the closest t bit for bit
   kNear,   // when its t is within 1e-5 relative: for rays through shared edges and vertices, where
            // the triangles around the point give t values a few ulps apart and the traversal may
@@ -78,7 +81,7 @@ enum class Traversal {
 };
 
 struct CheckOptions {
-  TieRule ties = TieRule::kExact;
+  TieRule ties = TieRule::kIdentical;
   Traversal traversal = Traversal::kDevice;
 };
 
