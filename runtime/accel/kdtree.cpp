@@ -89,6 +89,7 @@ KdTree build_kdtree(std::span<const glm::vec3> positions, const KdBuildOptions& 
   const kd::Subtree subtree = kd::build_subtree(tree.triangles, tree.bounds, options);
   kd::flatten(subtree, tree);
   kd::compute_stats(subtree, tree, options);
+  tree.stats.compact = options.compact;
   tree.stats.build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return tree;

@@ -29,8 +29,9 @@ struct KdBuildOptions {
   // nodes to 5.8M and its SAH cost from 127.97 to 126.71 (docs/results.md; 8 here: 5.2M nodes, but
   // the armadillo's SAH 2.4% above the old build's). 0: the chosen plane's plain cost is never
   // required, only that some plane pays.
-  // On the H200 the compact Sponza tree takes 0.74x the bytes and traces 0.94x as fast (naive, 16 spp
-  // interior; docs/results.md): the first step a memory budget takes (kdtree_budget.cpp).
+  // On the H200 the compact Sponza tree takes 0.74x the bytes and traces 2-5 % slower (docs/results.md):
+  // the first step a memory budget takes (kdtree_budget.cpp). On CPUs it traces as fast in 0.6x the
+  // nodes, so a render whose devices are all CPUs builds it (tree_options, --tree).
   bool compact = false;
   int plain_sah_triangles = 6;
   // Nodes with more triangle references than this choose among `bins - 1` evenly spaced planes per
@@ -52,6 +53,7 @@ struct KdTreeStats {
   std::size_t dropped_triangles = 0;   // degenerate, zero-area, NaN or infinite
   double build_seconds = 0;
   std::size_t bytes = 0;               // nodes + leaf lists + triangles
+  bool compact = false;                // built with KdBuildOptions::compact
 };
 
 struct KdTree {

@@ -94,7 +94,8 @@ SceneFigures bench_scene(const Device& cl, const ProgramCache& cache, const std:
   const auto log = [&](const std::string& s) {
     if (log_line) log_line(s);
   };
-  PreparedScene prepared = prepare_scene(path);
+  const DeviceInfo device = cl.info();
+  PreparedScene prepared = prepare_scene(path, tree_options(options.tree, {&device, 1}));
   RenderSettings settings;
   apply_white_sky(prepared, settings);
   settings.width = settings.height = options.res;

@@ -43,6 +43,7 @@ struct BenchOptions {
   std::uint32_t pth_levels = 0;       // 0: chosen from the device and the tree
   std::uint32_t sort_from_bounce = RenderSettings{}.sort_from_bounce;  // hash/pth, as render's
   std::string sort_payload = RenderSettings{}.sort_payload;            // hash/pth, as render's
+  std::string tree = "auto";          // tree_options: the device's tree unless deep or compact
 };
 
 struct MethodFigures {

@@ -113,7 +113,8 @@ int run_gate(const BenchCommand& cmd, const std::vector<BenchView>& views, const
   options.reps = cmd.reps;
   nlohmann::json all = nlohmann::json::array();
   for (const auto& path : cmd.scenes) {
-    PreparedScene prepared = prepare_scene(path);
+    const DeviceInfo info = device.info();
+    PreparedScene prepared = prepare_scene(path, tree_options(cmd.tree, {&info, 1}));
     for (const BenchView& view : views) {
       const SceneCamera camera = view_camera(prepared.scene.bounds(), view);
       const auto bounces = gate_bench(device, cache, prepared, camera, options);
@@ -164,6 +165,7 @@ int run_bench(const BenchCommand& cmd) {
   options.pth_levels = cmd.pth_levels;
   options.sort_from_bounce = cmd.sort_from_bounce;
   options.sort_payload = cmd.sort_payload;
+  options.tree = cmd.tree;
   const std::vector<BenchView> views = bench_views(cmd);
   const std::unique_ptr<Device> opened = open_device(parse_backend(cmd.backend), cmd.device);
   const Device& device = *opened;

@@ -42,9 +42,18 @@ int run_replay(const ReplayCommand& cmd) {
   }
   if (!stats.contains("stragglers") || !stats["stragglers"].contains("worst"))
     throw InputError(fmt::format("{}: no \"stragglers\" (render with --stragglers N --stats FILE)", cmd.stats.string()));
-  const PreparedScene p = prepare_scene(cmd.scene);
+  // the render's tree, so the node counts compare (files from before --tree: the deep one)
+  std::string tree = "deep";
+  if (stats.contains("kdtree") && stats["kdtree"].contains("kind")) {
+    const nlohmann::json& kind = stats["kdtree"]["kind"];
+    if (!kind.is_string() || (kind != "deep" && kind != "compact"))
+      throw InputError(fmt::format("{}: kdtree.kind must be \"deep\" or \"compact\"", cmd.stats.string()));
+    tree = kind.get<std::string>();
+  }
+  const PreparedScene p = prepare_scene(cmd.scene, tree_options(tree, {}));
   const KdTreeView view = host_view(p.tree);
-  fmt::print("{}: {} nodes, depth {}\n", cmd.scene.string(), p.tree.stats.node_count, p.tree.stats.depth);
+  fmt::print("{}: {} KD-tree, {} nodes, depth {}\n", cmd.scene.string(), tree, p.tree.stats.node_count,
+             p.tree.stats.depth);
   for (const auto& ray : stats["stragglers"]["worst"]) {
     try {
       const glm::vec3 o = parse_vec3(ray.at("org"), cmd.stats), d = parse_vec3(ray.at("dir"), cmd.stats);

@@ -22,6 +22,7 @@ struct RenderCommand {
   float fov = 0;              // vertical field of view in degrees; 0 = the camera's own
   double memory_limit_mib = 0;  // pretend the device has at most this much memory (tests, sharing)
   double tree_budget_mib = 0;   // KD-tree bytes (nodes, leaf lists, triangles); 0: the fastest tree
+  std::string tree = "auto";    // --tree: auto, deep or compact (tree_options)
   bool white_sky = false;
   double checkpoint_seconds = 0;  // --checkpoint: save the film this often
   bool checkpoint = false;        // --checkpoint given
@@ -50,6 +51,7 @@ struct BenchCommand {
   std::string sort_payload = RenderSettings{}.sort_payload;
   std::string device;
   std::string backend = "opencl";  // opencl | cuda
+  std::string tree = "auto";       // --tree, as render's
   std::string json;
   bool no_traversal = false;
   bool gate = false;     // the ordering gate experiment instead of the usual figures
@@ -68,7 +70,7 @@ struct ExportCommand {
 int run_render(const RenderCommand& cmd);
 int run_bench(const BenchCommand& cmd);
 int run_export(const ExportCommand& cmd);
-int run_info(const std::filesystem::path& scene);
+int run_info(const std::filesystem::path& scene, const std::string& tree);
 int run_devices();
 
 // Straggler rays from a render's --stats (--stragglers), traced again on the host.

@@ -42,11 +42,13 @@ OpenedDevices open_devices(const RenderPlan& plan, int local_rank) {
 PreparedRender prepare_render(RenderPlan plan, int local_rank, bool reports) {
   OpenedDevices opened = open_devices(plan, local_rank);
   const RenderCommand& cmd = plan.command;
-  PreparedScene prepared = prepare_scene(cmd.scene);
+  // the tree for these devices (tree_options: compact when none is a GPU); any tree gives the same image
+  const KdBuildOptions tree = tree_options(cmd.tree, opened.devices);
+  PreparedScene prepared = prepare_scene(cmd.scene, tree);
   if (cmd.tree_budget_mib > 0)
-    prepared.tree = build_kdtree_within(prepared.scene.positions, {},
+    prepared.tree = build_kdtree_within(prepared.scene.positions, tree,
                                         static_cast<std::size_t>(cmd.tree_budget_mib * 1048576.0));
-  if (plan.memory_limit) fit_scene_to(prepared, plan.memory_limit);
+  if (plan.memory_limit) fit_scene_to(prepared, plan.memory_limit, tree);
   if (plan.environment_map) set_environment_map(prepared.tables, load_environment_map(cmd.environment));
   if (cmd.white_sky) apply_white_sky(prepared, plan.command.settings);
   if (!cmd.camera_bounds.empty())

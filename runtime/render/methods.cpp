@@ -37,6 +37,8 @@ const Method& find_method(const std::string& name) {
   throw InputError(fmt::format("--method {}: unknown method (choose from {})", name, fmt::join(method_names(), ", ")));
 }
 
+const char* device_default_method(bool is_gpu) { return is_gpu ? "sc+rg" : "naive"; }
+
 RenderResult render(const Device& cl, const ProgramCache& cache, const DeviceScene& scene, const SceneCamera& camera,
                     const RenderSettings& settings, const ProgressCallback& progress, const RenderControl& control) {
   const Method& method = find_method(settings.method);

@@ -1,5 +1,6 @@
 #include "runtime/render/prepared_scene.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include <fmt/format.h>
@@ -8,6 +9,18 @@
 #include "runtime/util/error.h"
 
 namespace cohort {
+
+KdBuildOptions tree_options(const std::string& choice, std::span<const DeviceInfo> devices) {
+  KdBuildOptions options;
+  if (choice == "compact") {
+    options.compact = true;
+  } else if (choice == "auto") {
+    options.compact = std::none_of(devices.begin(), devices.end(), [](const DeviceInfo& d) { return d.is_gpu; });
+  } else if (choice != "deep") {
+    throw InputError(fmt::format("--tree {}: unknown KD-tree (choose from {})", choice, kTreeChoices));
+  }
+  return options;
+}
 
 PreparedScene prepare_scene(const std::filesystem::path& path, const KdBuildOptions& options) {
   PreparedScene p;

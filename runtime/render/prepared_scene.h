@@ -4,8 +4,11 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <span>
+#include <string>
 
 #include "runtime/accel/kdtree.h"
+#include "runtime/backend/device_info.h"
 #include "runtime/render/device_scene.h"
 #include "runtime/scene/scene.h"
 
@@ -18,6 +21,15 @@ struct PreparedScene {
   SceneCamera camera;  // the file's camera, else the framing camera of bench-protocol.md
   double load_seconds = 0;
 };
+
+// The KD-tree a render builds (`--tree`): "deep" (the default build: the fastest to trace on the
+// H200), "compact" (KdBuildOptions::compact: 0.55-0.65x the nodes and 0.74-0.83x the bytes, traced
+// as fast on CPUs and 2-5 % slower on the H200, built in about the same time; docs/results.md) or
+// "auto": compact when no device is a GPU. Every tree gives every ray the same hit
+// (kernels/common/kdtree_traverse.h), so the choice changes speed and memory, never the image.
+// Throws InputError for another name.
+KdBuildOptions tree_options(const std::string& choice, std::span<const DeviceInfo> devices);
+inline constexpr const char* kTreeChoices = "auto, deep, compact";
 
 PreparedScene prepare_scene(const std::filesystem::path& path, const KdBuildOptions& options = {});
 

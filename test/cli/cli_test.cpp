@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include <nlohmann/json.hpp>
 
@@ -116,8 +117,39 @@ TEST(Cli, OutputIntoAMissingDirectoryFailsBeforeRendering) {
 TEST(Cli, InfoPrintsSceneAndTree) {
   const CommandResult r = run("info " + scene("cornell-box.gltf"));
   ASSERT_EQ(r.code, 0) << r.output;
-  for (const char* word : {"triangles:", "materials:", "lights:", "bounds:", "kd-tree:", "memory:"})
+  for (const char* word : {"triangles:", "materials:", "lights:", "bounds:", "kd-tree (deep):", "memory:"})
     EXPECT_NE(r.output.find(word), std::string::npos) << word << "\n" << r.output;
+  const CommandResult compact = run("info " + scene("cornell-box.gltf") + " --tree compact");
+  ASSERT_EQ(compact.code, 0) << compact.output;
+  EXPECT_NE(compact.output.find("kd-tree (compact):"), std::string::npos) << compact.output;
+  EXPECT_EQ(run("info " + scene("cornell-box.gltf") + " --tree sparse").code, 2);
+}
+
+// --tree picks the KD-tree (auto: compact on a CPU such as PoCL, deep on a GPU); the traversal's
+// closest hit does not depend on the tree, so every choice writes the same image, bit for bit.
+TEST(Cli, EveryTreeRendersTheSameImage) {
+  TempDir dir;
+  std::string images[3];
+  nlohmann::json stats[3];
+  const char* trees[3] = {"deep", "compact", "auto"};
+  for (int k = 0; k < 3; ++k) {
+    const auto out = dir.path / trees[k];
+    const CommandResult r = run("render " + scene("cornell-box.gltf") + " --res 40x32 --spp 8 --method sc --tree " +
+                                trees[k] + " -o " + out.string() + " --stats " + (dir.path / "s.json").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    std::ifstream exr(out.string() + ".exr", std::ios::binary);
+    images[k].assign(std::istreambuf_iterator<char>(exr), {});
+    stats[k] = nlohmann::json::parse(std::ifstream(dir.path / "s.json"));
+  }
+  EXPECT_EQ(stats[0]["kdtree"]["kind"], "deep");
+  EXPECT_EQ(stats[1]["kdtree"]["kind"], "compact");
+  EXPECT_LT(stats[1]["kdtree"]["nodes"].get<int>(), stats[0]["kdtree"]["nodes"].get<int>());
+  if (stats[2]["device"]["platform"].get<std::string>().find("Portable Computing Language") != std::string::npos)
+    EXPECT_EQ(stats[2]["kdtree"]["kind"], "compact") << "auto on a CPU";
+  ASSERT_FALSE(images[0].empty());
+  EXPECT_TRUE(images[0] == images[1]) << "deep and compact trees rendered different images";
+  EXPECT_TRUE(images[0] == images[2]) << "auto's tree rendered a different image";
+  EXPECT_EQ(run("render " + scene("cornell-box.gltf") + " --tree sparse -o " + (dir.path / "x").string()).code, 2);
 }
 
 TEST(Cli, BadEnvironmentMapIsExitTwoNamingTheFile) {
@@ -162,16 +194,16 @@ TEST(Cli, ASceneThatDoesNotFitTheDeviceFailsWithTheSizes) {
 }
 
 TEST(Cli, MemoryLimitAndTreeBudgetMakeTheTreeShallowerToFit) {
-  // The furnace sphere needs 0.5 MiB with the default tree (0.27 MiB with a single leaf).
+  // The furnace sphere needs 0.5 MiB with the deep tree (0.27 MiB with a single leaf).
   TempDir dir;
   const auto stats = dir.path / "s.json";
-  const CommandResult full = run("render " + scene("furnace-sphere.gltf") + " --res 8x8 --spp 1 -o " +
+  const CommandResult full = run("render " + scene("furnace-sphere.gltf") + " --tree deep --res 8x8 --spp 1 -o " +
                                  (dir.path / "a").string() + " --stats " + stats.string());
   ASSERT_EQ(full.code, 0) << full.output;
   const auto full_stats = nlohmann::json::parse(std::ifstream(stats));
   for (const char* limit : {"--memory-limit 0.35", "--tree-budget 0.2"}) {
     SCOPED_TRACE(limit);
-    const CommandResult r = run("render " + scene("furnace-sphere.gltf") + " --res 8x8 --spp 1 " + limit + " -o " +
+    const CommandResult r = run("render " + scene("furnace-sphere.gltf") + " --tree deep --res 8x8 --spp 1 " + limit + " -o " +
                                 (dir.path / "b").string() + " --stats " + stats.string());
     ASSERT_EQ(r.code, 0) << r.output;
     const auto s = nlohmann::json::parse(std::ifstream(stats));

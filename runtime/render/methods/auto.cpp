@@ -16,9 +16,8 @@
 // at which sorting pays or does not, and picks the fastest there. All methods share one pool.
 //
 // A short render cannot pay for the probe: where the screen would take more than 1/kShortRender
-// of the render's samples per pixel, auto takes the device's default without probing, the method
-// measured fastest on that kind of device (docs/results.md): the megakernel on a CPU (per CPU
-// second on every bench scene), sc+rg on a GPU (within 1 % of the fastest on the H200).
+// of the render's samples per pixel, auto takes the device's default without probing
+// (device_default_method: the method measured fastest on that kind of device).
 #include <algorithm>
 #include <chrono>
 #include <deque>
@@ -158,7 +157,7 @@ class AutoMethod final : public PassLauncher {
     const auto others = static_cast<std::uint32_t>(candidates_.size());
     const std::uint32_t screen = screen_rows_.pixels ? 1 + (others - 2) * quarter_wave : others * quarter_wave;
     if (in.settings.spp == 0 || std::uint64_t(screen) * kShortRender <= in.settings.spp) return;
-    const std::string fallback = in.device.info().is_gpu ? "sc+rg" : "naive";
+    const std::string fallback = device_default_method(in.device.info().is_gpu);
     for (const auto& c : candidates_)
       if (c->method->name == fallback) chosen_ = c.get();
     queue_.clear();
