@@ -56,6 +56,9 @@ struct KdTreeStats {
   bool compact = false;                // built with KdBuildOptions::compact
 };
 
+// "compact" or "deep": the tree's kind as --tree, --stats and the bench JSON name it.
+inline const char* tree_kind(const KdTreeStats& stats) { return stats.compact ? "compact" : "deep"; }
+
 struct KdTree {
   std::vector<KdNode> nodes;               // breadth-first, children adjacent; node 0 is the root
   std::vector<std::uint32_t> leaf_triangles;  // leaf lists, entries index `triangles`

@@ -68,7 +68,7 @@ nlohmann::json scenes_json(const std::vector<SceneFigures>& scenes, const std::s
                     {accel_key, accel_key != "kdtree"
                                     ? nlohmann::json{{"build_seconds", t.build_seconds}}
                                     : nlohmann::json{{"build_seconds", t.build_seconds},
-                                                     {"kind", t.compact ? "compact" : "deep"}, {"depth", t.depth},
+                                                     {"kind", tree_kind(t)}, {"depth", t.depth},
                                                      {"nodes", t.node_count}, {"leaves", t.leaf_count},
                                                      {"average_leaf_triangles", t.average_leaf_triangles},
                                                      {"sah_cost", t.sah_cost}, {"bytes", t.bytes},

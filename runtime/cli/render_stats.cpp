@@ -105,8 +105,12 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
                       {"emitters", prepared.tables.emitters.entries.size()},
                       {"punctual_lights", prepared.tables.punctual.lights.size()}};
   if (prepared.tables.environment) j["scene_stats"]["environment_map"] = prepared.tables.environment->source.string();
-  j["kdtree"] = {{"kind", ts.compact ? "compact" : "deep"}, {"depth", ts.depth}, {"nodes", ts.node_count}, {"leaves", ts.leaf_count},
-                 {"average_leaf_triangles", ts.average_leaf_triangles}, {"sah_cost", ts.sah_cost},
+  j["kdtree"] = {{"kind", tree_kind(ts)},
+                 {"depth", ts.depth},
+                 {"nodes", ts.node_count},
+                 {"leaves", ts.leaf_count},
+                 {"average_leaf_triangles", ts.average_leaf_triangles},
+                 {"sah_cost", ts.sah_cost},
                  {"bytes", ts.bytes}};
   const SceneMemory memory = scene_memory(prepared.tree, prepared.tables);
   const double kept = static_cast<double>(std::max<std::size_t>(prepared.tree.triangles.size(), 1));

@@ -144,8 +144,9 @@ TEST(Cli, EveryTreeRendersTheSameImage) {
   EXPECT_EQ(stats[0]["kdtree"]["kind"], "deep");
   EXPECT_EQ(stats[1]["kdtree"]["kind"], "compact");
   EXPECT_LT(stats[1]["kdtree"]["nodes"].get<int>(), stats[0]["kdtree"]["nodes"].get<int>());
-  if (stats[2]["device"]["platform"].get<std::string>().find("Portable Computing Language") != std::string::npos)
+  if (stats[2]["device"]["platform"].get<std::string>().find("Portable Computing Language") != std::string::npos) {
     EXPECT_EQ(stats[2]["kdtree"]["kind"], "compact") << "auto on a CPU";
+  }
   ASSERT_FALSE(images[0].empty());
   EXPECT_TRUE(images[0] == images[1]) << "deep and compact trees rendered different images";
   EXPECT_TRUE(images[0] == images[2]) << "auto's tree rendered a different image";
@@ -203,8 +204,8 @@ TEST(Cli, MemoryLimitAndTreeBudgetMakeTheTreeShallowerToFit) {
   const auto full_stats = nlohmann::json::parse(std::ifstream(stats));
   for (const char* limit : {"--memory-limit 0.35", "--tree-budget 0.2"}) {
     SCOPED_TRACE(limit);
-    const CommandResult r = run("render " + scene("furnace-sphere.gltf") + " --tree deep --res 8x8 --spp 1 " + limit + " -o " +
-                                (dir.path / "b").string() + " --stats " + stats.string());
+    const CommandResult r = run("render " + scene("furnace-sphere.gltf") + " --tree deep --res 8x8 --spp 1 " + limit +
+                                " -o " + (dir.path / "b").string() + " --stats " + stats.string());
     ASSERT_EQ(r.code, 0) << r.output;
     const auto s = nlohmann::json::parse(std::ifstream(stats));
     EXPECT_LT(s["kdtree"]["nodes"].get<int>(), full_stats["kdtree"]["nodes"].get<int>());
