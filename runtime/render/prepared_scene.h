@@ -23,7 +23,7 @@ struct PreparedScene {
 };
 
 // The KD-tree a render builds (`--tree`): "deep" (the default build: the fastest to trace on the
-// H200), "compact" (KdBuildOptions::compact: 0.55-0.65x the nodes and 0.74-0.83x the bytes, traced
+// H200), "compact" (KdBuildOptions::compact: 0.55-0.67x the nodes and 0.74-0.83x the bytes, traced
 // as fast on CPUs and 2-5 % slower on the H200, built in about the same time; docs/results.md) or
 // "auto": compact when no device is a GPU. Every tree gives every ray the same hit
 // (kernels/common/kdtree_traverse.h), so the choice changes speed and memory, never the image.
