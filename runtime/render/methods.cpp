@@ -10,17 +10,17 @@ namespace cohort {
 
 const std::vector<Method>& methods() {
   static const std::vector<Method> table = {
-      {"naive", "one megakernel, a work item per pixel (the reference)", false, naive_method},
-      {"wavefront", "wavefront stages over the whole pool, refilled when it drains", true, wavefront_method},
-      {"sc", "wavefront with stream compaction of live paths after every bounce", true, sc_method},
-      {"rg", "wavefront with path regeneration into free slots after every bounce", true, rg_method},
-      {"sc+rg", "stream compaction and path regeneration", true, sc_rg_method},
+      {"naive", "one megakernel, a work item per pixel (the reference)", false, false, naive_method},
+      {"wavefront", "wavefront stages over the whole pool, refilled when it drains", true, false, wavefront_method},
+      {"sc", "wavefront with stream compaction of live paths after every bounce", true, false, sc_method},
+      {"rg", "wavefront with path regeneration into free slots after every bounce", true, false, rg_method},
+      {"sc+rg", "stream compaction and path regeneration", true, false, sc_rg_method},
       {"hash", "sc+rg, rays sorted by origin and direction hash before traversal (Garanzha & Loop 2010)", true,
-       hash_method},
+       true, hash_method},
       {"pth", "sc+rg, rays sorted by the coherence code of a partial traversal in local memory (Wang & Deng)",
-       true, pth_method},
+       true, true, pth_method},
       {"auto", "the methods above take turns at the first launches, timed; the fastest renders the rest", false,
-       auto_method},
+       false, auto_method},
   };
   return table;
 }

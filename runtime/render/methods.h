@@ -12,6 +12,7 @@ struct Method {
   const char* name;
   const char* description;
   bool wavefront;  // traces from a pool of path slots, one launch per stage (false: the megakernel)
+  bool sorts;      // sorts the rays of later bounces before tracing them (hash, pth)
   std::unique_ptr<PassLauncher> (*set_up)(const MethodInputs&);
 };
 

@@ -13,7 +13,8 @@
 // one-sample launch is the slowest of the screen (each work item's whole path: the launch waits
 // for the longest). The final gives
 // the (at most kFinalists) methods within kKeep of the screen's best one full wave each, the size
-// at which sorting pays or does not, and picks the fastest there. All methods share one pool.
+// at which sorting pays or does not, and picks the fastest there; the best sorting method within
+// kKeep always gets a place (auto_finalists). All methods share one pool.
 //
 // A short render cannot pay for the probe: where the screen would take more than 1/kShortRender
 // of the render's samples per pixel, auto takes the device's default without probing
@@ -28,6 +29,7 @@
 
 #include "runtime/render/launch_log.h"
 #include "runtime/render/methods.h"
+#include "runtime/render/methods/auto_finalists.h"
 #include "runtime/render/stages/wavefront_loop.h"
 
 namespace cohort {
@@ -223,12 +225,9 @@ class AutoMethod final : public PassLauncher {
       return;
     }
     screening_ = false;
-    const double fastest = best(true)->screen_rate;
-    for (const auto& c : candidates_)
-      if (c->screen_rate >= kKeep * fastest) queue_.push_back(c.get());
-    std::stable_sort(queue_.begin(), queue_.end(),
-                     [](const Candidate* x, const Candidate* y) { return x->screen_rate > y->screen_rate; });
-    if (queue_.size() > kFinalists) queue_.resize(kFinalists);
+    std::vector<ScreenedMethod> screened;
+    for (const auto& c : candidates_) screened.push_back({c->screen_rate, c->method->sorts});
+    for (std::size_t i : auto_finalists(screened, kKeep, kFinalists)) queue_.push_back(candidates_[i].get());
     if (queue_.size() == 1) {  // nothing to compare: the screen's pick
       chosen_ = queue_.front();
       queue_.clear();

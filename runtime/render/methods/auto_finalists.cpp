@@ -1,0 +1,26 @@
+#include "runtime/render/methods/auto_finalists.h"
+
+#include <algorithm>
+
+namespace cohort {
+
+std::vector<std::size_t> auto_finalists(std::span<const ScreenedMethod> screened, double keep, std::size_t finalists) {
+  double best = -1;
+  for (const ScreenedMethod& m : screened) best = std::max(best, m.rate);
+  std::vector<std::size_t> kept;
+  if (best < 0 || finalists == 0) return kept;
+  for (std::size_t i = 0; i < screened.size(); ++i)
+    if (screened[i].rate >= 0 && screened[i].rate >= keep * best) kept.push_back(i);
+  std::stable_sort(kept.begin(), kept.end(),
+                   [&](std::size_t x, std::size_t y) { return screened[x].rate > screened[y].rate; });
+  if (kept.size() > finalists) {
+    const auto sorting = std::find_if(kept.begin(), kept.end(), [&](std::size_t i) { return screened[i].sorts; });
+    const auto last = kept.begin() + static_cast<std::ptrdiff_t>(finalists - 1);
+    // with a single place there is no final to run: the screen's best keeps it
+    if (finalists >= 2 && sorting != kept.end() && sorting > last) std::rotate(last, sorting, sorting + 1);
+    kept.resize(finalists);
+  }
+  return kept;
+}
+
+}  // namespace cohort
