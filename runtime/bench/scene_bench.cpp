@@ -94,8 +94,7 @@ SceneFigures bench_scene(const Device& cl, const ProgramCache& cache, const std:
   const auto log = [&](const std::string& s) {
     if (log_line) log_line(s);
   };
-  const DeviceInfo device = cl.info();
-  PreparedScene prepared = prepare_scene(path, tree_options(options.tree, {&device, 1}));
+  PreparedScene prepared = prepare_scene(path, tree_options(options.tree, cl.info()));
   RenderSettings settings;
   apply_white_sky(prepared, settings);
   settings.width = settings.height = options.res;

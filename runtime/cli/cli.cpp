@@ -7,6 +7,7 @@
 #include <fmt/ranges.h>
 
 #include "runtime/cli/commands.h"
+#include "runtime/render/prepared_scene.h"
 #include "runtime/render/methods.h"
 #include "runtime/util/error.h"
 
@@ -78,7 +79,7 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
   cmd.add_option("--tree", r.tree,
                  "KD-tree: deep (fastest to trace on GPUs), compact (0.6x the nodes, as fast on CPUs) or "
                  "auto (compact when no device is a GPU); the image is the same with every tree")
-      ->check(CLI::IsMember({"auto", "deep", "compact"}));
+      ->check(CLI::IsMember(tree_choices()));
   cmd.add_option("--tree-budget", r.tree_budget_mib,
                  "Lower the KD-tree depth limit until nodes, leaf lists and triangles fit in this many MiB")
       ->check(CLI::PositiveNumber);
@@ -128,7 +129,7 @@ void add_bench_options(CLI::App& cmd, BenchCommand& b) {
   cmd.add_option("--backend", b.backend, "Device backend: opencl or cuda (the same kernels either way)")
       ->check(CLI::IsMember({"opencl", "cuda"}));
   cmd.add_option("--tree", b.tree, "KD-tree: auto, deep or compact (see render --tree)")
-      ->check(CLI::IsMember({"auto", "deep", "compact"}));
+      ->check(CLI::IsMember(tree_choices()));
   cmd.add_option("--json", b.json, "Write every figure to this JSON file");
   cmd.add_flag("--no-traversal", b.no_traversal, "Skip the primary and diffuse traversal workloads");
   cmd.add_flag("--gate", b.gate,

@@ -112,9 +112,9 @@ int run_gate(const BenchCommand& cmd, const std::vector<BenchView>& views, const
   options.bounces = cmd.bounces;
   options.reps = cmd.reps;
   nlohmann::json all = nlohmann::json::array();
+  const KdBuildOptions tree = tree_options(cmd.tree, device.info());
   for (const auto& path : cmd.scenes) {
-    const DeviceInfo info = device.info();
-    PreparedScene prepared = prepare_scene(path, tree_options(cmd.tree, {&info, 1}));
+    PreparedScene prepared = prepare_scene(path, tree);
     for (const BenchView& view : views) {
       const SceneCamera camera = view_camera(prepared.scene.bounds(), view);
       const auto bounces = gate_bench(device, cache, prepared, camera, options);

@@ -9,7 +9,7 @@
 namespace cohort {
 
 int run_info(const std::filesystem::path& path, const std::string& tree) {
-  const PreparedScene p = prepare_scene(path, tree_options(tree, {}));
+  const PreparedScene p = prepare_scene(path, tree_options(tree));
   const Bounds b = p.scene.bounds();
   const auto& ts = p.tree.stats;
   fmt::print("scene: {}\n", path.string());

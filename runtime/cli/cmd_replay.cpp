@@ -50,7 +50,7 @@ int run_replay(const ReplayCommand& cmd) {
       throw InputError(fmt::format("{}: kdtree.kind must be \"deep\" or \"compact\"", cmd.stats.string()));
     tree = kind.get<std::string>();
   }
-  const PreparedScene p = prepare_scene(cmd.scene, tree_options(tree, {}));
+  const PreparedScene p = prepare_scene(cmd.scene, tree_options(tree));
   const KdTreeView view = host_view(p.tree);
   fmt::print("{}: {} KD-tree, {} nodes, depth {}\n", cmd.scene.string(), tree, p.tree.stats.node_count,
              p.tree.stats.depth);

@@ -4,11 +4,17 @@
 #include <chrono>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "runtime/render/scene_memory.h"
 #include "runtime/util/error.h"
 
 namespace cohort {
+
+const std::vector<std::string>& tree_choices() {
+  static const std::vector<std::string> names{"auto", "deep", "compact"};
+  return names;
+}
 
 KdBuildOptions tree_options(const std::string& choice, std::span<const DeviceInfo> devices) {
   KdBuildOptions options;
@@ -17,7 +23,8 @@ KdBuildOptions tree_options(const std::string& choice, std::span<const DeviceInf
   } else if (choice == "auto") {
     options.compact = std::none_of(devices.begin(), devices.end(), [](const DeviceInfo& d) { return d.is_gpu; });
   } else if (choice != "deep") {
-    throw InputError(fmt::format("--tree {}: unknown KD-tree (choose from {})", choice, kTreeChoices));
+    throw InputError(
+        fmt::format("--tree {}: unknown KD-tree (choose from {})", choice, fmt::join(tree_choices(), ", ")));
   }
   return options;
 }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "runtime/accel/kdtree.h"
 #include "runtime/backend/device_info.h"
@@ -28,8 +29,12 @@ struct PreparedScene {
 // "auto": compact when no device is a GPU. Every tree gives every ray the same hit
 // (kernels/common/kdtree_traverse.h), so the choice changes speed and memory, never the image.
 // Throws InputError for another name.
-KdBuildOptions tree_options(const std::string& choice, std::span<const DeviceInfo> devices);
-inline constexpr const char* kTreeChoices = "auto, deep, compact";
+KdBuildOptions tree_options(const std::string& choice, std::span<const DeviceInfo> devices = {});
+inline KdBuildOptions tree_options(const std::string& choice, const DeviceInfo& device) {
+  return tree_options(choice, {&device, 1});
+}
+// The names tree_options takes, for the CLI's --tree.
+const std::vector<std::string>& tree_choices();
 
 PreparedScene prepare_scene(const std::filesystem::path& path, const KdBuildOptions& options = {});
 

@@ -81,7 +81,7 @@ TEST(Aov, EveryMethodWritesTheSameBits) {
     const std::string how = method == "two-devices" ? "--pass-spp 1 --device all" : "--method " + method;
     const CommandResult r =
         run("render " + box + " --res 24x16 --spp 3 --aov depth,albedo,normal " + how + " -o " + out.string(),
-                   method == "two-devices" ? "env 'POCL_DEVICES=pthread pthread' " : "");
+            method == "two-devices" ? "env 'POCL_DEVICES=pthread pthread' " : "");
     ASSERT_EQ(r.code, 0) << method << ": " << r.output;
     std::vector<std::vector<float>> these;
     for (const char* c : channels) these.push_back(cohort::read_exr_channel(out.string() + ".exr", c));

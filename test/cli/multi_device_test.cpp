@@ -68,7 +68,7 @@ TEST(TwoDevicesCheckpoint, InterruptedAndResumedEqualsOneDevice) {
                                          "256", "--pass-spp", "4", "--seed", "9", "--device", "all", "-o", (dir.path / "part").string(),
                                          "--checkpoint", "0.05"};
   const CommandResult one = run("render " + shipped_scene("cornell-box.gltf") +
-                                       " --res 64x64 --spp 256 --pass-spp 4 --seed 9 -o " + (dir.path / "one").string());
+                                " --res 64x64 --spp 256 --pass-spp 4 --seed 9 -o " + (dir.path / "one").string());
   ASSERT_EQ(one.code, 0) << one.output;
   const pid_t pid = spawn(COHORT_BINARY, args, "", {kTwoDevices});
   wait_for_file(dir.path / "part.checkpoint");
@@ -85,8 +85,8 @@ TEST(TwoDevicesCheckpoint, InterruptedAndResumedEqualsOneDevice) {
 
 TEST(DeviceList, NamesWhatIsWrong) {
   const CommandResult repeated = run("render " + shipped_scene("cornell-box.gltf") +
-                                            " --res 8x8 --spp 1 --device 0,0 -o " +
-                                            (fs::temp_directory_path() / "cohort-never-written").string());
+                                     " --res 8x8 --spp 1 --device 0,0 -o " +
+                                     (fs::temp_directory_path() / "cohort-never-written").string());
   EXPECT_EQ(repeated.code, 2) << repeated.output;
   EXPECT_NE(repeated.output.find("listed twice"), std::string::npos) << repeated.output;
   const CommandResult unknown =
