@@ -379,13 +379,13 @@ CO_INLINE PathResult trace_path(const SceneView* s, const RenderParams* p, uint3
   PathState st = path_start(p, pixel, sample);
   while (st.status == PATH_ALIVE) {
     uint32_t steps = 0u;
-    HitOut hit = kd_trace_steps(&s->tree, st.org, st.dir, 0.0f, INFINITY, 0, &steps);
+    HitOut hit = scene_trace_steps(&s->tree, st.org, st.dir, 0.0f, INFINITY, 0, &steps);
     result.rays += 1u;
     result.max_steps = co_umax(result.max_steps, steps);
     ShadowRay sr = path_shade(s, p, &st, hit, pixel, sample);
     if (sr.valid) {
       result.rays += 1u;
-      path_resolve_shadow(&st, &sr, kd_trace_steps(&s->tree, sr.org, sr.dir, 0.0f, sr.tmax, 1, &steps));
+      path_resolve_shadow(&st, &sr, scene_trace_steps(&s->tree, sr.org, sr.dir, 0.0f, sr.tmax, 1, &steps));
       result.max_steps = co_umax(result.max_steps, steps);
     }
   }

@@ -151,6 +151,38 @@ inline uint32_t co_atomic_xchg(uint32_t* p, uint32_t v) { uint32_t old = *p; *p 
 inline uint32_t co_atomic_load(const uint32_t* p) { return *p; }
 #endif
 
+/* Four-lane float arithmetic for the 4-wide BVH's box tests: OpenCL's float4 operators (one SIMD
+ * instruction each on a CPU), lane by lane elsewhere. min and max are plain compares, not fmin and
+ * fmax: their callers never pass NaN. co_f4_less gives a 4-bit mask, lane x in bit 0. */
+#if defined(__OPENCL_VERSION__)
+#define co_f4_splat(s) ((float4)(s))
+#define co_f4_sub(a, b) ((a) - (b))
+#define co_f4_mul(a, b) ((a) * (b))
+#define co_f4_scale(a, s) ((a) * (s))
+#define co_f4_min(a, b) select((b), (a), (a) < (b))
+#define co_f4_max(a, b) select((b), (a), (a) > (b))
+CO_INLINE uint32_t co_f4_less(float4 a, float4 b) {
+  int4 m = a < b;
+  return (uint32_t)((m.x & 1) | (m.y & 2) | (m.z & 4) | (m.w & 8));
+}
+#else
+CO_INLINE co_float4 co_f4_splat(float s) { return co_make_float4(s, s, s, s); }
+CO_INLINE co_float4 co_f4_sub(co_float4 a, co_float4 b) { return co_make_float4(a.x - b.x, a.y - b.y, a.z - b.z, a.w - b.w); }
+CO_INLINE co_float4 co_f4_mul(co_float4 a, co_float4 b) { return co_make_float4(a.x * b.x, a.y * b.y, a.z * b.z, a.w * b.w); }
+CO_INLINE co_float4 co_f4_scale(co_float4 a, float s) { return co_make_float4(a.x * s, a.y * s, a.z * s, a.w * s); }
+CO_INLINE float co_f_min(float a, float b) { return a < b ? a : b; }
+CO_INLINE float co_f_max(float a, float b) { return a > b ? a : b; }
+CO_INLINE co_float4 co_f4_min(co_float4 a, co_float4 b) {
+  return co_make_float4(co_f_min(a.x, b.x), co_f_min(a.y, b.y), co_f_min(a.z, b.z), co_f_min(a.w, b.w));
+}
+CO_INLINE co_float4 co_f4_max(co_float4 a, co_float4 b) {
+  return co_make_float4(co_f_max(a.x, b.x), co_f_max(a.y, b.y), co_f_max(a.z, b.z), co_f_max(a.w, b.w));
+}
+CO_INLINE uint32_t co_f4_less(co_float4 a, co_float4 b) {
+  return (a.x < b.x ? 1u : 0u) | (a.y < b.y ? 2u : 0u) | (a.z < b.z ? 4u : 0u) | (a.w < b.w ? 8u : 0u);
+}
+#endif
+
 CO_INLINE uint32_t co_umin(uint32_t a, uint32_t b) { return a < b ? a : b; }
 CO_INLINE uint32_t co_umax(uint32_t a, uint32_t b) { return a > b ? a : b; }
 

@@ -7,6 +7,9 @@
 #ifndef COHORT_PTH_KERNELS_H
 #define COHORT_PTH_KERNELS_H
 
+#if defined(COHORT_ACCEL_BVH4)
+#error "pth and hash walk the KD-tree: the host never builds them over a BVH (--tree bvh4)"
+#endif
 #include "common/wavefront_path.h"
 #include "common/coherence.h"
 

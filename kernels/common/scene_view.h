@@ -7,13 +7,13 @@
 #define COHORT_SCENE_VIEW_H
 
 #include "common/environment.h"
-#include "common/kdtree_traverse.h"
+#include "common/scene_accel.h"
 #include "common/punctual.h"
 #include "common/sampling.h"
 #include "common/texture.h"
 
 typedef struct SceneView {
-  KdTreeView tree;
+  SceneAccel tree;
   const CO_GLOBAL uint32_t* triangle_material; /* per kept triangle */
   const CO_GLOBAL Material* materials;
   const CO_GLOBAL EmitterEntry* emitters;      /* emissive triangles, cdf by power */
@@ -37,7 +37,7 @@ CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNod
                                     const CO_GLOBAL co_float4* env_texels, const CO_GLOBAL float* env_tables,
                                     const CO_GLOBAL PunctualLight* punctual_lights) {
   SceneView s;
-  s.tree = make_tree_view(nodes, leaf_triangles, triangles, p->scene_min, p->scene_max);
+  s.tree = make_scene_accel(nodes, leaf_triangles, triangles, p->scene_min, p->scene_max);
   s.triangle_material = triangle_material;
   s.materials = materials;
   s.emitters = emitters;

@@ -2,28 +2,30 @@
 #ifndef COHORT_TRACE_KERNELS_H
 #define COHORT_TRACE_KERNELS_H
 
-#include "common/kdtree_traverse.h"
 #include "common/kernel_params.h"
+#include "common/scene_accel.h"
 
 CO_KERNEL trace_rays(CO_PARAMS(TRACE_RAYS_PARAMS)) {
   uint32_t i = co_global_id();
   if (i >= count) return;
-  KdTreeView tree = make_tree_view(nodes, leaf_triangles, triangles, scene_min, scene_max);
+  SceneAccel tree = make_scene_accel(nodes, leaf_triangles, triangles, scene_min, scene_max);
   RayIn r = rays[i];
-  hits[i] = kd_trace(&tree, v3_from4(r.origin), v3_from4(r.dir), r.origin.w, r.dir.w, (int)any_hit);
+  hits[i] = scene_trace_steps(&tree, v3_from4(r.origin), v3_from4(r.dir), r.origin.w, r.dir.w, (int)any_hit, 0);
 }
 
 /* trace_rays with the nodes each ray visited: the straggler tests. */
 CO_KERNEL trace_rays_steps(CO_PARAMS(TRACE_RAYS_STEPS_PARAMS)) {
   uint32_t i = co_global_id();
   if (i >= count) return;
-  KdTreeView tree = make_tree_view(nodes, leaf_triangles, triangles, scene_min, scene_max);
+  SceneAccel tree = make_scene_accel(nodes, leaf_triangles, triangles, scene_min, scene_max);
   RayIn r = rays[i];
   uint32_t visited = 0u;
-  hits[i] = kd_trace_steps(&tree, v3_from4(r.origin), v3_from4(r.dir), r.origin.w, r.dir.w, (int)any_hit, &visited);
+  hits[i] = scene_trace_steps(&tree, v3_from4(r.origin), v3_from4(r.dir), r.origin.w, r.dir.w, (int)any_hit, &visited);
   steps[i] = visited;
 }
 
+/* The rest walks the KD-tree itself (partial traversal, resume, speculation). */
+#if !defined(COHORT_ACCEL_BVH4)
 #include "common/coherence.h"
 
 /* Partial traversal of the top `levels` (subtree in local memory) then resumed traversal, for a
@@ -77,5 +79,7 @@ CO_KERNEL trace_rays_speculative(CO_PARAMS(TRACE_RAYS_SPECULATIVE_PARAMS)) {
   hits[i] = ray.hit;
   steps[i] = ray.visited;
 }
+
+#endif /* !COHORT_ACCEL_BVH4 */
 
 #endif

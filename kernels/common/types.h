@@ -26,6 +26,27 @@ CO_INLINE uint32_t kd_left_child(KdNode n) { return n.word0 >> 2; }
 CO_INLINE uint32_t kd_leaf_count(KdNode n) { return n.word0 >> 2; }
 CO_INLINE uint32_t kd_leaf_first(KdNode n) { return n.word1; }
 
+/* ---- 4-wide BVH, 128 bytes per node (the CPU's structure: --tree bvh4) ----------------------
+ * Each node holds its four children's boxes lane by lane (lane i is child i), so one ray tests
+ * all four with one SIMD operation per slab. A child reference is an inner node's index, or a
+ * leaf: BVH4_LEAF, the triangle count less one in bits 27-30 and the first entry of the leaf lists
+ * in bits 0-26. An unused lane has BVH4_EMPTY and a box at +infinity that no ray enters. */
+#define BVH4_LEAF 0x80000000u
+#define BVH4_EMPTY 0xffffffffu
+#define BVH4_LEAF_MAX 16u
+#define BVH4_LEAF_FIRST_MAX ((1u << 27) - 1u)
+typedef struct Bvh4Node {
+  co_float4 lo_x, hi_x, lo_y, hi_y, lo_z, hi_z;
+  co_uint4 child;
+  co_uint4 reserved; /* zero; pads the node to two 64-byte cache lines */
+} Bvh4Node;
+CO_STATIC_ASSERT(sizeof(Bvh4Node) == 128, "Bvh4Node must stay 128 bytes");
+
+CO_INLINE int bvh4_is_leaf(uint32_t ref) { return (ref & BVH4_LEAF) != 0u; }
+CO_INLINE uint32_t bvh4_leaf_first(uint32_t ref) { return ref & BVH4_LEAF_FIRST_MAX; }
+CO_INLINE uint32_t bvh4_leaf_count(uint32_t ref) { return ((ref >> 27) & 15u) + 1u; }
+CO_INLINE uint32_t bvh4_leaf_ref(uint32_t first, uint32_t count) { return BVH4_LEAF | ((count - 1u) << 27) | first; }
+
 /* ---- Triangles, stored for the watertight test of Woop, Benthin & Wald (JCGT 2013) -----------
  * The watertight test needs the vertices themselves; w components are padding. 48 bytes. */
 typedef struct Triangle {

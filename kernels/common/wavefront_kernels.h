@@ -43,7 +43,7 @@ CO_KERNEL wf_extend(CO_PARAMS(WF_EXTEND_PARAMS)) {
     RenderParams p = *params;
     SceneView s = SCENE_VIEW(p);
     hits[slot] =
-        kd_trace_steps(&s.tree, v3_from4(path_org[slot]), v3_from4(path_dir[slot]), 0.0f, INFINITY, 0, &visited);
+        scene_trace_steps(&s.tree, v3_from4(path_org[slot]), v3_from4(path_dir[slot]), 0.0f, INFINITY, 0, &visited);
   }
   steps[i] = visited; /* nodes visited per launch index: the SIMD efficiency figure */
 }
@@ -77,7 +77,7 @@ CO_KERNEL wf_shadow(CO_PARAMS(WF_SHADOW_PARAMS)) {
   SceneView s = SCENE_VIEW(p);
   co_float4 dir = shadow_dir[slot];
   uint32_t visited = 0u;
-  HitOut occ = kd_trace_steps(&s.tree, v3_from4(shadow_org[slot]), v3_from4(dir), 0.0f, dir.w, 1, &visited);
+  HitOut occ = scene_trace_steps(&s.tree, v3_from4(shadow_org[slot]), v3_from4(dir), 0.0f, dir.w, 1, &visited);
   steps[i] = visited; /* nodes visited per queue index: read by wf_shadow_max_steps */
   ShadowRay sr;
   sr.contribution = v3_from4(shadow_contribution[slot]);

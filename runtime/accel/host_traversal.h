@@ -2,7 +2,9 @@
 // compiled as C++, so a ray replays on the host exactly as a kernel traced it.
 #pragma once
 
+#include "kernels/common/bvh4_traverse.h"
 #include "kernels/common/kdtree_traverse.h"
+#include "runtime/accel/bvh4.h"
 #include "runtime/accel/kdtree.h"
 
 namespace cohort {
@@ -14,6 +16,15 @@ inline KdTreeView host_view(const KdTree& tree) {
   view.triangles = tree.triangles.data();
   view.lo = v3(tree.bounds.lo.x, tree.bounds.lo.y, tree.bounds.lo.z);
   view.hi = v3(tree.bounds.hi.x, tree.bounds.hi.y, tree.bounds.hi.z);
+  return view;
+}
+
+// The 4-wide BVH over `tree`'s kept triangles (built by build_bvh4 from tree.triangles).
+inline Bvh4View host_view(const Bvh4& bvh, const KdTree& tree) {
+  Bvh4View view;
+  view.nodes = bvh.nodes.data();
+  view.leaf_triangles = bvh.leaf_triangles.data();
+  view.triangles = tree.triangles.data();
   return view;
 }
 

@@ -68,12 +68,19 @@ nlohmann::json scenes_json(const std::vector<SceneFigures>& scenes, const std::s
                     {accel_key, accel_key != "kdtree"
                                     ? nlohmann::json{{"build_seconds", t.build_seconds}}
                                     : nlohmann::json{{"build_seconds", t.build_seconds},
-                                                     {"kind", tree_kind(t)}, {"depth", t.depth},
+                                                     {"kind", s.tree_kind}, {"depth", t.depth},
                                                      {"nodes", t.node_count}, {"leaves", t.leaf_count},
                                                      {"average_leaf_triangles", t.average_leaf_triangles},
                                                      {"sah_cost", t.sah_cost}, {"bytes", t.bytes},
                                                      {"dropped_triangles", t.dropped_triangles}}},
                     {"views", views}});
+    if (s.bvh4 && accel_key == "kdtree") {
+      const Bvh4Stats& b = *s.bvh4;
+      list.back()[accel_key]["bvh4"] = {{"nodes", b.node_count}, {"leaves", b.leaf_count}, {"depth", b.depth},
+                                        {"average_leaf_triangles", b.average_leaf_triangles},
+                                        {"sah_cost", b.sah_cost}, {"bytes", b.bytes},
+                                        {"build_seconds", b.build_seconds}};
+    }
   }
   return list;
 }

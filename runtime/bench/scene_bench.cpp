@@ -6,6 +6,7 @@
 #include <ctime>
 
 #include "runtime/bench/trace_bench.h"
+#include "runtime/render/methods.h"
 #include "runtime/render/prepared_scene.h"
 #include "runtime/render/renderer.h"
 #include "runtime/render/workloads.h"
@@ -94,7 +95,10 @@ SceneFigures bench_scene(const Device& cl, const ProgramCache& cache, const std:
   const auto log = [&](const std::string& s) {
     if (log_line) log_line(s);
   };
-  PreparedScene prepared = prepare_scene(path, tree_options(options.tree, cl.info()));
+  // pth and hash walk the KD-tree: the BVH only when no method asked for does
+  const bool needs_kd = std::any_of(options.methods.begin(), options.methods.end(),
+                                    [](const std::string& m) { return find_method(m).sorts; });
+  PreparedScene prepared = prepare_scene(path, tree_options(options.tree, cl.info(), needs_kd));
   RenderSettings settings;
   apply_white_sky(prepared, settings);
   settings.width = settings.height = options.res;
@@ -109,14 +113,16 @@ SceneFigures bench_scene(const Device& cl, const ProgramCache& cache, const std:
   out.triangles = prepared.scene.triangle_count();
   out.load_seconds = prepared.load_seconds;
   out.kdtree = prepared.tree.stats;
+  out.tree_kind = prepared.tree_kind();
+  if (prepared.bvh4) out.bvh4 = prepared.bvh4->stats;
   out.bounds = prepared.scene.bounds();
-  log(fmt::format("{}: {} triangles, KD-tree built in {:.3f}s", path.string(), out.triangles,
-                  out.kdtree.build_seconds));
+  log(fmt::format("{}: {} triangles, {} tree built in {:.3f}s", path.string(), out.triangles, out.tree_kind,
+                  prepared.build_seconds()));
 
   std::optional<TraceBench> tracer;
-  if (options.traversal) tracer.emplace(cl, cache, prepared.tree);
+  if (options.traversal) tracer.emplace(cl, cache, prepared.tree, prepared.bvh());
   std::optional<DeviceScene> device_scene;
-  if (!options.methods.empty()) device_scene.emplace(upload_scene(cl, prepared.tree, prepared.tables));
+  if (!options.methods.empty()) device_scene.emplace(upload_scene(cl, prepared.tree, prepared.tables, prepared.bvh()));
 
   for (const BenchView& view : views) {
     ViewFigures vf;

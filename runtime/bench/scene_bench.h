@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "runtime/accel/bvh4.h"
 #include "runtime/accel/kdtree.h"
 #include "runtime/bench/figures.h"
 #include "runtime/backend/device.h"
@@ -83,6 +84,8 @@ struct SceneFigures {
   std::size_t triangles = 0;
   double load_seconds = 0;
   KdTreeStats kdtree;
+  std::string tree_kind;             // PreparedScene::tree_kind(): deep, compact or bvh4
+  std::optional<Bvh4Stats> bvh4;     // with --tree bvh4 (the KD-tree is then one leaf)
   Bounds bounds;
   std::vector<ViewFigures> views;
 };

@@ -24,13 +24,19 @@ void set_trace_rays_args(DeviceKernel& k, const DeviceBuffer& nodes, const Devic
   args.bind(k);
 }
 
-TraceBench::TraceBench(const Device& device, const ProgramCache& cache, const KdTree& tree)
+TraceBench::TraceBench(const Device& device, const ProgramCache& cache, const KdTree& tree, const Bvh4* bvh)
     : device_(device), tree_(tree) {
-  program_ = device.build_program(cache, "trace");
+  program_ = device.build_program(cache, "trace", bvh ? "-DCOHORT_ACCEL_BVH4" : "");
   compile_seconds_ = program_.seconds;
-  nodes_ = device.allocate("kd-tree nodes", tree.nodes.size() * sizeof(KdNode), tree.nodes.data(), Access::read_only);
-  leaves_ = device.allocate("leaf lists", tree.leaf_triangles.size() * 4, tree.leaf_triangles.data(),
-                            Access::read_only);
+  if (bvh) {
+    nodes_ = device.allocate("BVH nodes", bvh->nodes.size() * sizeof(Bvh4Node), bvh->nodes.data(), Access::read_only);
+    leaves_ = device.allocate("leaf lists", bvh->leaf_triangles.size() * 4, bvh->leaf_triangles.data(),
+                              Access::read_only);
+  } else {
+    nodes_ = device.allocate("kd-tree nodes", tree.nodes.size() * sizeof(KdNode), tree.nodes.data(), Access::read_only);
+    leaves_ = device.allocate("leaf lists", tree.leaf_triangles.size() * 4, tree.leaf_triangles.data(),
+                              Access::read_only);
+  }
   triangles_ = device.allocate("triangles", tree.triangles.size() * sizeof(Triangle), tree.triangles.data(),
                                Access::read_only);
 }

@@ -5,6 +5,7 @@
 #include <span>
 #include <vector>
 
+#include "runtime/accel/bvh4.h"
 #include "runtime/accel/kdtree.h"
 #include "runtime/bench/figures.h"
 #include "runtime/bench/protocol_rays.h"
@@ -22,7 +23,8 @@ void set_trace_rays_args(DeviceKernel& kernel, const DeviceBuffer& nodes, const 
 class TraceBench {
  public:
   // The tree's buffers go to the device once; every trace() reuses them.
-  TraceBench(const Device& device, const ProgramCache& cache, const KdTree& tree);
+  // With `bvh`, the rays trace through it (the KD-tree then gives the kept triangles only).
+  TraceBench(const Device& device, const ProgramCache& cache, const KdTree& tree, const Bvh4* bvh = nullptr);
 
   // Traces `rays` `reps` times (reps >= 1); hits come from the last repetition.
   TraceFigures trace(std::span<const RayIn> rays, unsigned reps, std::size_t group_size = 64) const;

@@ -58,8 +58,8 @@ std::vector<BenchView> bench_views(const BenchCommand& cmd) {
 std::string mrays(const RateFigure& f) { return fmt::format("{:.2f} ({:.2f})", f.median() * 1e-6, f.best() * 1e-6); }
 
 void print_view(const SceneFigures& s, const ViewFigures& v) {
-  fmt::print("\n{} [{} view], {} triangles, KD-tree build {:.3f}s\n", s.path.string(), v.view.name, s.triangles,
-             s.kdtree.build_seconds);
+  fmt::print("\n{} [{} view], {} triangles, {} tree build {:.3f}s\n", s.path.string(), v.view.name, s.triangles,
+             s.tree_kind, s.kdtree.build_seconds + (s.bvh4 ? s.bvh4->build_seconds : 0.0));
   if (v.primary && v.diffuse)
     fmt::print("  traversal Mrays/s, median (best): primary {} with {} hits of {} rays; diffuse {} over {} rays\n",
                mrays(v.primary->rays_per_second), v.primary->hits, v.primary->rays, mrays(v.diffuse->rays_per_second),
@@ -112,7 +112,8 @@ int run_gate(const BenchCommand& cmd, const std::vector<BenchView>& views, const
   options.bounces = cmd.bounces;
   options.reps = cmd.reps;
   nlohmann::json all = nlohmann::json::array();
-  const KdBuildOptions tree = tree_options(cmd.tree, device.info());
+  // the gate walks the KD-tree itself (pth's keys)
+  const KdBuildOptions tree = tree_options(cmd.tree, device.info(), true).kd;
   for (const auto& path : cmd.scenes) {
     PreparedScene prepared = prepare_scene(path, tree);
     for (const BenchView& view : views) {

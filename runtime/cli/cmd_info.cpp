@@ -32,11 +32,8 @@ int run_info(const std::filesystem::path& path, const std::string& tree) {
   fmt::print("camera: {}, eye ({:.4g}, {:.4g}, {:.4g}), target ({:.4g}, {:.4g}, {:.4g}), vfov {:.4g} deg\n",
              p.scene.camera ? "from the file" : "framing (bench protocol)", p.camera.eye.x, p.camera.eye.y,
              p.camera.eye.z, p.camera.target.x, p.camera.target.y, p.camera.target.z, p.camera.vfov_degrees);
-  fmt::print("kd-tree ({}): depth {}, {} nodes, {} leaves ({} empty), {:.2f} triangles per leaf, SAH cost {:.2f}, "
-             "built in {:.3f}s\n",
-             tree_kind(ts), ts.depth, ts.node_count, ts.leaf_count, ts.empty_leaf_count, ts.average_leaf_triangles,
-             ts.sah_cost, ts.build_seconds);
-  fmt::print("device memory: {}\n", describe(scene_memory(p.tree, p.tables), p.tree.triangles.size()));
+  fmt::print("{}\n", describe_tree(p));
+  fmt::print("device memory: {}\n", describe(scene_memory(p.tree, p.tables, p.bvh()), p.tree.triangles.size()));
   fmt::print("scene geometry: {:.2f} MiB on the host\n", p.scene.geometry_bytes() / 1048576.0);
   for (const auto& w : p.scene.warnings) fmt::print("warning: {}\n", w);
   return 0;

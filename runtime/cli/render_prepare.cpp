@@ -7,6 +7,7 @@
 #include "runtime/cli/parse_values.h"
 #include "runtime/cli/render_steps.h"
 #include "runtime/render/environment_map.h"
+#include "runtime/render/methods.h"
 #include "runtime/render/workloads.h"
 
 namespace cohort {
@@ -43,12 +44,14 @@ PreparedRender prepare_render(RenderPlan plan, int local_rank, bool reports) {
   OpenedDevices opened = open_devices(plan, local_rank);
   const RenderCommand& cmd = plan.command;
   // the tree for these devices (tree_options: compact when none is a GPU); any tree gives the same image
-  const KdBuildOptions tree = tree_options(cmd.tree, opened.devices);
+  // and the BVH there unless the method walks the KD-tree (pth, hash) or a tree budget asks for one
+  const TreeChoice tree = tree_options(cmd.tree, opened.devices,
+                                       find_method(plan.settings().method).sorts || cmd.tree_budget_mib > 0);
   PreparedScene prepared = prepare_scene(cmd.scene, tree);
   if (cmd.tree_budget_mib > 0)
-    prepared.tree = build_kdtree_within(prepared.scene.positions, tree,
+    prepared.tree = build_kdtree_within(prepared.scene.positions, tree.kd,
                                         static_cast<std::size_t>(cmd.tree_budget_mib * 1048576.0));
-  if (plan.memory_limit) fit_scene_to(prepared, plan.memory_limit, tree);
+  if (plan.memory_limit) fit_scene_to(prepared, plan.memory_limit, tree.kd);
   if (plan.environment_map) set_environment_map(prepared.tables, load_environment_map(cmd.environment));
   if (cmd.white_sky) apply_white_sky(prepared, plan.command.settings);
   if (!cmd.camera_bounds.empty())

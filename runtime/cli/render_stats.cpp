@@ -41,7 +41,7 @@ nlohmann::json rank_json(int rank, const std::string& host, const PreparedScene&
     compile_seconds = std::max(compile_seconds, run.result.compile_seconds);
   }
   return {{"rank", rank}, {"host", host}, {"load_seconds", prepared.load_seconds},
-          {"build_seconds", prepared.tree.stats.build_seconds}, {"compile_seconds", compile_seconds},
+          {"build_seconds", prepared.build_seconds()}, {"compile_seconds", compile_seconds},
           {"render_seconds", render_seconds}, {"devices", devices}};
 }
 
@@ -105,19 +105,24 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
                       {"emitters", prepared.tables.emitters.entries.size()},
                       {"punctual_lights", prepared.tables.punctual.lights.size()}};
   if (prepared.tables.environment) j["scene_stats"]["environment_map"] = prepared.tables.environment->source.string();
-  j["kdtree"] = {{"kind", tree_kind(ts)},
+  j["kdtree"] = {{"kind", prepared.tree_kind()},
                  {"depth", ts.depth},
                  {"nodes", ts.node_count},
                  {"leaves", ts.leaf_count},
                  {"average_leaf_triangles", ts.average_leaf_triangles},
                  {"sah_cost", ts.sah_cost},
                  {"bytes", ts.bytes}};
-  const SceneMemory memory = scene_memory(prepared.tree, prepared.tables);
+  if (const Bvh4* bvh = prepared.bvh())
+    j["kdtree"]["bvh4"] = {{"nodes", bvh->stats.node_count}, {"leaves", bvh->stats.leaf_count},
+                           {"depth", bvh->stats.depth}, {"average_leaf_triangles", bvh->stats.average_leaf_triangles},
+                           {"sah_cost", bvh->stats.sah_cost}, {"bytes", bvh->stats.bytes},
+                           {"build_seconds", bvh->stats.build_seconds}};
+  const SceneMemory memory = scene_memory(prepared.tree, prepared.tables, prepared.bvh());
   const double kept = static_cast<double>(std::max<std::size_t>(prepared.tree.triangles.size(), 1));
   j["device_memory"] = {{"nodes", memory.nodes}, {"leaf_lists", memory.leaf_lists},
                         {"triangles", memory.triangles}, {"shading", memory.shading},
                         {"total", memory.total()}, {"bytes_per_triangle", static_cast<double>(memory.total()) / kept}};
-  j["timings"] = {{"load_seconds", prepared.load_seconds}, {"build_seconds", ts.build_seconds},
+  j["timings"] = {{"load_seconds", prepared.load_seconds}, {"build_seconds", prepared.build_seconds()},
                   {"compile_seconds", r.compile_seconds}, {"compile_from_cache", r.compile_from_cache},
                   {"render_seconds", r.render_seconds}, {"render_cpu_seconds", r.render_cpu_seconds}};
   j["rays"] = r.rays;

@@ -14,7 +14,6 @@ namespace {
 void print_details(const PreparedRender& render, const RenderOutcome& outcome) {
   const PreparedScene& prepared = render.scene;
   const RenderResult& result = outcome.result;
-  const auto& ts = prepared.tree.stats;
   for (const auto& rank_entry : outcome.ranks)
     for (const auto& d : rank_entry["devices"])
       fmt::print("device{}: {} ({}): {} passes, {:.3f}s busy, {:.2f} Mrays/s\n",
@@ -27,11 +26,9 @@ void print_details(const PreparedRender& render, const RenderOutcome& outcome) {
   if (prepared.tables.environment)
     fmt::print("environment map: {}, {}x{}\n", prepared.tables.environment->source.string(),
                prepared.tables.environment->width, prepared.tables.environment->height);
-  fmt::print("kd-tree ({}): depth {}, {} nodes, {} leaves, {:.2f} triangles per leaf, SAH cost {:.2f}, "
-             "built in {:.3f}s\n",
-             tree_kind(ts), ts.depth, ts.node_count, ts.leaf_count, ts.average_leaf_triangles, ts.sah_cost,
-             ts.build_seconds);
-  fmt::print("device memory: {}\n", describe(scene_memory(prepared.tree, prepared.tables), prepared.tree.triangles.size()));
+  fmt::print("{}\n", describe_tree(prepared));
+  fmt::print("device memory: {}\n",
+             describe(scene_memory(prepared.tree, prepared.tables, prepared.bvh()), prepared.tree.triangles.size()));
   fmt::print("kernel compile: {:.3f}s ({})\n", result.compile_seconds, result.compile_from_cache ? "warm, from cache" : "cold");
   const auto features = prepared.tables.features.names();
   fmt::print("kernel features: {}\n", features.empty() ? std::string("none (Lambertian only)")

@@ -224,17 +224,22 @@ SceneBuffers DeviceScene::kernel_buffers() const {
   return b;
 }
 
-DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables& tables) {
+DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables& tables, const Bvh4* bvh) {
   DeviceScene d;
-  const SceneMemory memory = scene_memory(tree, tables);
+  const SceneMemory memory = scene_memory(tree, tables, bvh);
   d.bytes = memory.total();
   if (d.bytes > cl.info().global_memory)
     throw DeviceError(fmt::format("the scene needs {} bytes of device memory ({}); {} has {} bytes", d.bytes,
                                   describe(memory, tree.triangles.size()), cl.info().name,
                                   cl.info().global_memory));
   const auto ro = Access::read_only;
-  d.nodes = cl.allocate("KD-tree nodes", bytes_of(tree.nodes), tree.nodes.data(), ro);
-  d.leaf_triangles = cl.allocate("KD-tree leaf lists", bytes_of(tree.leaf_triangles), tree.leaf_triangles.data(), ro);
+  if (bvh) {
+    d.nodes = cl.allocate("BVH nodes", bytes_of(bvh->nodes), bvh->nodes.data(), ro);
+    d.leaf_triangles = cl.allocate("BVH leaf lists", bytes_of(bvh->leaf_triangles), bvh->leaf_triangles.data(), ro);
+  } else {
+    d.nodes = cl.allocate("KD-tree nodes", bytes_of(tree.nodes), tree.nodes.data(), ro);
+    d.leaf_triangles = cl.allocate("KD-tree leaf lists", bytes_of(tree.leaf_triangles), tree.leaf_triangles.data(), ro);
+  }
   d.triangles = cl.allocate("triangles", bytes_of(tree.triangles), tree.triangles.data(), ro);
   d.triangle_material =
       cl.allocate("triangle materials", bytes_of(tables.triangle_material), tables.triangle_material.data(), ro);
@@ -261,6 +266,10 @@ DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables
   d.pick = light_pick(tables, 0.5f * tree.bounds.diagonal());
   d.features = tables.features;
   d.build_options = tables.features.build_options();
+  if (bvh) {
+    d.bvh4 = true;
+    d.build_options += d.build_options.empty() ? "-DCOHORT_ACCEL_BVH4" : " -DCOHORT_ACCEL_BVH4";
+  }
   d.emitter_count = static_cast<std::uint32_t>(tables.emitters.entries.size());
   d.emitter_power_total = tables.emitters.total_power;
   d.bounds = tree.bounds;

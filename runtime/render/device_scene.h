@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "kernels/common/types.h"
+#include "runtime/accel/bvh4.h"
 #include "runtime/accel/kdtree.h"
 #include "runtime/backend/device.h"
 #include "runtime/backend/kernel_args.h"
@@ -71,7 +72,8 @@ struct DeviceScene {
   DeviceBuffer triangle_uvs, textures, texels;  // one-element placeholders without textures
   DeviceBuffer env_texels, env_tables, punctual_lights;  // placeholders without those lights
   SceneFeatures features;
-  std::string build_options;  // features.build_options(): every rendering program gets them
+  std::string build_options;  // features.build_options() (and the BVH's): every rendering program gets them
+  bool bvh4 = false;          // nodes and leaf lists are a 4-wide BVH's: no method that walks the KD-tree
   std::uint32_t emitter_count = 0;
   float emitter_power_total = 0;
   std::uint32_t env_width = 0, env_height = 0;  // 0 x 0 without an environment map
@@ -87,6 +89,8 @@ struct DeviceScene {
   SceneBuffers kernel_buffers() const;
 };
 
-DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables& tables);
+// With `bvh`, its nodes and leaf lists go where the KD-tree's would, and every rendering program is
+// built with COHORT_ACCEL_BVH4 to trace them (kernels/common/scene_accel.h).
+DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables& tables, const Bvh4* bvh = nullptr);
 
 }  // namespace cohort

@@ -20,7 +20,7 @@ DeviceWorkers::DeviceWorkers(const std::vector<DeviceInfo>& devices, const Devic
         const auto t0 = std::chrono::steady_clock::now();
         const std::unique_ptr<Device> opened = open(i);
         const Device& cl = *opened;
-        const DeviceScene device_scene = upload_scene(cl, scene.tree, scene.tables);
+        const DeviceScene device_scene = upload_scene(cl, scene.tree, scene.tables, scene.bvh());
         run.upload_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         RenderControl control;
         control.passes = &passes;

@@ -8,6 +8,9 @@
 #include <string>
 #include <vector>
 
+#include <optional>
+
+#include "runtime/accel/bvh4.h"
 #include "runtime/accel/kdtree.h"
 #include "runtime/backend/device_info.h"
 #include "runtime/render/device_scene.h"
@@ -17,26 +20,48 @@ namespace cohort {
 
 struct PreparedScene {
   Scene scene;
-  KdTree tree;
+  KdTree tree;                // with a BVH: one leaf, for the kept triangles and their indices
+  std::optional<Bvh4> bvh4;   // what the kernels trace with --tree bvh4 (tree_options)
   SceneTables tables;
   SceneCamera camera;  // the file's camera, else the framing camera of bench-protocol.md
   double load_seconds = 0;
+
+  const Bvh4* bvh() const { return bvh4 ? &*bvh4 : nullptr; }
+  // "deep", "compact" or "bvh4": what --stats, info and the bench JSON name as the tree
+  const char* tree_kind() const { return bvh4 ? "bvh4" : cohort::tree_kind(tree.stats); }
+  double build_seconds() const { return tree.stats.build_seconds + (bvh4 ? bvh4->stats.build_seconds : 0.0); }
 };
 
-// The KD-tree a render builds (`--tree`): "deep" (the default build: the fastest to trace on the
-// H200), "compact" (KdBuildOptions::compact: 0.55-0.67x the nodes and 0.74-0.83x the bytes, traced
-// as fast on CPUs and 2-5 % slower on the H200, built in about the same time; docs/results.md) or
-// "auto": compact when no device is a GPU. Every tree gives every ray the same hit
-// (kernels/common/kdtree_traverse.h), so the choice changes speed and memory, never the image.
-// Throws InputError for another name.
-KdBuildOptions tree_options(const std::string& choice, std::span<const DeviceInfo> devices = {});
-inline KdBuildOptions tree_options(const std::string& choice, const DeviceInfo& device) {
-  return tree_options(choice, {&device, 1});
+// One line on what the scene is traced with, as `info` and `render -v` print it: "kd-tree (deep):
+// depth 21, ..., built in 0.12s" or "4-wide BVH: depth 9, ...".
+std::string describe_tree(const PreparedScene& scene);
+
+// What a scene is traced with: a KD-tree built with `kd`, or with `bvh4` a 4-wide BVH over the
+// kept triangles (the KD-tree then one leaf).
+struct TreeChoice {
+  KdBuildOptions kd;
+  bool bvh4 = false;
+};
+
+// The structure a render traces with (`--tree`): "deep" (the default KD-tree build: the fastest to
+// trace on the H200), "compact" (KdBuildOptions::compact: 0.55-0.67x the nodes and 0.74-0.83x the
+// bytes, 2-5 % slower on the H200), "bvh4" (a 4-wide BVH: 2-3x the KD-tree's rays/s on CPUs,
+// docs/results.md) or "auto": bvh4 when no device is a GPU and the method does not walk the
+// KD-tree itself (`needs_kd`: pth and hash), else compact without a GPU and deep with one. Every
+// structure gives every ray the same hit (kernels/common/bvh4_traverse.h), so the choice changes
+// speed and memory, never the image. Throws InputError for another name, and for bvh4 with
+// `needs_kd`.
+TreeChoice tree_options(const std::string& choice, std::span<const DeviceInfo> devices = {}, bool needs_kd = false);
+inline TreeChoice tree_options(const std::string& choice, const DeviceInfo& device, bool needs_kd = false) {
+  return tree_options(choice, {&device, 1}, needs_kd);
 }
 // The names tree_options takes, for the CLI's --tree.
 const std::vector<std::string>& tree_choices();
 
-PreparedScene prepare_scene(const std::filesystem::path& path, const KdBuildOptions& options = {});
+PreparedScene prepare_scene(const std::filesystem::path& path, const TreeChoice& choice);
+inline PreparedScene prepare_scene(const std::filesystem::path& path, const KdBuildOptions& options = {}) {
+  return prepare_scene(path, TreeChoice{options, false});
+}
 
 // Rebuilds the tree with the depth limit lowered as far as needed for the scene's device memory
 // (tree and shading data, scene_memory.h) to fit `device_bytes`; nothing when it fits already.

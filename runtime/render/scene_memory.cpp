@@ -14,10 +14,10 @@ std::size_t bytes_of(const std::vector<T>& v) {
 
 }  // namespace
 
-SceneMemory scene_memory(const KdTree& tree, const SceneTables& tables) {
+SceneMemory scene_memory(const KdTree& tree, const SceneTables& tables, const Bvh4* bvh) {
   SceneMemory m;
-  m.nodes = bytes_of(tree.nodes);
-  m.leaf_lists = bytes_of(tree.leaf_triangles);
+  m.nodes = bvh ? bytes_of(bvh->nodes) : bytes_of(tree.nodes);
+  m.leaf_lists = bvh ? bytes_of(bvh->leaf_triangles) : bytes_of(tree.leaf_triangles);
   m.triangles = bytes_of(tree.triangles);
   m.shading = bytes_of(tables.triangle_material) + bytes_of(tables.materials) +
               bytes_of(tables.emitters.entries) + bytes_of(tables.triangle_uvs) +

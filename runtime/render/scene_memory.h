@@ -5,14 +5,15 @@
 #include <cstddef>
 #include <string>
 
+#include "runtime/accel/bvh4.h"
 #include "runtime/accel/kdtree.h"
 #include "runtime/render/device_scene.h"
 
 namespace cohort {
 
 struct SceneMemory {
-  std::size_t nodes = 0;       // KD-tree nodes
-  std::size_t leaf_lists = 0;  // KD-tree leaf triangle lists
+  std::size_t nodes = 0;       // KD-tree nodes, or the 4-wide BVH's
+  std::size_t leaf_lists = 0;  // leaf triangle lists
   std::size_t triangles = 0;   // vertices for intersection
   std::size_t shading = 0;     // per-triangle materials and texture coordinates, materials,
                                // textures, lights, environment map
@@ -20,7 +21,8 @@ struct SceneMemory {
   std::size_t tree() const { return nodes + leaf_lists + triangles; }
 };
 
-SceneMemory scene_memory(const KdTree& tree, const SceneTables& tables);
+// With `bvh`, its nodes and leaf lists stand for the tree's (what upload_scene uploads then).
+SceneMemory scene_memory(const KdTree& tree, const SceneTables& tables, const Bvh4* bvh = nullptr);
 
 // "123.4 MiB: 150.2 bytes per triangle (nodes 60.1, leaf lists 30.0, triangles 48.0, shading
 // 12.1)"; `triangles` is the kept triangle count.

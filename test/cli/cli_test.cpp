@@ -122,17 +122,21 @@ TEST(Cli, InfoPrintsSceneAndTree) {
   const CommandResult compact = run("info " + scene("cornell-box.gltf") + " --tree compact");
   ASSERT_EQ(compact.code, 0) << compact.output;
   EXPECT_NE(compact.output.find("kd-tree (compact):"), std::string::npos) << compact.output;
+  const CommandResult bvh = run("info " + scene("cornell-box.gltf") + " --tree bvh4");
+  ASSERT_EQ(bvh.code, 0) << bvh.output;
+  EXPECT_NE(bvh.output.find("4-wide BVH: depth"), std::string::npos) << bvh.output;
   EXPECT_EQ(run("info " + scene("cornell-box.gltf") + " --tree sparse").code, 2);
 }
 
-// --tree picks the KD-tree (auto: compact on a CPU such as PoCL, deep on a GPU); the traversal's
-// closest hit does not depend on the tree, so every choice writes the same image, bit for bit.
+// --tree picks what rays are traced through (auto: the 4-wide BVH on a CPU such as PoCL, the deep
+// KD-tree on a GPU); the closest hit does not depend on it, so every choice writes the same image,
+// bit for bit.
 TEST(Cli, EveryTreeRendersTheSameImage) {
   TempDir dir;
-  std::string images[3];
-  nlohmann::json stats[3];
-  const char* trees[3] = {"deep", "compact", "auto"};
-  for (int k = 0; k < 3; ++k) {
+  std::string images[4];
+  nlohmann::json stats[4];
+  const char* trees[4] = {"deep", "compact", "auto", "bvh4"};
+  for (int k = 0; k < 4; ++k) {
     const auto out = dir.path / trees[k];
     const CommandResult r = run("render " + scene("cornell-box.gltf") + " --res 40x32 --spp 8 --method sc --tree " +
                                 trees[k] + " -o " + out.string() + " --stats " + (dir.path / "s.json").string());
@@ -145,11 +149,23 @@ TEST(Cli, EveryTreeRendersTheSameImage) {
   EXPECT_EQ(stats[1]["kdtree"]["kind"], "compact");
   EXPECT_LT(stats[1]["kdtree"]["nodes"].get<int>(), stats[0]["kdtree"]["nodes"].get<int>());
   if (stats[2]["device"]["platform"].get<std::string>().find("Portable Computing Language") != std::string::npos) {
-    EXPECT_EQ(stats[2]["kdtree"]["kind"], "compact") << "auto on a CPU";
+    EXPECT_EQ(stats[2]["kdtree"]["kind"], "bvh4") << "auto on a CPU";
   }
+  EXPECT_EQ(stats[3]["kdtree"]["kind"], "bvh4");
+  EXPECT_GT(stats[3]["kdtree"]["bvh4"]["nodes"].get<int>(), 0);
+  EXPECT_EQ(stats[3]["kdtree"]["nodes"].get<int>(), 1) << "with the BVH the KD-tree only keeps the triangles";
   ASSERT_FALSE(images[0].empty());
   EXPECT_TRUE(images[0] == images[1]) << "deep and compact trees rendered different images";
   EXPECT_TRUE(images[0] == images[2]) << "auto's tree rendered a different image";
+  EXPECT_TRUE(images[0] == images[3]) << "the 4-wide BVH rendered a different image";
+  // pth and hash walk the KD-tree: with the BVH asked for, an error before rendering; with auto, the KD-tree
+  for (const char* method : {"pth", "hash"}) {
+    const CommandResult r = run("render " + scene("cornell-box.gltf") + " --res 8x8 --spp 1 --method " + method +
+                                " --tree bvh4 -o " + (dir.path / "x").string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("KD-tree"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir.path / "x.exr"));
+  }
   EXPECT_EQ(run("render " + scene("cornell-box.gltf") + " --tree sparse -o " + (dir.path / "x").string()).code, 2);
 }
 

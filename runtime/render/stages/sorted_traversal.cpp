@@ -4,6 +4,7 @@
 
 #include "kernels/common/contract.h"
 #include "runtime/render/stages/traversal_figures.h"
+#include "runtime/util/error.h"
 
 namespace cohort {
 
@@ -15,6 +16,8 @@ SortedTraversal::SortedTraversal(const WavefrontRender& render, RayOrder key)
   const MethodInputs& in = render.inputs();
   const Device& cl = in.device;
   const std::uint32_t slots = render.pool().slots;
+  if (in.scene.bvh4)
+    throw InputError("hash and pth walk the KD-tree: the scene was uploaded with the 4-wide BVH (--tree bvh4)");
   program_ = cl.build_program(in.cache, "pth", in.scene.build_options);
   const bool pth = key == RayOrder::pth;
   // --code pth:N means N levels (issue 25): it and --pth-levels must agree when both are given

@@ -1,0 +1,245 @@
+// build_bvh4: a binary BVH by binned SAH, built in parallel into slots fixed by the triangle counts
+// (so the tree does not depend on the thread count), then collapsed into 4-wide nodes depth first.
+#include "runtime/accel/bvh4.h"
+
+#include <fmt/format.h>
+#include <tbb/parallel_invoke.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+#include "kernels/common/bvh4_traverse.h"
+#include "runtime/util/error.h"
+
+namespace cohort {
+namespace {
+
+constexpr int kBins = 32;
+constexpr std::uint32_t kMaxLeaf = 4;            // triangles; BVH4_LEAF_MAX allows up to 16
+constexpr int kMedianDepth = 32;                 // below this, object-median splits bound the depth
+constexpr std::uint32_t kParallelTriangles = 4096;
+constexpr float kNodeCost = 0.5f;                // a 4-wide box test against one triangle test
+static_assert(kMedianDepth + 27 <= BVH4_MAX_DEPTH, "the traversal stack must hold the deepest tree");
+
+struct Box {
+  std::array<float, 3> lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  void extend(const Box& b) {
+    for (int a = 0; a < 3; ++a) { lo[a] = std::min(lo[a], b.lo[a]); hi[a] = std::max(hi[a], b.hi[a]); }
+  }
+  void extend(const std::array<float, 3>& p) {
+    for (int a = 0; a < 3; ++a) { lo[a] = std::min(lo[a], p[a]); hi[a] = std::max(hi[a], p[a]); }
+  }
+  float area() const {
+    float d[3];
+    for (int a = 0; a < 3; ++a) d[a] = std::max(0.0f, hi[a] - lo[a]);
+    return d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
+  }
+};
+
+// A binary node; count > 0 marks a leaf of triangles [first, first + count) of the reference list.
+struct Node2 {
+  Box box;
+  std::uint32_t first = 0, count = 0;
+  std::uint32_t left = 0, right = 0;
+};
+
+struct Builder {
+  std::vector<Box> tri_box;
+  std::vector<std::array<float, 3>> centroid;
+  std::vector<std::uint32_t> refs;
+  // A subtree of n triangles owns the 2n - 1 slots from its root's: its left child's subtree
+  // starts one after the root, its right child's after the left's 2 n_left - 1. Unused slots stay.
+  std::vector<Node2> nodes;
+
+  explicit Builder(std::span<const Triangle> triangles)
+      : tri_box(triangles.size()), centroid(triangles.size()), refs(triangles.size()),
+        nodes(2 * triangles.size() - 1) {
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
+      const co_float4* v[3] = {&triangles[i].v0, &triangles[i].v1, &triangles[i].v2};
+      for (const co_float4* p : v) tri_box[i].extend(std::array<float, 3>{p->x, p->y, p->z});
+      for (int a = 0; a < 3; ++a) centroid[i][a] = 0.5f * (tri_box[i].lo[a] + tri_box[i].hi[a]);
+    }
+    std::iota(refs.begin(), refs.end(), 0u);
+  }
+
+  struct Split {
+    int axis = -1;
+    int bin = 0;
+    float cost = INFINITY;
+  };
+
+  Split best_split(std::uint32_t first, std::uint32_t count, const Box& centroids) const {
+    Split best;
+    for (int a = 0; a < 3; ++a) {
+      const float extent = centroids.hi[a] - centroids.lo[a];
+      if (!(extent > 0.0f)) continue;
+      const float scale = kBins / extent;
+      std::array<Box, kBins> bin_box;
+      std::array<std::uint32_t, kBins> bin_count{};
+      for (std::uint32_t i = first; i < first + count; ++i) {
+        const std::uint32_t r = refs[i];
+        const int b = std::min(kBins - 1, static_cast<int>((centroid[r][a] - centroids.lo[a]) * scale));
+        ++bin_count[b];
+        bin_box[b].extend(tri_box[r]);
+      }
+      std::array<float, kBins> right_area{};
+      std::array<std::uint32_t, kBins> right_count{};
+      Box acc;
+      std::uint32_t n = 0;
+      for (int b = kBins - 1; b > 0; --b) {
+        acc.extend(bin_box[b]);
+        n += bin_count[b];
+        right_area[b] = acc.area();
+        right_count[b] = n;
+      }
+      acc = Box{};
+      n = 0;
+      for (int b = 0; b < kBins - 1; ++b) {
+        acc.extend(bin_box[b]);
+        n += bin_count[b];
+        if (n == 0 || right_count[b + 1] == 0) continue;
+        const float cost = acc.area() * n + right_area[b + 1] * right_count[b + 1];
+        if (cost < best.cost) best = {a, b, cost};
+      }
+    }
+    return best;
+  }
+
+  void build(std::uint32_t slot, std::uint32_t first, std::uint32_t count, int depth) {
+    Node2& node = nodes[slot];
+    Box centroids;
+    for (std::uint32_t i = first; i < first + count; ++i) {
+      node.box.extend(tri_box[refs[i]]);
+      centroids.extend(centroid[refs[i]]);
+    }
+    node.first = first;
+    node.count = count;
+    if (count == 1) return;
+    std::uint32_t mid = first + count / 2;
+    const Split split = depth < kMedianDepth ? best_split(first, count, centroids) : Split{};
+    if (split.axis >= 0) {
+      const float leaf_cost = node.box.area() * count;
+      if (count <= kMaxLeaf && leaf_cost <= kNodeCost * node.box.area() + split.cost) return;
+      const float scale = kBins / (centroids.hi[split.axis] - centroids.lo[split.axis]);
+      const auto in_left = [&](std::uint32_t r) {
+        return std::min(kBins - 1, static_cast<int>((centroid[r][split.axis] - centroids.lo[split.axis]) * scale)) <=
+               split.bin;
+      };
+      mid = static_cast<std::uint32_t>(std::partition(refs.begin() + first, refs.begin() + first + count, in_left) -
+                                       refs.begin());
+    } else if (count <= kMaxLeaf) {
+      return;  // every centroid in one point, or below the median depth: a leaf when small enough
+    } else if (depth >= kMedianDepth) {
+      // the object median along the widest centroid axis: halves the count, so the depth stays bounded
+      int axis = 0;
+      for (int a = 1; a < 3; ++a)
+        if (centroids.hi[a] - centroids.lo[a] > centroids.hi[axis] - centroids.lo[axis]) axis = a;
+      std::nth_element(refs.begin() + first, refs.begin() + mid, refs.begin() + first + count,
+                       [&](std::uint32_t x, std::uint32_t y) {
+                         return centroid[x][axis] < centroid[y][axis] || (centroid[x][axis] == centroid[y][axis] && x < y);
+                       });
+    }
+    node.count = 0;
+    const std::uint32_t left_count = mid - first, right_count = first + count - mid;
+    node.left = slot + 1;
+    node.right = slot + 2 * left_count;
+    const auto left = [&] { build(slot + 1, first, left_count, depth + 1); };
+    const auto right = [&] { build(slot + 2 * left_count, mid, right_count, depth + 1); };
+    if (count >= kParallelTriangles) {
+      tbb::parallel_invoke(left, right);
+    } else {
+      left();
+      right();
+    }
+  }
+};
+
+void set_lane(Bvh4Node& node, int lane, const Box& b, std::uint32_t child) {
+  float* lanes[6] = {&node.lo_x.x, &node.hi_x.x, &node.lo_y.x, &node.hi_y.x, &node.lo_z.x, &node.hi_z.x};
+  for (int a = 0; a < 3; ++a) {
+    lanes[2 * a][lane] = b.lo[a];
+    lanes[2 * a + 1][lane] = b.hi[a];
+  }
+  (&node.child.x)[lane] = child;
+}
+
+struct Collapser {
+  const Builder& b;
+  Bvh4& out;
+  double sah = 0;  // sum over nodes and leaves of area x cost, divided by the root's area at the end
+
+  // Appends the 4-wide node for binary inner node `slot` and its subtree; returns its index.
+  std::uint32_t collapse(std::uint32_t slot, int depth) {
+    const auto me = static_cast<std::uint32_t>(out.nodes.size());
+    out.nodes.emplace_back();
+    std::array<std::uint32_t, 4> kids{};
+    int n = 0;
+    if (b.nodes[slot].count) {
+      kids[n++] = slot;  // a root that is a leaf: one lane
+    } else {
+      kids[n++] = b.nodes[slot].left;
+      kids[n++] = b.nodes[slot].right;
+    }
+    // open the inner child of largest area until four lanes are full
+    while (n < 4) {
+      int widest = -1;
+      for (int i = 0; i < n; ++i) {
+        const Node2& k = b.nodes[kids[i]];
+        if (!k.count && (widest < 0 || k.box.area() > b.nodes[kids[widest]].box.area())) widest = i;
+      }
+      if (widest < 0) break;
+      const Node2& k = b.nodes[kids[widest]];
+      kids[widest] = k.left;
+      kids[n++] = k.right;
+    }
+    Bvh4Node node{};
+    const Box empty{{INFINITY, INFINITY, INFINITY}, {INFINITY, INFINITY, INFINITY}};
+    for (int lane = 0; lane < 4; ++lane) set_lane(node, lane, empty, BVH4_EMPTY);
+    sah += kNodeCost * b.nodes[slot].box.area();
+    out.stats.depth = std::max(out.stats.depth, depth);
+    for (int lane = 0; lane < n; ++lane) {
+      const Node2& k = b.nodes[kids[lane]];
+      std::uint32_t child;
+      if (k.count) {
+        child = bvh4_leaf_ref(k.first, k.count);
+        ++out.stats.leaf_count;
+        sah += k.box.area() * k.count;
+      } else {
+        child = collapse(kids[lane], depth + 1);
+      }
+      set_lane(node, lane, k.box, child);
+    }
+    out.nodes[me] = node;
+    return me;
+  }
+};
+
+}  // namespace
+
+Bvh4 build_bvh4(std::span<const Triangle> triangles) {
+  const auto start = std::chrono::steady_clock::now();
+  if (triangles.empty()) throw InputError("a BVH needs at least one triangle");
+  if (triangles.size() > BVH4_LEAF_FIRST_MAX)
+    throw InputError(fmt::format("the scene has {} triangles; the 4-wide BVH (--tree bvh4) takes at most {}: use "
+                                 "--tree deep or compact",
+                                 triangles.size(), BVH4_LEAF_FIRST_MAX));
+  Builder builder(triangles);
+  builder.build(0u, 0u, static_cast<std::uint32_t>(triangles.size()), 0);
+  Bvh4 bvh;
+  bvh.nodes.reserve(triangles.size() / 2 + 1);
+  Collapser collapser{builder, bvh};
+  collapser.collapse(0, 1);
+  bvh.leaf_triangles = std::move(builder.refs);
+  bvh.stats.node_count = bvh.nodes.size();
+  bvh.stats.average_leaf_triangles = double(triangles.size()) / double(bvh.stats.leaf_count);
+  const float root_area = builder.nodes[0].box.area();
+  bvh.stats.sah_cost = root_area > 0 ? collapser.sah / root_area : 0.0;
+  bvh.stats.bytes = bvh.nodes.size() * sizeof(Bvh4Node) + bvh.leaf_triangles.size() * sizeof(std::uint32_t);
+  bvh.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return bvh;
+}
+
+}  // namespace cohort

@@ -1,0 +1,36 @@
+// A 4-wide BVH over the KD-tree's kept triangles, in the device layout of kernels/common/types.h
+// (Bvh4Node): what CPUs trace with (--tree bvh4; kernels/common/bvh4_traverse.h). Its leaf lists
+// index the same kept triangles as the KD-tree's, so every ray gets the same hit from either.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "kernels/common/types.h"
+
+namespace cohort {
+
+struct Bvh4Stats {
+  std::size_t node_count = 0;   // 4-wide nodes
+  std::size_t leaf_count = 0;
+  int depth = 0;                // deepest leaf; the root's children are at depth 1
+  double average_leaf_triangles = 0;
+  double sah_cost = 0;          // expected node visits + triangle tests of a random ray through the root
+  double build_seconds = 0;
+  std::size_t bytes = 0;        // nodes + leaf lists (the triangles are the KD-tree's)
+};
+
+struct Bvh4 {
+  std::vector<Bvh4Node> nodes;               // node 0 is the root; each node before its children
+  std::vector<std::uint32_t> leaf_triangles;  // leaf lists, entries index the kept triangles
+  Bvh4Stats stats;
+};
+
+// Binned SAH over triangle centroids (Wald, "On fast construction of SAH-based bounding volume
+// hierarchies", 2007), a binary tree collapsed into 4-wide nodes. The same tree for any thread
+// count. Throws InputError when there are more triangles than a leaf reference can name.
+Bvh4 build_bvh4(std::span<const Triangle> triangles);
+
+}  // namespace cohort
