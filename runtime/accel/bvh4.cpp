@@ -157,11 +157,14 @@ struct Builder {
   }
 };
 
-void set_lane(Bvh4Node& node, int lane, const Box& b, std::uint32_t child) {
+// Boxes grow by `pad` on every side: the watertight test reports a hit on a shared edge or vertex
+// for a ray that, rounded otherwise, passes a few ulps outside that triangle's box, and the box
+// must still let it in (bvh4_traverse.h).
+void set_lane(Bvh4Node& node, int lane, const Box& b, std::uint32_t child, float pad) {
   float* lanes[6] = {&node.lo_x.x, &node.hi_x.x, &node.lo_y.x, &node.hi_y.x, &node.lo_z.x, &node.hi_z.x};
   for (int a = 0; a < 3; ++a) {
-    lanes[2 * a][lane] = b.lo[a];
-    lanes[2 * a + 1][lane] = b.hi[a];
+    lanes[2 * a][lane] = b.lo[a] - pad;
+    lanes[2 * a + 1][lane] = b.hi[a] + pad;
   }
   (&node.child.x)[lane] = child;
 }
@@ -169,6 +172,7 @@ void set_lane(Bvh4Node& node, int lane, const Box& b, std::uint32_t child) {
 struct Collapser {
   const Builder& b;
   Bvh4& out;
+  float pad;  // 2^-20 of the largest coordinate: far above the rounding of any vertex
   double sah = 0;  // sum over nodes and leaves of area x cost, divided by the root's area at the end
 
   // Appends the 4-wide node for binary inner node `slot` and its subtree; returns its index.
@@ -197,7 +201,7 @@ struct Collapser {
     }
     Bvh4Node node{};
     const Box empty{{INFINITY, INFINITY, INFINITY}, {INFINITY, INFINITY, INFINITY}};
-    for (int lane = 0; lane < 4; ++lane) set_lane(node, lane, empty, BVH4_EMPTY);
+    for (int lane = 0; lane < 4; ++lane) set_lane(node, lane, empty, BVH4_EMPTY, 0.0f);
     sah += kNodeCost * b.nodes[slot].box.area();
     out.stats.depth = std::max(out.stats.depth, depth);
     for (int lane = 0; lane < n; ++lane) {
@@ -210,7 +214,7 @@ struct Collapser {
       } else {
         child = collapse(kids[lane], depth + 1);
       }
-      set_lane(node, lane, k.box, child);
+      set_lane(node, lane, k.box, child, pad);
     }
     out.nodes[me] = node;
     return me;
@@ -230,7 +234,10 @@ Bvh4 build_bvh4(std::span<const Triangle> triangles) {
   builder.build(0u, 0u, static_cast<std::uint32_t>(triangles.size()), 0);
   Bvh4 bvh;
   bvh.nodes.reserve(triangles.size() / 2 + 1);
-  Collapser collapser{builder, bvh};
+  const Box& root = builder.nodes[0].box;
+  float largest = 0.0f;
+  for (int a = 0; a < 3; ++a) largest = std::max({largest, std::fabs(root.lo[a]), std::fabs(root.hi[a])});
+  Collapser collapser{builder, bvh, std::ldexp(std::max(largest, 1e-20f), -20)};
   collapser.collapse(0, 1);
   bvh.leaf_triangles = std::move(builder.refs);
   bvh.stats.node_count = bvh.nodes.size();

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 
 #include <tbb/parallel_for.h>
@@ -21,16 +22,19 @@ using namespace cohort::test;
 
 namespace {
 
+// With `bvh`, through the 4-wide BVH (the program built with COHORT_ACCEL_BVH4), else the KD-tree.
 std::vector<HitOut> trace_on_device(const KdTree& tree, const std::vector<TestRay>& rays, bool any_hit,
-                                    const std::vector<float>& tmax) {
+                                    const std::vector<float>& tmax, const Bvh4* bvh = nullptr) {
   const ClContext cl(select_device(""));
   const ProgramCache cache(ProgramCache::default_directory());
-  const DeviceProgram program = cl.build_program(cache, "trace");
+  const DeviceProgram program = cl.build_program(cache, "trace", bvh ? "-DCOHORT_ACCEL_BVH4" : "");
   std::vector<RayIn> in(rays.size());
   for (std::size_t i = 0; i < rays.size(); ++i)
     in[i] = RayIn{{rays[i].org.x, rays[i].org.y, rays[i].org.z, 0.f}, {rays[i].dir.x, rays[i].dir.y, rays[i].dir.z, tmax[i]}};
-  const DeviceBuffer nodes = cl.allocate("nodes", tree.nodes.size() * sizeof(KdNode), tree.nodes.data());
-  const DeviceBuffer leaves = cl.allocate("leaves", tree.leaf_triangles.size() * 4, tree.leaf_triangles.data());
+  const DeviceBuffer nodes = bvh ? cl.allocate("nodes", bvh->nodes.size() * sizeof(Bvh4Node), bvh->nodes.data())
+                                 : cl.allocate("nodes", tree.nodes.size() * sizeof(KdNode), tree.nodes.data());
+  const DeviceBuffer leaves = bvh ? cl.allocate("leaves", bvh->leaf_triangles.size() * 4, bvh->leaf_triangles.data())
+                                  : cl.allocate("leaves", tree.leaf_triangles.size() * 4, tree.leaf_triangles.data());
   const DeviceBuffer tris = cl.allocate("triangles", tree.triangles.size() * sizeof(Triangle), tree.triangles.data());
   const DeviceBuffer ray_buf = cl.allocate("rays", in.size() * sizeof(RayIn), in.data());
   const DeviceBuffer hit_buf = cl.allocate("hits", in.size() * sizeof(HitOut));
@@ -101,8 +105,47 @@ void check_scene(const fs::path& path, std::size_t ray_count) {
   EXPECT_GT(hits, rays.size() / 10);  // the rays must actually exercise the tree
 }
 
+// The BVH kernel on the device against the KD-tree kernel, bit for bit (t, u, v, triangle), on rays
+// aimed at shared vertices and edges and random ones, closest and any hit: what lets a CPU trace the
+// BVH and render the GPU's image.
+void check_bvh_against_kd(const fs::path& path) {
+  const Scene scene = load_scene(path);
+  const KdTree tree = build_kdtree(scene.positions);
+  const Bvh4 bvh = build_bvh4(tree.triangles);
+  auto rays = make_feature_rays(tree, 20000, 99);
+  const auto random = make_rays(tree.bounds, 20000, 98);
+  rays.insert(rays.end(), random.begin(), random.end());
+  const std::vector<float> unbounded(rays.size(), INFINITY);
+  const auto kd = trace_on_device(tree, rays, false, unbounded);
+  const auto through_bvh = trace_on_device(tree, rays, false, unbounded, &bvh);
+  std::vector<float> half(rays.size());
+  std::size_t hits = 0, differ = 0, occlusion_differ = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    hits += kd[i].triangle != HIT_NONE;
+    differ += std::memcmp(&kd[i], &through_bvh[i], sizeof(HitOut)) != 0;
+    half[i] = kd[i].triangle == HIT_NONE ? INFINITY : 0.5f * kd[i].t;
+  }
+  const auto kd_occluded = trace_on_device(tree, rays, true, half);
+  const auto bvh_occluded = trace_on_device(tree, rays, true, half, &bvh);
+  for (std::size_t i = 0; i < rays.size(); ++i)
+    occlusion_differ += (kd_occluded[i].triangle != HIT_NONE) != (bvh_occluded[i].triangle != HIT_NONE);
+  std::printf("%s: %zu rays, %zu hits, %zu closest and %zu any-hit answers differ between the KD-tree and the BVH\n",
+              path.filename().c_str(), rays.size(), hits, differ, occlusion_differ);
+  EXPECT_GT(hits, rays.size() / 4);
+  EXPECT_EQ(differ, 0u);
+  EXPECT_EQ(occlusion_differ, 0u);
+}
 
 }  // namespace
+
+TEST(TraceKernel, Bvh4GivesTheKdTreesHitsOnTheCornellBox) {
+  check_bvh_against_kd(fs::path(COHORT_SOURCE_DIR) / "scenes/cornell-box.gltf");
+}
+
+TEST(TraceKernel, Bvh4GivesTheKdTreesHitsOnTheBunny) {
+  if (!fs::exists(shared("bunny"))) GTEST_SKIP() << "../shared/scenes is missing";
+  check_bvh_against_kd(shared("bunny/bun_zipper_res2.ply"));
+}
 
 TEST(TraceKernel, CornellBoxMatchesBruteForce) {
   check_scene(fs::path(COHORT_SOURCE_DIR) / "scenes/cornell-box.gltf", 100000);

@@ -1,0 +1,189 @@
+// The 4-wide BVH (runtime/accel/bvh4.h) and its traversal (kernels/common/bvh4_traverse.h compiled
+// as C++): every triangle once, inside its boxes, the same tree for any thread count, and for every
+// ray the KD-tree's hit bit for bit, also at shared edges and vertices and on degenerate inputs.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <array>
+#include <climits>
+#include <cmath>
+#include <cstring>
+#include <functional>
+
+#include "accel/ray_check.h"
+#include "accel/test_meshes.h"
+#include "runtime/accel/host_traversal.h"
+#include "runtime/util/error.h"
+
+namespace cohort::test {
+namespace {
+
+// Walks the tree: each node reached once, each lane's box holding what is below it, leaves within
+// BVH4_LEAF_MAX, unused lanes empty; counts each kept triangle's appearances in the leaves.
+std::vector<std::string> structure_errors(const Bvh4& bvh, const KdTree& tree) {
+  std::vector<std::string> errors;
+  std::vector<int> seen_node(bvh.nodes.size(), 0), seen_triangle(tree.triangles.size(), 0);
+  int deepest = 0;
+  const auto inside = [](const Triangle& t, const float lo[3], const float hi[3]) {
+    for (const co_float4* v : {&t.v0, &t.v1, &t.v2}) {
+      const float p[3] = {v->x, v->y, v->z};
+      for (int a = 0; a < 3; ++a)
+        if (p[a] < lo[a] || p[a] > hi[a]) return false;
+    }
+    return true;
+  };
+  std::function<void(std::uint32_t, int, const float*, const float*)> walk = [&](std::uint32_t index, int depth,
+                                                                                  const float* plo, const float* phi) {
+    if (index >= bvh.nodes.size() || seen_node[index]++) {
+      errors.push_back(fmt::format("node {} reached twice or out of range", index));
+      return;
+    }
+    deepest = std::max(deepest, depth);
+    const Bvh4Node& n = bvh.nodes[index];
+    if (n.reserved.x || n.reserved.y || n.reserved.z || n.reserved.w) errors.push_back("reserved words not zero");
+    for (int lane = 0; lane < 4; ++lane) {
+      const std::uint32_t ref = (&n.child.x)[lane];
+      const float lo[3] = {(&n.lo_x.x)[lane], (&n.lo_y.x)[lane], (&n.lo_z.x)[lane]};
+      const float hi[3] = {(&n.hi_x.x)[lane], (&n.hi_y.x)[lane], (&n.hi_z.x)[lane]};
+      if (ref == BVH4_EMPTY) {
+        if (lo[0] != INFINITY || hi[0] != INFINITY) errors.push_back(fmt::format("node {} lane {}: empty lane with a box", index, lane));
+        continue;
+      }
+      for (int a = 0; a < 3; ++a)
+        if (plo && (lo[a] < plo[a] || hi[a] > phi[a]))
+          errors.push_back(fmt::format("node {} lane {}: box outside its parent's", index, lane));
+      if (bvh4_is_leaf(ref)) {
+        const std::uint32_t first = bvh4_leaf_first(ref), count = bvh4_leaf_count(ref);
+        if (count > BVH4_LEAF_MAX || first + count > bvh.leaf_triangles.size()) {
+          errors.push_back(fmt::format("node {} lane {}: leaf [{}, +{}) out of range", index, lane, first, count));
+          continue;
+        }
+        for (std::uint32_t i = first; i < first + count; ++i) {
+          const std::uint32_t tri = bvh.leaf_triangles[i];
+          if (tri >= tree.triangles.size()) { errors.push_back("leaf entry out of range"); continue; }
+          ++seen_triangle[tri];
+          if (!inside(tree.triangles[tri], lo, hi)) errors.push_back(fmt::format("triangle {} outside its leaf box", tri));
+        }
+      } else {
+        walk(ref, depth + 1, lo, hi);
+      }
+    }
+  };
+  walk(0, 1, nullptr, nullptr);
+  for (std::size_t i = 0; i < seen_node.size(); ++i)
+    if (!seen_node[i]) errors.push_back(fmt::format("node {} unreachable", i));
+  for (std::size_t i = 0; i < seen_triangle.size(); ++i)
+    if (seen_triangle[i] != 1) errors.push_back(fmt::format("triangle {} in {} leaves", i, seen_triangle[i]));
+  if (deepest != bvh.stats.depth) errors.push_back(fmt::format("depth {} but stats say {}", deepest, bvh.stats.depth));
+  if (deepest > BVH4_MAX_DEPTH) errors.push_back(fmt::format("depth {} over BVH4_MAX_DEPTH", deepest));
+  if (errors.size() > 10) errors.resize(10);
+  return errors;
+}
+
+KdTree kept_triangles(const std::vector<glm::vec3>& positions) {
+  KdBuildOptions one_leaf;
+  one_leaf.leaf_triangles = INT_MAX;
+  return build_kdtree(positions, one_leaf);
+}
+
+// Feature rays (at shared vertices and edge midpoints) and random ones: closest hit through the BVH
+// against the deep KD-tree's, bit for bit, and against brute force on every 16th ray; any hit before
+// half the closest distance and before 1.5 times it.
+void expect_kd_hits(const std::vector<glm::vec3>& positions, const char* name) {
+  const KdTree kd = build_kdtree(positions);
+  const KdTree kept = kept_triangles(positions);
+  ASSERT_EQ(kd.triangles.size(), kept.triangles.size());
+  ASSERT_EQ(0, std::memcmp(kd.triangles.data(), kept.triangles.data(), kd.triangles.size() * sizeof(Triangle)));
+  const Bvh4 bvh = build_bvh4(kept.triangles);
+  const std::vector<std::string> errors = structure_errors(bvh, kept);
+  for (const std::string& e : errors) ADD_FAILURE() << name << ": " << e;
+  const KdTreeView kv = view_of(kd);
+  const Bvh4View bv = host_view(bvh, kept);
+  std::vector<TestRay> rays = make_feature_rays(kd, 20'000, 41);
+  const std::vector<TestRay> random = make_rays(kd.bounds, 10'000, 42);
+  rays.insert(rays.end(), random.begin(), random.end());
+  std::size_t hits = 0, differ = 0, brute_differ = 0, occlusion_differ = 0;
+  std::uint64_t kd_steps = 0, bvh_steps = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const TestRay& ray = rays[i];
+    const co_vec3 org = v3(ray.org.x, ray.org.y, ray.org.z), dir = v3(ray.dir.x, ray.dir.y, ray.dir.z);
+    std::uint32_t ks = 0, bs = 0;
+    const HitOut k = kd_trace_steps(&kv, org, dir, 0.f, kInf, 0, &ks);
+    const HitOut b = bvh4_trace_steps(&bv, org, dir, 0.f, kInf, 0, &bs);
+    kd_steps += ks;
+    bvh_steps += bs;
+    hits += k.triangle != HIT_NONE;
+    differ += std::memcmp(&k, &b, sizeof(HitOut)) != 0;
+    if (i % 16 == 0) {
+      const HitOut e = brute_force(kept, ray, 0.f, kInf);
+      brute_differ += std::memcmp(&e, &b, sizeof(HitOut)) != 0;
+    }
+    for (const float limit : {0.5f, 1.5f}) {
+      const float tmax = k.triangle != HIT_NONE ? limit * k.t : kInf;
+      occlusion_differ += (kd_trace(&kv, org, dir, 0.f, tmax, 1).triangle != HIT_NONE) !=
+                          (bvh4_trace_steps(&bv, org, dir, 0.f, tmax, 1, nullptr).triangle != HIT_NONE);
+    }
+  }
+  fmt::print("[{}] {} rays, {} hits; BVH {} nodes depth {}: {} closest hits, {} of brute force's and {} any-hit "
+             "answers differ; {:.1f} KD visits against {:.1f} BVH visits per ray\n",
+             name, rays.size(), hits, bvh.stats.node_count, bvh.stats.depth, differ, brute_differ, occlusion_differ,
+             double(kd_steps) / rays.size(), double(bvh_steps) / rays.size());
+  EXPECT_GT(hits, rays.size() / 4);
+  EXPECT_EQ(differ, 0u);
+  EXPECT_EQ(brute_differ, 0u);
+  EXPECT_EQ(occlusion_differ, 0u);
+}
+
+TEST(Bvh4, GivesTheKdTreesHitsBitForBit) {
+  expect_kd_hits(coplanar_grid(100, 100), "20k coplanar");
+  expect_kd_hits(random_soup(4000, 7), "soup");
+  for (const char* model : {"bunny/bun_zipper_res2.ply", "cornell-box-mcguire/CornellBox-Original.obj"})
+    if (const auto positions = load_shared(model)) expect_kd_hits(*positions, model);
+}
+
+TEST(Bvh4, SameTreeForAnyThreadCount) {
+  const KdTree kept = kept_triangles(random_soup(20'000, 3));
+  const Bvh4 many = build_bvh4(kept.triangles);
+  tbb::task_arena one(1);
+  const Bvh4 single = one.execute([&] { return build_bvh4(kept.triangles); });
+  ASSERT_EQ(many.nodes.size(), single.nodes.size());
+  EXPECT_EQ(0, std::memcmp(many.nodes.data(), single.nodes.data(), many.nodes.size() * sizeof(Bvh4Node)));
+  EXPECT_TRUE(many.leaf_triangles == single.leaf_triangles);
+  EXPECT_TRUE(structure_errors(many, kept).empty());
+}
+
+// Where a binned build has nothing to bin: one triangle; many copies of one triangle (every
+// centroid in one point); triangles whose centroids halve their distance each time (each SAH split
+// peels off one, which the object-median fallback must stop before the stack depth).
+TEST(Bvh4, DegenerateInputsStayShallowAndFindTheLowestIndex) {
+  const std::vector<glm::vec3> one{{0, 0, 1}, {1, 0, 1}, {0, 1, 1}};
+  std::vector<glm::vec3> copies, halving;
+  for (int i = 0; i < 1000; ++i) copies.insert(copies.end(), one.begin(), one.end());
+  for (int i = 0; i < 300; ++i) {
+    const float x = std::ldexp(1.0f, -i / 3);  // tiny triangles at x = 2^-k, then 2^-(k+1), ...
+    const float s = std::ldexp(1.0f, -i / 3 - 8);
+    halving.insert(halving.end(), {{x, 0, float(i % 3)}, {x + s, 0, float(i % 3)}, {x, s, float(i % 3)}});
+  }
+  for (const std::vector<glm::vec3>* positions : std::array<const std::vector<glm::vec3>*, 3>{&one, &copies, &halving}) {
+    const KdTree kept = kept_triangles(*positions);
+    const Bvh4 bvh = build_bvh4(kept.triangles);
+    const std::vector<std::string> errors = structure_errors(bvh, kept);
+    for (const std::string& e : errors) ADD_FAILURE() << e;
+    EXPECT_LE(bvh.stats.depth, BVH4_MAX_DEPTH);
+  }
+  // through the 1000 copies, the hit is the first copy's (the least index at equal t)
+  const KdTree kept = kept_triangles(copies);
+  const Bvh4 bvh = build_bvh4(kept.triangles);
+  const Bvh4View view = host_view(bvh, kept);
+  const HitOut hit = bvh4_trace_steps(&view, v3(0.2f, 0.2f, 0.f), v3(0.f, 0.f, 1.f), 0.f, kInf, 0, nullptr);
+  EXPECT_EQ(hit.triangle, 0u);
+  EXPECT_EQ(hit.t, 1.0f);
+}
+
+TEST(Bvh4, RejectsAnEmptyInput) {
+  EXPECT_THROW(build_bvh4({}), InputError);
+}
+
+}  // namespace
+}  // namespace cohort::test
