@@ -15,6 +15,7 @@ namespace cohort {
 struct Bvh4Stats {
   std::size_t node_count = 0;   // 4-wide nodes
   std::size_t leaf_count = 0;
+  std::size_t references = 0;   // leaf list entries: triangles, large ones split into several
   int depth = 0;                // deepest leaf; the root's children are at depth 1
   double average_leaf_triangles = 0;
   double sah_cost = 0;          // expected node visits + triangle tests of a random ray through the root

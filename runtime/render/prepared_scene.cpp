@@ -40,10 +40,10 @@ TreeChoice tree_options(const std::string& choice, std::span<const DeviceInfo> d
 std::string describe_tree(const PreparedScene& p) {
   if (const Bvh4* bvh = p.bvh()) {
     const Bvh4Stats& b = bvh->stats;
-    return fmt::format("4-wide BVH: depth {}, {} nodes, {} leaves, {:.2f} triangles per leaf, SAH cost {:.2f}, built "
-                       "in {:.3f}s (triangles kept in {:.3f}s)",
-                       b.depth, b.node_count, b.leaf_count, b.average_leaf_triangles, b.sah_cost, b.build_seconds,
-                       p.tree.stats.build_seconds);
+    return fmt::format("4-wide BVH: depth {}, {} nodes, {} leaves, {} references to {} triangles, {:.2f} per leaf, "
+                       "SAH cost {:.2f}, built in {:.3f}s (triangles kept in {:.3f}s)",
+                       b.depth, b.node_count, b.leaf_count, b.references, p.tree.triangles.size(),
+                       b.average_leaf_triangles, b.sah_cost, b.build_seconds, p.tree.stats.build_seconds);
   }
   const KdTreeStats& ts = p.tree.stats;
   return fmt::format("kd-tree ({}): depth {}, {} nodes, {} leaves ({} empty), {:.2f} triangles per leaf, SAH cost "

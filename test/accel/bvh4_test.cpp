@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <array>
 #include <climits>
 #include <cmath>
@@ -19,17 +20,18 @@
 namespace cohort::test {
 namespace {
 
-// Walks the tree: each node reached once, each lane's box holding what is below it, leaves within
-// BVH4_LEAF_MAX, unused lanes empty; counts each kept triangle's appearances in the leaves.
+// Walks the tree: each node reached once, each lane's box inside its parent's, leaves within
+// BVH4_LEAF_MAX and their boxes overlapping their triangles (a large triangle is split into parts,
+// each in its own leaf with the box of its part), unused lanes empty; every kept triangle in some
+// leaf, and in no more than the 64 parts a triangle is split into at most.
 std::vector<std::string> structure_errors(const Bvh4& bvh, const KdTree& tree) {
   std::vector<std::string> errors;
   std::vector<int> seen_node(bvh.nodes.size(), 0), seen_triangle(tree.triangles.size(), 0);
   int deepest = 0;
-  const auto inside = [](const Triangle& t, const float lo[3], const float hi[3]) {
-    for (const co_float4* v : {&t.v0, &t.v1, &t.v2}) {
-      const float p[3] = {v->x, v->y, v->z};
-      for (int a = 0; a < 3; ++a)
-        if (p[a] < lo[a] || p[a] > hi[a]) return false;
+  const auto overlaps = [](const Triangle& t, const float lo[3], const float hi[3]) {
+    for (int a = 0; a < 3; ++a) {
+      const float v[3] = {(&t.v0.x)[a], (&t.v1.x)[a], (&t.v2.x)[a]};
+      if (std::max({v[0], v[1], v[2]}) < lo[a] || std::min({v[0], v[1], v[2]}) > hi[a]) return false;
     }
     return true;
   };
@@ -63,7 +65,7 @@ std::vector<std::string> structure_errors(const Bvh4& bvh, const KdTree& tree) {
           const std::uint32_t tri = bvh.leaf_triangles[i];
           if (tri >= tree.triangles.size()) { errors.push_back("leaf entry out of range"); continue; }
           ++seen_triangle[tri];
-          if (!inside(tree.triangles[tri], lo, hi)) errors.push_back(fmt::format("triangle {} outside its leaf box", tri));
+          if (!overlaps(tree.triangles[tri], lo, hi)) errors.push_back(fmt::format("triangle {} outside its leaf box", tri));
         }
       } else {
         walk(ref, depth + 1, lo, hi);
@@ -74,7 +76,7 @@ std::vector<std::string> structure_errors(const Bvh4& bvh, const KdTree& tree) {
   for (std::size_t i = 0; i < seen_node.size(); ++i)
     if (!seen_node[i]) errors.push_back(fmt::format("node {} unreachable", i));
   for (std::size_t i = 0; i < seen_triangle.size(); ++i)
-    if (seen_triangle[i] != 1) errors.push_back(fmt::format("triangle {} in {} leaves", i, seen_triangle[i]));
+    if (seen_triangle[i] < 1 || seen_triangle[i] > 64) errors.push_back(fmt::format("triangle {} in {} leaves", i, seen_triangle[i]));
   if (deepest != bvh.stats.depth) errors.push_back(fmt::format("depth {} but stats say {}", deepest, bvh.stats.depth));
   if (deepest > BVH4_MAX_DEPTH) errors.push_back(fmt::format("depth {} over BVH4_MAX_DEPTH", deepest));
   if (errors.size() > 10) errors.resize(10);

@@ -208,6 +208,13 @@ TEST(Cli, ASceneThatDoesNotFitTheDeviceFailsWithTheSizes) {
   EXPECT_NE(r.output.find("needs at least 0.27 MiB"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("the limit is 0.01 MiB"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir.path / "x.exr"));
+  // the BVH cannot trade depth for bytes: asked for by name, it fails naming itself and the KD-trees
+  const CommandResult bvh = run("render " + scene("furnace-sphere.gltf") + " --res 8x8 --spp 1 --tree bvh4 "
+                                "--memory-limit 0.01 -o " + (dir.path / "x").string());
+  EXPECT_EQ(bvh.code, 2) << bvh.output;
+  EXPECT_NE(bvh.output.find("4-wide BVH"), std::string::npos) << bvh.output;
+  EXPECT_NE(bvh.output.find("--tree deep or compact"), std::string::npos) << bvh.output;
+  EXPECT_FALSE(fs::exists(dir.path / "x.exr"));
 }
 
 TEST(Cli, MemoryLimitAndTreeBudgetMakeTheTreeShallowerToFit) {
