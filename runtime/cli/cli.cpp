@@ -77,10 +77,10 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
                  "Use at most this many MiB of device memory (the KD-tree gets shallower when the scene would not fit)")
       ->check(CLI::PositiveNumber);
   cmd.add_option("--tree", r.tree,
-                 "What rays are traced through: deep (the KD-tree fastest on GPUs), compact (a KD-tree of 0.6x the "
-                 "nodes), bvh4 (a 4-wide BVH, fastest on CPUs; not with pth or hash) or auto (bvh4 when no device is "
-                 "a GPU and the method allows, else compact without a GPU, deep with one); the image is the same "
-                 "with every tree")
+                 "What rays are traced through: bvh4 (a 4-wide BVH, the fastest on CPUs and the H200; not with pth "
+                 "or hash), deep (the KD-tree for GPUs), compact (a KD-tree of 0.6x the nodes) or auto (bvh4 when "
+                 "the method allows, else compact without a GPU and deep with one); the image is the same with "
+                 "every tree")
       ->check(CLI::IsMember(tree_choices()));
   cmd.add_option("--tree-budget", r.tree_budget_mib,
                  "Lower the KD-tree depth limit until nodes, leaf lists and triangles fit in this many MiB")

@@ -24,7 +24,7 @@ TreeChoice tree_options(const std::string& choice, std::span<const DeviceInfo> d
     options.kd.compact = true;
   } else if (choice == "auto") {
     options.kd.compact = no_gpu;
-    options.bvh4 = no_gpu && !needs_kd;
+    options.bvh4 = !needs_kd;
   } else if (choice == "bvh4") {
     if (needs_kd)
       throw InputError("--tree bvh4: pth, hash and --tree-budget need the KD-tree; choose another method or tree");
