@@ -54,24 +54,6 @@ CO_INLINE float bvh4_inverse(float d) {
     }                                                               \
   } while (0)
 
-/* Intersects one leaf's triangles as kd_intersect_leaf does; 1 when an any-hit query is done. */
-CO_INLINE int bvh4_intersect_leaf(const Bvh4View* bvh, uint32_t ref, const WatertightRay* wr, float ray_tmin,
-                                  HitOut* hit, int any_hit) {
-  uint32_t first = bvh4_leaf_first(ref), count = bvh4_leaf_count(ref);
-  for (uint32_t i = 0; i < count; ++i) {
-    uint32_t tri = bvh->leaf_triangles[first + i];
-    CO_GLOBAL const Triangle* tp = &bvh->triangles[tri];
-    float t, u, v;
-    if (intersect_triangle(wr, v3_from4(tp->v0), v3_from4(tp->v1), v3_from4(tp->v2), ray_tmin,
-                           any_hit ? hit->t : INFINITY, &t, &u, &v) &&
-        (t < hit->t || (t == hit->t && tri < hit->triangle && hit->triangle != HIT_NONE))) {
-      hit->t = t; hit->u = u; hit->v = v; hit->triangle = tri;
-      if (any_hit) return 1;
-    }
-  }
-  return 0;
-}
-
 /* Closest hit (any_hit = 0) or any hit (any_hit = 1) in (tmin, tmax), as kd_trace_steps. `steps`,
  * when not null, receives the number of nodes and leaves visited. */
 CO_INLINE HitOut bvh4_trace_steps(const Bvh4View* bvh, co_vec3 org, co_vec3 dir, float tmin, float tmax,
@@ -93,7 +75,9 @@ CO_INLINE HitOut bvh4_trace_steps(const Bvh4View* bvh, co_vec3 org, co_vec3 dir,
     if (!kd_beyond_hit(hit.t, ref_t)) {
       ++visited;
       if (bvh4_is_leaf(ref)) {
-        if (bvh4_intersect_leaf(bvh, ref, &wr, tmin, &hit, any_hit)) break;
+        if (intersect_leaf_list(bvh->leaf_triangles, bvh4_leaf_first(ref), bvh4_leaf_count(ref), bvh->triangles, &wr,
+                                tmin, &hit, any_hit))
+          break;
       } else {
         const CO_GLOBAL Bvh4Node* n = &bvh->nodes[ref];
         co_float4 ax = co_f4_mul(co_f4_sub(n->lo_x, ox), ix), bx = co_f4_mul(co_f4_sub(n->hi_x, ox), ix);

@@ -44,14 +44,15 @@ typedef struct KdStackEntry {
 /* True when a cell entered at t0 lies wholly beyond the closest hit so far, hit_t. */
 CO_INLINE int kd_beyond_hit(float hit_t, float t0) { return hit_t * KD_TERMINATION_SLACK < t0; }
 
-/* Intersects the triangles of one leaf, narrowing *hit to the least (t, index); any_hit keeps the
- * first hit before hit->t and returns 1 there. */
-CO_INLINE int kd_intersect_leaf(const KdTreeView* tree, KdNode leaf, const WatertightRay* wr,
-                                float ray_tmin, HitOut* hit, int any_hit) {
-  uint32_t first = kd_leaf_first(leaf), count = kd_leaf_count(leaf);
+/* Intersects the `count` triangles listed from `first` in a leaf list, narrowing *hit to the least
+ * (t, index); any_hit keeps the first hit before hit->t and returns 1 there. The KD-tree's leaves
+ * and the BVH's (bvh4_traverse.h) both go through it, so they find the same hits. */
+CO_INLINE int intersect_leaf_list(const CO_GLOBAL uint32_t* list, uint32_t first, uint32_t count,
+                                  const CO_GLOBAL Triangle* triangles, const WatertightRay* wr, float ray_tmin,
+                                  HitOut* hit, int any_hit) {
   for (uint32_t i = 0; i < count; ++i) {
-    uint32_t tri = tree->leaf_triangles[first + i];
-    CO_GLOBAL const Triangle* tp = &tree->triangles[tri];
+    uint32_t tri = list[first + i];
+    CO_GLOBAL const Triangle* tp = &triangles[tri];
     float t, u, v;
     /* closest hit: also t equal to the best, which then goes to the lower index; a ray's own
      * tmax (no triangle yet) stays exclusive */
@@ -63,6 +64,12 @@ CO_INLINE int kd_intersect_leaf(const KdTreeView* tree, KdNode leaf, const Water
     }
   }
   return 0;
+}
+
+CO_INLINE int kd_intersect_leaf(const KdTreeView* tree, KdNode leaf, const WatertightRay* wr,
+                                float ray_tmin, HitOut* hit, int any_hit) {
+  return intersect_leaf_list(tree->leaf_triangles, kd_leaf_first(leaf), kd_leaf_count(leaf), tree->triangles, wr,
+                             ray_tmin, hit, any_hit);
 }
 
 /* One step at an inner node: picks the next node and pushes the far child when the ray needs
