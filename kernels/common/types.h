@@ -26,7 +26,7 @@ CO_INLINE uint32_t kd_left_child(KdNode n) { return n.word0 >> 2; }
 CO_INLINE uint32_t kd_leaf_count(KdNode n) { return n.word0 >> 2; }
 CO_INLINE uint32_t kd_leaf_first(KdNode n) { return n.word1; }
 
-/* ---- 4-wide BVH, 128 bytes per node (the CPU's structure: --tree bvh4) ----------------------
+/* ---- 4-wide BVH, 128 bytes per node (--tree bvh4, the default where the method allows) -------
  * Each node holds its four children's boxes lane by lane (lane i is child i), so one ray tests
  * all four with one SIMD operation per slab. A child reference is an inner node's index, or a
  * leaf: BVH4_LEAF, the triangle count less one in bits 27-30 and the first entry of the leaf lists

@@ -1,5 +1,6 @@
 // A 4-wide BVH over the KD-tree's kept triangles, in the device layout of kernels/common/types.h
-// (Bvh4Node): what CPUs trace with (--tree bvh4; kernels/common/bvh4_traverse.h). Its leaf lists
+// (Bvh4Node): what renders trace with unless the method walks the KD-tree (--tree bvh4, and auto;
+// kernels/common/bvh4_traverse.h). Its leaf lists
 // index the same kept triangles as the KD-tree's, so every ray gets the same hit from either.
 #pragma once
 
