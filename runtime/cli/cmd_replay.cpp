@@ -5,6 +5,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <optional>
 
 #include "runtime/accel/host_traversal.h"
 #include "runtime/cli/commands.h"
@@ -46,20 +47,28 @@ int run_replay(const ReplayCommand& cmd) {
   std::string tree = "deep";
   if (stats.contains("kdtree") && stats["kdtree"].contains("kind")) {
     const nlohmann::json& kind = stats["kdtree"]["kind"];
-    if (!kind.is_string() || (kind != "deep" && kind != "compact"))
-      throw InputError(fmt::format("{}: kdtree.kind must be \"deep\" or \"compact\"", cmd.stats.string()));
+    if (!kind.is_string() || (kind != "deep" && kind != "compact" && kind != "bvh4"))
+      throw InputError(fmt::format("{}: kdtree.kind must be \"deep\", \"compact\" or \"bvh4\"", cmd.stats.string()));
     tree = kind.get<std::string>();
   }
   const PreparedScene p = prepare_scene(cmd.scene, tree_options(tree));
-  const KdTreeView view = host_view(p.tree);
-  fmt::print("{}: {} KD-tree, {} nodes, depth {}\n", cmd.scene.string(), tree, p.tree.stats.node_count,
-             p.tree.stats.depth);
+  const KdTreeView kd_view = host_view(p.tree);
+  std::optional<Bvh4View> bvh_view;
+  if (p.bvh4) {
+    bvh_view = host_view(*p.bvh4, p.tree);
+    fmt::print("{}: 4-wide BVH, {} nodes, depth {}\n", cmd.scene.string(), p.bvh4->stats.node_count,
+               p.bvh4->stats.depth);
+  } else {
+    fmt::print("{}: {} KD-tree, {} nodes, depth {}\n", cmd.scene.string(), tree, p.tree.stats.node_count,
+               p.tree.stats.depth);
+  }
   for (const auto& ray : stats["stragglers"]["worst"]) {
     try {
       const glm::vec3 o = parse_vec3(ray.at("org"), cmd.stats), d = parse_vec3(ray.at("dir"), cmd.stats);
       const float tmin = parse_float(ray.at("tmin"), cmd.stats), tmax = parse_float(ray.at("tmax"), cmd.stats);
       std::uint32_t steps = 0;
-      const HitOut hit = kd_trace_steps(&view, v3(o.x, o.y, o.z), v3(d.x, d.y, d.z), tmin, tmax, 0, &steps);
+      const HitOut hit = bvh_view ? bvh4_trace_steps(&*bvh_view, v3(o.x, o.y, o.z), v3(d.x, d.y, d.z), tmin, tmax, 0, &steps)
+                                  : kd_trace_steps(&kd_view, v3(o.x, o.y, o.z), v3(d.x, d.y, d.z), tmin, tmax, 0, &steps);
       fmt::print("device {} nodes, host {} nodes: org ({:a}, {:a}, {:a}) dir ({:a}, {:a}, {:a}) -> {}\n",
                  ray.at("nodes").get<std::uint32_t>(), steps, o.x, o.y, o.z, d.x, d.y, d.z,
                  hit.triangle == HIT_NONE ? std::string("miss") : fmt::format("triangle {} at t {:a}", hit.triangle, hit.t));

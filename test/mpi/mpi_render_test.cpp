@@ -103,8 +103,9 @@ TEST(MpiAdaptive, TwoRanksGiveTheSingleProcessImageBitForBit) {
   if (const auto why = skip_reason(); !why.empty()) GTEST_SKIP() << why;
   TempDir dir("cohort-mpi-");
   const auto adaptive = [&](const std::string& name) {
-    auto args = render_args(dir.path / name, "naive", "64", "2");
-    args.insert(args.end(), {"--fov", "58", "--target-error", "0.05", "--stats", (dir.path / (name + ".json")).string()});
+    // enough passes that the second rank, still loading the scene while the first renders, gets some
+    auto args = render_args(dir.path / name, "naive", "256", "2");
+    args.insert(args.end(), {"--fov", "58", "--target-error", "0.02", "--stats", (dir.path / (name + ".json")).string()});
     return args;
   };
   ASSERT_EQ(wait_exit(spawn(COHORT_BINARY, adaptive("one"))).value_or(-1), 0);
