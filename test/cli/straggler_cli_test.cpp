@@ -23,12 +23,15 @@ nlohmann::json read_json(const std::filesystem::path& p) {
 
 }  // namespace
 
-TEST(Stragglers, StatsReportPassTimesAndTheMostNodesOneRayVisited) {
+// Through the BVH (--tree auto) and through the KD-tree: replay rebuilds the render's structure.
+class StragglerStats : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(StragglerStats, ReportPassTimesAndTheMostNodesOneRayVisited) {
   TempDir dir;
   const std::string box = cohort_test::shipped_scene("cornell-box.gltf");
   const auto stats = dir.path / "s.json";
   const CommandResult r = run("render " + box + " --res 24x16 --spp 4 --pass-spp 1 --method wavefront --stragglers 3 " +
-                              "--stats " + stats.string() + " -o " + (dir.path / "img").string());
+                              "--tree " + GetParam() + " --stats " + stats.string() + " -o " + (dir.path / "img").string());
   ASSERT_EQ(r.code, 0) << r.output;
   const auto j = read_json(stats);
   EXPECT_EQ(j["passes"].get<int>(), 4);
@@ -58,6 +61,8 @@ TEST(Stragglers, StatsReportPassTimesAndTheMostNodesOneRayVisited) {
   }
   EXPECT_EQ(lines, 3) << replay.output;
 }
+
+INSTANTIATE_TEST_SUITE_P(Trees, StragglerStats, ::testing::Values("auto", "deep"));
 
 TEST(Stragglers, MisuseIsExitTwoSayingWhy) {
   TempDir dir;
