@@ -65,7 +65,8 @@ inline PreparedScene prepare_scene(const std::filesystem::path& path, const KdBu
 
 // Rebuilds the tree with the depth limit lowered as far as needed for the scene's device memory
 // (tree and shading data, scene_memory.h) to fit `device_bytes`; nothing when it fits already.
-// Throws InputError naming the size needed and the limit when not even a one-leaf tree fits.
+// Throws InputError naming the size needed and the limit when not even a one-leaf tree fits, and
+// for a scene traced through a BVH that does not fit (it has no depth to trade).
 void fit_scene_to(PreparedScene& scene, std::size_t device_bytes, const KdBuildOptions& options = {});
 
 }  // namespace cohort
