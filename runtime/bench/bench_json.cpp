@@ -54,6 +54,13 @@ nlohmann::json rate_json(const RateFigure& f, double scale) {
   return {{"median", f.median() * scale}, {"best", f.best() * scale}, {"runs", runs}};
 }
 
+nlohmann::json bvh4_json(const Bvh4Stats& b) {
+  return {{"nodes", b.node_count},         {"leaves", b.leaf_count},
+          {"depth", b.depth},              {"average_leaf_triangles", b.average_leaf_triangles},
+          {"sah_cost", b.sah_cost},        {"bytes", b.bytes},
+          {"build_seconds", b.build_seconds}};
+}
+
 nlohmann::json scenes_json(const std::vector<SceneFigures>& scenes, const std::string& accel_key) {
   nlohmann::json list = nlohmann::json::array();
   for (const SceneFigures& s : scenes) {
@@ -74,13 +81,7 @@ nlohmann::json scenes_json(const std::vector<SceneFigures>& scenes, const std::s
                                                      {"sah_cost", t.sah_cost}, {"bytes", t.bytes},
                                                      {"dropped_triangles", t.dropped_triangles}}},
                     {"views", views}});
-    if (s.bvh4 && accel_key == "kdtree") {
-      const Bvh4Stats& b = *s.bvh4;
-      list.back()[accel_key]["bvh4"] = {{"nodes", b.node_count}, {"leaves", b.leaf_count}, {"depth", b.depth},
-                                        {"average_leaf_triangles", b.average_leaf_triangles},
-                                        {"sah_cost", b.sah_cost}, {"bytes", b.bytes},
-                                        {"build_seconds", b.build_seconds}};
-    }
+    if (s.bvh4 && accel_key == "kdtree") list.back()[accel_key]["bvh4"] = bvh4_json(*s.bvh4);
   }
   return list;
 }

@@ -114,10 +114,11 @@ SceneFigures bench_scene(const Device& cl, const ProgramCache& cache, const std:
   out.load_seconds = prepared.load_seconds;
   out.kdtree = prepared.tree.stats;
   out.tree_kind = prepared.tree_kind();
+  out.build_seconds = prepared.build_seconds();
   if (prepared.bvh4) out.bvh4 = prepared.bvh4->stats;
   out.bounds = prepared.scene.bounds();
   log(fmt::format("{}: {} triangles, {} tree built in {:.3f}s", path.string(), out.triangles, out.tree_kind,
-                  prepared.build_seconds()));
+                  out.build_seconds));
 
   std::optional<TraceBench> tracer;
   if (options.traversal) tracer.emplace(cl, cache, prepared.tree, prepared.bvh());

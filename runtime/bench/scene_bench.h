@@ -85,6 +85,7 @@ struct SceneFigures {
   double load_seconds = 0;
   KdTreeStats kdtree;
   std::string tree_kind;             // PreparedScene::tree_kind(): deep, compact or bvh4
+  double build_seconds = 0;          // PreparedScene::build_seconds(): the tree, or the BVH and its one leaf
   std::optional<Bvh4Stats> bvh4;     // with --tree bvh4 (the KD-tree is then one leaf)
   Bounds bounds;
   std::vector<ViewFigures> views;

@@ -1,8 +1,11 @@
 #include "runtime/bench/trace_bench.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 
 #include "runtime/backend/kernel_args.h"
+#include "runtime/render/device_scene.h"
 
 namespace cohort {
 
@@ -26,17 +29,11 @@ void set_trace_rays_args(DeviceKernel& k, const DeviceBuffer& nodes, const Devic
 
 TraceBench::TraceBench(const Device& device, const ProgramCache& cache, const KdTree& tree, const Bvh4* bvh)
     : device_(device), tree_(tree) {
-  program_ = device.build_program(cache, "trace", bvh ? "-DCOHORT_ACCEL_BVH4" : "");
+  const TraversalArrays arrays = traversal_arrays(tree, bvh);
+  program_ = device.build_program(cache, "trace", arrays.build_option);
   compile_seconds_ = program_.seconds;
-  if (bvh) {
-    nodes_ = device.allocate("BVH nodes", bvh->nodes.size() * sizeof(Bvh4Node), bvh->nodes.data(), Access::read_only);
-    leaves_ = device.allocate("leaf lists", bvh->leaf_triangles.size() * 4, bvh->leaf_triangles.data(),
-                              Access::read_only);
-  } else {
-    nodes_ = device.allocate("kd-tree nodes", tree.nodes.size() * sizeof(KdNode), tree.nodes.data(), Access::read_only);
-    leaves_ = device.allocate("leaf lists", tree.leaf_triangles.size() * 4, tree.leaf_triangles.data(),
-                              Access::read_only);
-  }
+  nodes_ = device.allocate(fmt::format("{} nodes", arrays.name), arrays.node_bytes, arrays.nodes, Access::read_only);
+  leaves_ = device.allocate("leaf lists", arrays.leaf_list_bytes, arrays.leaf_lists, Access::read_only);
   triangles_ = device.allocate("triangles", tree.triangles.size() * sizeof(Triangle), tree.triangles.data(),
                                Access::read_only);
 }

@@ -59,7 +59,7 @@ std::string mrays(const RateFigure& f) { return fmt::format("{:.2f} ({:.2f})", f
 
 void print_view(const SceneFigures& s, const ViewFigures& v) {
   fmt::print("\n{} [{} view], {} triangles, {} tree build {:.3f}s\n", s.path.string(), v.view.name, s.triangles,
-             s.tree_kind, s.kdtree.build_seconds + (s.bvh4 ? s.bvh4->build_seconds : 0.0));
+             s.tree_kind, s.build_seconds);
   if (v.primary && v.diffuse)
     fmt::print("  traversal Mrays/s, median (best): primary {} with {} hits of {} rays; diffuse {} over {} rays\n",
                mrays(v.primary->rays_per_second), v.primary->hits, v.primary->rays, mrays(v.diffuse->rays_per_second),

@@ -44,21 +44,19 @@ OpenedDevices open_devices(const RenderPlan& plan, int local_rank) {
 PreparedRender prepare_render(RenderPlan plan, int local_rank, bool reports) {
   OpenedDevices opened = open_devices(plan, local_rank);
   const RenderCommand& cmd = plan.command;
-  // what rays are traced through on these devices (tree_options: without a GPU the BVH, unless the
-  // method walks the KD-tree, pth and hash do, or a tree budget asks for one); any gives the same image
+  // what rays are traced through (tree_options: the BVH unless the method walks the KD-tree, pth and
+  // hash do, or a tree budget asks for one; the KD-tree then fits the devices); any gives the same image
   const TreeChoice tree = tree_options(cmd.tree, opened.devices,
                                        find_method(plan.settings().method).sorts || cmd.tree_budget_mib > 0);
   PreparedScene prepared = prepare_scene(cmd.scene, tree);
-  // the KD-tree a memory limit shrinks (the one auto builds without the BVH)
-  const KdBuildOptions kd_options = cmd.tree == "bvh4" ? KdBuildOptions{} : tree_options(cmd.tree, opened.devices, true).kd;
   // the BVH has no depth to trade for bytes: where it does not fit, auto falls back to the KD-tree
   if (plan.memory_limit && prepared.bvh4 && cmd.tree == "auto" &&
       scene_memory(prepared.tree, prepared.tables, prepared.bvh()).total() > plan.memory_limit)
-    prepared = prepare_scene(cmd.scene, TreeChoice{kd_options, false});
+    prepared = prepare_scene(cmd.scene, tree.kd);
   if (cmd.tree_budget_mib > 0)
     prepared.tree = build_kdtree_within(prepared.scene.positions, tree.kd,
                                         static_cast<std::size_t>(cmd.tree_budget_mib * 1048576.0));
-  if (plan.memory_limit) fit_scene_to(prepared, plan.memory_limit, kd_options);
+  if (plan.memory_limit) fit_scene_to(prepared, plan.memory_limit, tree.kd);
   if (plan.environment_map) set_environment_map(prepared.tables, load_environment_map(cmd.environment));
   if (cmd.white_sky) apply_white_sky(prepared, plan.command.settings);
   if (!cmd.camera_bounds.empty())

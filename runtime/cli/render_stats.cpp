@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "runtime/bench/bench_json.h"
 #include "runtime/cli/render_steps.h"
 #include "runtime/render/adaptive.h"
 #include "runtime/render/scene_memory.h"
@@ -112,11 +113,7 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
                  {"average_leaf_triangles", ts.average_leaf_triangles},
                  {"sah_cost", ts.sah_cost},
                  {"bytes", ts.bytes}};
-  if (const Bvh4* bvh = prepared.bvh())
-    j["kdtree"]["bvh4"] = {{"nodes", bvh->stats.node_count}, {"leaves", bvh->stats.leaf_count},
-                           {"depth", bvh->stats.depth}, {"average_leaf_triangles", bvh->stats.average_leaf_triangles},
-                           {"sah_cost", bvh->stats.sah_cost}, {"bytes", bvh->stats.bytes},
-                           {"build_seconds", bvh->stats.build_seconds}};
+  if (const Bvh4* bvh = prepared.bvh()) j["kdtree"]["bvh4"] = bvh4_json(bvh->stats);
   const SceneMemory memory = scene_memory(prepared.tree, prepared.tables, prepared.bvh());
   const double kept = static_cast<double>(std::max<std::size_t>(prepared.tree.triangles.size(), 1));
   j["device_memory"] = {{"nodes", memory.nodes}, {"leaf_lists", memory.leaf_lists},

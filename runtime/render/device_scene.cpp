@@ -224,6 +224,14 @@ SceneBuffers DeviceScene::kernel_buffers() const {
   return b;
 }
 
+TraversalArrays traversal_arrays(const KdTree& tree, const Bvh4* bvh) {
+  if (bvh)
+    return {"BVH", bvh->nodes.data(), bytes_of(bvh->nodes), bvh->leaf_triangles.data(), bytes_of(bvh->leaf_triangles),
+            "-DCOHORT_ACCEL_BVH4"};
+  return {"KD-tree", tree.nodes.data(), bytes_of(tree.nodes), tree.leaf_triangles.data(), bytes_of(tree.leaf_triangles),
+          ""};
+}
+
 DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables& tables, const Bvh4* bvh) {
   DeviceScene d;
   const SceneMemory memory = scene_memory(tree, tables, bvh);
@@ -233,13 +241,10 @@ DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables
                                   describe(memory, tree.triangles.size()), cl.info().name,
                                   cl.info().global_memory));
   const auto ro = Access::read_only;
-  if (bvh) {
-    d.nodes = cl.allocate("BVH nodes", bytes_of(bvh->nodes), bvh->nodes.data(), ro);
-    d.leaf_triangles = cl.allocate("BVH leaf lists", bytes_of(bvh->leaf_triangles), bvh->leaf_triangles.data(), ro);
-  } else {
-    d.nodes = cl.allocate("KD-tree nodes", bytes_of(tree.nodes), tree.nodes.data(), ro);
-    d.leaf_triangles = cl.allocate("KD-tree leaf lists", bytes_of(tree.leaf_triangles), tree.leaf_triangles.data(), ro);
-  }
+  const TraversalArrays arrays = traversal_arrays(tree, bvh);
+  d.nodes = cl.allocate(fmt::format("{} nodes", arrays.name), arrays.node_bytes, arrays.nodes, ro);
+  d.leaf_triangles =
+      cl.allocate(fmt::format("{} leaf lists", arrays.name), arrays.leaf_list_bytes, arrays.leaf_lists, ro);
   d.triangles = cl.allocate("triangles", bytes_of(tree.triangles), tree.triangles.data(), ro);
   d.triangle_material =
       cl.allocate("triangle materials", bytes_of(tables.triangle_material), tables.triangle_material.data(), ro);
@@ -266,9 +271,10 @@ DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables
   d.pick = light_pick(tables, 0.5f * tree.bounds.diagonal());
   d.features = tables.features;
   d.build_options = tables.features.build_options();
-  if (bvh) {
-    d.bvh4 = true;
-    d.build_options += d.build_options.empty() ? "-DCOHORT_ACCEL_BVH4" : " -DCOHORT_ACCEL_BVH4";
+  d.bvh4 = bvh != nullptr;
+  if (*arrays.build_option) {
+    if (!d.build_options.empty()) d.build_options += ' ';
+    d.build_options += arrays.build_option;
   }
   d.emitter_count = static_cast<std::uint32_t>(tables.emitters.entries.size());
   d.emitter_power_total = tables.emitters.total_power;

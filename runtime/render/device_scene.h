@@ -89,8 +89,20 @@ struct DeviceScene {
   SceneBuffers kernel_buffers() const;
 };
 
+// The arrays behind the kernels' node and leaf-list arguments: the BVH's when there is one, else the
+// KD-tree's, and the build option with which a program reads them (kernels/common/scene_accel.h).
+struct TraversalArrays {
+  const char* name;  // "BVH" or "KD-tree", for buffer names and messages
+  const void* nodes;
+  std::size_t node_bytes;
+  const void* leaf_lists;
+  std::size_t leaf_list_bytes;
+  const char* build_option;  // "-DCOHORT_ACCEL_BVH4" or empty
+};
+TraversalArrays traversal_arrays(const KdTree& tree, const Bvh4* bvh);
+
 // With `bvh`, its nodes and leaf lists go where the KD-tree's would, and every rendering program is
-// built with COHORT_ACCEL_BVH4 to trace them (kernels/common/scene_accel.h).
+// built with COHORT_ACCEL_BVH4 to trace them (traversal_arrays).
 DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables& tables, const Bvh4* bvh = nullptr);
 
 }  // namespace cohort

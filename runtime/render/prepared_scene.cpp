@@ -33,7 +33,6 @@ TreeChoice tree_options(const std::string& choice, std::span<const DeviceInfo> d
     throw InputError(
         fmt::format("--tree {}: unknown tree (choose from {})", choice, fmt::join(tree_choices(), ", ")));
   }
-  if (options.bvh4) options.kd.leaf_triangles = INT_MAX;  // the KD-tree only keeps the triangles: one leaf
   return options;
 }
 
@@ -57,7 +56,9 @@ PreparedScene prepare_scene(const std::filesystem::path& path, const TreeChoice&
   const auto t0 = std::chrono::steady_clock::now();
   p.scene = load_scene(path);
   p.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  p.tree = build_kdtree(p.scene.positions, choice.kd);
+  KdBuildOptions one_leaf = choice.kd;
+  one_leaf.leaf_triangles = INT_MAX;  // with the BVH the KD-tree only keeps the triangles
+  p.tree = build_kdtree(p.scene.positions, choice.bvh4 ? one_leaf : choice.kd);
   // The loaders reject a file without triangles; this catches one whose triangles all go, so that
   // no command renders an image of nothing.
   if (p.tree.triangles.empty())

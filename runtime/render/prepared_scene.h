@@ -37,7 +37,8 @@ struct PreparedScene {
 std::string describe_tree(const PreparedScene& scene);
 
 // What a scene is traced with: a KD-tree built with `kd`, or with `bvh4` a 4-wide BVH over the
-// kept triangles (the KD-tree then one leaf).
+// kept triangles (the KD-tree then one leaf; `kd` is still the KD-tree the choice would build without
+// the BVH, what a memory limit falls back to).
 struct TreeChoice {
   KdBuildOptions kd;
   bool bvh4 = false;

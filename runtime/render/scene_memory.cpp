@@ -16,8 +16,9 @@ std::size_t bytes_of(const std::vector<T>& v) {
 
 SceneMemory scene_memory(const KdTree& tree, const SceneTables& tables, const Bvh4* bvh) {
   SceneMemory m;
-  m.nodes = bvh ? bytes_of(bvh->nodes) : bytes_of(tree.nodes);
-  m.leaf_lists = bvh ? bytes_of(bvh->leaf_triangles) : bytes_of(tree.leaf_triangles);
+  const TraversalArrays arrays = traversal_arrays(tree, bvh);
+  m.nodes = arrays.node_bytes;
+  m.leaf_lists = arrays.leaf_list_bytes;
   m.triangles = bytes_of(tree.triangles);
   m.shading = bytes_of(tables.triangle_material) + bytes_of(tables.materials) +
               bytes_of(tables.emitters.entries) + bytes_of(tables.triangle_uvs) +
