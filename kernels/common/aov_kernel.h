@@ -32,7 +32,7 @@ CO_KERNEL render_aov(CO_PARAMS(RENDER_AOV_PARAMS)) {
     const CO_GLOBAL Material* m = &s.materials[s.triangle_material[hit.triangle]];
     co_vec3 base_color =
         v3_mul(v3_from4(m->base_color), material_texture(&s, m->base_color_texture, hit.triangle, hit.u, hit.v));
-    co_vec3 n = v3_normalize(triangle_cross(&s.tree.triangles[hit.triangle]));
+    co_vec3 n = v3_normalize(triangle_cross(&s.triangles[hit.triangle]));
     albedo = film_add(albedo, base_color);
     albedo.w = albedo.w + hit.t; /* the camera ray's direction is a unit vector: t is the distance */
     normal = film_add(normal, n);

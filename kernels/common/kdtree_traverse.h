@@ -44,24 +44,30 @@ typedef struct KdStackEntry {
 /* True when a cell entered at t0 lies wholly beyond the closest hit so far, hit_t. */
 CO_INLINE int kd_beyond_hit(float hit_t, float t0) { return hit_t * KD_TERMINATION_SLACK < t0; }
 
-/* Intersects the `count` triangles listed from `first` in a leaf list, narrowing *hit to the least
- * (t, index); any_hit keeps the first hit before hit->t and returns 1 there. The KD-tree's leaves
- * and the BVH's (bvh4_traverse.h) both go through it, so they find the same hits. */
+/* Tests triangle `tri` (at tp), narrowing *hit to the least (t, index); any_hit keeps the first hit
+ * before hit->t and returns 1 there. The KD-tree's leaves and the BVH's (bvh4_traverse.h) both go
+ * through it, so they find the same hits. */
+CO_INLINE int consider_triangle(const WatertightRay* wr, CO_GLOBAL const Triangle* tp, uint32_t tri, float ray_tmin,
+                                HitOut* hit, int any_hit) {
+  float t, u, v;
+  /* closest hit: also t equal to the best, which then goes to the lower index; a ray's own
+   * tmax (no triangle yet) stays exclusive */
+  if (intersect_triangle(wr, v3_from4(tp->v0), v3_from4(tp->v1), v3_from4(tp->v2), ray_tmin,
+                         any_hit ? hit->t : INFINITY, &t, &u, &v) &&
+      (t < hit->t || (t == hit->t && tri < hit->triangle && hit->triangle != HIT_NONE))) {
+    hit->t = t; hit->u = u; hit->v = v; hit->triangle = tri;
+    if (any_hit) return 1;
+  }
+  return 0;
+}
+
+/* The `count` triangles listed from `first` in a leaf list, through consider_triangle. */
 CO_INLINE int intersect_leaf_list(const CO_GLOBAL uint32_t* list, uint32_t first, uint32_t count,
                                   const CO_GLOBAL Triangle* triangles, const WatertightRay* wr, float ray_tmin,
                                   HitOut* hit, int any_hit) {
   for (uint32_t i = 0; i < count; ++i) {
     uint32_t tri = list[first + i];
-    CO_GLOBAL const Triangle* tp = &triangles[tri];
-    float t, u, v;
-    /* closest hit: also t equal to the best, which then goes to the lower index; a ray's own
-     * tmax (no triangle yet) stays exclusive */
-    if (intersect_triangle(wr, v3_from4(tp->v0), v3_from4(tp->v1), v3_from4(tp->v2), ray_tmin,
-                           any_hit ? hit->t : INFINITY, &t, &u, &v) &&
-        (t < hit->t || (t == hit->t && tri < hit->triangle && hit->triangle != HIT_NONE))) {
-      hit->t = t; hit->u = u; hit->v = v; hit->triangle = tri;
-      if (any_hit) return 1;
-    }
+    if (consider_triangle(wr, &triangles[tri], tri, ray_tmin, hit, any_hit)) return 1;
   }
   return 0;
 }

@@ -85,7 +85,7 @@ CO_INLINE ShadowRay nee_triangle(const SceneView* s, const RenderParams* p, floa
   sr.valid = 0;
   uint32_t e = pick_emitter(s, u_pick);
   EmitterEntry entry = s->emitters[e];
-  CO_GLOBAL const Triangle* tri = &s->tree.triangles[entry.triangle];
+  CO_GLOBAL const Triangle* tri = &s->triangles[entry.triangle];
   const CO_GLOBAL Material* m = &s->materials[s->triangle_material[entry.triangle]];
   float b1, b2, light_magnitude;
   sample_triangle(u1, u2, &b1, &b2);
@@ -290,7 +290,7 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
   }
   uint32_t segment = st->segment;
   int nee = nee_enabled(s, p);
-  CO_GLOBAL const Triangle* tri = &s->tree.triangles[hit.triangle];
+  CO_GLOBAL const Triangle* tri = &s->triangles[hit.triangle];
   const CO_GLOBAL Material* m = &s->materials[s->triangle_material[hit.triangle]];
   co_vec3 p0 = v3_from4(tri->v0), p1 = v3_from4(tri->v1), p2 = v3_from4(tri->v2);
   co_vec3 cross_n = triangle_cross(tri);

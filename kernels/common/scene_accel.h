@@ -12,7 +12,7 @@
 #if defined(COHORT_ACCEL_BVH4)
 #include "common/bvh4_traverse.h"
 typedef Bvh4View SceneAccel;
-#define make_scene_accel(nodes, leaf_triangles, triangles, lo, hi) make_bvh4_view(nodes, leaf_triangles, triangles)
+#define make_scene_accel(nodes, leaf_triangles, triangles, lo, hi) make_bvh4_view(nodes, leaf_triangles)
 #define scene_trace_steps bvh4_trace_steps
 #else
 typedef KdTreeView SceneAccel;

@@ -14,6 +14,7 @@
 
 typedef struct SceneView {
   SceneAccel tree;
+  const CO_GLOBAL Triangle* triangles;         /* the kept triangles, for shading and lights */
   const CO_GLOBAL uint32_t* triangle_material; /* per kept triangle */
   const CO_GLOBAL Material* materials;
   const CO_GLOBAL EmitterEntry* emitters;      /* emissive triangles, cdf by power */
@@ -38,6 +39,7 @@ CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNod
                                     const CO_GLOBAL PunctualLight* punctual_lights) {
   SceneView s;
   s.tree = make_scene_accel(nodes, leaf_triangles, triangles, p->scene_min, p->scene_max);
+  s.triangles = triangles;
   s.triangle_material = triangle_material;
   s.materials = materials;
   s.emitters = emitters;

@@ -311,13 +311,19 @@ Bvh4 build_bvh4(std::span<const Triangle> triangles) {
   Collapser collapser{builder, bvh, std::ldexp(std::max(largest, 1e-20f), -20)};
   collapser.collapse(0, 1);
   bvh.leaf_triangles.resize(builder.refs.size());
-  for (std::size_t i = 0; i < builder.refs.size(); ++i) bvh.leaf_triangles[i] = builder.triangle[builder.refs[i]];
+  bvh.leaf_vertices.resize(builder.refs.size());
+  for (std::size_t i = 0; i < builder.refs.size(); ++i) {
+    const std::uint32_t tri = builder.triangle[builder.refs[i]];
+    bvh.leaf_triangles[i] = tri;
+    bvh.leaf_vertices[i] = triangles[tri];
+    bvh.leaf_vertices[i].v0.w = co_as_float(tri);
+  }
   bvh.stats.node_count = bvh.nodes.size();
   bvh.stats.references = references.size();
   bvh.stats.average_leaf_triangles = double(references.size()) / double(bvh.stats.leaf_count);
   const float root_area = builder.nodes[0].box.area();
   bvh.stats.sah_cost = root_area > 0 ? collapser.sah / root_area : 0.0;
-  bvh.stats.bytes = bvh.nodes.size() * sizeof(Bvh4Node) + bvh.leaf_triangles.size() * sizeof(std::uint32_t);
+  bvh.stats.bytes = bvh.nodes.size() * sizeof(Bvh4Node) + bvh.leaf_vertices.size() * sizeof(Triangle);
   bvh.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return bvh;
 }

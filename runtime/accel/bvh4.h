@@ -1,7 +1,7 @@
 // A 4-wide BVH over the KD-tree's kept triangles, in the device layout of kernels/common/types.h
 // (Bvh4Node): what renders trace with unless the method walks the KD-tree (--tree bvh4, and auto;
-// kernels/common/bvh4_traverse.h). Its leaf lists
-// index the same kept triangles as the KD-tree's, so every ray gets the same hit from either.
+// kernels/common/bvh4_traverse.h). Its leaves hold the same kept triangles as the KD-tree's, so
+// every ray gets the same hit from either.
 #pragma once
 
 #include <cstddef>
@@ -21,12 +21,15 @@ struct Bvh4Stats {
   double average_leaf_triangles = 0;
   double sah_cost = 0;          // expected node visits + triangle tests of a random ray through the root
   double build_seconds = 0;
-  std::size_t bytes = 0;        // nodes + leaf lists (the triangles are the KD-tree's)
+  std::size_t bytes = 0;        // nodes + the leaves' triangles (the device's copy)
 };
 
 struct Bvh4 {
   std::vector<Bvh4Node> nodes;               // node 0 is the root; each node before its children
   std::vector<std::uint32_t> leaf_triangles;  // leaf lists, entries index the kept triangles
+  // What the device traverses: the triangle of every leaf_triangles entry, copied, with that index
+  // in v0.w (kernels/common/bvh4_traverse.h).
+  std::vector<Triangle> leaf_vertices;
   Bvh4Stats stats;
 };
 

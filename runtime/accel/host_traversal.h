@@ -19,12 +19,11 @@ inline KdTreeView host_view(const KdTree& tree) {
   return view;
 }
 
-// The 4-wide BVH over `tree`'s kept triangles (built by build_bvh4 from tree.triangles).
-inline Bvh4View host_view(const Bvh4& bvh, const KdTree& tree) {
+// The 4-wide BVH (its leaves carry their own copies of the triangles).
+inline Bvh4View host_view(const Bvh4& bvh) {
   Bvh4View view;
   view.nodes = bvh.nodes.data();
-  view.leaf_triangles = bvh.leaf_triangles.data();
-  view.triangles = tree.triangles.data();
+  view.leaf_triangles = bvh.leaf_vertices.data();
   return view;
 }
 

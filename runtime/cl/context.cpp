@@ -1,9 +1,12 @@
 #include "runtime/cl/context.h"
 
+#include <cstring>
+
 #include <fmt/format.h>
 
 #include "runtime/cl/cl_error.h"
 #include "runtime/cl/devices.h"
+#include "runtime/cl/host_pages.h"
 
 namespace cohort {
 
@@ -21,6 +24,7 @@ cl::Buffer ClContext::buffer(const std::string& what, std::size_t bytes, const v
   if (bytes > device.max_allocation)
     throw DeviceError(fmt::format("{} needs {} bytes in one buffer; {} allows at most {} bytes per allocation", what,
                                   bytes, device.name, device.max_allocation));
+  if (device.is_cpu && device.platform_name != "Oclgrind" && bytes >= kHugePageBytes / 2) return host_page_buffer(what, bytes, data, flags);
   try {
     // Drivers may defer a buffer's allocation and its CL_MEM_COPY_HOST_PTR upload to the first
     // kernel that uses it (NVIDIA's does), which put the scene's upload inside the first pass.
@@ -32,6 +36,24 @@ cl::Buffer ClContext::buffer(const std::string& what, std::size_t bytes, const v
       queue.enqueueMigrateMemObjects({b}, CL_MIGRATE_MEM_OBJECT_CONTENT_UNDEFINED);
     return b;
   } catch (const cl::Error& e) {
+    throw DeviceError(describe(e, fmt::format("{}, {} bytes", what, bytes)));
+  }
+}
+
+cl::Buffer ClContext::host_page_buffer(const std::string& what, std::size_t bytes, const void* data,
+                                       cl_mem_flags flags) const {
+  void* memory = allocate_huge_pages(bytes);
+  if (!memory)
+    throw DeviceError(fmt::format("{} needs {} bytes of host memory for {}, which could not be allocated", what, bytes,
+                                  device.name));
+  try {
+    if (data) std::memcpy(memory, data, bytes);
+    cl::Buffer b(context, flags | CL_MEM_USE_HOST_PTR, bytes, memory);
+    // the memory goes when the driver releases the buffer, however many handles shared it
+    b.setDestructorCallback([](cl_mem, void* m) { free_huge_pages(m); }, memory);
+    return b;
+  } catch (const cl::Error& e) {
+    free_huge_pages(memory);
     throw DeviceError(describe(e, fmt::format("{}, {} bytes", what, bytes)));
   }
 }

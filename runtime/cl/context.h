@@ -24,6 +24,10 @@ struct ClContext : Device {
   cl::Buffer buffer(const std::string& what, std::size_t bytes, const void* data = nullptr,
                     cl_mem_flags flags = CL_MEM_READ_WRITE) const;
 
+  // On a CPU device: a buffer in host memory of 2 MiB pages (runtime/cl/host_pages.h), which the
+  // kernels read in place (CL_MEM_USE_HOST_PTR).
+  cl::Buffer host_page_buffer(const std::string& what, std::size_t bytes, const void* data, cl_mem_flags flags) const;
+
   // The backend interface (runtime/backend/device.h).
   Backend backend() const override { return Backend::opencl; }
   const DeviceInfo& info() const override { return device; }

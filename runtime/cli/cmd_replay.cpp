@@ -55,7 +55,7 @@ int run_replay(const ReplayCommand& cmd) {
   const KdTreeView kd_view = host_view(p.tree);
   std::optional<Bvh4View> bvh_view;
   if (p.bvh4) {
-    bvh_view = host_view(*p.bvh4, p.tree);
+    bvh_view = host_view(*p.bvh4);
     fmt::print("{}: 4-wide BVH, {} nodes, depth {}\n", cmd.scene.string(), p.bvh4->stats.node_count,
                p.bvh4->stats.depth);
   } else {

@@ -226,7 +226,7 @@ SceneBuffers DeviceScene::kernel_buffers() const {
 
 TraversalArrays traversal_arrays(const KdTree& tree, const Bvh4* bvh) {
   if (bvh)
-    return {"BVH", bvh->nodes.data(), bytes_of(bvh->nodes), bvh->leaf_triangles.data(), bytes_of(bvh->leaf_triangles),
+    return {"BVH", bvh->nodes.data(), bytes_of(bvh->nodes), bvh->leaf_vertices.data(), bytes_of(bvh->leaf_vertices),
             "-DCOHORT_ACCEL_BVH4"};
   return {"KD-tree", tree.nodes.data(), bytes_of(tree.nodes), tree.leaf_triangles.data(), bytes_of(tree.leaf_triangles),
           ""};

@@ -13,7 +13,7 @@ namespace cohort {
 
 struct SceneMemory {
   std::size_t nodes = 0;       // KD-tree nodes, or the 4-wide BVH's
-  std::size_t leaf_lists = 0;  // leaf triangle lists
+  std::size_t leaf_lists = 0;  // the KD-tree's leaf lists (indices); the BVH's leaf triangles (copies)
   std::size_t triangles = 0;   // vertices for intersection
   std::size_t shading = 0;     // per-triangle materials and texture coordinates, materials,
                                // textures, lights, environment map

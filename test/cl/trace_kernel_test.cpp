@@ -33,7 +33,8 @@ std::vector<HitOut> trace_on_device(const KdTree& tree, const std::vector<TestRa
     in[i] = RayIn{{rays[i].org.x, rays[i].org.y, rays[i].org.z, 0.f}, {rays[i].dir.x, rays[i].dir.y, rays[i].dir.z, tmax[i]}};
   const DeviceBuffer nodes = bvh ? cl.allocate("nodes", bvh->nodes.size() * sizeof(Bvh4Node), bvh->nodes.data())
                                  : cl.allocate("nodes", tree.nodes.size() * sizeof(KdNode), tree.nodes.data());
-  const DeviceBuffer leaves = bvh ? cl.allocate("leaves", bvh->leaf_triangles.size() * 4, bvh->leaf_triangles.data())
+  const DeviceBuffer leaves = bvh ? cl.allocate("leaves", bvh->leaf_vertices.size() * sizeof(Triangle),
+                                                bvh->leaf_vertices.data())
                                   : cl.allocate("leaves", tree.leaf_triangles.size() * 4, tree.leaf_triangles.data());
   const DeviceBuffer tris = cl.allocate("triangles", tree.triangles.size() * sizeof(Triangle), tree.triangles.data());
   const DeviceBuffer ray_buf = cl.allocate("rays", in.size() * sizeof(RayIn), in.data());
