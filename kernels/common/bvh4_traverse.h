@@ -107,21 +107,39 @@ CO_INLINE HitOut bvh4_trace_steps(const Bvh4View* bvh, co_vec3 org, co_vec3 dir,
         /* strict: an unused lane's box at +infinity gives enter = leave = +infinity */
         uint32_t mask = co_f4_less(enter, co_f4_scale(leave, 1.0000004f));
         if (mask != 0u) {
-          /* the lanes entered, nearest first: a sorting network on (entry, child), the lanes not
-           * entered at +infinity so that they sort last; no indexed private arrays (registers) */
+          co_uint4 c = n->child;
+          /* one or two lanes entered (most steps): no sorting network, and one branch on the
+           * count instead of five data-dependent ones */
+          uint32_t rest = mask & (mask - 1u);
+          if (rest == 0u) {
+            ref = mask == 1u ? c.x : mask == 2u ? c.y : mask == 4u ? c.z : c.w;
+            ref_t = mask == 1u ? enter.x : mask == 2u ? enter.y : mask == 4u ? enter.z : enter.w;
+            continue;
+          }
+          if ((rest & (rest - 1u)) == 0u) {
+            uint32_t a = mask & ~rest; /* the lower lane's bit */
+            float ta = a == 1u ? enter.x : a == 2u ? enter.y : enter.z;
+            uint32_t ra = a == 1u ? c.x : a == 2u ? c.y : c.z;
+            float tb = rest == 2u ? enter.y : rest == 4u ? enter.z : enter.w;
+            uint32_t rb = rest == 2u ? c.y : rest == 4u ? c.z : c.w;
+            BVH4_ORDER(ta, ra, tb, rb);
+            stack_ref[sp] = rb; stack_t[sp] = tb; ++sp;
+            ref = ra; ref_t = ta;
+            continue;
+          }
+          /* three or four: a sorting network on (entry, child), the lanes not entered at
+           * +infinity so that they sort last; no indexed private arrays (registers) */
           float t0 = (mask & 1u) ? enter.x : INFINITY, t1 = (mask & 2u) ? enter.y : INFINITY;
           float t2 = (mask & 4u) ? enter.z : INFINITY, t3 = (mask & 8u) ? enter.w : INFINITY;
-          co_uint4 c = n->child;
           uint32_t r0 = c.x, r1 = c.y, r2 = c.z, r3 = c.w;
           BVH4_ORDER(t0, r0, t1, r1);
           BVH4_ORDER(t2, r2, t3, r3);
           BVH4_ORDER(t0, r0, t2, r2);
           BVH4_ORDER(t1, r1, t3, r3);
           BVH4_ORDER(t1, r1, t2, r2);
-          uint32_t k = (mask & 1u) + ((mask >> 1) & 1u) + ((mask >> 2) & 1u) + ((mask >> 3) & 1u);
-          if (k > 3u) { stack_ref[sp] = r3; stack_t[sp] = t3; ++sp; }
-          if (k > 2u) { stack_ref[sp] = r2; stack_t[sp] = t2; ++sp; }
-          if (k > 1u) { stack_ref[sp] = r1; stack_t[sp] = t1; ++sp; }
+          if (mask == 15u) { stack_ref[sp] = r3; stack_t[sp] = t3; ++sp; }
+          stack_ref[sp] = r2; stack_t[sp] = t2; ++sp;
+          stack_ref[sp] = r1; stack_t[sp] = t1; ++sp;
           ref = r0; ref_t = t0;
           continue;
         }
