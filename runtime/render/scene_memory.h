@@ -17,6 +17,7 @@ struct SceneMemory {
   std::size_t triangles = 0;   // vertices for intersection
   std::size_t shading = 0;     // per-triangle materials and texture coordinates, materials,
                                // textures, lights, environment map
+  bool leaves_hold_triangles = false;  // the BVH's: describe() says "leaf triangles"
   std::size_t total() const { return nodes + leaf_lists + triangles + shading; }
   std::size_t tree() const { return nodes + leaf_lists + triangles; }
 };
@@ -25,7 +26,7 @@ struct SceneMemory {
 SceneMemory scene_memory(const KdTree& tree, const SceneTables& tables, const Bvh4* bvh = nullptr);
 
 // "123.4 MiB: 150.2 bytes per triangle (nodes 60.1, leaf lists 30.0, triangles 48.0, shading
-// 12.1)"; `triangles` is the kept triangle count.
+// 12.1)", "leaf triangles" for the BVH's; `triangles` is the kept triangle count.
 std::string describe(const SceneMemory& memory, std::size_t triangles);
 
 }  // namespace cohort

@@ -6,7 +6,7 @@
 #   experiment-only builder knobs: GRID=1|2 splits references at the root box's dyadic planes,
 #   SPLITF the area factor); real-base / real4: the host build of the traversal (throwaway
 #   harness, protocol rays on 2 threads; real4 = the working tree's traversal with cohort-var's builder).
-# Usage: r9-run.sh OUT_DIR PART   (PART: gpu | host | pocl)
+# Usage: r9-run.sh OUT_DIR PART   (PART: gpu | host | splits | pocl; SPONZA_SPP, CONF_SPP for pocl)
 set -uo pipefail
 R="${1:?usage: r9-run.sh OUT_DIR PART}"; PART="${2:?part}"
 mkdir -p "$R" /tmp/r9
@@ -43,6 +43,24 @@ host)
       env HUGE=1 $2 taskset -c 0,1 timeout 60 $B/$1 "$SP" interior 256 2>&1 | grep -E "sah|per ray|Mrays"
     done
   done 2>&1 | tee "$R/host-log.txt" ;;
+splits)
+  for round in 1 2 3; do
+    for v in "GRID=0" "SPLITF=0.5" "SPLITF=0.25 SPLITD=8" "GRID=1 SPLITF=0.25 SPLITD=8"; do
+      echo "== round $round $v"
+      env HUGE=1 $v taskset -c 0,1 timeout 60 $B/real4 "$SP" interior 256 2>&1 | grep -E "sah|per ray|Mrays"
+    done
+  done 2>&1 | tee "$R/splits-log.txt"
+  export POCL_CPU_MAX_CU_COUNT=2 POCL_MAX_PTHREAD_COUNT=2
+  taskset -c 0,1 timeout 120 $B/cohort-var render "$G/bunny/bun_zipper.ply" --white-sky --res 16x16 --spp 1 \
+    --method naive --tree bvh4 --device portable -o /tmp/r9/warm.exr >/dev/null 2>&1
+  for round in 1 2 3; do
+    for v in "GRID=0" "SPLITF=0.25 SPLITD=8" "SPLITF=0.5"; do
+      env $v taskset -c 0,1 timeout 90 $B/cohort-var render "$SP" --white-sky --res 64x64 --spp 256 --method naive \
+        --tree bvh4 --device portable $INT -o /tmp/r9/cpu.exr --stats "$R/cpu.json" >/dev/null 2>&1
+      echo "$round sponza $v $(python3 -c "import json; j=json.load(open('$R/cpu.json')); print(j['timings']['render_cpu_seconds'], j['timings']['render_seconds'], j['kdtree']['bvh4']['nodes'])")"
+    done
+  done 2>&1 | tee "$R/splits-pocl-log.txt"
+  rm -f "$R/cpu.json" ;;
 pocl)
   export POCL_CPU_MAX_CU_COUNT=2 POCL_MAX_PTHREAD_COUNT=2
   for c in cohort-base cohort-new1 cohort cohort-var; do  # compile each binary's kernels once, untimed
