@@ -25,8 +25,9 @@
 
 /* The leaves hold their triangles themselves, in leaf order (a triangle split into several
  * references appears once per leaf), each with its kept-triangle index in v0.w: a leaf costs one
- * run of consecutive loads instead of a list entry and then a triangle elsewhere (1.2x on the
- * Sponza interior's diffuse rays on a CPU, together with the near-plane selection below). */
+ * run of consecutive loads instead of a list entry and then a triangle elsewhere. With the
+ * near-plane selection below (and 2 MiB pages on CPUs): Sponza interior diffuse rays 1.15-1.2x on
+ * PoCL, 1.14-1.18x on the H200 (docs/results.md, "Ninth session"). */
 typedef struct Bvh4View {
   const CO_GLOBAL Bvh4Node* nodes;
   const CO_GLOBAL Triangle* leaf_triangles;
