@@ -111,8 +111,21 @@ std::vector<Reference> make_references(std::span<const Triangle> triangles) {
   return refs;
 }
 
+// Four floats in one SSE register (GCC and Clang vector extensions): a reference's box corner,
+// x y z and an unused lane. The binning below extends bin boxes with one min and one max of these
+// instead of six scalar ones. vmin and vmax choose exactly as std::min and std::max (the first
+// argument unless the second is smaller, or larger), so the tree is the bits of a scalar build.
+typedef float Vec4 __attribute__((vector_size(16)));
+typedef int Int4 __attribute__((vector_size(16)));
+inline Vec4 vmin(Vec4 a, Vec4 b) { return b < a ? b : a; }
+inline Vec4 vmax(Vec4 a, Vec4 b) { return a < b ? b : a; }
+
+struct alignas(32) RefBox {
+  Vec4 lo, hi;  // w lanes 0
+};
+
 struct Builder {
-  std::vector<Box> tri_box;                   // per reference
+  std::vector<RefBox> ref_box;                 // per reference
   std::vector<std::array<float, 3>> centroid;  // per reference
   std::vector<std::uint32_t> triangle;         // per reference
   std::vector<std::uint32_t> refs;             // reference indices, partitioned into the leaves
@@ -121,12 +134,13 @@ struct Builder {
   std::vector<Node2> nodes;
 
   explicit Builder(const std::vector<Reference>& references)
-      : tri_box(references.size()), centroid(references.size()), triangle(references.size()),
+      : ref_box(references.size()), centroid(references.size()), triangle(references.size()),
         refs(references.size()), nodes(2 * references.size() - 1) {
     for (std::size_t i = 0; i < references.size(); ++i) {
-      tri_box[i] = references[i].box;
+      const Box& b = references[i].box;
+      ref_box[i] = {Vec4{b.lo[0], b.lo[1], b.lo[2], 0.0f}, Vec4{b.hi[0], b.hi[1], b.hi[2], 0.0f}};
       triangle[i] = references[i].triangle;
-      for (int a = 0; a < 3; ++a) centroid[i][a] = 0.5f * (tri_box[i].lo[a] + tri_box[i].hi[a]);
+      for (int a = 0; a < 3; ++a) centroid[i][a] = 0.5f * (b.lo[a] + b.hi[a]);
     }
     std::iota(refs.begin(), refs.end(), 0u);
   }
@@ -138,34 +152,52 @@ struct Builder {
   };
 
   Split best_split(std::uint32_t first, std::uint32_t count, const Box& centroids) const {
-    Split best;
+    // one pass over the references bins all three axes (an axis without extent is left out);
+    // each axis's bins see the references in the same order as three passes would
+    bool used[3];
+    float scale_a[3];
     for (int a = 0; a < 3; ++a) {
       const float extent = centroids.hi[a] - centroids.lo[a];
-      if (!(extent > 0.0f)) continue;
-      const float scale = kBins / extent;
-      std::array<Box, kBins> bin_box;
-      std::array<std::uint32_t, kBins> bin_count{};
-      for (std::uint32_t i = first; i < first + count; ++i) {
-        const std::uint32_t r = refs[i];
-        const int b = std::min(kBins - 1, static_cast<int>((centroid[r][a] - centroids.lo[a]) * scale));
-        ++bin_count[b];
-        bin_box[b].extend(tri_box[r]);
+      used[a] = extent > 0.0f;
+      scale_a[a] = used[a] ? kBins / extent : 0.0f;
+    }
+    const Vec4 lo{centroids.lo[0], centroids.lo[1], centroids.lo[2], 0.0f};
+    const Vec4 scale{scale_a[0], scale_a[1], scale_a[2], 0.0f};
+    const Vec4 inf{INFINITY, INFINITY, INFINITY, INFINITY};
+    std::array<std::array<RefBox, kBins>, 3> bin_box;
+    for (auto& axis : bin_box)
+      for (RefBox& b : axis) b = {inf, -inf};
+    std::array<std::array<std::uint32_t, kBins>, 3> bin_count{};
+    for (std::uint32_t i = first; i < first + count; ++i) {
+      const RefBox& box = ref_box[refs[i]];
+      const Vec4 c = 0.5f * (box.lo + box.hi);  // centroid[r], computed the same way
+      const Int4 bins = __builtin_convertvector((c - lo) * scale, Int4);
+      for (int a = 0; a < 3; ++a) {
+        if (!used[a]) continue;
+        const int b = std::min(kBins - 1, bins[a]);
+        ++bin_count[a][b];
+        bin_box[a][b].lo = vmin(bin_box[a][b].lo, box.lo);
+        bin_box[a][b].hi = vmax(bin_box[a][b].hi, box.hi);
       }
+    }
+    Split best;
+    for (int a = 0; a < 3; ++a) {
+      if (!used[a]) continue;
       std::array<float, kBins> right_area{};
       std::array<std::uint32_t, kBins> right_count{};
       Box acc;
       std::uint32_t n = 0;
       for (int b = kBins - 1; b > 0; --b) {
-        acc.extend(bin_box[b]);
-        n += bin_count[b];
+        acc.extend(to_box(bin_box[a][b]));
+        n += bin_count[a][b];
         right_area[b] = acc.area();
         right_count[b] = n;
       }
       acc = Box{};
       n = 0;
       for (int b = 0; b < kBins - 1; ++b) {
-        acc.extend(bin_box[b]);
-        n += bin_count[b];
+        acc.extend(to_box(bin_box[a][b]));
+        n += bin_count[a][b];
         if (n == 0 || right_count[b + 1] == 0) continue;
         const float cost = acc.area() * n + right_area[b + 1] * right_count[b + 1];
         if (cost < best.cost) best = {a, b, cost};
@@ -174,13 +206,22 @@ struct Builder {
     return best;
   }
 
+  static Box to_box(const RefBox& r) { return Box{{r.lo[0], r.lo[1], r.lo[2]}, {r.hi[0], r.hi[1], r.hi[2]}}; }
+
   void build(std::uint32_t slot, std::uint32_t first, std::uint32_t count, int depth) {
     Node2& node = nodes[slot];
-    Box centroids;
+    const Vec4 inf{INFINITY, INFINITY, INFINITY, INFINITY};
+    RefBox box{inf, -inf}, centroid_box{inf, -inf};
     for (std::uint32_t i = first; i < first + count; ++i) {
-      node.box.extend(tri_box[refs[i]]);
-      centroids.extend(centroid[refs[i]]);
+      const RefBox& r = ref_box[refs[i]];
+      box.lo = vmin(box.lo, r.lo);
+      box.hi = vmax(box.hi, r.hi);
+      const Vec4 c = 0.5f * (r.lo + r.hi);
+      centroid_box.lo = vmin(centroid_box.lo, c);
+      centroid_box.hi = vmax(centroid_box.hi, c);
     }
+    node.box = to_box(box);
+    const Box centroids = to_box(centroid_box);
     node.first = first;
     node.count = count;
     if (count == 1) return;
