@@ -54,9 +54,6 @@ struct ClEventObject : EventObject {
 
 DeviceEvent wrap_event(const cl::Event& e) { return DeviceEvent(std::make_shared<ClEventObject>(e)); }
 
-// The simulator of scripts/test-oclgrind, whose checks need two host-side detours (write, fill).
-bool is_oclgrind(const DeviceInfo& d) { return d.platform_name == "Oclgrind"; }
-
 }  // namespace
 
 const cl::Buffer& cl_buffer(const DeviceBuffer& b) {

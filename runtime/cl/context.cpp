@@ -24,7 +24,8 @@ cl::Buffer ClContext::buffer(const std::string& what, std::size_t bytes, const v
   if (bytes > device.max_allocation)
     throw DeviceError(fmt::format("{} needs {} bytes in one buffer; {} allows at most {} bytes per allocation", what,
                                   bytes, device.name, device.max_allocation));
-  if (device.is_cpu && device.platform_name != "Oclgrind" && bytes >= kHugePageBytes / 2) return host_page_buffer(what, bytes, data, flags);
+  if (device.is_cpu && !is_oclgrind(device) && bytes >= kHugePageBytes / 2)
+    return host_page_buffer(what, bytes, data, flags);
   try {
     // Drivers may defer a buffer's allocation and its CL_MEM_COPY_HOST_PTR upload to the first
     // kernel that uses it (NVIDIA's does), which put the scene's upload inside the first pass.
