@@ -360,11 +360,9 @@ Bvh4 build_bvh4(std::span<const Triangle> triangles) {
   for (int a = 0; a < 3; ++a) largest = std::max({largest, std::fabs(root.lo[a]), std::fabs(root.hi[a])});
   Collapser collapser{builder, bvh, std::ldexp(std::max(largest, 1e-20f), -20)};
   collapser.collapse(0, 1);
-  bvh.leaf_triangles.resize(builder.refs.size());
   bvh.leaf_vertices.resize(builder.refs.size());
   for (std::size_t i = 0; i < builder.refs.size(); ++i) {
     const std::uint32_t tri = builder.triangle[builder.refs[i]];
-    bvh.leaf_triangles[i] = tri;
     bvh.leaf_vertices[i] = triangles[tri];
     bvh.leaf_vertices[i].v0.w = co_as_float(tri);
   }

@@ -26,9 +26,8 @@ struct Bvh4Stats {
 
 struct Bvh4 {
   std::vector<Bvh4Node> nodes;               // node 0 is the root; each node before its children
-  std::vector<std::uint32_t> leaf_triangles;  // leaf lists, entries index the kept triangles
-  // What the device traverses: the triangle of every leaf_triangles entry, copied, with that index
-  // in v0.w (kernels/common/bvh4_traverse.h).
+  // The leaves' entries (a leaf reference names its first entry and count): each a copy of a kept
+  // triangle, with that triangle's index in v0.w (kernels/common/bvh4_traverse.h).
   std::vector<Triangle> leaf_vertices;
   Bvh4Stats stats;
 };
