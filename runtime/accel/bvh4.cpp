@@ -126,7 +126,6 @@ struct alignas(32) RefBox {
 
 struct Builder {
   std::vector<RefBox> ref_box;                 // per reference
-  std::vector<std::array<float, 3>> centroid;  // per reference
   std::vector<std::uint32_t> triangle;         // per reference
   std::vector<std::uint32_t> refs;             // reference indices, partitioned into the leaves
   // A subtree of n references owns the 2n - 1 slots from its root's: its left child's subtree
@@ -134,13 +133,12 @@ struct Builder {
   std::vector<Node2> nodes;
 
   explicit Builder(const std::vector<Reference>& references)
-      : ref_box(references.size()), centroid(references.size()), triangle(references.size()),
+      : ref_box(references.size()), triangle(references.size()),
         refs(references.size()), nodes(2 * references.size() - 1) {
     for (std::size_t i = 0; i < references.size(); ++i) {
       const Box& b = references[i].box;
       ref_box[i] = {Vec4{b.lo[0], b.lo[1], b.lo[2], 0.0f}, Vec4{b.hi[0], b.hi[1], b.hi[2], 0.0f}};
       triangle[i] = references[i].triangle;
-      for (int a = 0; a < 3; ++a) centroid[i][a] = 0.5f * (b.lo[a] + b.hi[a]);
     }
     std::iota(refs.begin(), refs.end(), 0u);
   }
@@ -169,7 +167,7 @@ struct Builder {
     std::array<std::array<std::uint32_t, kBins>, 3> bin_count{};
     for (std::uint32_t i = first; i < first + count; ++i) {
       const RefBox& box = ref_box[refs[i]];
-      const Vec4 c = 0.5f * (box.lo + box.hi);  // centroid[r], computed the same way
+      const Vec4 c = 0.5f * (box.lo + box.hi);  // centroid(r, a) in lane a
       const Int4 bins = __builtin_convertvector((c - lo) * scale, Int4);
       for (int a = 0; a < 3; ++a) {
         if (!used[a]) continue;
@@ -215,6 +213,9 @@ struct Builder {
     return best;
   }
 
+  // A reference's centroid on one axis: the value the binning computes four lanes at a time.
+  float centroid(std::uint32_t r, int a) const { return 0.5f * (ref_box[r].lo[a] + ref_box[r].hi[a]); }
+
   static Box to_box(const RefBox& r) { return Box{{r.lo[0], r.lo[1], r.lo[2]}, {r.hi[0], r.hi[1], r.hi[2]}}; }
 
   void build(std::uint32_t slot, std::uint32_t first, std::uint32_t count, int depth) {
@@ -241,7 +242,7 @@ struct Builder {
       if (count <= kMaxLeaf && leaf_cost <= kNodeCost * node.box.area() + split.cost) return;
       const float scale = kBins / (centroids.hi[split.axis] - centroids.lo[split.axis]);
       const auto in_left = [&](std::uint32_t r) {
-        return std::min(kBins - 1, static_cast<int>((centroid[r][split.axis] - centroids.lo[split.axis]) * scale)) <=
+        return std::min(kBins - 1, static_cast<int>((centroid(r, split.axis) - centroids.lo[split.axis]) * scale)) <=
                split.bin;
       };
       mid = static_cast<std::uint32_t>(std::partition(refs.begin() + first, refs.begin() + first + count, in_left) -
@@ -255,7 +256,8 @@ struct Builder {
         if (centroids.hi[a] - centroids.lo[a] > centroids.hi[axis] - centroids.lo[axis]) axis = a;
       std::nth_element(refs.begin() + first, refs.begin() + mid, refs.begin() + first + count,
                        [&](std::uint32_t x, std::uint32_t y) {
-                         return centroid[x][axis] < centroid[y][axis] || (centroid[x][axis] == centroid[y][axis] && x < y);
+                         const float cx = centroid(x, axis), cy = centroid(y, axis);
+                         return cx < cy || (cx == cy && x < y);
                        });
     }
     node.count = 0;
