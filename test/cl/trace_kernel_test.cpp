@@ -14,6 +14,7 @@
 #include "runtime/cl/cl_error.h"
 #include "runtime/cl/context.h"
 #include "runtime/cl/kernel_program.h"
+#include "runtime/render/device_scene.h"
 #include "runtime/scene/scene.h"
 
 namespace fs = std::filesystem;
@@ -27,15 +28,14 @@ std::vector<HitOut> trace_on_device(const KdTree& tree, const std::vector<TestRa
                                     const std::vector<float>& tmax, const Bvh4* bvh = nullptr) {
   const ClContext cl(select_device(""));
   const ProgramCache cache(ProgramCache::default_directory());
-  const DeviceProgram program = cl.build_program(cache, "trace", bvh ? "-DCOHORT_ACCEL_BVH4" : "");
+  // the arrays and build option a render would use (traversal_arrays)
+  const TraversalArrays arrays = traversal_arrays(tree, bvh);
+  const DeviceProgram program = cl.build_program(cache, "trace", arrays.build_option);
   std::vector<RayIn> in(rays.size());
   for (std::size_t i = 0; i < rays.size(); ++i)
     in[i] = RayIn{{rays[i].org.x, rays[i].org.y, rays[i].org.z, 0.f}, {rays[i].dir.x, rays[i].dir.y, rays[i].dir.z, tmax[i]}};
-  const DeviceBuffer nodes = bvh ? cl.allocate("nodes", bvh->nodes.size() * sizeof(Bvh4Node), bvh->nodes.data())
-                                 : cl.allocate("nodes", tree.nodes.size() * sizeof(KdNode), tree.nodes.data());
-  const DeviceBuffer leaves = bvh ? cl.allocate("leaves", bvh->leaf_vertices.size() * sizeof(Triangle),
-                                                bvh->leaf_vertices.data())
-                                  : cl.allocate("leaves", tree.leaf_triangles.size() * 4, tree.leaf_triangles.data());
+  const DeviceBuffer nodes = cl.allocate("nodes", arrays.node_bytes, arrays.nodes);
+  const DeviceBuffer leaves = cl.allocate("leaves", arrays.leaf_list_bytes, arrays.leaf_lists);
   const DeviceBuffer tris = cl.allocate("triangles", tree.triangles.size() * sizeof(Triangle), tree.triangles.data());
   const DeviceBuffer ray_buf = cl.allocate("rays", in.size() * sizeof(RayIn), in.data());
   const DeviceBuffer hit_buf = cl.allocate("hits", in.size() * sizeof(HitOut));
