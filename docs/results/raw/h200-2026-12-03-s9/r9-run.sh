@@ -6,7 +6,11 @@
 #   experiment-only builder knobs: GRID=1|2 splits references at the root box's dyadic planes,
 #   SPLITF the area factor); real-base / real4: the host build of the traversal (throwaway
 #   harness, protocol rays on 2 threads; real4 = the working tree's traversal with cohort-var's builder).
-# Usage: r9-run.sh OUT_DIR PART   (PART: gpu | host | splits | pocl; SPONZA_SPP, CONF_SPP for pocl)
+#   PART builds (not run yet, no device; the bundle then holds cohort-new2 = 64f0fc8 and cohort =
+#   main): the BVH build before and after the ninth session's binning changes, `cohort info --tree
+#   bvh4` in turn, 3 rounds: bunny subdivided twice and Sponza once (1.1M each) on 2 cores, Sponza
+#   twice (4.47M) on 16; then the Sponza interior image from both binaries on OpenCL and CUDA (cmp).
+# Usage: r9-run.sh OUT_DIR PART   (PART: gpu | host | splits | pocl | builds; SPONZA_SPP, CONF_SPP for pocl)
 set -uo pipefail
 R="${1:?usage: r9-run.sh OUT_DIR PART}"; PART="${2:?part}"
 mkdir -p "$R" /tmp/r9
@@ -61,6 +65,28 @@ splits)
     done
   done 2>&1 | tee "$R/splits-pocl-log.txt"
   rm -f "$R/cpu.json" ;;
+builds)
+  $B/cohort export "$G/bunny/bun_zipper.ply" -o /tmp/r9/bunny16.ply --subdivide 2 >/dev/null
+  $B/cohort export "$SP" -o /tmp/r9/sponza1m.ply --subdivide 1 >/dev/null
+  $B/cohort export "$SP" -o /tmp/r9/sponza4m.ply --subdivide 2 >/dev/null
+  for round in 1 2 3; do
+    for c in cohort-new2 cohort; do
+      for scene in bunny16 sponza1m; do
+        echo "$round $scene 2cores $c $(taskset -c 0,1 $B/$c info /tmp/r9/$scene.ply --tree bvh4 | grep -E 'BVH:' | sed -E 's/.*(built in [0-9.]*s).*/\1/')"
+      done
+      echo "$round sponza4m 16cores $c $($B/$c info /tmp/r9/sponza4m.ply --tree bvh4 | grep -E 'BVH:' | sed -E 's/.*(built in [0-9.]*s).*/\1/')"
+    done
+  done 2>&1 | tee "$R/builds.txt"
+  for b in opencl cuda; do
+    d=NVIDIA; [[ $b == cuda ]] && d=0
+    for c in cohort-new2 cohort; do
+      timeout 60 $B/$c render "$SP" $INT --white-sky --res 256x256 --spp 16 \
+        --method sc --tree bvh4 --backend "$b" --device "$d" -o "/tmp/r9/$b-$c.exr" >/dev/null 2>&1
+    done
+  done
+  for f in opencl-cohort cuda-cohort-new2 cuda-cohort; do
+    cmp /tmp/r9/opencl-cohort-new2.exr "/tmp/r9/$f.exr" && echo "opencl-cohort-new2.exr == $f.exr" || echo "opencl-cohort-new2.exr != $f.exr"
+  done 2>&1 | tee "$R/images.txt" ;;
 pocl)
   export POCL_CPU_MAX_CU_COUNT=2 POCL_MAX_PTHREAD_COUNT=2
   for c in cohort-base cohort-new1 cohort cohort-var; do  # compile each binary's kernels once, untimed
