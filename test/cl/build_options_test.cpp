@@ -1,0 +1,35 @@
+// The OpenCL build options every program gets (runtime/cl/kernel_program.h): the software prefetch of
+// the BVH walk (kernels/common/port.h, co_prefetch) only on CPU devices whose compiler is Clang's,
+// never on Oclgrind (which checks, not times) nor on a GPU (which hides the latency with other warps).
+// That the walk's hits do not change with it is TraceKernel.Bvh4* on the CPU device.
+#include <gtest/gtest.h>
+
+#include "runtime/cl/kernel_program.h"
+
+using namespace cohort;
+
+namespace {
+
+DeviceInfo device(const char* platform, bool cpu) {
+  DeviceInfo d;
+  d.platform_name = platform;
+  d.is_cpu = cpu;
+  d.is_gpu = !cpu;
+  return d;
+}
+
+bool prefetches(const DeviceInfo& d) { return base_build_options(d).find("-DCOHORT_PREFETCH") != std::string::npos; }
+
+}  // namespace
+
+TEST(BuildOptions, PrefetchOnCpuDevicesOnly) {
+  EXPECT_TRUE(prefetches(device("Portable Computing Language", true)));
+  EXPECT_TRUE(prefetches(device("Intel(R) OpenCL", true)));
+  EXPECT_FALSE(prefetches(device("Oclgrind", true)));
+  EXPECT_FALSE(prefetches(device("NVIDIA CUDA", false)));
+}
+
+TEST(BuildOptions, AlwaysOpenClC12) {
+  for (const DeviceInfo& d : {device("Portable Computing Language", true), device("NVIDIA CUDA", false)})
+    EXPECT_EQ(base_build_options(d).rfind("-cl-std=CL1.2", 0), 0u) << base_build_options(d);
+}
