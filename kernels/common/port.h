@@ -184,11 +184,11 @@ CO_INLINE uint32_t co_f4_less(co_float4 a, co_float4 b) {
 #endif
 
 /* A hint to start loading the cache line at p. OpenCL C's prefetch() is a no-op on PoCL, so CPU
- * devices get the compiler's builtin, which the host enables with -DCOHORT_PREFETCH where the
- * OpenCL compiler is Clang-based and the device a CPU (runtime/cl/kernel_program.cpp); GPUs hide
- * the latency with other warps, and an unknown compiler gets nothing it might reject. */
+ * devices get Clang's builtin where the host asks for it with -DCOHORT_PREFETCH (CPU devices:
+ * runtime/cl/kernel_program.cpp) and the compiler is Clang (PoCL's and Intel's are); GPUs hide the
+ * latency with other warps, and another compiler gets nothing it might reject. */
 #if defined(__OPENCL_VERSION__)
-#if defined(COHORT_PREFETCH)
+#if defined(COHORT_PREFETCH) && defined(__clang__)
 #define co_prefetch(p) __builtin_prefetch(p)
 #else
 #define co_prefetch(p) ((void)(p))
