@@ -124,6 +124,10 @@ struct alignas(32) RefBox {
   Vec4 lo, hi;  // w lanes 0
 };
 
+// A reference's centroid, lane a on axis a: what the binning, the partition and the median split
+// all sort by, so one expression gives each of them the same bits.
+inline Vec4 centroid_of(const RefBox& b) { return 0.5f * (b.lo + b.hi); }
+
 struct Builder {
   std::vector<RefBox> ref_box;                 // per reference
   std::vector<std::uint32_t> triangle;         // per reference
@@ -167,7 +171,7 @@ struct Builder {
     std::array<std::array<std::uint32_t, kBins>, 3> bin_count{};
     for (std::uint32_t i = first; i < first + count; ++i) {
       const RefBox& box = ref_box[refs[i]];
-      const Vec4 c = 0.5f * (box.lo + box.hi);  // centroid(r, a) in lane a
+      const Vec4 c = centroid_of(box);
       const Int4 bins = __builtin_convertvector((c - lo) * scale, Int4);
       for (int a = 0; a < 3; ++a) {
         if (!used[a]) continue;
@@ -213,8 +217,7 @@ struct Builder {
     return best;
   }
 
-  // A reference's centroid on one axis: the value the binning computes four lanes at a time.
-  float centroid(std::uint32_t r, int a) const { return 0.5f * (ref_box[r].lo[a] + ref_box[r].hi[a]); }
+  float centroid(std::uint32_t r, int a) const { return centroid_of(ref_box[r])[a]; }
 
   static Box to_box(const RefBox& r) { return Box{{r.lo[0], r.lo[1], r.lo[2]}, {r.hi[0], r.hi[1], r.hi[2]}}; }
 
@@ -226,7 +229,7 @@ struct Builder {
       const RefBox& r = ref_box[refs[i]];
       box.lo = vmin(box.lo, r.lo);
       box.hi = vmax(box.hi, r.hi);
-      const Vec4 c = 0.5f * (r.lo + r.hi);
+      const Vec4 c = centroid_of(r);
       centroid_box.lo = vmin(centroid_box.lo, c);
       centroid_box.hi = vmax(centroid_box.hi, c);
     }
