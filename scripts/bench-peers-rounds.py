@@ -2,7 +2,9 @@
 """Summary of a scripts/bench-peers-rounds directory (issue 28): per scene and view, the faster
 Cohort runtime against Mitsuba 3 llvm_ad_rgb in every round, per CPU second and per wall second,
 with the median and the least of the rounds. Each ratio divides two figures of one round (the
-same scene, minutes apart). Prints Markdown and writes DIR/rounds.json. Standard library only.
+same scene, minutes apart). Beside them, the worst pairing: Cohort's slowest round against
+Mitsuba's fastest, a bound that no drift of the machine between rounds can flatter. Prints
+Markdown and writes DIR/rounds.json. Standard library only.
 Usage: scripts/bench-peers-rounds.py DIR"""
 import glob
 import json
@@ -11,14 +13,32 @@ import statistics
 import sys
 
 
-def round_ratios(row):
-    """(per CPU second, wall) ratios of the faster Cohort runtime to llvm_ad_rgb in one peers.json row,
-    None where a figure is missing."""
+def rates(row):
+    """{"cpu": (Cohort, llvm_ad_rgb), "wall": (Cohort, llvm_ad_rgb)} of one peers.json row: M samples
+    per CPU second and per wall second, Cohort's on its faster runtime; None where a figure is missing."""
     cpu = [row[rt + "_per_cpu_second"]["msamples_per_cpu_second"] for rt in ("pocl", "intel")
            if row.get(rt + "_per_cpu_second")]
     wall = [row[rt]["msamples_per_second"] for rt in ("pocl", "intel") if row.get(rt)]
-    ml_cpu, ml_wall = row.get("mitsuba_llvm_ad_rgb_per_cpu_second"), row.get("mitsuba_llvm_ad_rgb")
-    return (max(cpu) / ml_cpu if cpu and ml_cpu else None, max(wall) / ml_wall if wall and ml_wall else None)
+    return {"cpu": (max(cpu) if cpu else None, row.get("mitsuba_llvm_ad_rgb_per_cpu_second")),
+            "wall": (max(wall) if wall else None, row.get("mitsuba_llvm_ad_rgb"))}
+
+
+def ratio(cohort, mitsuba):
+    return cohort / mitsuba if cohort and mitsuba else None
+
+
+def round_ratios(row):
+    """(per CPU second, wall) ratios of the faster Cohort runtime to llvm_ad_rgb in one peers.json row,
+    None where a figure is missing."""
+    r = rates(row)
+    return ratio(*r["cpu"]), ratio(*r["wall"])
+
+
+def worst_pairing(pairs):
+    """Cohort's least rate over the rounds divided by llvm_ad_rgb's greatest, or None."""
+    cohort = [c for c, _ in pairs if c]
+    mitsuba = [m for _, m in pairs if m]
+    return min(cohort) / max(mitsuba) if cohort and mitsuba else None
 
 
 def summarise(out):
@@ -31,10 +51,17 @@ def summarise(out):
                 doc = json.load(f)
             for row in doc["rows"]:
                 cpu, wall = round_ratios(row)
-                entry = scenes.setdefault((row["scene"], row["view"]), {"cpu": [], "wall": [], "rounds": []})
+                entry = scenes.setdefault((row["scene"], row["view"]),
+                                          {"cpu": [], "wall": [], "rounds": [], "cpu_rates": [], "wall_rates": []})
                 entry["rounds"].append(os.path.basename(rdir))
                 entry["cpu"].append(cpu)
                 entry["wall"].append(wall)
+                r = rates(row)
+                entry["cpu_rates"].append(r["cpu"])
+                entry["wall_rates"].append(r["wall"])
+    for entry in scenes.values():
+        entry["cpu_worst_pairing"] = worst_pairing(entry["cpu_rates"])
+        entry["wall_worst_pairing"] = worst_pairing(entry["wall_rates"])
     return scenes
 
 
@@ -46,18 +73,24 @@ def main():
     if not scenes:
         sys.exit(f"{out}: no round-*/*/peers.json (did every bench-runtimes run fail?)")
 
-    def cells(values):
+    def fmt(v):
+        return f"{v:.2f}" if v is not None else "-"
+
+    def cells(values, worst):
         known = [v for v in values if v is not None]
-        rounds = " ".join(f"{v:.2f}" if v is not None else "-" for v in values)
-        return [rounds, f"{statistics.median(known):.2f}" if known else "-", f"{min(known):.2f}" if known else "-"]
+        return [" ".join(fmt(v) for v in values), fmt(statistics.median(known) if known else None),
+                fmt(min(known) if known else None), fmt(worst)]
 
     print("Faster Cohort runtime / Mitsuba 3 llvm_ad_rgb, M samples per CPU second and per wall second, "
-          "one ratio per round (both programs minutes apart).\n")
-    print("| scene | view | per CPU s, each round | median | least | wall, each round | median | least |")
-    print("|---|---|---|---:|---:|---|---:|---:|")
+          "one ratio per round (both programs minutes apart); worst pairing: Cohort's slowest round "
+          "against llvm_ad_rgb's fastest.\n")
+    print("| scene | view | per CPU s, each round | median | least | worst pairing | "
+          "wall, each round | median | least | worst pairing |")
+    print("|---|---|---|---:|---:|---:|---|---:|---:|---:|")
     rows = []
     for (scene, view), e in sorted(scenes.items()):
-        print("| " + " | ".join([scene, view] + cells(e["cpu"]) + cells(e["wall"])) + " |")
+        print("| " + " | ".join([scene, view] + cells(e["cpu"], e["cpu_worst_pairing"]) +
+                                cells(e["wall"], e["wall_worst_pairing"])) + " |")
         rows.append({"scene": scene, "view": view, **e})
     tmp = os.path.join(out, "rounds.json.tmp")
     with open(tmp, "w") as fh:
