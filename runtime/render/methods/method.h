@@ -12,6 +12,7 @@
 namespace cohort {
 
 struct WavefrontMemory;
+enum class RayOrder;  // runtime/render/stages/sorted_traversal.h
 
 struct MethodInputs {
   const Device& device;
@@ -34,6 +35,8 @@ std::unique_ptr<PassLauncher> rg_method(const MethodInputs& in);
 std::unique_ptr<PassLauncher> sc_rg_method(const MethodInputs& in);
 std::unique_ptr<PassLauncher> hash_method(const MethodInputs& in);
 std::unique_ptr<PassLauncher> pth_method(const MethodInputs& in);
+// pth's bounce with the rays sorted by `order` (pth.cpp): pth, and with RayOrder::hash the hash method.
+std::unique_ptr<PassLauncher> sorted_traversal_method(const MethodInputs& in, RayOrder order);
 std::unique_ptr<PassLauncher> auto_method(const MethodInputs& in);
 
 }  // namespace cohort

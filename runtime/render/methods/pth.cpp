@@ -7,14 +7,14 @@
 
 namespace cohort {
 
-std::unique_ptr<PassLauncher> pth_method(const MethodInputs& in) {
+std::unique_ptr<PassLauncher> sorted_traversal_method(const MethodInputs& in, RayOrder order) {
   auto render = std::make_unique<WavefrontRender>(in, Launches::compacted);
-  auto sorted = std::make_shared<SortedTraversal>(*render, RayOrder::pth);
+  auto sorted = std::make_shared<SortedTraversal>(*render, order);
   render->set_bounce(
       [sorted](WavefrontPass& p) {
         generate(p, Refill::every_bounce);
         if (sorted->sorts(p)) {
-          sorted->walk(p);  // partial traversal heuristic and coherence code
+          sorted->walk(p);  // partial traversal heuristic and coherence code (hash: the code only)
           sorted->sort(p);
           sorted->resume(p);
         } else {
@@ -26,5 +26,7 @@ std::unique_ptr<PassLauncher> pth_method(const MethodInputs& in) {
       [sorted](RenderResult& result) { sorted->report(result); });
   return render;
 }
+
+std::unique_ptr<PassLauncher> pth_method(const MethodInputs& in) { return sorted_traversal_method(in, RayOrder::pth); }
 
 }  // namespace cohort
