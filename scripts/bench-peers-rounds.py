@@ -24,14 +24,8 @@ def rates(row):
 
 
 def ratio(cohort, mitsuba):
+    """One round's Cohort / llvm_ad_rgb, or None where a figure is missing."""
     return cohort / mitsuba if cohort and mitsuba else None
-
-
-def round_ratios(row):
-    """(per CPU second, wall) ratios of the faster Cohort runtime to llvm_ad_rgb in one peers.json row,
-    None where a figure is missing."""
-    r = rates(row)
-    return ratio(*r["cpu"]), ratio(*r["wall"])
 
 
 def worst_pairing(pairs):
@@ -42,7 +36,9 @@ def worst_pairing(pairs):
 
 
 def summarise(out):
-    """{(scene, view): {"cpu": [...], "wall": [...]}} over the rounds, in round order."""
+    """{(scene, view): entry} over the rounds, in round order: each entry lists the rounds, the (Cohort,
+    llvm_ad_rgb) rates per CPU second and per wall second ("cpu_rates", "wall_rates"), their ratios
+    ("cpu", "wall") and the worst pairing of each."""
     scenes = {}
     rounds = sorted(glob.glob(os.path.join(out, "round-*")), key=lambda p: int(p.rsplit("-", 1)[1]))
     for rdir in rounds:
@@ -50,18 +46,15 @@ def summarise(out):
             with open(path) as f:
                 doc = json.load(f)
             for row in doc["rows"]:
-                cpu, wall = round_ratios(row)
                 entry = scenes.setdefault((row["scene"], row["view"]),
                                           {"cpu": [], "wall": [], "rounds": [], "cpu_rates": [], "wall_rates": []})
                 entry["rounds"].append(os.path.basename(rdir))
-                entry["cpu"].append(cpu)
-                entry["wall"].append(wall)
-                r = rates(row)
-                entry["cpu_rates"].append(r["cpu"])
-                entry["wall_rates"].append(r["wall"])
+                for kind, pair in rates(row).items():
+                    entry[kind + "_rates"].append(pair)
+                    entry[kind].append(ratio(*pair))
     for entry in scenes.values():
-        entry["cpu_worst_pairing"] = worst_pairing(entry["cpu_rates"])
-        entry["wall_worst_pairing"] = worst_pairing(entry["wall_rates"])
+        for kind in ("cpu", "wall"):
+            entry[kind + "_worst_pairing"] = worst_pairing(entry[kind + "_rates"])
     return scenes
 
 

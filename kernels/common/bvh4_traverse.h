@@ -59,8 +59,8 @@ CO_INLINE float bvh4_inverse(float d) {
 
 /* Starts loading a pushed child's cache lines, for when it is popped: an inner node's two, or a
  * leaf's first and last line and, past two triangles, the second (a leaf of four that starts late
- * in a line spans a fourth, which is left to the hardware). On CPUs a walk is one chain of dependent loads, and a node that
- * misses the caches stalls it. Sponza interior on PoCL and Intel's runtime: 7-11 % fewer render
+ * in a line spans a fourth, which is left to the hardware). On CPUs a walk is one chain of
+ * dependent loads, and a node that misses the caches stalls it. Sponza interior on PoCL and Intel's runtime: 7-11 % fewer render
  * CPU seconds, the conference unchanged. Prefetching every child of each node as it is loaded
  * gained more on Sponza (11-15 %) but cost the conference, whose walk stays in the caches, 20 % on
  * PoCL (docs/results.md, "Tenth session"). A no-op where the host does not ask for it
