@@ -3,14 +3,18 @@
 #include "runtime/accel/bvh4.h"
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <numeric>
+#include <type_traits>
 
 #include "kernels/common/bvh4_traverse.h"
 #include "runtime/accel/clip.h"
@@ -44,11 +48,15 @@ struct Box {
 };
 
 // A binary node; count > 0 marks a leaf of triangles [first, first + count) of the reference list.
+// Trivial, so the slots are allocated without being cleared: the build writes every one it uses.
 struct Node2 {
-  Box box;
-  std::uint32_t first = 0, count = 0;
-  std::uint32_t left = 0, right = 0;
+  std::array<float, 3> lo, hi;
+  std::uint32_t first, count;
+  std::uint32_t references;  // in the subtree: [first, first + references)
+  std::uint32_t left, right;
+  Box box() const { return Box{lo, hi}; }
 };
+static_assert(std::is_trivially_default_constructible_v<Node2>);
 
 Box triangle_box(const Triangle& t) {
   Box b;
@@ -72,8 +80,14 @@ struct Reference {
 // noise (docs/results.md). A ray then opens the leaves near where it meets the triangle
 // rather than every leaf the triangle's whole box overlaps. Several references to one triangle
 // change no hit: the closest hit is the least (t, index) however often a triangle is tested.
-// In fixed chunks joined in order: the same references for any thread count.
-std::vector<Reference> make_references(std::span<const Triangle> triangles) {
+// In fixed chunks of triangles, each with its references; joined in chunk order (Builder), the
+// same references for any thread count.
+struct ReferenceChunks {
+  std::vector<std::vector<Reference>> chunks;
+  std::size_t size = 0;  // references in all chunks
+};
+
+ReferenceChunks make_references(std::span<const Triangle> triangles) {
   const std::size_t n = triangles.size();
   double mean_area = 0;
   for (const Triangle& t : triangles) mean_area += triangle_box(t).area();
@@ -106,9 +120,18 @@ std::vector<Reference> make_references(std::span<const Triangle> triangles) {
     for (std::size_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i)
       split(split, triangles[i], static_cast<std::uint32_t>(i), triangle_box(triangles[i]), 0);
   });
-  std::vector<Reference> refs;
-  for (auto& p : parts) refs.insert(refs.end(), p.begin(), p.end());
-  return refs;
+  ReferenceChunks out{std::move(parts), 0};
+  for (const auto& p : out.chunks) out.size += p.size();
+  return out;
+}
+
+// f(i) for every i below n, in parallel over chunks of kParallelTriangles.
+template <class F>
+void parallel_chunks(std::size_t n, const F& f) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kParallelTriangles),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i < r.end(); ++i) f(i);
+                    });
 }
 
 // Four floats in one SSE register (GCC and Clang vector extensions): a reference's box corner,
@@ -124,27 +147,82 @@ struct alignas(32) RefBox {
   Vec4 lo, hi;  // w lanes 0
 };
 
+constexpr RefBox kEmptyRefBox{Vec4{INFINITY, INFINITY, INFINITY, INFINITY},
+                              Vec4{-INFINITY, -INFINITY, -INFINITY, -INFINITY}};
+
+inline void extend(RefBox& box, const RefBox& other) {
+  box.lo = vmin(box.lo, other.lo);
+  box.hi = vmax(box.hi, other.hi);
+}
+
+// Box::area's arithmetic, term for term, on the x y z lanes.
+inline float area_of(const RefBox& b) {
+  const Vec4 d = b.hi - b.lo;
+  const float x = std::max(0.0f, d[0]), y = std::max(0.0f, d[1]), z = std::max(0.0f, d[2]);
+  return x * y + y * z + z * x;
+}
+
 // A reference's centroid, lane a on axis a: what the binning, the partition and the median split
 // all sort by, so one expression gives each of them the same bits.
 inline Vec4 centroid_of(const RefBox& b) { return 0.5f * (b.lo + b.hi); }
 
-struct Builder {
-  std::vector<RefBox> ref_box;                 // per reference
-  std::vector<std::uint32_t> triangle;         // per reference
-  std::vector<std::uint32_t> refs;             // reference indices, partitioned into the leaves
-  // A subtree of n references owns the 2n - 1 slots from its root's: its left child's subtree
-  // starts one after the root, its right child's after the left's 2 n_left - 1. Unused slots stay.
-  std::vector<Node2> nodes;
+// A node's bounds: the box of its references and the box of their centroids.
+struct NodeBounds {
+  RefBox box = kEmptyRefBox;
+  RefBox centroids = kEmptyRefBox;
+  void add(const RefBox& r) {
+    extend(box, r);
+    const Vec4 c = centroid_of(r);
+    centroids.lo = vmin(centroids.lo, c);
+    centroids.hi = vmax(centroids.hi, c);
+  }
+};
 
-  explicit Builder(const std::vector<Reference>& references)
-      : ref_box(references.size()), triangle(references.size()),
-        refs(references.size()), nodes(2 * references.size() - 1) {
-    for (std::size_t i = 0; i < references.size(); ++i) {
-      const Box& b = references[i].box;
-      ref_box[i] = {Vec4{b.lo[0], b.lo[1], b.lo[2], 0.0f}, Vec4{b.hi[0], b.hi[1], b.hi[2], 0.0f}};
-      triangle[i] = references[i].triangle;
-    }
-    std::iota(refs.begin(), refs.end(), 0u);
+struct Builder {
+  // Per reference, in tree order: the partitions move a reference's box with its index, so every
+  // pass over a node reads its boxes in sequence (indices into one array of boxes made the top
+  // levels' passes a gather over the whole scene).
+  // Arrays of trivial types allocated without clearing (filled in parallel below, or written by
+  // the build before they are read): clearing them was a serial pass over 200 MB for 1.6M references.
+  std::size_t size;
+  std::unique_ptr<RefBox[]> box;
+  std::unique_ptr<std::uint32_t[]> refs;       // reference indices, partitioned into the leaves
+  std::unique_ptr<std::uint32_t[]> triangle;   // per reference index
+  // A subtree of n references owns the 2n - 1 slots from its root's: its left child's subtree
+  // starts one after the root, its right child's after the left's 2 n_left - 1. Unused slots stay
+  // unwritten.
+  std::unique_ptr<Node2[]> nodes;
+
+  // The references of the chunks in chunk order, each chunk copied by its own task.
+  explicit Builder(const ReferenceChunks& references)
+      : size(references.size),
+        box(std::make_unique_for_overwrite<RefBox[]>(size)),
+        refs(std::make_unique_for_overwrite<std::uint32_t[]>(size)),
+        triangle(std::make_unique_for_overwrite<std::uint32_t[]>(size)),
+        nodes(std::make_unique_for_overwrite<Node2[]>(2 * size - 1)) {
+    const auto& chunks = references.chunks;
+    std::vector<std::size_t> offset(chunks.size() + 1, 0);
+    for (std::size_t c = 0; c < chunks.size(); ++c) offset[c + 1] = offset[c] + chunks[c].size();
+    tbb::parallel_for(std::size_t{0}, chunks.size(), [&](std::size_t c) {
+      for (std::size_t j = 0; j < chunks[c].size(); ++j) {
+        const std::size_t i = offset[c] + j;
+        const Box& b = chunks[c][j].box;
+        box[i] = {Vec4{b.lo[0], b.lo[1], b.lo[2], 0.0f}, Vec4{b.hi[0], b.hi[1], b.hi[2], 0.0f}};
+        triangle[i] = chunks[c][j].triangle;
+        refs[i] = static_cast<std::uint32_t>(i);
+      }
+    });
+  }
+
+  NodeBounds bounds_of(std::uint32_t first, std::uint32_t count) const {
+    NodeBounds b;
+    for (std::uint32_t i = first; i < first + count; ++i) b.add(box[i]);
+    return b;
+  }
+
+  void swap_references(std::uint32_t i, std::uint32_t j) {
+    std::swap(box[i], box[j]);
+    std::swap(refs[i], refs[j]);
   }
 
   struct Split {
@@ -165,22 +243,29 @@ struct Builder {
     }
     const Vec4 lo{centroids.lo[0], centroids.lo[1], centroids.lo[2], 0.0f};
     const Vec4 scale{scale_a[0], scale_a[1], scale_a[2], 0.0f};
-    // a bin's box is set by its first reference (what extending an empty box gives), so only
-    // the counts start cleared: the sweeps below read non-empty bins only
+    // A bin's box and count are set by its first reference (what extending an empty box gives)
+    // and a bit per axis marks the bins in use, so nothing is cleared and the sweeps below find
+    // the non-empty bins from the bits: most nodes hold far fewer references than bins, and
+    // clearing and scanning 3 x 32 bins was most of their time.
+    static_assert(kBins <= 32, "a bin per bit of an occupancy mask");
     std::array<std::array<RefBox, kBins>, 3> bin_box;
-    std::array<std::array<std::uint32_t, kBins>, 3> bin_count{};
+    std::array<std::array<std::uint32_t, kBins>, 3> bin_count;
+    std::array<std::uint32_t, 3> occupied{};
     for (std::uint32_t i = first; i < first + count; ++i) {
-      const RefBox& box = ref_box[refs[i]];
-      const Vec4 c = centroid_of(box);
+      const RefBox& r = box[i];
+      const Vec4 c = centroid_of(r);
       const Int4 bins = __builtin_convertvector((c - lo) * scale, Int4);
       for (int a = 0; a < 3; ++a) {
         if (!used[a]) continue;
         const int b = std::min(kBins - 1, bins[a]);
-        if (bin_count[a][b]++ == 0) {
-          bin_box[a][b] = box;
+        const std::uint32_t bit = 1u << b;
+        if (!(occupied[a] & bit)) {
+          occupied[a] |= bit;
+          bin_count[a][b] = 1;
+          bin_box[a][b] = r;
         } else {
-          bin_box[a][b].lo = vmin(bin_box[a][b].lo, box.lo);
-          bin_box[a][b].hi = vmax(bin_box[a][b].hi, box.hi);
+          ++bin_count[a][b];
+          extend(bin_box[a][b], r);
         }
       }
     }
@@ -193,88 +278,127 @@ struct Builder {
       if (!used[a]) continue;
       std::array<int, kBins> full;
       int m = 0;
-      for (int b = 0; b < kBins; ++b)
-        if (bin_count[a][b]) full[m++] = b;
-      std::array<float, kBins> right_area{};
-      std::array<std::uint32_t, kBins> right_count{};
-      Box acc;
+      for (std::uint32_t bits = occupied[a]; bits; bits &= bits - 1) full[m++] = std::countr_zero(bits);
+      std::array<float, kBins> right_area;  // [1, m) written before read
+      std::array<std::uint32_t, kBins> right_count;
+      RefBox acc = kEmptyRefBox;
       std::uint32_t n = 0;
       for (int j = m - 1; j > 0; --j) {
-        acc.extend(to_box(bin_box[a][full[j]]));
+        extend(acc, bin_box[a][full[j]]);
         n += bin_count[a][full[j]];
-        right_area[j] = acc.area();
+        right_area[j] = area_of(acc);
         right_count[j] = n;
       }
-      acc = Box{};
+      acc = kEmptyRefBox;
       n = 0;
       for (int j = 0; j < m - 1; ++j) {
-        acc.extend(to_box(bin_box[a][full[j]]));
+        extend(acc, bin_box[a][full[j]]);
         n += bin_count[a][full[j]];
-        const float cost = acc.area() * n + right_area[j + 1] * right_count[j + 1];
+        const float cost = area_of(acc) * n + right_area[j + 1] * right_count[j + 1];
         if (cost < best.cost) best = {a, full[j], cost};
       }
     }
     return best;
   }
 
-  float centroid(std::uint32_t r, int a) const { return centroid_of(ref_box[r])[a]; }
-
   static Box to_box(const RefBox& r) { return Box{{r.lo[0], r.lo[1], r.lo[2]}, {r.hi[0], r.hi[1], r.hi[2]}}; }
 
-  void build(std::uint32_t slot, std::uint32_t first, std::uint32_t count, int depth) {
-    Node2& node = nodes[slot];
-    const Vec4 inf{INFINITY, INFINITY, INFINITY, INFINITY};
-    RefBox box{inf, -inf}, centroid_box{inf, -inf};
-    for (std::uint32_t i = first; i < first + count; ++i) {
-      const RefBox& r = ref_box[refs[i]];
-      box.lo = vmin(box.lo, r.lo);
-      box.hi = vmax(box.hi, r.hi);
-      const Vec4 c = centroid_of(r);
-      centroid_box.lo = vmin(centroid_box.lo, c);
-      centroid_box.hi = vmax(centroid_box.hi, c);
+  // std::partition's algorithm (the bidirectional one libstdc++ uses for random-access ranges:
+  // the same swaps, so the same tree as partitioning indices with it), moving boxes with their
+  // references and taking each side's bounds on the way: every reference is classified once.
+  template <class InLeft>
+  std::uint32_t partition(std::uint32_t first, std::uint32_t last, InLeft in_left, NodeBounds& left,
+                          NodeBounds& right) {
+    while (true) {
+      while (true) {
+        if (first == last) return first;
+        if (!in_left(box[first])) break;
+        left.add(box[first++]);
+      }
+      --last;
+      while (true) {
+        if (first == last) {
+          right.add(box[first]);  // the reference the loop above stopped at
+          return first;
+        }
+        if (in_left(box[last])) break;
+        right.add(box[last--]);
+      }
+      // box[first] goes right and box[last] left: swapped, each is on its side
+      swap_references(first, last);
+      left.add(box[first]);
+      right.add(box[last]);
+      ++first;
     }
-    node.box = to_box(box);
-    const Box centroids = to_box(centroid_box);
+  }
+
+  void build(std::uint32_t slot, std::uint32_t first, std::uint32_t count, int depth,
+             const NodeBounds& bounds) {
+    Node2& node = nodes[slot];
+    node.lo = {bounds.box.lo[0], bounds.box.lo[1], bounds.box.lo[2]};
+    node.hi = {bounds.box.hi[0], bounds.box.hi[1], bounds.box.hi[2]};
+    const Box centroids = to_box(bounds.centroids);
     node.first = first;
     node.count = count;
+    node.references = count;
     if (count == 1) return;
     std::uint32_t mid = first + count / 2;
+    NodeBounds left_bounds, right_bounds;
     const Split split = depth < kMedianDepth ? best_split(first, count, centroids) : Split{};
     if (split.axis >= 0) {
-      const float leaf_cost = node.box.area() * count;
-      if (count <= kMaxLeaf && leaf_cost <= kNodeCost * node.box.area() + split.cost) return;
-      const float scale = kBins / (centroids.hi[split.axis] - centroids.lo[split.axis]);
-      const auto in_left = [&](std::uint32_t r) {
-        return std::min(kBins - 1, static_cast<int>((centroid(r, split.axis) - centroids.lo[split.axis]) * scale)) <=
-               split.bin;
+      const float area = node.box().area();
+      if (count <= kMaxLeaf && area * count <= kNodeCost * area + split.cost) return;
+      const int axis = split.axis;
+      const float lo = centroids.lo[axis];
+      const float scale = kBins / (centroids.hi[axis] - lo);
+      const auto in_left = [&](const RefBox& r) {
+        return std::min(kBins - 1, static_cast<int>((centroid_of(r)[axis] - lo) * scale)) <= split.bin;
       };
-      mid = static_cast<std::uint32_t>(std::partition(refs.begin() + first, refs.begin() + first + count, in_left) -
-                                       refs.begin());
+      mid = partition(first, first + count, in_left, left_bounds, right_bounds);
     } else if (count <= kMaxLeaf) {
       return;  // every centroid in one point, or below the median depth: a leaf when small enough
-    } else if (depth >= kMedianDepth) {
-      // the object median along the widest centroid axis: halves the count, so the depth stays bounded
-      int axis = 0;
-      for (int a = 1; a < 3; ++a)
-        if (centroids.hi[a] - centroids.lo[a] > centroids.hi[axis] - centroids.lo[axis]) axis = a;
-      std::nth_element(refs.begin() + first, refs.begin() + mid, refs.begin() + first + count,
-                       [&](std::uint32_t x, std::uint32_t y) {
-                         const float cx = centroid(x, axis), cy = centroid(y, axis);
-                         return cx < cy || (cx == cy && x < y);
-                       });
+    } else {
+      if (depth >= kMedianDepth) median_split(first, count, mid, centroids);
+      left_bounds = bounds_of(first, mid - first);
+      right_bounds = bounds_of(mid, first + count - mid);
     }
     node.count = 0;
     const std::uint32_t left_count = mid - first, right_count = first + count - mid;
     node.left = slot + 1;
     node.right = slot + 2 * left_count;
-    const auto left = [&] { build(slot + 1, first, left_count, depth + 1); };
-    const auto right = [&] { build(slot + 2 * left_count, mid, right_count, depth + 1); };
+    const auto left = [&] { build(slot + 1, first, left_count, depth + 1, left_bounds); };
+    const auto right = [&] { build(slot + 2 * left_count, mid, right_count, depth + 1, right_bounds); };
     if (count >= kParallelTriangles) {
       tbb::parallel_invoke(left, right);
     } else {
       left();
       right();
     }
+  }
+
+  // Below kMedianDepth, the object median along the widest centroid axis: halves the count, so the
+  // depth stays bounded. nth_element over the
+  // positions with the references' order (centroid, then index) moves them as it would move the
+  // indices themselves; boxes and indices are then put in that order.
+  void median_split(std::uint32_t first, std::uint32_t count, std::uint32_t mid, const Box& centroids) {
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+      if (centroids.hi[a] - centroids.lo[a] > centroids.hi[axis] - centroids.lo[axis]) axis = a;
+    std::vector<std::uint32_t> order(count);
+    std::iota(order.begin(), order.end(), first);
+    std::nth_element(order.begin(), order.begin() + (mid - first), order.end(),
+                     [&](std::uint32_t x, std::uint32_t y) {
+                       const float cx = centroid_of(box[x])[axis], cy = centroid_of(box[y])[axis];
+                       return cx < cy || (cx == cy && refs[x] < refs[y]);
+                     });
+    std::vector<RefBox> moved_box(count);
+    std::vector<std::uint32_t> moved_refs(count);
+    for (std::uint32_t i = 0; i < count; ++i) {
+      moved_box[i] = box[order[i]];
+      moved_refs[i] = refs[order[i]];
+    }
+    std::copy(moved_box.begin(), moved_box.end(), box.get() + first);
+    std::copy(moved_refs.begin(), moved_refs.end(), refs.get() + first);
   }
 };
 
@@ -290,17 +414,35 @@ void set_lane(Bvh4Node& node, int lane, const Box& b, std::uint32_t child, float
   (&node.child.x)[lane] = child;
 }
 
+// The binary tree collapsed into 4-wide nodes, depth first (each node before its children, a
+// lane's subtree after the lanes before it). A first pass counts each 4-wide node's subtree, so
+// the second knows where every subtree goes and both run in parallel over large subtrees; the
+// result is the nodes of a serial depth-first walk.
 struct Collapser {
   const Builder& b;
-  Bvh4& out;
   float pad;  // 2^-20 of the largest coordinate: far above the rounding of any vertex
-  double sah = 0;  // sum over nodes and leaves of area x cost, divided by the root's area at the end
+  // Per binary slot that roots a 4-wide node: that node's subtree size in 4-wide nodes.
+  std::unique_ptr<std::uint32_t[]> subtree_nodes;
+  Bvh4Node* out = nullptr;
 
-  // Appends the 4-wide node for binary inner node `slot` and its subtree; returns its index.
-  std::uint32_t collapse(std::uint32_t slot, int depth) {
-    const auto me = static_cast<std::uint32_t>(out.nodes.size());
-    out.nodes.emplace_back();
-    std::array<std::uint32_t, 4> kids{};
+  // What a subtree adds to the tree's statistics; joined in lane order.
+  struct Sums {
+    std::size_t leaves = 0;
+    int depth = 0;
+    double sah = 0;  // area x cost over nodes and leaves; divided by the root's area at the end
+    void add(const Sums& o) {
+      leaves += o.leaves;
+      depth = std::max(depth, o.depth);
+      sah += o.sah;
+    }
+  };
+
+  Collapser(const Builder& builder, float pad_)
+      : b(builder), pad(pad_), subtree_nodes(std::make_unique_for_overwrite<std::uint32_t[]>(2 * b.size - 1)) {}
+
+  // The lanes of the 4-wide node at binary node `slot`: its children, then the inner child of
+  // largest area opened until four lanes are full.
+  int lanes(std::uint32_t slot, std::array<std::uint32_t, 4>& kids) const {
     int n = 0;
     if (b.nodes[slot].count) {
       kids[n++] = slot;  // a root that is a leaf: one lane
@@ -308,37 +450,89 @@ struct Collapser {
       kids[n++] = b.nodes[slot].left;
       kids[n++] = b.nodes[slot].right;
     }
-    // open the inner child of largest area until four lanes are full
+    // each kid's area once (a leaf's is never compared)
+    std::array<float, 4> area{};
+    const auto measure = [&](int i) {
+      const Node2& k = b.nodes[kids[i]];
+      area[i] = k.count ? -1.0f : k.box().area();
+    };
+    for (int i = 0; i < n; ++i) measure(i);
     while (n < 4) {
       int widest = -1;
       for (int i = 0; i < n; ++i) {
-        const Node2& k = b.nodes[kids[i]];
-        if (!k.count && (widest < 0 || k.box.area() > b.nodes[kids[widest]].box.area())) widest = i;
+        if (!(area[i] < 0.0f) && (widest < 0 || area[i] > area[widest])) widest = i;
       }
       if (widest < 0) break;
       const Node2& k = b.nodes[kids[widest]];
       kids[widest] = k.left;
-      kids[n++] = k.right;
+      kids[n] = k.right;
+      measure(widest);
+      measure(n++);
     }
+    return n;
+  }
+
+  // Calls f(lane) for each lane, in parallel when the node's subtree is large.
+  template <class F>
+  void for_lanes(std::uint32_t slot, int n, const F& f) const {
+    if (b.nodes[slot].references >= kParallelTriangles) {
+      tbb::parallel_for(0, n, f);
+    } else {
+      for (int lane = 0; lane < n; ++lane) f(lane);
+    }
+  }
+
+  std::uint32_t count(std::uint32_t slot) {
+    std::array<std::uint32_t, 4> kids{};
+    const int n = lanes(slot, kids);
+    std::array<std::uint32_t, 4> counts{};
+    for_lanes(slot, n, [&](int lane) {
+      if (!b.nodes[kids[lane]].count) counts[lane] = count(kids[lane]);
+    });
+    return subtree_nodes[slot] = 1 + counts[0] + counts[1] + counts[2] + counts[3];
+  }
+
+  // Writes the 4-wide node for binary node `slot` at `index`, and its subtree after it.
+  Sums emit(std::uint32_t slot, std::uint32_t index, int depth) {
+    std::array<std::uint32_t, 4> kids{};
+    const int n = lanes(slot, kids);
+    std::array<std::uint32_t, 4> child_index{};
+    std::uint32_t next = index + 1;
+    for (int lane = 0; lane < n; ++lane) {
+      if (b.nodes[kids[lane]].count) continue;
+      child_index[lane] = next;
+      next += subtree_nodes[kids[lane]];
+    }
+    std::array<Sums, 4> lane_sums{};
+    for_lanes(slot, n, [&](int lane) {
+      if (!b.nodes[kids[lane]].count) lane_sums[lane] = emit(kids[lane], child_index[lane], depth + 1);
+    });
     Bvh4Node node{};
     const Box empty{{INFINITY, INFINITY, INFINITY}, {INFINITY, INFINITY, INFINITY}};
     for (int lane = 0; lane < 4; ++lane) set_lane(node, lane, empty, BVH4_EMPTY, 0.0f);
-    sah += kNodeCost * b.nodes[slot].box.area();
-    out.stats.depth = std::max(out.stats.depth, depth);
+    Sums sums;
+    sums.depth = depth;
+    sums.sah = kNodeCost * b.nodes[slot].box().area();
     for (int lane = 0; lane < n; ++lane) {
       const Node2& k = b.nodes[kids[lane]];
-      std::uint32_t child;
+      std::uint32_t child = child_index[lane];
       if (k.count) {
         child = bvh4_leaf_ref(k.first, k.count);
-        ++out.stats.leaf_count;
-        sah += k.box.area() * k.count;
-      } else {
-        child = collapse(kids[lane], depth + 1);
+        ++sums.leaves;
+        sums.sah += k.box().area() * k.count;
       }
-      set_lane(node, lane, k.box, child, pad);
+      sums.add(lane_sums[lane]);
+      set_lane(node, lane, k.box(), child, pad);
     }
-    out.nodes[me] = node;
-    return me;
+    out[index] = node;
+    return sums;
+  }
+
+  // The 4-wide tree into `nodes` (resized to fit).
+  Sums collapse(std::vector<Bvh4Node>& nodes) {
+    nodes.resize(count(0));
+    out = nodes.data();
+    return emit(0, 0, 1);
   }
 };
 
@@ -351,31 +545,33 @@ Bvh4 build_bvh4(std::span<const Triangle> triangles) {
     throw InputError(fmt::format("the scene has {} triangles; the 4-wide BVH (--tree bvh4) takes at most {}: use "
                                  "--tree deep or compact",
                                  triangles.size(), BVH4_LEAF_FIRST_MAX));
-  const std::vector<Reference> references = make_references(triangles);
-  if (references.size() > BVH4_LEAF_FIRST_MAX)
+  const ReferenceChunks references = make_references(triangles);
+  if (references.size > BVH4_LEAF_FIRST_MAX)
     throw InputError(fmt::format("the scene's {} triangles make {} BVH references; the 4-wide BVH (--tree bvh4) "
                                  "takes at most {}: use --tree deep or compact",
-                                 triangles.size(), references.size(), BVH4_LEAF_FIRST_MAX));
+                                 triangles.size(), references.size, BVH4_LEAF_FIRST_MAX));
   Builder builder(references);
-  builder.build(0u, 0u, static_cast<std::uint32_t>(references.size()), 0);
+  const auto reference_count = static_cast<std::uint32_t>(references.size);
+  builder.build(0u, 0u, reference_count, 0, builder.bounds_of(0u, reference_count));
   Bvh4 bvh;
-  bvh.nodes.reserve(triangles.size() / 2 + 1);
-  const Box& root = builder.nodes[0].box;
+  const Box root = builder.nodes[0].box();
   float largest = 0.0f;
   for (int a = 0; a < 3; ++a) largest = std::max({largest, std::fabs(root.lo[a]), std::fabs(root.hi[a])});
-  Collapser collapser{builder, bvh, std::ldexp(std::max(largest, 1e-20f), -20)};
-  collapser.collapse(0, 1);
-  bvh.leaf_vertices.resize(builder.refs.size());
-  for (std::size_t i = 0; i < builder.refs.size(); ++i) {
+  Collapser collapser{builder, std::ldexp(std::max(largest, 1e-20f), -20)};
+  const Collapser::Sums sums = collapser.collapse(bvh.nodes);
+  bvh.leaf_vertices.resize(builder.size);
+  parallel_chunks(builder.size, [&](std::size_t i) {
     const std::uint32_t tri = builder.triangle[builder.refs[i]];
     bvh.leaf_vertices[i] = triangles[tri];
     bvh.leaf_vertices[i].v0.w = co_as_float(tri);
-  }
+  });
   bvh.stats.node_count = bvh.nodes.size();
-  bvh.stats.references = references.size();
-  bvh.stats.average_leaf_triangles = double(references.size()) / double(bvh.stats.leaf_count);
-  const float root_area = builder.nodes[0].box.area();
-  bvh.stats.sah_cost = root_area > 0 ? collapser.sah / root_area : 0.0;
+  bvh.stats.references = references.size;
+  bvh.stats.leaf_count = sums.leaves;
+  bvh.stats.depth = sums.depth;
+  bvh.stats.average_leaf_triangles = double(references.size) / double(bvh.stats.leaf_count);
+  const float root_area = root.area();
+  bvh.stats.sah_cost = root_area > 0 ? sums.sah / root_area : 0.0;
   bvh.stats.bytes = bvh.nodes.size() * sizeof(Bvh4Node) + bvh.leaf_vertices.size() * sizeof(Triangle);
   bvh.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return bvh;

@@ -28,6 +28,8 @@ std::vector<std::string> structure_errors(const Bvh4& bvh, const KdTree& tree) {
   std::vector<std::string> errors;
   std::vector<int> seen_node(bvh.nodes.size(), 0), seen_triangle(tree.triangles.size(), 0);
   int deepest = 0;
+  std::uint32_t next_in_order = 0;
+  std::size_t leaves = 0;
   const auto overlaps = [](const Triangle& t, const float lo[3], const float hi[3]) {
     for (int a = 0; a < 3; ++a) {
       const float v[3] = {(&t.v0.x)[a], (&t.v1.x)[a], (&t.v2.x)[a]};
@@ -41,6 +43,8 @@ std::vector<std::string> structure_errors(const Bvh4& bvh, const KdTree& tree) {
       errors.push_back(fmt::format("node {} reached twice or out of range", index));
       return;
     }
+    // depth-first order: each node before its children, a lane's subtree after the lanes before it
+    if (index != next_in_order++) errors.push_back(fmt::format("node {} where a depth-first walk has {}", index, next_in_order - 1));
     deepest = std::max(deepest, depth);
     const Bvh4Node& n = bvh.nodes[index];
     if (n.reserved.x || n.reserved.y || n.reserved.z || n.reserved.w) errors.push_back("reserved words not zero");
@@ -56,6 +60,7 @@ std::vector<std::string> structure_errors(const Bvh4& bvh, const KdTree& tree) {
         if (plo && (lo[a] < plo[a] || hi[a] > phi[a]))
           errors.push_back(fmt::format("node {} lane {}: box outside its parent's", index, lane));
       if (bvh4_is_leaf(ref)) {
+        ++leaves;
         const std::uint32_t first = bvh4_leaf_first(ref), count = bvh4_leaf_count(ref);
         if (count > BVH4_LEAF_MAX || first + count > bvh.leaf_vertices.size()) {
           errors.push_back(fmt::format("node {} lane {}: leaf [{}, +{}) out of range", index, lane, first, count));
@@ -82,6 +87,8 @@ std::vector<std::string> structure_errors(const Bvh4& bvh, const KdTree& tree) {
     if (!seen_node[i]) errors.push_back(fmt::format("node {} unreachable", i));
   for (std::size_t i = 0; i < seen_triangle.size(); ++i)
     if (seen_triangle[i] < 1 || seen_triangle[i] > 64) errors.push_back(fmt::format("triangle {} in {} leaves", i, seen_triangle[i]));
+  if (leaves != bvh.stats.leaf_count)
+    errors.push_back(fmt::format("{} leaves but stats say {}", leaves, bvh.stats.leaf_count));
   if (deepest != bvh.stats.depth) errors.push_back(fmt::format("depth {} but stats say {}", deepest, bvh.stats.depth));
   if (deepest > BVH4_MAX_DEPTH) errors.push_back(fmt::format("depth {} over BVH4_MAX_DEPTH", deepest));
   if (errors.size() > 10) errors.resize(10);
@@ -160,6 +167,10 @@ TEST(Bvh4, SameTreeForAnyThreadCount) {
   EXPECT_EQ(0, std::memcmp(many.leaf_vertices.data(), single.leaf_vertices.data(),
                            many.leaf_vertices.size() * sizeof(Triangle)));
   EXPECT_TRUE(structure_errors(many, kept).empty());
+  // the statistics are summed per subtree and joined in lane order: the same figures too
+  EXPECT_EQ(many.stats.sah_cost, single.stats.sah_cost);
+  EXPECT_EQ(many.stats.leaf_count, single.stats.leaf_count);
+  EXPECT_EQ(many.stats.depth, single.stats.depth);
 }
 
 // Where a binned build has nothing to bin: one triangle; many copies of one triangle (every
