@@ -1,0 +1,58 @@
+#!/usr/bin/env python3
+"""scripts/bench-large: the tree line of `cohort info` read for every tree it can build (the BVH's
+build seconds add the pass that keeps the triangles, as a render's build_seconds do), a missing
+tree line an error, and, given a cohort binary (argv[1]), the figures of real builds of the shipped
+Cornell box. Standard library only."""
+import importlib.machinery
+import importlib.util
+import sys
+import unittest
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent.parent
+loader = importlib.machinery.SourceFileLoader("bench_large", str(ROOT / "scripts" / "bench-large"))
+spec = importlib.util.spec_from_loader("bench_large", loader)
+bench_large = importlib.util.module_from_spec(spec)
+loader.exec_module(bench_large)
+COHORT = Path(sys.argv.pop(1)) if len(sys.argv) > 1 else None
+
+BVH_LINE = ("4-wide BVH: depth 13, 668798 nodes, 1338419 leaves, 1597397 references to 1111216 triangles, "
+            "1.19 per leaf, SAH cost 12.66, built in 0.874s (triangles kept in 0.119s)")
+KD_LINE = ("kd-tree (compact): depth 44, 5510199 nodes, 2755100 leaves (900000 empty), 3.07 triangles per leaf, "
+           "SAH cost 92.33, built in 3.543s")
+
+
+class ParseTree(unittest.TestCase):
+    def test_bvh_build_includes_keeping_the_triangles(self):
+        depth, nodes, sah, build_s = bench_large.parse_tree("scene: x\n" + BVH_LINE + "\n")
+        self.assertEqual((depth, nodes, sah), (13, 668798, 12.66))
+        self.assertAlmostEqual(build_s, 0.874 + 0.119)
+
+    def test_kd_tree(self):
+        self.assertEqual(bench_large.parse_tree(KD_LINE), (44, 5510199, 92.33, 3.543))
+        # binaries before the tree kinds printed "kd-tree:" alone
+        self.assertEqual(bench_large.parse_tree(KD_LINE.replace(" (compact)", "")), (44, 5510199, 92.33, 3.543))
+
+    def test_no_tree_line_is_an_error(self):
+        with self.assertRaises(SystemExit):
+            bench_large.parse_tree("scene: x\ntriangles: 3\n")
+
+
+@unittest.skipUnless(COHORT, "no cohort binary given")
+class RealBuilds(unittest.TestCase):
+    def test_every_tree_of_the_cornell_box(self):
+        scene = ROOT / "scenes" / "cornell-box.gltf"
+        figures = {tree: bench_large.info_figures(COHORT, scene, tree=tree) for tree in ("", "deep", "compact", "bvh4")}
+        for tree, f in figures.items():
+            self.assertGreater(f["nodes"], 1, tree)
+            self.assertGreater(f["sah"], 0.0, tree)
+            self.assertGreaterEqual(f["build_s"], 0.0, tree)
+            self.assertEqual(f["triangles"], figures[""]["triangles"], tree)
+        # info's own tree is the deep KD-tree; the compact one has fewer nodes; the BVH is another tree
+        self.assertEqual(figures[""]["nodes"], figures["deep"]["nodes"])
+        self.assertLessEqual(figures["compact"]["nodes"], figures["deep"]["nodes"])
+        self.assertNotEqual(figures["bvh4"]["nodes"], figures["deep"]["nodes"])
+
+
+if __name__ == "__main__":
+    unittest.main()
