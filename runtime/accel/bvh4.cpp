@@ -376,10 +376,10 @@ struct Builder {
     }
   }
 
-  // Below kMedianDepth, the object median along the widest centroid axis: halves the count, so the
-  // depth stays bounded. nth_element over the
-  // positions with the references' order (centroid, then index) moves them as it would move the
-  // indices themselves; boxes and indices are then put in that order.
+  // From depth kMedianDepth on, the object median along the widest centroid axis: halves the count,
+  // so the depth stays bounded. nth_element over the positions with the references' order
+  // (centroid, then index) moves them as it would move the indices themselves; boxes and indices
+  // are then put in that order.
   void median_split(std::uint32_t first, std::uint32_t count, std::uint32_t mid, const Box& centroids) {
     int axis = 0;
     for (int a = 1; a < 3; ++a)
