@@ -24,6 +24,11 @@ namespace {
 // Below this a node's subtree is built serially: a task would cost more than it saves.
 constexpr std::size_t kParallelTriangles = 4096;
 
+// Up to this many references the exact search counts its candidates directly (count_candidates)
+// instead of sorting and merging the extents: the same plane, in 0.8x the build time (Crytek
+// Sponza's compact tree on one thread: 1.32 s against 1.68 s; the crossover lies above 64).
+constexpr std::size_t kCountedTriangles = 64;
+
 // Wald & Havran's "bad refines" guard: a split after which both children still hold every triangle
 // makes no progress; after this many in a row the node becomes a leaf. With the strict
 // "split only when C_best <= K_I N" rule such a split cannot win (P_L + P_R > 1), so this is a
@@ -112,25 +117,28 @@ std::uint32_t Builder::add_inner(Subtree& out, const SplitPlane& plane, const Bo
 SplitPlane Builder::find_plane(Scratch& s, std::size_t begin, std::size_t end,
                                const SahContext& c, bool parallel, bool inherited) const {
   const std::size_t count = end - begin;
+  const std::span<const Ref> refs = std::span<const Ref>(s.refs).subspan(begin, count);
   if (!exact(count)) {
     // A bin per four references is enough: the exact sweep inside the best bins and at the ends
     // of the geometry finds the planes that matter (on the bunny: 3% fewer instructions than a
     // bin per reference, SAH 75.03 against 75.09). At most 65536: bin indices are kept as 16 bits.
     const int bins = static_cast<int>(std::clamp<std::size_t>(
         count / 4, 8, static_cast<std::size_t>(std::clamp(options_.bins, 8, 65536))));
-    return find_binned_plane(c, std::span<const Ref>(s.refs).subspan(begin, count), bins,
-                             parallel, s.plane);
+    return find_binned_plane(c, refs, bins, parallel, s.plane);
   }
-  NodeExtents& extents = s.plane.extents;
-  if (!inherited) {
+  // An inherited node evaluates its parent's candidates again (in its own cell).
+  if (!inherited && count <= kCountedTriangles) {
+    count_candidates(refs, s.plane.candidates);
+  } else if (!inherited) {
+    NodeExtents& extents = s.plane.extents;
     for (AxisExtents& x : extents) x.clear();
-    for (std::size_t i = begin; i < end; ++i) {
-      const Bounds& box = s.refs[i].box;
-      for (int axis = 0; axis < 3; ++axis) extents[axis].add(box.lo[axis], box.hi[axis]);
+    for (const Ref& r : refs) {
+      for (int axis = 0; axis < 3; ++axis) extents[axis].add(r.box.lo[axis], r.box.hi[axis]);
     }
     for (AxisExtents& x : extents) x.sort();
+    sweep_candidates(extents, c.count, s.plane.candidates);
   }
-  return find_best_plane(c, extents, s.plane.candidates, s.plane.costs, inherited);
+  return find_best_plane(c, s.plane.candidates, s.plane.costs);
 }
 
 std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::size_t end,

@@ -177,8 +177,16 @@ void merge_candidates(std::span<const float> starts, std::span<const float> ends
                       std::span<const float> flats, std::uint32_t n_left, std::uint32_t n_right,
                       AxisCandidates& out);
 
-// evaluate_plane over the candidates of `axis`, in their order: the same plane (first of the
-// cheapest) and lowest plain cost, computed a vector of candidates at a time (kdtree_sah.cpp).
+// The candidates of a small node counted directly instead of swept: each boundary of a
+// reference's extent with the references starting before it, ending after it and lying in it,
+// from comparisons with every reference (n^2 of them, branch-free and vectorised), in no order and
+// with repeats. Below a few dozen references this costs less than sorting and merging, and it
+// gives the counts the sweep gives, so evaluate_candidates chooses the same plane (kdtree_sah.cpp).
+void count_candidates(std::span<const Ref> refs, NodeCandidates& out);
+
+// evaluate_plane over the candidates of `axis` in ascending order of position: the same plane
+// (first of the cheapest) and lowest plain cost whatever the candidates' order and repeats,
+// computed a vector of candidates at a time (kdtree_sah.cpp).
 void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& candidates,
                          std::vector<float>& costs, SplitPlane& best);
 
@@ -192,13 +200,14 @@ struct PlaneScratch {
   std::vector<float> costs;  // evaluate_candidates' working memory
 };
 
-// The best plane of Wald & Havran's sweep (their FindPlane) over a node's sorted extents: exact,
-// every boundary of a reference's extent is a candidate (kdtree_sah.cpp).
-SplitPlane find_best_plane(const SahContext& context, const NodeExtents& extents);
-// The same with the candidates merged into `candidates` (kept for a child that inherits them), or,
-// with `merged`, evaluating those already there.
-SplitPlane find_best_plane(const SahContext& context, const NodeExtents& extents,
-                           NodeCandidates& candidates, std::vector<float>& costs, bool merged);
+// Wald & Havran's sweep (their FindPlane) over a node of `count` references' sorted extents:
+// every boundary of a reference's extent is a candidate, with its counts (kdtree_sah.cpp).
+void sweep_candidates(const NodeExtents& extents, std::uint32_t count, NodeCandidates& out);
+
+// The best plane of a node's candidates, swept or counted (kdtree_sah.cpp). They are kept for a
+// child that inherits them.
+SplitPlane find_best_plane(const SahContext& context, const NodeCandidates& candidates,
+                           std::vector<float>& costs);
 
 // The best of `bins - 1` evenly spaced planes per axis, counted from binned reference extents in
 // time linear in the node, and of the exact candidates inside the two bins around each axis's best

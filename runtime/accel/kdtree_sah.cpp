@@ -101,6 +101,45 @@ void candidate_costs(CostTerms t, std::size_t n, const float* __restrict pos,
   }
 }
 
+// count_candidates' comparisons: for each of the 2n candidates pos[i] (the n low ends, then the
+// n high ends), the references starting before it (left) and ending after it (right). Written
+// over the candidates, with the references in the outer loop, so the inner loop is a vector of
+// candidates compared with one broadcast reference.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void count_sides(const float* __restrict pos, std::size_t n, float* __restrict left,
+                 float* __restrict right) {
+  const std::size_t m = 2 * n;
+  for (std::size_t i = 0; i < m; ++i) left[i] = right[i] = 0.f;
+  for (std::size_t j = 0; j < n; ++j) {
+    const float lo = pos[j], hi = pos[n + j];
+    for (std::size_t i = 0; i < m; ++i) {
+      left[i] += lo < pos[i] ? 1.f : 0.f;
+      right[i] += hi > pos[i] ? 1.f : 0.f;
+    }
+  }
+}
+
+// The references lying flat in each candidate's plane, on the left (a) or on the right (b), as
+// merge_candidates counts them; `left_a` and `right_a` come in as count_sides left them.
+void count_planar(const float* pos, std::size_t n, float* left_a, const float* right_a,
+                  float* left_b, float* right_b) {
+  const std::size_t m = 2 * n;
+  for (std::size_t i = 0; i < m; ++i) {
+    left_b[i] = left_a[i];
+    right_b[i] = right_a[i];
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    if (pos[j] != pos[n + j]) continue;
+    for (std::size_t i = 0; i < m; ++i) {
+      const float in_plane = pos[j] == pos[i] ? 1.f : 0.f;
+      left_a[i] += in_plane;
+      right_b[i] += in_plane;
+    }
+  }
+}
+
 }  // namespace
 
 void merge_candidates(std::span<const float> starts, std::span<const float> ends,
@@ -131,6 +170,29 @@ void merge_candidates(std::span<const float> starts, std::span<const float> ends
   out.size = n;
 }
 
+void count_candidates(std::span<const Ref> refs, NodeCandidates& out) {
+  const std::size_t n = refs.size();
+  for (int axis = 0; axis < 3; ++axis) {
+    AxisCandidates& x = out[axis];
+    x.clear();
+    x.reserve_more(2 * n);
+    x.size = 2 * n;
+    // The candidates: every reference's low end, then every high end (a flat extent gives the
+    // same position twice; a duplicate counts the same and loses the tie to its twin).
+    float* pos = x.pos.data();
+    bool planar = false;
+    for (std::size_t j = 0; j < n; ++j) {
+      const float lo = refs[j].box.lo[axis] + 0.f, hi = refs[j].box.hi[axis] + 0.f;
+      pos[j] = lo;
+      pos[n + j] = hi;
+      planar |= lo == hi;
+    }
+    count_sides(pos, n, x.left_a.data(), x.right_a.data());
+    x.planar = planar;
+    if (planar) count_planar(pos, n, x.left_a.data(), x.right_a.data(), x.left_b.data(), x.right_b.data());
+  }
+}
+
 void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& candidates,
                          std::vector<float>& costs, SplitPlane& best) {
   // A flat cell cannot be split along its flat axis: both children would be the cell itself.
@@ -158,29 +220,38 @@ void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& ca
     cost_b = cost_a;
     plain_b = plain_a;
   }
-  // evaluate_plane's comparisons in candidate order (planar left before planar right): the first
-  // of the cheapest wins, and an invalid best takes the first candidate whatever its cost.
+  // evaluate_plane's comparisons in the order of the ascending sweep (by position, planar left
+  // before planar right at one position): the first of the cheapest wins, and an invalid best
+  // takes the first candidate whatever its cost. Ties go to the lower position rather than the
+  // earlier index, so counted candidates (any order, repeated positions) choose what the sweep
+  // does; a tie with an earlier axis's plane keeps that plane.
   float lowest = best.lowest_plain_cost;
   std::size_t chosen = n;  // none of these
   bool chosen_a = true;
   float chosen_cost = best.cost;
-  std::size_t i = 0;
+  float chosen_pos = -std::numeric_limits<float>::infinity();
   if (!best.valid()) {
-    chosen = 0;
-    chosen_cost = cost_a[0];
+    chosen = static_cast<std::size_t>(std::min_element(pos, pos + n) - pos);
+    chosen_cost = cost_a[chosen];
+    chosen_pos = pos[chosen];
   }
-  for (; i < n; ++i) {
+  auto better = [&](float cost, float p) {
+    return cost < chosen_cost || (cost == chosen_cost && p < chosen_pos);
+  };
+  for (std::size_t i = 0; i < n; ++i) {
     lowest = std::min(lowest, plain_a[i]);
     lowest = std::min(lowest, plain_b[i]);
-    if (cost_a[i] < chosen_cost) {
+    if (better(cost_a[i], pos[i])) {
       chosen = i;
       chosen_a = true;
       chosen_cost = cost_a[i];
+      chosen_pos = pos[i];
     }
-    if (cost_b[i] < chosen_cost) {
+    if (better(cost_b[i], pos[i])) {
       chosen = i;
       chosen_a = false;
       chosen_cost = cost_b[i];
+      chosen_pos = pos[i];
     }
   }
   best.lowest_plain_cost = lowest;
@@ -196,25 +267,22 @@ void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& ca
                                                          : candidates.right_b[chosen]);
 }
 
-SplitPlane find_best_plane(const SahContext& context, const NodeExtents& extents,
-                           NodeCandidates& candidates, std::vector<float>& costs, bool merged) {
+void sweep_candidates(const NodeExtents& extents, std::uint32_t count, NodeCandidates& out) {
+  for (int axis = 0; axis < 3; ++axis) {
+    const AxisExtents& x = extents[axis];
+    out[axis].clear();
+    merge_candidates(x.starts, x.ends, x.flats, 0, count, out[axis]);
+  }
+}
+
+SplitPlane find_best_plane(const SahContext& context, const NodeCandidates& candidates,
+                           std::vector<float>& costs) {
   // Axis order and a strict comparison: the same plane whatever the order of the references.
   SplitPlane best;
   for (int axis = 0; axis < 3; ++axis) {
-    if (!merged) {
-      const AxisExtents& x = extents[axis];
-      candidates[axis].clear();
-      merge_candidates(x.starts, x.ends, x.flats, 0, context.count, candidates[axis]);
-    }
     evaluate_candidates(context, axis, candidates[axis], costs, best);
   }
   return best;
-}
-
-SplitPlane find_best_plane(const SahContext& context, const NodeExtents& extents) {
-  NodeCandidates candidates;
-  std::vector<float> costs;
-  return find_best_plane(context, extents, candidates, costs, false);
 }
 
 }  // namespace cohort::kd

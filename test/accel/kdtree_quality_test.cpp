@@ -88,17 +88,22 @@ kd::SplitPlane brute_force_plane(const kd::SahContext& c, const std::vector<Boun
   return best;
 }
 
-TEST(KdTreeQuality, SortedExtentSweepFindsTheBruteForcePlane) {
+// Both exact searches, the sweep over sorted extents and the direct count of small nodes, choose
+// Wald & Havran's plane: the same plane, cost and counts, ties going to the lowest position.
+TEST(KdTreeQuality, ExactSearchesFindTheBruteForcePlane) {
   // Small nodes as the build sees them: extents on a coarse grid, so positions repeat and starts,
-  // ends and flat extents share positions (the cases the sweep's grouping must count right).
+  // ends and flat extents share positions (the cases the sweep's grouping must count right), and
+  // equal costs are common (the tie rule decides).
   std::mt19937 rng(7);
   std::uniform_int_distribution<int> grid(0, 8);
   Bounds cell;
   cell.extend(glm::vec3(0.f));
   cell.extend(glm::vec3(1.f, 2.f, 0.5f));
+  std::vector<float> costs;
   for (int trial = 0; trial < 500; ++trial) {
-    const int count = 1 + trial % 40;
+    const int count = 1 + trial % 70;
     std::vector<Bounds> boxes;
+    std::vector<kd::Ref> refs;
     kd::NodeExtents extents;
     for (int i = 0; i < count; ++i) {
       Bounds b;
@@ -111,20 +116,30 @@ TEST(KdTreeQuality, SortedExtentSweepFindsTheBruteForcePlane) {
         extents[axis].add(b.lo[axis], b.hi[axis]);
       }
       boxes.push_back(b);
+      refs.push_back({b, static_cast<std::uint32_t>(i)});
     }
     for (kd::AxisExtents& x : extents) x.sort();
     kd::SahContext context{};
     ASSERT_TRUE(kd::make_sah_context(cell, boxes.size(), KdBuildOptions{}, context));
     const kd::SplitPlane expected = brute_force_plane(context, boxes);
-    const kd::SplitPlane found = kd::find_best_plane(context, extents);
-    SCOPED_TRACE(trial);
-    ASSERT_EQ(found.valid(), expected.valid());
-    EXPECT_EQ(found.axis, expected.axis);
-    EXPECT_EQ(found.pos, expected.pos);
-    EXPECT_EQ(found.planar_left, expected.planar_left);
-    EXPECT_EQ(found.left_count, expected.left_count);
-    EXPECT_EQ(found.right_count, expected.right_count);
-    EXPECT_EQ(found.cost, expected.cost);
+    kd::NodeCandidates swept, counted, counted_reversed;
+    kd::sweep_candidates(extents, context.count, swept);
+    kd::count_candidates(refs, counted);
+    std::reverse(refs.begin(), refs.end());
+    kd::count_candidates(refs, counted_reversed);
+    for (const kd::NodeCandidates* candidates : {&swept, &counted, &counted_reversed}) {
+      const kd::SplitPlane found = kd::find_best_plane(context, *candidates, costs);
+      SCOPED_TRACE(testing::Message() << "trial " << trial << ", "
+                                      << (candidates == &swept ? "swept" : "counted"));
+      ASSERT_EQ(found.valid(), expected.valid());
+      EXPECT_EQ(found.axis, expected.axis);
+      EXPECT_EQ(found.pos, expected.pos);
+      EXPECT_EQ(found.planar_left, expected.planar_left);
+      EXPECT_EQ(found.left_count, expected.left_count);
+      EXPECT_EQ(found.right_count, expected.right_count);
+      EXPECT_EQ(found.cost, expected.cost);
+      EXPECT_EQ(found.lowest_plain_cost, expected.lowest_plain_cost);
+    }
   }
 }
 
