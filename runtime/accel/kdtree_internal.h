@@ -85,7 +85,8 @@ struct SahContext {
   std::uint32_t count;  // references in the node
 };
 
-// False for a cell without area (nothing to split) or with an infinite one.
+// False for a cell without area (nothing to split), with an infinite one, or with one too small
+// for 1 / area to be finite.
 bool make_sah_context(const Bounds& voxel, std::size_t count, const KdBuildOptions& options,
                       SahContext& out);
 

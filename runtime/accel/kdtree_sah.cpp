@@ -12,7 +12,9 @@ namespace cohort::kd {
 bool make_sah_context(const Bounds& voxel, std::size_t count, const KdBuildOptions& options,
                       SahContext& out) {
   const float area = voxel.surface_area();
-  if (!(area > 0.f) || !std::isfinite(area)) return false;
+  // 1 / area finite too (a cell of denormal area has none): then every candidate's cost is
+  // finite, which the plane searches rely on.
+  if (!(area > 0.f) || !std::isfinite(area) || !std::isfinite(1.f / area)) return false;
   out = {voxel.lo,
          voxel.hi,
          voxel.extent(),
@@ -222,37 +224,41 @@ void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& ca
   }
   // evaluate_plane's comparisons in the order of the ascending sweep (by position, planar left
   // before planar right at one position): the first of the cheapest wins, and an invalid best
-  // takes the first candidate whatever its cost. Ties go to the lower position rather than the
-  // earlier index, so counted candidates (any order, repeated positions) choose what the sweep
-  // does; a tie with an earlier axis's plane keeps that plane.
+  // takes the first candidate whatever its cost. Costs are finite (make_sah_context), so that is
+  // the least cost, then the lowest position at that cost; a tie with an earlier axis's plane
+  // keeps that plane. Found in two passes whose branches are nearly never taken (the search
+  // for a running minimum mispredicts at every new one), and by position rather than index, so
+  // counted candidates (any order, repeated positions) choose what the sweep does.
+  const bool planar = candidates.planar;
+  float least = std::numeric_limits<float>::infinity();
   float lowest = best.lowest_plain_cost;
+  for (std::size_t i = 0; i < n; ++i) {
+    least = std::min(least, cost_a[i]);
+    lowest = std::min(lowest, plain_a[i]);
+  }
+  if (planar) {
+    for (std::size_t i = 0; i < n; ++i) {
+      least = std::min(least, cost_b[i]);
+      lowest = std::min(lowest, plain_b[i]);
+    }
+  }
   std::size_t chosen = n;  // none of these
   bool chosen_a = true;
   float chosen_cost = best.cost;
-  float chosen_pos = -std::numeric_limits<float>::infinity();
-  if (!best.valid()) {
-    chosen = static_cast<std::size_t>(std::min_element(pos, pos + n) - pos);
-    chosen_cost = cost_a[chosen];
-    chosen_pos = pos[chosen];
-  }
-  auto better = [&](float cost, float p) {
-    return cost < chosen_cost || (cost == chosen_cost && p < chosen_pos);
-  };
-  for (std::size_t i = 0; i < n; ++i) {
-    lowest = std::min(lowest, plain_a[i]);
-    lowest = std::min(lowest, plain_b[i]);
-    if (better(cost_a[i], pos[i])) {
-      chosen = i;
-      chosen_a = true;
-      chosen_cost = cost_a[i];
-      chosen_pos = pos[i];
-    }
-    if (better(cost_b[i], pos[i])) {
-      chosen = i;
-      chosen_a = false;
-      chosen_cost = cost_b[i];
-      chosen_pos = pos[i];
-    }
+  if (!best.valid() || least < best.cost) {
+    // The lowest position at the least cost, and its first index.
+    auto lowest_at_least = [&](const float* cost) {
+      std::size_t at = n;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (cost[i] == least && (at == n || pos[i] < pos[at])) at = i;
+      }
+      return at;
+    };
+    const std::size_t at_a = lowest_at_least(cost_a);
+    const std::size_t at_b = planar ? lowest_at_least(cost_b) : n;
+    chosen_a = at_b == n || (at_a != n && pos[at_a] <= pos[at_b]);
+    chosen = chosen_a ? at_a : at_b;
+    chosen_cost = least;
   }
   best.lowest_plain_cost = lowest;
   if (chosen == n) return;
