@@ -182,22 +182,44 @@ void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs
       }
     }
   }
-  // The bins count_all() kept (binning -0 and +0 alike).
+  // The bins count_all() kept (binning -0 and +0 alike). Every position is written and the
+  // kept ones counted, so whether a position is in a refined bin is no branch to mispredict.
   auto gather = [&](std::size_t first, std::size_t last, NodeExtents& extents) {
+    std::array<float*, 3> starts, ends, flats;
+    std::array<std::size_t, 3> n_starts, n_ends, n_flats;
+    for (int axis = 0; axis < 3; ++axis) {
+      AxisExtents& x = extents[axis];
+      n_starts[axis] = x.starts.size();
+      n_ends[axis] = x.ends.size();
+      n_flats[axis] = x.flats.size();
+      x.starts.resize(n_starts[axis] + (last - first));
+      x.ends.resize(n_ends[axis] + (last - first));
+      x.flats.resize(n_flats[axis] + (last - first));
+      starts[axis] = x.starts.data();
+      ends[axis] = x.ends.data();
+      flats[axis] = x.flats.data();
+    }
     for (std::size_t i = first; i < last; ++i) {
       const Ref& r = refs[i];
       const std::uint16_t* ref_bins = scratch.ref_bins.data() + 6 * i;
       for (int axis = 0; axis < 3; ++axis) {
         const std::uint8_t* refined = scratch.refined.data() + axis * bins;
         const float lo = r.box.lo[axis] + 0.f, hi = r.box.hi[axis] + 0.f;
-        AxisExtents& x = extents[axis];
-        if (lo == hi) {
-          if (refined[ref_bins[2 * axis]]) x.flats.push_back(lo);
-          continue;
-        }
-        if (refined[ref_bins[2 * axis]]) x.starts.push_back(lo);
-        if (refined[ref_bins[2 * axis + 1]]) x.ends.push_back(hi);
+        const std::size_t flat = lo == hi;
+        const std::size_t lo_refined = refined[ref_bins[2 * axis]];
+        const std::size_t hi_refined = refined[ref_bins[2 * axis + 1]];
+        starts[axis][n_starts[axis]] = lo;
+        n_starts[axis] += lo_refined & (flat ^ 1);
+        ends[axis][n_ends[axis]] = hi;
+        n_ends[axis] += hi_refined & (flat ^ 1);
+        flats[axis][n_flats[axis]] = lo;
+        n_flats[axis] += lo_refined & flat;
       }
+    }
+    for (int axis = 0; axis < 3; ++axis) {
+      extents[axis].starts.resize(n_starts[axis]);
+      extents[axis].ends.resize(n_ends[axis]);
+      extents[axis].flats.resize(n_flats[axis]);
     }
   };
   if (!parallel || refs.size() <= 2 * kParallelGrain) {
