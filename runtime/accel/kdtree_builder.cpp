@@ -1,10 +1,11 @@
 // The recursive SAH build over triangle references. Large nodes pick their plane from binned
-// counts (linear time); nodes of at most KdBuildOptions::exact_triangles references sort their
-// extents and sweep every candidate (Wald & Havran 2006's exact SAH). References live in
-// one growing array per task, used as a stack: a node's left child overwrites it in place and its
-// right child is appended, so the recursion allocates nothing per node. Subtrees of large nodes are
-// TBB tasks, built into their own pointer-free Subtree kept in a fixed slot of their parent's, so
-// the tree is the same bits whatever the thread count and timing.
+// counts (linear time); nodes of at most KdBuildOptions::exact_triangles references evaluate every
+// candidate (Wald & Havran 2006's exact SAH), counted directly up to 64 references, else swept over
+// sorted extents. References live in one growing array per task, used as a stack: a node's left
+// child overwrites it in place and its right child is appended, so the recursion allocates nothing
+// per node. Subtrees of large nodes are TBB tasks, built into their own pointer-free Subtree kept
+// in a fixed slot of their parent's, so the tree is the same bits whatever the thread count and
+// timing.
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

@@ -4,9 +4,10 @@
 //
 // The build works on triangle references (a triangle and its extent clipped to the node's cell).
 // Large nodes pick their plane from binned counts in linear time; nodes of at most
-// KdBuildOptions::exact_triangles references sort their extents and sweep every candidate exactly
-// as Wald & Havran do with their events ("On building fast kd-trees for ray tracing, and on doing
-// that in O(N log N)", IEEE RT 2006).
+// KdBuildOptions::exact_triangles references evaluate every candidate exactly as Wald & Havran do
+// with their events ("On building fast kd-trees for ray tracing, and on doing that in O(N log N)",
+// IEEE RT 2006): small ones by counting each candidate's references directly, larger ones by
+// sweeping their sorted extents.
 #pragma once
 
 #include <algorithm>

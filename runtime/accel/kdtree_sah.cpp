@@ -191,7 +191,9 @@ void count_candidates(std::span<const Ref> refs, NodeCandidates& out) {
     }
     count_sides(pos, n, x.left_a.data(), x.right_a.data());
     x.planar = planar;
-    if (planar) count_planar(pos, n, x.left_a.data(), x.right_a.data(), x.left_b.data(), x.right_b.data());
+    if (planar) {
+      count_planar(pos, n, x.left_a.data(), x.right_a.data(), x.left_b.data(), x.right_b.data());
+    }
   }
 }
 
