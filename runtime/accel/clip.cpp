@@ -52,20 +52,17 @@ float round_up(double x) {
   return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
 }
 
-Polygon triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
-  Polygon poly;
-  poly.v[0] = glm::dvec3(a);
-  poly.v[1] = glm::dvec3(b);
-  poly.v[2] = glm::dvec3(c);
-  poly.n = 3;
-  return poly;
-}
-
-// The triangle clipped to `box`. A plane that no vertex lies beyond leaves the polygon as it is:
-// only the planes that cut the triangle (usually one or two of the six) are worth a pass.
-Polygon clip_to_box(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const Bounds& box) {
+// The triangle clipped to `box`, in one of `poly` (the other is working memory; neither is
+// cleared or copied: the clipping runs for every straddling reference of the KD build). A plane
+// that no vertex lies beyond leaves the polygon as it is: only the planes that cut the triangle
+// (usually one or two of the six) are worth a pass.
+const Polygon& clip_to_box(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
+                           const Bounds& box, std::array<Polygon, 2>& poly) {
   const glm::vec3 tri_lo = glm::min(a, glm::min(b, c)), tri_hi = glm::max(a, glm::max(b, c));
-  std::array<Polygon, 2> poly{triangle(a, b, c), Polygon{}};
+  poly[0].v[0] = glm::dvec3(a);
+  poly[0].v[1] = glm::dvec3(b);
+  poly[0].v[2] = glm::dvec3(c);
+  poly[0].n = 3;
   int cur = 0;
   auto clip = [&](int axis, double plane, double sign) {
     clip_plane(poly[cur], axis, plane, sign, poly[1 - cur]);
@@ -140,13 +137,15 @@ std::array<PointBounds, 2> split_bounds(const Polygon& in, int axis, double plan
 
 Bounds clip_triangle_bounds(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
                             const Bounds& box) {
-  return bounds_within(clip_to_box(a, b, c, box), box);
+  std::array<Polygon, 2> poly;
+  return bounds_within(clip_to_box(a, b, c, box, poly), box);
 }
 
 std::array<Bounds, 2> split_triangle_bounds(const glm::vec3& a, const glm::vec3& b,
                                             const glm::vec3& c, const Bounds& cell, int axis,
                                             float pos) {
-  const Polygon inside = clip_to_box(a, b, c, cell);
+  std::array<Polygon, 2> poly;
+  const Polygon& inside = clip_to_box(a, b, c, cell, poly);
   std::array<Bounds, 2> children{cell, cell};
   children[0].hi[axis] = pos;
   children[1].lo[axis] = pos;

@@ -149,6 +149,9 @@ inline void evaluate_plane(const SahContext& c, const AxisSah& a, float pos, std
 // Each candidate is evaluated twice, with the planar references on the left (a) and on the right
 // (b); the counts are floats, as the SAH uses them (exact below 2^24), so the evaluation is a
 // plain loop the compiler vectorises.
+// Candidates are counted and evaluated a vector of this many at a time, with no scalar tail.
+constexpr std::size_t kCandidateLanes = 8;
+
 struct AxisCandidates {
   std::vector<float> pos;
   std::vector<float> left_a, right_a, left_b, right_b;
@@ -159,11 +162,14 @@ struct AxisCandidates {
     size = 0;
     planar = false;
   }
-  // Room for `more` candidates after the first `size`.
+  // Room for `more` candidates after the first `size`, rounded up to whole vectors of
+  // kCandidateLanes: the counting and the evaluation read and write whole vectors (the lanes past
+  // the candidates hold finite stale values and are ignored).
   void reserve_more(std::size_t more) {
-    if (pos.size() < size + more) {
+    const std::size_t needed = (size + more + kCandidateLanes - 1) / kCandidateLanes * kCandidateLanes;
+    if (pos.size() < needed) {
       for (std::vector<float>* v : {&pos, &left_a, &right_a, &left_b, &right_b}) {
-        v->resize(std::max(size + more, 2 * v->size()));
+        v->resize(std::max(needed, 2 * v->size()));
       }
     }
   }

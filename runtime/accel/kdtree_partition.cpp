@@ -105,6 +105,9 @@ std::array<std::vector<Ref>, 2> partition_apart(std::span<const Ref> refs, const
   tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
     const std::size_t first = k * kParallelChunk;
     const std::size_t last = std::min(refs.size(), first + kParallelChunk);
+    // Room for the whole chunk on each side: no reallocation while it grows.
+    parts[k][0].reserve(last - first);
+    parts[k][1].reserve(last - first);
     for (std::size_t i = first; i < last; ++i) {
       const Placement where = place(refs[i], plane, voxel, triangles);
       if (where.left) parts[k][0].push_back({where.left_box, refs[i].tri});

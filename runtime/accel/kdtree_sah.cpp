@@ -2,6 +2,7 @@
 // FindPlane): one linear sweep per axis over the node's sorted extents finds the best of all
 // candidate planes (the boundaries of the references' clipped extents).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -68,6 +69,11 @@ void AxisExtents::sort() {
 
 namespace {
 
+// n rounded up to whole vectors of kCandidateLanes.
+constexpr std::size_t whole_lanes(std::size_t n) {
+  return (n + kCandidateLanes - 1) / kCandidateLanes * kCandidateLanes;
+}
+
 // How many of the sorted values from `i` on equal `pos`; advances `i` past them.
 std::uint32_t take_equal(std::span<const float> sorted, std::size_t& i, float pos) {
   const std::size_t first = i;
@@ -89,7 +95,8 @@ __attribute__((target_clones("avx2", "default")))
 void candidate_costs(CostTerms t, std::size_t n, const float* __restrict pos,
                      const float* __restrict left, const float* __restrict right,
                      float* __restrict cost, float* __restrict plain) {
-  for (std::size_t i = 0; i < n; ++i) {
+  constexpr float kNone = std::numeric_limits<float>::infinity();
+  for (std::size_t i = 0; i < whole_lanes(n); ++i) {
     const float width_left = pos[i] - t.lo, width_right = t.hi - pos[i];
     const float p_left = 2.f * (t.face + width_left * t.rim) * t.inv_area;
     const float p_right = 2.f * (t.face + width_right * t.rim) * t.inv_area;
@@ -98,9 +105,49 @@ void candidate_costs(CostTerms t, std::size_t n, const float* __restrict pos,
     const bool empty =
         ((left[i] == 0.f) & (width_left > 0.f)) | ((right[i] == 0.f) & (width_right > 0.f));
     const float bonus = c * t.empty_factor;
-    plain[i] = c;
-    cost[i] = empty ? bonus : c;
+    // The lanes past the candidates never win.
+    plain[i] = i < n ? c : kNone;
+    cost[i] = i < n ? (empty ? bonus : c) : kNone;
   }
+}
+
+// The least of `values` (whole_lanes(n) of them): an element-wise minimum over vectors, then
+// across one vector, instead of a chain of scalar minima. (Unrolled, GCC's vectoriser leaves the
+// lane loop scalar; as a loop it takes it a vector at a time.)
+float least_of(const float* __restrict values, std::size_t n) {
+  constexpr float kNone = std::numeric_limits<float>::infinity();
+  float lane[kCandidateLanes];
+  std::fill(lane, lane + kCandidateLanes, kNone);
+  for (std::size_t k = 0; k < whole_lanes(n); k += kCandidateLanes) {
+#pragma GCC unroll 1
+    for (std::size_t l = 0; l < kCandidateLanes; ++l) {
+      const float v = values[k + l];
+      lane[l] = v < lane[l] ? v : lane[l];
+    }
+  }
+  return *std::min_element(lane, lane + kCandidateLanes);
+}
+
+// The first index of the lowest position whose cost is `least` (n: none), its position found the
+// same way (both loaded before the select, so it is a select and not a branch).
+std::size_t lowest_at(const float* __restrict cost, const float* __restrict pos, float least,
+                      std::size_t n) {
+  constexpr float kNone = std::numeric_limits<float>::infinity();
+  float lane[kCandidateLanes];
+  std::fill(lane, lane + kCandidateLanes, kNone);
+  for (std::size_t k = 0; k < whole_lanes(n); k += kCandidateLanes) {
+#pragma GCC unroll 1
+    for (std::size_t l = 0; l < kCandidateLanes; ++l) {
+      const float c = cost[k + l], p = pos[k + l];
+      const float at = c == least ? p : kNone;
+      lane[l] = at < lane[l] ? at : lane[l];
+    }
+  }
+  const float lowest = *std::min_element(lane, lane + kCandidateLanes);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (cost[i] == least && pos[i] == lowest) return i;
+  }
+  return n;
 }
 
 // count_candidates' comparisons: for each of the 2n candidates pos[i] (the n low ends, then the
@@ -112,7 +159,7 @@ __attribute__((target_clones("avx2", "default")))
 #endif
 void count_sides(const float* __restrict pos, std::size_t n, float* __restrict left,
                  float* __restrict right) {
-  const std::size_t m = 2 * n;
+  const std::size_t m = whole_lanes(2 * n);
   for (std::size_t i = 0; i < m; ++i) left[i] = right[i] = 0.f;
   for (std::size_t j = 0; j < n; ++j) {
     const float lo = pos[j], hi = pos[n + j];
@@ -206,11 +253,12 @@ void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& ca
   // evaluate_plane's arithmetic, term for term, for every candidate and both sides of the planar
   // references: costs [0, n) planar left, [n, 2n) planar right, then the plain costs likewise.
   // Without planar references b is a copy of a, which never beats it (a comes first).
-  if (costs.size() < 4 * n) costs.resize(std::max(4 * n, 2 * costs.size()));
+  const std::size_t lanes = whole_lanes(n);
+  if (costs.size() < 4 * lanes) costs.resize(std::max(4 * lanes, 2 * costs.size()));
   float* cost_a = costs.data();
-  float* cost_b = cost_a + n;
-  float* plain_a = cost_b + n;
-  float* plain_b = plain_a + n;
+  float* cost_b = cost_a + lanes;
+  float* plain_a = cost_b + lanes;
+  float* plain_b = plain_a + lanes;
   const float* pos = candidates.pos.data();
   const CostTerms terms{a.lo,           a.hi,           a.face,
                         a.rim,          c.inv_area,     c.traversal_cost,
@@ -228,36 +276,22 @@ void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& ca
   // before planar right at one position): the first of the cheapest wins, and an invalid best
   // takes the first candidate whatever its cost. Costs are finite (make_sah_context), so that is
   // the least cost, then the lowest position at that cost; a tie with an earlier axis's plane
-  // keeps that plane. Found in two passes whose branches are nearly never taken (the search
-  // for a running minimum mispredicts at every new one), and by position rather than index, so
-  // counted candidates (any order, repeated positions) choose what the sweep does.
+  // keeps that plane. Found by vector minima (a search for a running minimum mispredicts at every
+  // new one), and by position rather than index, so counted candidates (any order, repeated
+  // positions) choose what the sweep does.
   const bool planar = candidates.planar;
-  float least = std::numeric_limits<float>::infinity();
-  float lowest = best.lowest_plain_cost;
-  for (std::size_t i = 0; i < n; ++i) {
-    least = std::min(least, cost_a[i]);
-    lowest = std::min(lowest, plain_a[i]);
-  }
+  float least = least_of(cost_a, n);
+  float lowest = std::min(best.lowest_plain_cost, least_of(plain_a, n));
   if (planar) {
-    for (std::size_t i = 0; i < n; ++i) {
-      least = std::min(least, cost_b[i]);
-      lowest = std::min(lowest, plain_b[i]);
-    }
+    least = std::min(least, least_of(cost_b, n));
+    lowest = std::min(lowest, least_of(plain_b, n));
   }
   std::size_t chosen = n;  // none of these
   bool chosen_a = true;
   float chosen_cost = best.cost;
   if (!best.valid() || least < best.cost) {
-    // The lowest position at the least cost, and its first index.
-    auto lowest_at_least = [&](const float* cost) {
-      std::size_t at = n;
-      for (std::size_t i = 0; i < n; ++i) {
-        if (cost[i] == least && (at == n || pos[i] < pos[at])) at = i;
-      }
-      return at;
-    };
-    const std::size_t at_a = lowest_at_least(cost_a);
-    const std::size_t at_b = planar ? lowest_at_least(cost_b) : n;
+    const std::size_t at_a = lowest_at(cost_a, pos, least, n);
+    const std::size_t at_b = planar ? lowest_at(cost_b, pos, least, n) : n;
     chosen_a = at_b == n || (at_a != n && pos[at_a] <= pos[at_b]);
     chosen = chosen_a ? at_a : at_b;
     chosen_cost = least;
