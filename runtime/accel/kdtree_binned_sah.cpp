@@ -11,6 +11,7 @@
 #include <array>
 #include <utility>
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "runtime/accel/kdtree_internal.h"
@@ -182,22 +183,17 @@ void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs
       }
     }
   }
-  // The bins count_all() kept (binning -0 and +0 alike). Every position is written and the
-  // kept ones counted, so whether a position is in a refined bin is no branch to mispredict.
-  auto gather = [&](std::size_t first, std::size_t last, NodeExtents& extents) {
+  // The bins count_all() kept (binning -0 and +0 alike). Every position is written to `buffer`
+  // (9 per reference) and the kept ones counted, so whether a position is in a refined bin is no
+  // branch to mispredict; the kept ones are then appended to `extents`.
+  auto gather = [&](std::size_t first, std::size_t last, float* buffer, NodeExtents& extents) {
+    const std::size_t n = last - first;
     std::array<float*, 3> starts, ends, flats;
-    std::array<std::size_t, 3> n_starts, n_ends, n_flats;
+    std::array<std::size_t, 3> n_starts{}, n_ends{}, n_flats{};
     for (int axis = 0; axis < 3; ++axis) {
-      AxisExtents& x = extents[axis];
-      n_starts[axis] = x.starts.size();
-      n_ends[axis] = x.ends.size();
-      n_flats[axis] = x.flats.size();
-      x.starts.resize(n_starts[axis] + (last - first));
-      x.ends.resize(n_ends[axis] + (last - first));
-      x.flats.resize(n_flats[axis] + (last - first));
-      starts[axis] = x.starts.data();
-      ends[axis] = x.ends.data();
-      flats[axis] = x.flats.data();
+      starts[axis] = buffer + (3 * axis) * n;
+      ends[axis] = buffer + (3 * axis + 1) * n;
+      flats[axis] = buffer + (3 * axis + 2) * n;
     }
     for (std::size_t i = first; i < last; ++i) {
       const Ref& r = refs[i];
@@ -217,20 +213,26 @@ void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs
       }
     }
     for (int axis = 0; axis < 3; ++axis) {
-      extents[axis].starts.resize(n_starts[axis]);
-      extents[axis].ends.resize(n_ends[axis]);
-      extents[axis].flats.resize(n_flats[axis]);
+      AxisExtents& x = extents[axis];
+      x.starts.insert(x.starts.end(), starts[axis], starts[axis] + n_starts[axis]);
+      x.ends.insert(x.ends.end(), ends[axis], ends[axis] + n_ends[axis]);
+      x.flats.insert(x.flats.end(), flats[axis], flats[axis] + n_flats[axis]);
     }
   };
   if (!parallel || refs.size() <= 2 * kParallelGrain) {
-    gather(0, refs.size(), scratch.extents);
+    if (scratch.gathered_size < 9 * refs.size()) {
+      scratch.gathered_size = std::max(9 * refs.size(), 2 * scratch.gathered_size);
+      scratch.gathered = std::make_unique_for_overwrite<float[]>(scratch.gathered_size);
+    }
+    gather(0, refs.size(), scratch.gathered.get(), scratch.extents);
   } else {
     // Chunks gathered in parallel and joined; the order does not matter, the lists are sorted.
     const std::size_t chunks = (refs.size() + kParallelGrain - 1) / kParallelGrain;
     std::vector<NodeExtents> parts(chunks);
     tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
       const std::size_t first = k * kParallelGrain;
-      gather(first, std::min(refs.size(), first + kParallelGrain), parts[k]);
+      const auto buffer = std::make_unique_for_overwrite<float[]>(9 * kParallelGrain);
+      gather(first, std::min(refs.size(), first + kParallelGrain), buffer.get(), parts[k]);
     });
     for (const NodeExtents& part : parts) {
       for (int axis = 0; axis < 3; ++axis) {

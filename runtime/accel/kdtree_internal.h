@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <limits>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -203,6 +204,10 @@ struct PlaneScratch {
   std::vector<std::uint32_t> starts, ends;  // binned counts, [axis * bins + bin]
   std::vector<std::uint8_t> refined;        // 1 for the bins the exact sweep covers, same index
   std::vector<std::uint16_t> ref_bins;      // per reference: start and end bin of each axis
+  // The refinement's gathering of every extent end, 9 per reference, before it keeps those in the
+  // refined bins: grown without being cleared (a cleared vector cost 2.4% of the build in memset).
+  std::unique_ptr<float[]> gathered;
+  std::size_t gathered_size = 0;
   NodeExtents extents;
   NodeCandidates candidates;
   std::vector<float> costs;  // evaluate_candidates' working memory
