@@ -4,7 +4,9 @@
 //
 // Threads: a TBB task_arena of --threads workers (default 2) runs blocks of 256 rays through
 // rtcIntersect1M (Embree's ray-stream API), marked coherent for primary rays and incoherent for
-// diffuse rays; the BVH is built by an Embree device configured with the same thread count.
+// diffuse rays; the BVH is built by an Embree device configured with the same thread count, at
+// --build-quality (Embree's default, medium; high adds spatial splits: the anchor issue 26 sets
+// the KD build against).
 #include <embree3/rtcore.h>
 
 #include <CLI/CLI.hpp>
@@ -15,6 +17,7 @@
 
 #include <chrono>
 #include <cstring>
+#include <map>
 #include <memory>
 
 #include "runtime/bench/bench_json.h"
@@ -39,11 +42,18 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// --build-quality's names for Embree's build qualities.
+const std::map<std::string, RTCBuildQuality> kBuildQualities{
+    {"low", RTC_BUILD_QUALITY_LOW}, {"medium", RTC_BUILD_QUALITY_MEDIUM}, {"high", RTC_BUILD_QUALITY_HIGH}};
+
 // The triangles of Scene::positions (3 per triangle), so primID indexes them as the protocol's
 // diffuse rays expect. Returns the scene and its build time.
-std::pair<EmbreeScene, double> build_bvh(RTCDevice device, std::span<const glm::vec3> positions) {
+std::pair<EmbreeScene, double> build_bvh(RTCDevice device, std::span<const glm::vec3> positions,
+                                         RTCBuildQuality quality) {
   EmbreeScene scene(rtcNewScene(device));
+  rtcSetSceneBuildQuality(scene.get(), quality);
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetGeometryBuildQuality(geometry, quality);
   const std::size_t tris = positions.size() / 3;
   auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                         3 * sizeof(float), positions.size()));
@@ -105,13 +115,15 @@ std::string mrays(const RateFigure& f) { return fmt::format("{:.2f} ({:.2f})", f
 int run(int argc, char** argv) {
   CLI::App app{"Embree 3 on the rays of bench-protocol.md (beside `cohort bench`)", "cohort-embree-bench"};
   std::vector<std::filesystem::path> scenes;
-  std::string views = "exterior", json;
+  std::string views = "exterior", json, build_quality = "medium";
   unsigned trace_res = 1024, reps = 3, threads = 2;
   app.add_option("scenes", scenes, "Scene files")->required();
   app.add_option("--view", views, "exterior, interior or both (comma list)");
   app.add_option("--trace-res", trace_res, "Image side N (N x N primary rays)")->check(CLI::Range(1, 16384));
   app.add_option("--reps", reps, "Repetitions (median and best)")->check(CLI::Range(3, 1000));
   app.add_option("--threads", threads, "Threads for tracing and the BVH build")->check(CLI::Range(1, 1024));
+  app.add_option("--build-quality", build_quality, "Embree's BVH build: low, medium (its default) or high")
+      ->check(CLI::IsMember(kBuildQualities));
   app.add_option("--json", json, "Write the figures to this JSON file");
   try {
     app.parse(argc, argv);
@@ -137,7 +149,7 @@ int run(int argc, char** argv) {
     s.triangles = scene.triangle_count();
     s.load_seconds = seconds_since(load_start);
     s.bounds = scene.bounds();
-    auto [bvh, build_seconds] = build_bvh(device.get(), scene.positions);
+    auto [bvh, build_seconds] = build_bvh(device.get(), scene.positions, kBuildQualities.at(build_quality));
     s.kdtree.build_seconds = build_seconds;  // here: the BVH
     for (const BenchView& view : view_list) {
       ViewFigures vf;
@@ -149,9 +161,9 @@ int run(int argc, char** argv) {
       vf.primary->closest.clear();
       vf.diffuse = trace(bvh.get(), diffuse, reps, threads, false);
       vf.diffuse->closest.clear();
-      fmt::print("{} [{} view], {} triangles, BVH build {:.3f}s\n  Mrays/s, median (best): primary {} with {} hits of "
+      fmt::print("{} [{} view], {} triangles, BVH build ({}) {:.3f}s\n  Mrays/s, median (best): primary {} with {} hits of "
                  "{} rays; diffuse {} over {} rays\n",
-                 path.string(), view.name, s.triangles, build_seconds, mrays(vf.primary->rays_per_second),
+                 path.string(), view.name, s.triangles, build_quality, build_seconds, mrays(vf.primary->rays_per_second),
                  vf.primary->hits, vf.primary->rays, mrays(vf.diffuse->rays_per_second), vf.diffuse->rays);
       s.views.push_back(std::move(vf));
     }
@@ -160,7 +172,7 @@ int run(int argc, char** argv) {
   if (!json.empty()) {
     nlohmann::json j;
     j["peer"] = "embree";
-    j["embree"] = {{"version", version}, {"threads", threads},
+    j["embree"] = {{"version", version}, {"threads", threads}, {"build_quality", build_quality},
                    {"api", "rtcIntersect1M, blocks of 256, TBB task_arena; coherent primary, incoherent diffuse"}};
     j["settings"] = {{"trace_res", trace_res}, {"reps", reps}};
     j["scenes"] = scenes_json(results, "bvh");
