@@ -111,39 +111,34 @@ void candidate_costs(CostTerms t, std::size_t n, const float* __restrict pos,
   }
 }
 
-// The least of `values` (whole_lanes(n) of them): an element-wise minimum over vectors, then
+// The least of value(i) over whole_lanes(n) indices: an element-wise minimum over vectors, then
 // across one vector, instead of a chain of scalar minima. (Unrolled, GCC's vectoriser leaves the
 // lane loop scalar; as a loop it takes it a vector at a time.)
-float least_of(const float* __restrict values, std::size_t n) {
-  constexpr float kNone = std::numeric_limits<float>::infinity();
+template <typename Value>
+float least_over_lanes(std::size_t n, Value value) {
   float lane[kCandidateLanes];
-  std::fill(lane, lane + kCandidateLanes, kNone);
+  std::fill(lane, lane + kCandidateLanes, std::numeric_limits<float>::infinity());
   for (std::size_t k = 0; k < whole_lanes(n); k += kCandidateLanes) {
 #pragma GCC unroll 1
     for (std::size_t l = 0; l < kCandidateLanes; ++l) {
-      const float v = values[k + l];
+      const float v = value(k + l);
       lane[l] = v < lane[l] ? v : lane[l];
     }
   }
   return *std::min_element(lane, lane + kCandidateLanes);
 }
 
+float least_of(const float* values, std::size_t n) {
+  return least_over_lanes(n, [values](std::size_t i) { return values[i]; });
+}
+
 // The first index of the lowest position whose cost is `least` (n: none), its position found the
-// same way (both loaded before the select, so it is a select and not a branch).
-std::size_t lowest_at(const float* __restrict cost, const float* __restrict pos, float least,
-                      std::size_t n) {
-  constexpr float kNone = std::numeric_limits<float>::infinity();
-  float lane[kCandidateLanes];
-  std::fill(lane, lane + kCandidateLanes, kNone);
-  for (std::size_t k = 0; k < whole_lanes(n); k += kCandidateLanes) {
-#pragma GCC unroll 1
-    for (std::size_t l = 0; l < kCandidateLanes; ++l) {
-      const float c = cost[k + l], p = pos[k + l];
-      const float at = c == least ? p : kNone;
-      lane[l] = at < lane[l] ? at : lane[l];
-    }
-  }
-  const float lowest = *std::min_element(lane, lane + kCandidateLanes);
+// same way (cost and position both loaded before the select, so it is a select, not a branch).
+std::size_t lowest_at(const float* cost, const float* pos, float least, std::size_t n) {
+  const float lowest = least_over_lanes(n, [&](std::size_t i) {
+    const float c = cost[i], p = pos[i];
+    return c == least ? p : std::numeric_limits<float>::infinity();
+  });
   for (std::size_t i = 0; i < n; ++i) {
     if (cost[i] == least && pos[i] == lowest) return i;
   }
