@@ -143,6 +143,9 @@ inline void evaluate_plane(const SahContext& c, const AxisSah& a, float pos, std
   if (n_planar > 0) consider(n_left, n_right + n_planar, false);
 }
 
+// Candidates are counted and evaluated a vector of this many at a time, with no scalar tail.
+constexpr std::size_t kCandidateLanes = 8;
+
 // One axis's candidate planes in ascending order with the counts Wald & Havran's sweep gives each:
 // references entirely left of the plane, reaching right of it, and lying in it. They depend on the
 // references only, not on the cell, so a child that gets every reference unchanged (an empty-space
@@ -150,9 +153,6 @@ inline void evaluate_plane(const SahContext& c, const AxisSah& a, float pos, std
 // Each candidate is evaluated twice, with the planar references on the left (a) and on the right
 // (b); the counts are floats, as the SAH uses them (exact below 2^24), so the evaluation is a
 // plain loop the compiler vectorises.
-// Candidates are counted and evaluated a vector of this many at a time, with no scalar tail.
-constexpr std::size_t kCandidateLanes = 8;
-
 struct AxisCandidates {
   std::vector<float> pos;
   std::vector<float> left_a, right_a, left_b, right_b;
@@ -167,7 +167,8 @@ struct AxisCandidates {
   // kCandidateLanes: the counting and the evaluation read and write whole vectors (the lanes past
   // the candidates hold finite stale values and are ignored).
   void reserve_more(std::size_t more) {
-    const std::size_t needed = (size + more + kCandidateLanes - 1) / kCandidateLanes * kCandidateLanes;
+    const std::size_t needed =
+        (size + more + kCandidateLanes - 1) / kCandidateLanes * kCandidateLanes;
     if (pos.size() < needed) {
       for (std::vector<float>* v : {&pos, &left_a, &right_a, &left_b, &right_b}) {
         v->resize(std::max(needed, 2 * v->size()));

@@ -246,8 +246,9 @@ void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& ca
   if (!(c.extent[axis] > 0.f) || n == 0) return;
   const AxisSah a = axis_sah(c, axis);
   // evaluate_plane's arithmetic, term for term, for every candidate and both sides of the planar
-  // references: costs [0, n) planar left, [n, 2n) planar right, then the plain costs likewise.
-  // Without planar references b is a copy of a, which never beats it (a comes first).
+  // references, in whole vectors (`lanes`, the ones past n costing infinity): costs planar left,
+  // then planar right, then the plain costs likewise. Without planar references b is a copy of a,
+  // which never beats it (a comes first).
   const std::size_t lanes = whole_lanes(n);
   if (costs.size() < 4 * lanes) costs.resize(std::max(4 * lanes, 2 * costs.size()));
   float* cost_a = costs.data();
