@@ -146,6 +146,11 @@ inline void evaluate_plane(const SahContext& c, const AxisSah& a, float pos, std
 // Candidates are counted and evaluated a vector of this many at a time, with no scalar tail.
 constexpr std::size_t kCandidateLanes = 8;
 
+// n rounded up to whole vectors of kCandidateLanes.
+constexpr std::size_t whole_lanes(std::size_t n) {
+  return (n + kCandidateLanes - 1) / kCandidateLanes * kCandidateLanes;
+}
+
 // One axis's candidate planes in ascending order with the counts Wald & Havran's sweep gives each:
 // references entirely left of the plane, reaching right of it, and lying in it. They depend on the
 // references only, not on the cell, so a child that gets every reference unchanged (an empty-space
@@ -167,8 +172,7 @@ struct AxisCandidates {
   // kCandidateLanes: the counting and the evaluation read and write whole vectors (the lanes past
   // the candidates hold finite stale values and are ignored).
   void reserve_more(std::size_t more) {
-    const std::size_t needed =
-        (size + more + kCandidateLanes - 1) / kCandidateLanes * kCandidateLanes;
+    const std::size_t needed = whole_lanes(size + more);
     if (pos.size() < needed) {
       for (std::vector<float>* v : {&pos, &left_a, &right_a, &left_b, &right_b}) {
         v->resize(std::max(needed, 2 * v->size()));

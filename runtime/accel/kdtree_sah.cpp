@@ -69,11 +69,6 @@ void AxisExtents::sort() {
 
 namespace {
 
-// n rounded up to whole vectors of kCandidateLanes.
-constexpr std::size_t whole_lanes(std::size_t n) {
-  return (n + kCandidateLanes - 1) / kCandidateLanes * kCandidateLanes;
-}
-
 // How many of the sorted values from `i` on equal `pos`; advances `i` past them.
 std::uint32_t take_equal(std::span<const float> sorted, std::size_t& i, float pos) {
   const std::size_t first = i;

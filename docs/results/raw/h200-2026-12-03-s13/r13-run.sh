@@ -16,10 +16,10 @@ G="$PWD/gpu-scenes"
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2)" | tee "$R/builds.txt"
 $B/cohort export "$G/crytek-sponza/sponza.obj.gz" -o /tmp/r13/sponza1m.ply --subdivide 1 >/dev/null
 $B/cohort export "$G/crytek-sponza/sponza.obj.gz" -o /tmp/r13/sponza4m.ply --subdivide 2 >/dev/null
+before="${BEFORE:-cohort-f0c4117}"
 for round in $(seq "${ROUNDS:-3}"); do
   for spec in "0-15 sponza4m" "0,1 sponza1m"; do
     set -- $spec
-    before="${BEFORE:-cohort-f0c4117}"
     for run in "cohort compact" "cohort deep" "$before compact" "$before deep" "cohort-d4baeea deep"; do
       read -r bin tree <<<"$run"
       # d4baeea has no --tree: its one tree is the deep one
