@@ -198,6 +198,14 @@ void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs
     for (std::size_t i = first; i < last; ++i) {
       const Ref& r = refs[i];
       const std::uint16_t* ref_bins = scratch.ref_bins.data() + 6 * i;
+      // Most references have no end in a refined bin (in the largest nodes about 2 in 100 ends
+      // are kept): one well-predicted branch skips them.
+      const std::uint8_t* refined_bins = scratch.refined.data();
+      if ((refined_bins[ref_bins[0]] | refined_bins[ref_bins[1]] | refined_bins[bins + ref_bins[2]] |
+           refined_bins[bins + ref_bins[3]] | refined_bins[2 * bins + ref_bins[4]] |
+           refined_bins[2 * bins + ref_bins[5]]) == 0) {
+        continue;
+      }
       for (int axis = 0; axis < 3; ++axis) {
         const std::uint8_t* refined = scratch.refined.data() + axis * bins;
         const float lo = r.box.lo[axis] + 0.f, hi = r.box.hi[axis] + 0.f;
@@ -246,7 +254,7 @@ void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs
   }
   for (int axis = 0; axis < 3; ++axis) {
     AxisExtents& x = scratch.extents[axis];
-    x.sort();
+    x.sort(c.lo[axis], c.hi[axis]);
     // The sorted positions fall into the ranges in order; each range's sweep starts from the
     // counts of the bins below it.
     AxisCandidates& candidates = scratch.candidates[axis];

@@ -41,6 +41,7 @@ constexpr int kMaxBadRefines = 3;
 // from node to node.
 struct Scratch {
   std::vector<Ref> refs;
+  RefBuffer right;  // partition()'s right side before it is appended to `refs`
   PlaneScratch plane;
   // plane.candidates are already the merged candidates of the next node's references: its parent
   // swept them and handed all of them on unchanged (an empty-space cut with nothing clipped, the most
@@ -136,7 +137,7 @@ SplitPlane Builder::find_plane(Scratch& s, std::size_t begin, std::size_t end,
     for (const Ref& r : refs) {
       for (int axis = 0; axis < 3; ++axis) extents[axis].add(r.box.lo[axis], r.box.hi[axis]);
     }
-    for (AxisExtents& x : extents) x.sort();
+    for (int axis = 0; axis < 3; ++axis) extents[axis].sort(c.lo[axis], c.hi[axis]);
     sweep_candidates(extents, c.count, s.plane.candidates);
   }
   return find_best_plane(c, s.plane.candidates, s.plane.costs);
@@ -184,7 +185,7 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
   const std::size_t right_begin = s.refs.size();
   std::size_t clipped = 0;
   const std::array<std::size_t, 2> counts =
-      partition(s.refs, begin, end, voxel, plane, triangles_, clipped);
+      partition(s.refs, begin, end, voxel, plane, triangles_, s.right, clipped);
   // The extents of this node are those of a child that got every reference unchanged.
   const bool hand_on = exact(count) && clipped == 0 && (counts[0] == 0 || counts[1] == 0);
   const std::uint32_t index = add_inner(out, plane, voxel);

@@ -18,6 +18,7 @@
 #include <limits>
 #include <memory>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "kernels/common/kdtree_traverse.h"
@@ -49,7 +50,8 @@ struct AxisExtents {
       ends.push_back(hi + 0.f);
     }
   }
-  void sort();
+  // Sorts the three lists, every position of which lies in the cell's [lo, hi] along the axis.
+  void sort(float lo, float hi);
 };
 
 using NodeExtents = std::array<AxisExtents, 3>;
@@ -60,6 +62,45 @@ using NodeExtents = std::array<AxisExtents, 3>;
 struct Ref {
   Bounds box;
   std::uint32_t tri;
+};
+
+// Uninitialised room for references, what the branch-free partitions write into: a reference is
+// written to both sides and kept by the count of the side it lies on. (Ref is an implicit-lifetime
+// aggregate, so its allocator's storage holds Refs once they are written; a vector would first
+// initialise every element.) Grows without keeping its contents.
+class RefBuffer {
+ public:
+  RefBuffer() = default;
+  RefBuffer(RefBuffer&& other) noexcept { swap(other); }
+  RefBuffer& operator=(RefBuffer&& other) noexcept {
+    RefBuffer(std::move(other)).swap(*this);
+    return *this;
+  }
+  ~RefBuffer() { release(); }
+
+  // Room for at least n references.
+  Ref* room(std::size_t n) {
+    if (n > capacity_) {
+      release();
+      data_ = allocator_.allocate(n);
+      capacity_ = n;
+    }
+    return data_;
+  }
+
+ private:
+  void swap(RefBuffer& other) noexcept {
+    std::swap(data_, other.data_);
+    std::swap(capacity_, other.capacity_);
+  }
+  void release() {
+    if (data_ != nullptr) allocator_.deallocate(data_, capacity_);
+    data_ = nullptr;
+    capacity_ = 0;
+  }
+  std::allocator<Ref> allocator_;
+  Ref* data_ = nullptr;
+  std::size_t capacity_ = 0;
 };
 
 // ---- SAH ---------------------------------------------------------------------------------------
@@ -236,13 +277,14 @@ SplitPlane find_binned_plane(const SahContext& context, std::span<const Ref> ref
 
 // ---- Partition ---------------------------------------------------------------------------------
 // Splits the references refs[begin, end) along `plane` (kdtree_partition.cpp): the left child's
-// are written over the front of the range, the right child's appended to `refs`; straddling
-// references are clipped to each child cell. Both keep the parent's order. Returns the counts per
-// child; `clipped` counts the straddling references (0: every child reference is a parent
-// reference unchanged).
+// are written over the front of the range, the right child's appended to `refs` (gathered in
+// `right` first); straddling references are clipped to each child cell. Both keep the parent's
+// order. Returns the counts per child; `clipped` counts the straddling references (0: every child
+// reference is a parent reference unchanged).
 std::array<std::size_t, 2> partition(std::vector<Ref>& refs, std::size_t begin, std::size_t end,
                                      const Bounds& voxel, const SplitPlane& plane,
-                                     std::span<const Triangle> triangles, std::size_t& clipped);
+                                     std::span<const Triangle> triangles, RefBuffer& right,
+                                     std::size_t& clipped);
 
 // The same split for a node whose children are built as parallel tasks: each child's references
 // in a vector of their own, in the parent's order, the work split in chunks across threads.

@@ -3,6 +3,10 @@
 // an extent ending in the plane is left-only, one starting in it right-only, one lying in it goes
 // to the side the SAH chose. Straddling references are clipped to each child cell (perfect splits),
 // and one whose triangle misses a child cell is left out of that child.
+//
+// Both partitions are branch-free for the references on one side (most of them, and which side is
+// as good as random): each is written to both sides and kept by the count of the side it lies on.
+// Only the straddling ones branch.
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -24,75 +28,68 @@ namespace {
 
 constexpr std::size_t kParallelChunk = 32768;  // references per task of a parallel split
 
-// Where one reference goes, with its clipped extent in each child it reaches.
-struct Placement {
-  bool left = false, right = false;
-  bool clipped = false;
-  Bounds left_box, right_box;
-};
+// An extent reaching both sides of the plane: its triangle is clipped to each child cell.
+bool straddles(float lo, float hi, const SplitPlane& plane) {
+  return lo != hi && lo < plane.pos && hi > plane.pos;
+}
 
-Placement place(const Ref& r, const SplitPlane& plane, const Bounds& voxel,
-                std::span<const Triangle> triangles) {
+// Whether an extent that does not straddle the plane goes left: a flat one by the plane's planar
+// side, any other by which side of the plane it starts on.
+bool goes_left(float lo, float hi, const SplitPlane& plane) {
+  return lo == hi ? lo < plane.pos || (lo == plane.pos && plane.planar_left) : lo < plane.pos;
+}
+
+// A straddling reference's triangle clipped to each child cell; a side it misses is empty.
+std::array<Bounds, 2> clip_straddling(const Ref& r, const SplitPlane& plane, const Bounds& voxel,
+                                      std::span<const Triangle> triangles) {
+  const Triangle& t = triangles[r.tri];
+  return split_triangle_bounds(vertex(t.v0), vertex(t.v1), vertex(t.v2), voxel, plane.axis,
+                               plane.pos);
+}
+
+// Splits refs[first, last) into `left` and `right` (each with room for last - first), in order;
+// returns how many each got. `left` may be refs + first itself: it is never written ahead of the
+// reference being read.
+std::array<std::size_t, 2> split_refs(const Ref* refs, std::size_t first, std::size_t last,
+                                      const Bounds& voxel, const SplitPlane& plane,
+                                      std::span<const Triangle> triangles, Ref* left, Ref* right,
+                                      std::size_t& clipped) {
+  std::size_t n_left = 0, n_right = 0;
   const int axis = plane.axis;
-  const float p = plane.pos;
-  const float lo = r.box.lo[axis], hi = r.box.hi[axis];
-  Placement out;
-  if (lo == hi) {
-    out.left = lo < p || (lo == p && plane.planar_left);
-    out.right = !out.left;
-  } else {
-    out.left = lo < p;
-    out.right = hi > p;
+  for (std::size_t i = first; i < last; ++i) {
+    const Ref r = refs[i];
+    const float lo = r.box.lo[axis], hi = r.box.hi[axis];
+    if (straddles(lo, hi, plane)) {
+      ++clipped;
+      const std::array<Bounds, 2> boxes = clip_straddling(r, plane, voxel, triangles);
+      if (!boxes[0].empty()) left[n_left++] = {boxes[0], r.tri};
+      if (!boxes[1].empty()) right[n_right++] = {boxes[1], r.tri};
+      continue;
+    }
+    const bool go_left = goes_left(lo, hi, plane);
+    left[n_left] = r;
+    right[n_right] = r;
+    n_left += go_left;
+    n_right += !go_left;
   }
-  if (out.left && out.right) {
-    out.clipped = true;
-    const Triangle& t = triangles[r.tri];
-    const auto [left_box, right_box] =
-        split_triangle_bounds(vertex(t.v0), vertex(t.v1), vertex(t.v2), voxel, axis, p);
-    out.left_box = left_box;
-    out.right_box = right_box;
-    out.left = !out.left_box.empty();
-    out.right = !out.right_box.empty();
-  } else {
-    out.left_box = out.right_box = r.box;
-  }
-  return out;
+  return {n_left, n_right};
 }
 
 }  // namespace
 
 std::array<std::size_t, 2> partition(std::vector<Ref>& refs, std::size_t begin, std::size_t end,
                                      const Bounds& voxel, const SplitPlane& plane,
-                                     std::span<const Triangle> triangles, std::size_t& clipped) {
+                                     std::span<const Triangle> triangles, RefBuffer& right,
+                                     std::size_t& clipped) {
   clipped = 0;
-  const std::size_t right_begin = refs.size();
-  // Left references overwrite the range in place (never ahead of the one being read), right ones
-  // are appended; `refs` may reallocate, so everything goes through indices.
-  std::size_t write = begin;
-  const int axis = plane.axis;
-  for (std::size_t read = begin; read < end; ++read) {
-    const Ref r = refs[read];
-    // place()'s rules, inline for the references on one side (most of them): moved unchanged.
-    const float lo = r.box.lo[axis], hi = r.box.hi[axis];
-    if (lo != hi && !(lo < plane.pos && hi > plane.pos)) {
-      if (lo < plane.pos) {
-        refs[write++] = r;
-      } else {
-        refs.push_back(r);
-      }
-      continue;
-    }
-    const Placement where = place(r, plane, voxel, triangles);
-    clipped += where.clipped;
-    if (where.left) refs[write++] = {where.left_box, r.tri};
-    if (where.right) refs.push_back({where.right_box, r.tri});
-  }
-  return {write - begin, refs.size() - right_begin};
+  // Left references overwrite the range in place, right ones are gathered in `right` and then
+  // appended (`refs` may reallocate only then).
+  Ref* const right_refs = right.room(end - begin);
+  const std::array<std::size_t, 2> counts = split_refs(
+      refs.data(), begin, end, voxel, plane, triangles, refs.data() + begin, right_refs, clipped);
+  refs.insert(refs.end(), right_refs, right_refs + counts[1]);
+  return counts;
 }
-
-}  // namespace cohort::kd
-
-namespace cohort::kd {
 
 // Fixed-size chunks split on their own, then concatenated in chunk order, so the result is the
 // serial one whatever the thread count; each child's references are copied once, into its own
@@ -101,27 +98,28 @@ std::array<std::vector<Ref>, 2> partition_apart(std::span<const Ref> refs, const
                                                 const SplitPlane& plane,
                                                 std::span<const Triangle> triangles) {
   const std::size_t chunks = (refs.size() + kParallelChunk - 1) / kParallelChunk;
-  std::vector<std::array<std::vector<Ref>, 2>> parts(chunks);
+  struct Part {
+    std::array<RefBuffer, 2> room;  // each with room for the whole chunk
+    std::array<std::size_t, 2> size{};
+  };
+  std::vector<Part> parts(chunks);
   tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
     const std::size_t first = k * kParallelChunk;
     const std::size_t last = std::min(refs.size(), first + kParallelChunk);
-    // Room for the whole chunk on each side: no reallocation while it grows.
-    parts[k][0].reserve(last - first);
-    parts[k][1].reserve(last - first);
-    for (std::size_t i = first; i < last; ++i) {
-      const Placement where = place(refs[i], plane, voxel, triangles);
-      if (where.left) parts[k][0].push_back({where.left_box, refs[i].tri});
-      if (where.right) parts[k][1].push_back({where.right_box, refs[i].tri});
-    }
+    Part& part = parts[k];
+    std::size_t clipped = 0;
+    part.size = split_refs(refs.data(), first, last, voxel, plane, triangles,
+                           part.room[0].room(last - first), part.room[1].room(last - first),
+                           clipped);
   });
   std::array<std::vector<Ref>, 2> children;
   for (int c = 0; c < 2; ++c) {
     std::size_t total = 0;
-    for (const auto& part : parts) total += part[c].size();
+    for (const Part& part : parts) total += part.size[c];
     children[c].reserve(total);
-    for (auto& part : parts) {
-      children[c].insert(children[c].end(), part[c].begin(), part[c].end());
-      std::vector<Ref>().swap(part[c]);
+    for (Part& part : parts) {
+      const Ref* first = part.room[c].room(0);
+      children[c].insert(children[c].end(), first, first + part.size[c]);
     }
   }
   return children;

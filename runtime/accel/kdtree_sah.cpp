@@ -7,6 +7,10 @@
 #include <cstddef>
 #include <limits>
 
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 #include "runtime/accel/kdtree_internal.h"
 
 namespace cohort::kd {
@@ -47,24 +51,46 @@ void rank_sort(const float* __restrict in, float* __restrict out, std::size_t n)
   }
 }
 
-void sort_floats(std::vector<float>& v) {
+// Sorts v[0, n) in place: std::sort above kRankSort values, else rank_sort.
+void sort_floats(float* v, std::size_t n) {
   constexpr std::size_t kRankSort = 48;
-  if (v.size() > kRankSort) {
-    std::sort(v.begin(), v.end());
+  if (n > kRankSort) {
+    std::sort(v, v + n);
     return;
   }
-  if (v.size() <= 1) return;
+  if (n <= 1) return;
   std::array<float, kRankSort> copy;
-  std::copy(v.begin(), v.end(), copy.begin());
-  rank_sort(copy.data(), v.data(), v.size());
+  std::copy(v, v + n, copy.begin());
+  rank_sort(copy.data(), v, n);
+}
+
+// Sorts v, every value of which lies in [lo, hi]: the values at either end (the references
+// clipped to the cell's faces, often close to half of those the binned search refines) are set
+// aside and put back around the sorted rest instead of being sorted with it. The same array as
+// sorting all of it.
+void sort_floats_within(std::vector<float>& v, float lo, float hi) {
+  std::size_t rest = 0, at_lo = 0, at_hi = 0;
+  for (const float x : v) {
+    const bool low = x == lo, high = !low && x == hi;
+    at_lo += low;
+    at_hi += high;
+    v[rest] = x;  // kept only when neither (branch-free; never ahead of the one read)
+    rest += !low && !high;
+  }
+  sort_floats(v.data(), rest);
+  std::copy_backward(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(rest),
+                     v.begin() + static_cast<std::ptrdiff_t>(at_lo + rest));
+  // The values are +0 where an end is -0 or +0 (AxisExtents::add), so the ends are put back so.
+  std::fill_n(v.begin(), at_lo, lo + 0.f);
+  std::fill_n(v.begin() + static_cast<std::ptrdiff_t>(at_lo + rest), at_hi, hi + 0.f);
 }
 
 }  // namespace
 
-void AxisExtents::sort() {
-  sort_floats(starts);
-  sort_floats(ends);
-  sort_floats(flats);
+void AxisExtents::sort(float lo, float hi) {
+  sort_floats_within(starts, lo, hi);
+  sort_floats_within(ends, lo, hi);
+  sort_floats_within(flats, lo, hi);
 }
 
 namespace {
@@ -179,6 +205,144 @@ void count_planar(const float* pos, std::size_t n, float* left_a, const float* r
   }
 }
 
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define COHORT_SMALL_SEARCH_AVX2 1
+// Up to this many candidates per axis (four vectors of 8) the search runs in AVX2 registers.
+constexpr std::size_t kSmallCandidates = 32;
+
+struct SmallPick {
+  float least, lowest_plain;
+  std::size_t chosen;  // n: none
+  bool chosen_a;
+  float plain;
+};
+
+__attribute__((target("avx2"))) inline float horizontal_min(__m256 v) {
+  __m128 m = _mm_min_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
+  m = _mm_min_ps(m, _mm_movehl_ps(m, m));
+  m = _mm_min_ss(m, _mm_shuffle_ps(m, m, 1));
+  return _mm_cvtss_f32(m);
+}
+
+// candidate_costs' arithmetic, operation for operation, on K vectors of 8 held in registers.
+template <int K>
+__attribute__((target("avx2"))) inline void small_costs(const CostTerms& t, std::size_t n,
+                                                       const __m256 (&pos)[K], const float* left,
+                                                       const float* right, __m256 (&cost)[K],
+                                                       __m256 (&plain)[K]) {
+  const __m256 inf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+  const __m256 zero = _mm256_setzero_ps(), two = _mm256_set1_ps(2.f);
+  const __m256 lo = _mm256_set1_ps(t.lo), hi = _mm256_set1_ps(t.hi);
+  const __m256 face = _mm256_set1_ps(t.face), rim = _mm256_set1_ps(t.rim);
+  const __m256 inv_area = _mm256_set1_ps(t.inv_area);
+  const __m256 k_t = _mm256_set1_ps(t.traversal_cost), k_i = _mm256_set1_ps(t.intersection_cost);
+  const __m256 empty_factor = _mm256_set1_ps(t.empty_factor);
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  for (int k = 0; k < K; ++k) {
+    const __m256 l = _mm256_loadu_ps(left + 8 * k), r = _mm256_loadu_ps(right + 8 * k);
+    const __m256 width_left = _mm256_sub_ps(pos[k], lo);
+    const __m256 width_right = _mm256_sub_ps(hi, pos[k]);
+    const __m256 p_left = _mm256_mul_ps(
+        _mm256_mul_ps(two, _mm256_add_ps(face, _mm256_mul_ps(width_left, rim))), inv_area);
+    const __m256 p_right = _mm256_mul_ps(
+        _mm256_mul_ps(two, _mm256_add_ps(face, _mm256_mul_ps(width_right, rim))), inv_area);
+    const __m256 c = _mm256_add_ps(
+        k_t, _mm256_mul_ps(k_i, _mm256_add_ps(_mm256_mul_ps(p_left, l), _mm256_mul_ps(p_right, r))));
+    const __m256 empty = _mm256_or_ps(
+        _mm256_and_ps(_mm256_cmp_ps(l, zero, _CMP_EQ_OQ), _mm256_cmp_ps(width_left, zero, _CMP_GT_OQ)),
+        _mm256_and_ps(_mm256_cmp_ps(r, zero, _CMP_EQ_OQ), _mm256_cmp_ps(width_right, zero, _CMP_GT_OQ)));
+    const __m256 valid = _mm256_castsi256_ps(_mm256_cmpgt_epi32(
+        _mm256_set1_epi32(static_cast<int>(n)), _mm256_add_epi32(lane, _mm256_set1_epi32(8 * k))));
+    const __m256 chosen = _mm256_blendv_ps(c, _mm256_mul_ps(c, empty_factor), empty);
+    plain[k] = _mm256_blendv_ps(inf, c, valid);
+    cost[k] = _mm256_blendv_ps(inf, chosen, valid);
+  }
+}
+
+template <int K>
+__attribute__((target("avx2"))) inline float small_min(const __m256 (&v)[K]) {
+  __m256 m = v[0];
+  for (int k = 1; k < K; ++k) m = _mm256_min_ps(m, v[k]);
+  return horizontal_min(m);
+}
+
+// lowest_at: the first index of the lowest position whose cost is `least` (n: none).
+template <int K>
+__attribute__((target("avx2"))) inline std::size_t small_lowest_at(const __m256 (&cost)[K],
+                                                                  const __m256 (&pos)[K],
+                                                                  float least, std::size_t n) {
+  const __m256 inf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+  const __m256 target = _mm256_set1_ps(least);
+  __m256 at[K];
+  for (int k = 0; k < K; ++k) at[k] = _mm256_blendv_ps(inf, pos[k], _mm256_cmp_ps(cost[k], target, _CMP_EQ_OQ));
+  const __m256 lowest = _mm256_set1_ps(small_min(at));
+  unsigned mask = 0;
+  for (int k = 0; k < K; ++k) {
+    const __m256 hit = _mm256_and_ps(_mm256_cmp_ps(cost[k], target, _CMP_EQ_OQ),
+                                     _mm256_cmp_ps(pos[k], lowest, _CMP_EQ_OQ));
+    mask |= static_cast<unsigned>(_mm256_movemask_ps(hit)) << (8 * k);
+  }
+  return mask == 0 ? n : static_cast<std::size_t>(__builtin_ctz(mask));
+}
+
+// count_sides on K vectors of candidates, the counts held in registers across the references.
+template <int K>
+__attribute__((target("avx2"))) void small_count_sides(const float* pos, std::size_t n,
+                                                       float* left, float* right) {
+  const __m256 one = _mm256_set1_ps(1.f);
+  __m256 p[K], l[K], r[K];
+  for (int k = 0; k < K; ++k) {
+    p[k] = _mm256_loadu_ps(pos + 8 * k);
+    l[k] = r[k] = _mm256_setzero_ps();
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    const __m256 lo = _mm256_broadcast_ss(pos + j), hi = _mm256_broadcast_ss(pos + n + j);
+    for (int k = 0; k < K; ++k) {
+      l[k] = _mm256_add_ps(l[k], _mm256_and_ps(_mm256_cmp_ps(lo, p[k], _CMP_LT_OQ), one));
+      r[k] = _mm256_add_ps(r[k], _mm256_and_ps(_mm256_cmp_ps(hi, p[k], _CMP_GT_OQ), one));
+    }
+  }
+  for (int k = 0; k < K; ++k) {
+    _mm256_storeu_ps(left + 8 * k, l[k]);
+    _mm256_storeu_ps(right + 8 * k, r[k]);
+  }
+}
+
+template <int K>
+__attribute__((target("avx2"))) void small_search(const CostTerms& t,
+                                                  const AxisCandidates& candidates,
+                                                  const SplitPlane& best, SmallPick& out) {
+  const std::size_t n = candidates.size;
+  __m256 pos[K], cost_a[K], plain_a[K], cost_b[K], plain_b[K];
+  for (int k = 0; k < K; ++k) pos[k] = _mm256_loadu_ps(candidates.pos.data() + 8 * k);
+  small_costs<K>(t, n, pos, candidates.left_a.data(), candidates.right_a.data(), cost_a, plain_a);
+  const bool planar = candidates.planar;
+  float least = small_min(cost_a);
+  float lowest = std::min(best.lowest_plain_cost, small_min(plain_a));
+  if (planar) {
+    small_costs<K>(t, n, pos, candidates.left_b.data(), candidates.right_b.data(), cost_b, plain_b);
+    least = std::min(least, small_min(cost_b));
+    lowest = std::min(lowest, small_min(plain_b));
+  }
+  out.least = least;
+  out.lowest_plain = lowest;
+  out.chosen = n;
+  if (!best.valid() || least < best.cost) {
+    const std::size_t at_a = small_lowest_at(cost_a, pos, least, n);
+    const std::size_t at_b = planar ? small_lowest_at(cost_b, pos, least, n) : n;
+    const float* p = candidates.pos.data();
+    out.chosen_a = at_b == n || (at_a != n && p[at_a] <= p[at_b]);
+    out.chosen = out.chosen_a ? at_a : at_b;
+    if (out.chosen != n) {
+      alignas(32) float plain_lanes[8 * K];
+      for (int k = 0; k < K; ++k) _mm256_store_ps(plain_lanes + 8 * k, out.chosen_a ? plain_a[k] : plain_b[k]);
+      out.plain = plain_lanes[out.chosen];
+    }
+  }
+}
+#endif
+
 }  // namespace
 
 void merge_candidates(std::span<const float> starts, std::span<const float> ends,
@@ -226,6 +390,16 @@ void count_candidates(std::span<const Ref> refs, NodeCandidates& out) {
       pos[n + j] = hi;
       planar |= lo == hi;
     }
+#ifdef COHORT_SMALL_SEARCH_AVX2
+    if (2 * n <= 16 && __builtin_cpu_supports("avx2")) {
+      switch (whole_lanes(2 * n) / 8) {
+        case 1: small_count_sides<1>(pos, n, x.left_a.data(), x.right_a.data()); break;
+        case 2: small_count_sides<2>(pos, n, x.left_a.data(), x.right_a.data()); break;
+        case 3: small_count_sides<3>(pos, n, x.left_a.data(), x.right_a.data()); break;
+        default: small_count_sides<4>(pos, n, x.left_a.data(), x.right_a.data()); break;
+      }
+    } else
+#endif
     count_sides(pos, n, x.left_a.data(), x.right_a.data());
     x.planar = planar;
     if (planar) {
@@ -240,6 +414,28 @@ void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& ca
   const std::size_t n = candidates.size;
   if (!(c.extent[axis] > 0.f) || n == 0) return;
   const AxisSah a = axis_sah(c, axis);
+#ifdef COHORT_SMALL_SEARCH_AVX2
+  if (n <= kSmallCandidates && __builtin_cpu_supports("avx2")) {
+    const CostTerms t{a.lo, a.hi, a.face, a.rim, c.inv_area, c.traversal_cost, c.intersection_cost, c.empty_factor};
+    SmallPick pick;
+    switch (whole_lanes(n) / 8) {
+      case 1: small_search<1>(t, candidates, best, pick); break;
+      case 2: small_search<2>(t, candidates, best, pick); break;
+      case 3: small_search<3>(t, candidates, best, pick); break;
+      default: small_search<4>(t, candidates, best, pick); break;
+    }
+    best.lowest_plain_cost = pick.lowest_plain;
+    if (pick.chosen == n) return;
+    best.axis = a.axis;
+    best.pos = candidates.pos[pick.chosen];
+    best.planar_left = pick.chosen_a;
+    best.cost = pick.least;
+    best.plain_cost = pick.plain;
+    best.left_count = static_cast<std::uint32_t>(pick.chosen_a ? candidates.left_a[pick.chosen] : candidates.left_b[pick.chosen]);
+    best.right_count = static_cast<std::uint32_t>(pick.chosen_a ? candidates.right_a[pick.chosen] : candidates.right_b[pick.chosen]);
+    return;
+  }
+#endif
   // evaluate_plane's arithmetic, term for term, for every candidate and both sides of the planar
   // references, in whole vectors (`lanes`, the ones past n costing infinity): costs planar left,
   // then planar right, then the plain costs likewise. Without planar references b is a copy of a,

@@ -118,7 +118,7 @@ TEST(KdTreeQuality, ExactSearchesFindTheBruteForcePlane) {
       boxes.push_back(b);
       refs.push_back({b, static_cast<std::uint32_t>(i)});
     }
-    for (kd::AxisExtents& x : extents) x.sort();
+    for (int axis = 0; axis < 3; ++axis) extents[axis].sort(cell.lo[axis], cell.hi[axis]);
     kd::SahContext context{};
     ASSERT_TRUE(kd::make_sah_context(cell, boxes.size(), KdBuildOptions{}, context));
     const kd::SplitPlane expected = brute_force_plane(context, boxes);
