@@ -2,6 +2,8 @@
 #include "runtime/accel/clip.h"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -22,7 +24,7 @@ struct Polygon {
 // Keeps the part of `in` with sign * (p[axis] - plane) >= 0, written to `out`. Points on the plane
 // count as inside, so a triangle lying in a cell face survives (it belongs to that cell too).
 void clip_plane(const Polygon& in, int axis, double plane, double sign, Polygon& out) {
-  out.n = 0;
+  std::size_t n = 0;  // not out.n: a count kept in memory made each vertex wait for the one before
   const glm::dvec3* prev = &in.v[in.n - 1];
   double d_prev = sign * ((*prev)[axis] - plane);
   for (std::size_t i = 0; i < in.n; ++i) {
@@ -33,23 +35,37 @@ void clip_plane(const Polygon& in, int axis, double plane, double sign, Polygon&
     if ((d_prev >= 0.0) != (d_cur >= 0.0)) {
       glm::dvec3 p = *prev + (cur - *prev) * (d_prev / (d_prev - d_cur));
       p[axis] = plane;  // exactly on the plane, whatever the rounding of the interpolation
-      out.v[out.n++] = p;
+      out.v[n++] = p;
     }
-    if (d_cur >= 0.0) out.v[out.n++] = cur;
+    if (d_cur >= 0.0) out.v[n++] = cur;
     prev = &cur;
     d_prev = d_cur;
   }
+  out.n = n;
+}
+
+// The next float below / above f, as std::nextafter towards -inf / +inf gives it, from its bits
+// (inline: std::nextafter is a call into libm, and the clip rounds six bounds per child).
+float next_down(float f) {
+  if (f == 0.f) return -std::numeric_limits<float>::denorm_min();
+  const auto bits = std::bit_cast<std::uint32_t>(f);
+  return std::bit_cast<float>(f > 0.f ? bits - 1u : bits + 1u);
+}
+
+float next_up(float f) {
+  if (f == 0.f) return std::numeric_limits<float>::denorm_min();
+  const auto bits = std::bit_cast<std::uint32_t>(f);
+  return std::bit_cast<float>(f > 0.f ? bits + 1u : bits - 1u);
 }
 
 float round_down(double x) {
   const auto f = static_cast<float>(x);
-  return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity())
-                                    : f;
+  return static_cast<double>(f) > x ? next_down(f) : f;
 }
 
 float round_up(double x) {
   const auto f = static_cast<float>(x);
-  return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+  return static_cast<double>(f) < x ? next_up(f) : f;
 }
 
 // The triangle clipped to `box`, in one of `poly` (the other is working memory; neither is

@@ -93,6 +93,7 @@ void flatten(const Subtree& subtree, KdTree& tree) {
     std::size_t inner = 0, leaf_entries = 0;
   };
   constexpr std::size_t kChunk = 4096;
+  constexpr std::size_t kPrefetchAhead = 16;
   GrowBuffer<Entry> level, next;
   // The level's nodes, read once from their subtrees (BuildNode's fields without its initialisers,
   // so the buffer needs no clearing either).
@@ -113,7 +114,15 @@ void flatten(const Subtree& subtree, KdTree& tree) {
     // What each chunk adds (read in parallel: the nodes are scattered over the subtrees).
     tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
       ChunkCounts counts;
-      for (std::size_t i = k * kChunk; i < std::min(n, (k + 1) * kChunk); ++i) {
+      const std::size_t last = std::min(n, (k + 1) * kChunk);
+      for (std::size_t i = k * kChunk; i < last; ++i) {
+        // The nodes of a level lie far apart in memory (depth-first, as they were built): each
+        // read is a cache miss, so the one kPrefetchAhead entries on is fetched early (and the
+        // leaf lists likewise below).
+        if (i + kPrefetchAhead < last) {
+          const Entry& ahead = current[i + kPrefetchAhead];
+          __builtin_prefetch(ahead.tree->nodes.data() + ahead.node);
+        }
         const BuildNode& read = current[i].tree->nodes[current[i].node];
         const LevelNode& node = nodes[i] = {read.axis, read.split, read.a, read.b};
         if (node.axis == KD_LEAF) {
@@ -135,7 +144,12 @@ void flatten(const Subtree& subtree, KdTree& tree) {
     tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
       std::size_t inner_before = chunk_first[k].inner;
       std::size_t leaf_before = leaf_first + chunk_first[k].leaf_entries;
-      for (std::size_t i = k * kChunk; i < std::min(n, (k + 1) * kChunk); ++i) {
+      const std::size_t last = std::min(n, (k + 1) * kChunk);
+      for (std::size_t i = k * kChunk; i < last; ++i) {
+        if (i + kPrefetchAhead < last && nodes[i + kPrefetchAhead].axis == KD_LEAF) {
+          const Entry& ahead = current[i + kPrefetchAhead];
+          __builtin_prefetch(ahead.tree->leaf_triangles.data() + nodes[i + kPrefetchAhead].a);
+        }
         const Subtree* in = current[i].tree;
         const LevelNode& node = nodes[i];
         if (node.axis == KD_LEAF) {
