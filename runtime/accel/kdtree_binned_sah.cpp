@@ -57,8 +57,9 @@ struct BinCounts {
 
 // Counts the references' bins and keeps them (6 per reference: start and end bin per axis) in
 // `ref_bins`, for refine() to look up instead of binning every reference again.
-void count_scalar(const Binner& binner, std::span<const Ref> refs, std::vector<std::uint32_t>& starts,
-           std::vector<std::uint32_t>& ends, std::uint16_t* ref_bins) {
+void count_scalar(const Binner& binner, std::span<const Ref> refs,
+                  std::vector<std::uint32_t>& starts, std::vector<std::uint32_t>& ends,
+                  std::uint16_t* ref_bins) {
   for (const Ref& r : refs) {
     for (int axis = 0; axis < 3; ++axis) {
       const int lo = binner.bin(axis, r.box.lo[axis]), hi = binner.bin(axis, r.box.hi[axis]);

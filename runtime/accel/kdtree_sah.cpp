@@ -206,17 +206,37 @@ void count_planar(const float* pos, std::size_t n, float* left_a, const float* r
 }
 
 
+// What the search over one axis's candidates found: the least cost and lowest plain cost (with
+// the best so far), and the chosen candidate (n: none beats the best so far), with its side of
+// the planar references and its plain cost.
+struct Pick {
+  float least, lowest_plain;
+  std::size_t chosen;
+  bool chosen_a;
+  float plain;
+};
+
+// Takes the pick into `best`.
+void apply_pick(const Pick& pick, const AxisSah& a, const AxisCandidates& candidates,
+                SplitPlane& best) {
+  best.lowest_plain_cost = pick.lowest_plain;
+  if (pick.chosen == candidates.size) return;
+  const std::size_t i = pick.chosen;
+  best.axis = a.axis;
+  best.pos = candidates.pos[i];
+  best.planar_left = pick.chosen_a;
+  best.cost = pick.least;
+  best.plain_cost = pick.plain;
+  best.left_count =
+      static_cast<std::uint32_t>(pick.chosen_a ? candidates.left_a[i] : candidates.left_b[i]);
+  best.right_count =
+      static_cast<std::uint32_t>(pick.chosen_a ? candidates.right_a[i] : candidates.right_b[i]);
+}
+
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
 #define COHORT_SMALL_SEARCH_AVX2 1
 // Up to this many candidates per axis (four vectors of 8) the search runs in AVX2 registers.
 constexpr std::size_t kSmallCandidates = 32;
-
-struct SmallPick {
-  float least, lowest_plain;
-  std::size_t chosen;  // n: none
-  bool chosen_a;
-  float plain;
-};
 
 __attribute__((target("avx2"))) inline float horizontal_min(__m256 v) {
   __m128 m = _mm_min_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
@@ -247,11 +267,13 @@ __attribute__((target("avx2"))) inline void small_costs(const CostTerms& t, std:
         _mm256_mul_ps(two, _mm256_add_ps(face, _mm256_mul_ps(width_left, rim))), inv_area);
     const __m256 p_right = _mm256_mul_ps(
         _mm256_mul_ps(two, _mm256_add_ps(face, _mm256_mul_ps(width_right, rim))), inv_area);
-    const __m256 c = _mm256_add_ps(
-        k_t, _mm256_mul_ps(k_i, _mm256_add_ps(_mm256_mul_ps(p_left, l), _mm256_mul_ps(p_right, r))));
-    const __m256 empty = _mm256_or_ps(
-        _mm256_and_ps(_mm256_cmp_ps(l, zero, _CMP_EQ_OQ), _mm256_cmp_ps(width_left, zero, _CMP_GT_OQ)),
-        _mm256_and_ps(_mm256_cmp_ps(r, zero, _CMP_EQ_OQ), _mm256_cmp_ps(width_right, zero, _CMP_GT_OQ)));
+    const __m256 sides = _mm256_add_ps(_mm256_mul_ps(p_left, l), _mm256_mul_ps(p_right, r));
+    const __m256 c = _mm256_add_ps(k_t, _mm256_mul_ps(k_i, sides));
+    const __m256 empty_left = _mm256_and_ps(_mm256_cmp_ps(l, zero, _CMP_EQ_OQ),
+                                            _mm256_cmp_ps(width_left, zero, _CMP_GT_OQ));
+    const __m256 empty_right = _mm256_and_ps(_mm256_cmp_ps(r, zero, _CMP_EQ_OQ),
+                                             _mm256_cmp_ps(width_right, zero, _CMP_GT_OQ));
+    const __m256 empty = _mm256_or_ps(empty_left, empty_right);
     const __m256 valid = _mm256_castsi256_ps(_mm256_cmpgt_epi32(
         _mm256_set1_epi32(static_cast<int>(n)), _mm256_add_epi32(lane, _mm256_set1_epi32(8 * k))));
     const __m256 chosen = _mm256_blendv_ps(c, _mm256_mul_ps(c, empty_factor), empty);
@@ -275,7 +297,9 @@ __attribute__((target("avx2"))) inline std::size_t small_lowest_at(const __m256 
   const __m256 inf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
   const __m256 target = _mm256_set1_ps(least);
   __m256 at[K];
-  for (int k = 0; k < K; ++k) at[k] = _mm256_blendv_ps(inf, pos[k], _mm256_cmp_ps(cost[k], target, _CMP_EQ_OQ));
+  for (int k = 0; k < K; ++k) {
+    at[k] = _mm256_blendv_ps(inf, pos[k], _mm256_cmp_ps(cost[k], target, _CMP_EQ_OQ));
+  }
   const __m256 lowest = _mm256_set1_ps(small_min(at));
   unsigned mask = 0;
   for (int k = 0; k < K; ++k) {
@@ -312,7 +336,7 @@ __attribute__((target("avx2"))) void small_count_sides(const float* pos, std::si
 template <int K>
 __attribute__((target("avx2"))) void small_search(const CostTerms& t,
                                                   const AxisCandidates& candidates,
-                                                  const SplitPlane& best, SmallPick& out) {
+                                                  const SplitPlane& best, Pick& out) {
   const std::size_t n = candidates.size;
   __m256 pos[K], cost_a[K], plain_a[K], cost_b[K], plain_b[K];
   for (int k = 0; k < K; ++k) pos[k] = _mm256_loadu_ps(candidates.pos.data() + 8 * k);
@@ -336,7 +360,9 @@ __attribute__((target("avx2"))) void small_search(const CostTerms& t,
     out.chosen = out.chosen_a ? at_a : at_b;
     if (out.chosen != n) {
       alignas(32) float plain_lanes[8 * K];
-      for (int k = 0; k < K; ++k) _mm256_store_ps(plain_lanes + 8 * k, out.chosen_a ? plain_a[k] : plain_b[k]);
+      for (int k = 0; k < K; ++k) {
+        _mm256_store_ps(plain_lanes + 8 * k, out.chosen_a ? plain_a[k] : plain_b[k]);
+      }
       out.plain = plain_lanes[out.chosen];
     }
   }
@@ -414,25 +440,19 @@ void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& ca
   const std::size_t n = candidates.size;
   if (!(c.extent[axis] > 0.f) || n == 0) return;
   const AxisSah a = axis_sah(c, axis);
+  const CostTerms terms{a.lo,     a.hi,           a.face,
+                        a.rim,    c.inv_area,     c.traversal_cost,
+                        c.intersection_cost, c.empty_factor};
 #ifdef COHORT_SMALL_SEARCH_AVX2
   if (n <= kSmallCandidates && __builtin_cpu_supports("avx2")) {
-    const CostTerms t{a.lo, a.hi, a.face, a.rim, c.inv_area, c.traversal_cost, c.intersection_cost, c.empty_factor};
-    SmallPick pick;
-    switch (whole_lanes(n) / 8) {
-      case 1: small_search<1>(t, candidates, best, pick); break;
-      case 2: small_search<2>(t, candidates, best, pick); break;
-      case 3: small_search<3>(t, candidates, best, pick); break;
-      default: small_search<4>(t, candidates, best, pick); break;
+    Pick pick;
+    switch (whole_lanes(n) / kCandidateLanes) {
+      case 1: small_search<1>(terms, candidates, best, pick); break;
+      case 2: small_search<2>(terms, candidates, best, pick); break;
+      case 3: small_search<3>(terms, candidates, best, pick); break;
+      default: small_search<4>(terms, candidates, best, pick); break;
     }
-    best.lowest_plain_cost = pick.lowest_plain;
-    if (pick.chosen == n) return;
-    best.axis = a.axis;
-    best.pos = candidates.pos[pick.chosen];
-    best.planar_left = pick.chosen_a;
-    best.cost = pick.least;
-    best.plain_cost = pick.plain;
-    best.left_count = static_cast<std::uint32_t>(pick.chosen_a ? candidates.left_a[pick.chosen] : candidates.left_b[pick.chosen]);
-    best.right_count = static_cast<std::uint32_t>(pick.chosen_a ? candidates.right_a[pick.chosen] : candidates.right_b[pick.chosen]);
+    apply_pick(pick, a, candidates, best);
     return;
   }
 #endif
@@ -447,9 +467,6 @@ void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& ca
   float* plain_a = cost_b + lanes;
   float* plain_b = plain_a + lanes;
   const float* pos = candidates.pos.data();
-  const CostTerms terms{a.lo,           a.hi,           a.face,
-                        a.rim,          c.inv_area,     c.traversal_cost,
-                        c.intersection_cost, c.empty_factor};
   candidate_costs(terms, n, pos, candidates.left_a.data(), candidates.right_a.data(), cost_a,
                   plain_a);
   if (candidates.planar) {
@@ -473,27 +490,15 @@ void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& ca
     least = std::min(least, least_of(cost_b, n));
     lowest = std::min(lowest, least_of(plain_b, n));
   }
-  std::size_t chosen = n;  // none of these
-  bool chosen_a = true;
-  float chosen_cost = best.cost;
+  Pick pick{least, lowest, n, true, 0.f};
   if (!best.valid() || least < best.cost) {
     const std::size_t at_a = lowest_at(cost_a, pos, least, n);
     const std::size_t at_b = planar ? lowest_at(cost_b, pos, least, n) : n;
-    chosen_a = at_b == n || (at_a != n && pos[at_a] <= pos[at_b]);
-    chosen = chosen_a ? at_a : at_b;
-    chosen_cost = least;
+    pick.chosen_a = at_b == n || (at_a != n && pos[at_a] <= pos[at_b]);
+    pick.chosen = pick.chosen_a ? at_a : at_b;
+    if (pick.chosen != n) pick.plain = pick.chosen_a ? plain_a[pick.chosen] : plain_b[pick.chosen];
   }
-  best.lowest_plain_cost = lowest;
-  if (chosen == n) return;
-  best.axis = a.axis;
-  best.pos = pos[chosen];
-  best.planar_left = chosen_a;
-  best.cost = chosen_cost;
-  best.plain_cost = chosen_a ? plain_a[chosen] : plain_b[chosen];
-  best.left_count =
-      static_cast<std::uint32_t>(chosen_a ? candidates.left_a[chosen] : candidates.left_b[chosen]);
-  best.right_count = static_cast<std::uint32_t>(chosen_a ? candidates.right_a[chosen]
-                                                         : candidates.right_b[chosen]);
+  apply_pick(pick, a, candidates, best);
 }
 
 void sweep_candidates(const NodeExtents& extents, std::uint32_t count, NodeCandidates& out) {
