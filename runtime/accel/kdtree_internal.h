@@ -87,6 +87,7 @@ class RefBuffer {
     }
     return data_;
   }
+  const Ref* data() const { return data_; }
 
  private:
   void swap(RefBuffer& other) noexcept {

@@ -117,8 +117,8 @@ std::array<std::vector<Ref>, 2> partition_apart(std::span<const Ref> refs, const
     std::size_t total = 0;
     for (const Part& part : parts) total += part.size[c];
     children[c].reserve(total);
-    for (Part& part : parts) {
-      const Ref* first = part.room[c].room(0);
+    for (const Part& part : parts) {
+      const Ref* first = part.room[c].data();
       children[c].insert(children[c].end(), first, first + part.size[c]);
     }
   }
