@@ -25,8 +25,13 @@ Bounds clip_triangle_bounds(const glm::vec3& a, const glm::vec3& b, const glm::v
 // the clipping to the cell done once for both: what a KD-tree split needs for a straddling
 // triangle. The order of the clipping planes differs, so the boxes may differ from the
 // one-cell function in the last bit, but they are just as conservative.
+// On x86 with AVX2 a vector version runs, which gives the same bits as this portable one (kept
+// public for the test that checks it).
 std::array<Bounds, 2> split_triangle_bounds(const glm::vec3& a, const glm::vec3& b,
                                             const glm::vec3& c, const Bounds& cell, int axis,
                                             float pos);
+std::array<Bounds, 2> split_triangle_bounds_portable(const glm::vec3& a, const glm::vec3& b,
+                                                     const glm::vec3& c, const Bounds& cell,
+                                                     int axis, float pos);
 
 }  // namespace cohort::kd

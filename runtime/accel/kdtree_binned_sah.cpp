@@ -15,11 +15,9 @@
 #include <memory>
 #include <vector>
 
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#include <immintrin.h>
-#endif
 
 #include "runtime/accel/kdtree_internal.h"
+#include "runtime/accel/x86_dispatch.h"
 
 namespace cohort::kd {
 namespace {
@@ -72,8 +70,7 @@ void count_scalar(const Binner& binner, std::span<const Ref> refs,
   }
 }
 
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define COHORT_BIN_COUNT_SSE41 1
+#if COHORT_X86_DISPATCH
 // count() with the six bins of a reference computed in two 4-lane vectors, by the same operations
 // (subtract, scale, truncate, clamp), so the same bins.
 __attribute__((target("sse4.1"))) void count_sse41(const Binner& binner,
@@ -113,7 +110,7 @@ __attribute__((target("sse4.1"))) void count_sse41(const Binner& binner,
 
 void count(const Binner& binner, std::span<const Ref> refs, std::vector<std::uint32_t>& starts,
            std::vector<std::uint32_t>& ends, std::uint16_t* ref_bins) {
-#ifdef COHORT_BIN_COUNT_SSE41
+#if COHORT_X86_DISPATCH
   if (__builtin_cpu_supports("sse4.1")) return count_sse41(binner, refs, starts, ends, ref_bins);
 #endif
   count_scalar(binner, refs, starts, ends, ref_bins);

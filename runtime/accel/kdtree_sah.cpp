@@ -7,11 +7,9 @@
 #include <cstddef>
 #include <limits>
 
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#include <immintrin.h>
-#endif
 
 #include "runtime/accel/kdtree_internal.h"
+#include "runtime/accel/x86_dispatch.h"
 
 namespace cohort::kd {
 bool make_sah_context(const Bounds& voxel, std::size_t count, const KdBuildOptions& options,
@@ -38,9 +36,7 @@ namespace {
 // comparison sort of the small arrays of the exact sweep mispredicts about every other branch
 // (the sort was the build's largest share of time). The result is the sorted array, as std::sort
 // gives it (equal floats are the same bits: -0 was made +0).
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+COHORT_AVX2_CLONES
 void rank_sort(const float* __restrict in, float* __restrict out, std::size_t n) {
   for (std::size_t i = 0; i < n; ++i) {
     const float x = in[i];
@@ -110,9 +106,7 @@ struct CostTerms {
 
 // On x86 with GCC also compiled for AVX2 (8 candidates a vector), chosen at load time; AVX2 alone
 // does not enable fused multiply-add, so both versions compute the same bits.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+COHORT_AVX2_CLONES
 void candidate_costs(CostTerms t, std::size_t n, const float* __restrict pos,
                      const float* __restrict left, const float* __restrict right,
                      float* __restrict cost, float* __restrict plain) {
@@ -170,9 +164,7 @@ std::size_t lowest_at(const float* cost, const float* pos, float least, std::siz
 // n high ends), the references starting before it (left) and ending after it (right). Written
 // over the candidates, with the references in the outer loop, so the inner loop is a vector of
 // candidates compared with one broadcast reference.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+COHORT_AVX2_CLONES
 void count_sides(const float* __restrict pos, std::size_t n, float* __restrict left,
                  float* __restrict right) {
   const std::size_t m = whole_lanes(2 * n);
@@ -233,8 +225,7 @@ void apply_pick(const Pick& pick, const AxisSah& a, const AxisCandidates& candid
       static_cast<std::uint32_t>(pick.chosen_a ? candidates.right_a[i] : candidates.right_b[i]);
 }
 
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define COHORT_SMALL_SEARCH_AVX2 1
+#if COHORT_X86_DISPATCH
 // Up to this many candidates per axis (four vectors of 8) the search runs in AVX2 registers.
 constexpr std::size_t kSmallCandidates = 32;
 // Up to this many (two vectors) the candidates are also counted in registers; at 3-4 vectors the
@@ -419,7 +410,7 @@ void count_candidates(std::span<const Ref> refs, NodeCandidates& out) {
       pos[n + j] = hi;
       planar |= lo == hi;
     }
-#ifdef COHORT_SMALL_SEARCH_AVX2
+#if COHORT_X86_DISPATCH
     if (2 * n <= kSmallCountedCandidates && __builtin_cpu_supports("avx2")) {
       if (2 * n <= kCandidateLanes) {
         small_count_sides<1>(pos, n, x.left_a.data(), x.right_a.data());
@@ -445,7 +436,7 @@ void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& ca
   const CostTerms terms{a.lo,     a.hi,           a.face,
                         a.rim,    c.inv_area,     c.traversal_cost,
                         c.intersection_cost, c.empty_factor};
-#ifdef COHORT_SMALL_SEARCH_AVX2
+#if COHORT_X86_DISPATCH
   if (n <= kSmallCandidates && __builtin_cpu_supports("avx2")) {
     Pick pick;
     switch (whole_lanes(n) / kCandidateLanes) {

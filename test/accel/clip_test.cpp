@@ -2,7 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cstdint>
+#include <limits>
 #include <random>
+
+#include "runtime/accel/x86_dispatch.h"
 
 namespace cohort::kd {
 namespace {
@@ -100,6 +105,69 @@ TEST(Clip, SplitGivesTheBoundsOfEachHalf) {
     straddling += !split[0].empty() && !split[1].empty();
   }
   EXPECT_GT(straddling, 200) << "the trials must exercise triangles cut by the plane";
+}
+
+TEST(Clip, VectorSplitMatchesPortableBitForBit) {
+  // The KD build's results are the same bits on every machine only if the AVX2 split equals the
+  // portable one exactly. Coordinates from a small grid (with -0 and +0, so the order of equal
+  // minima shows) make vertices lie on cell faces and on the plane, flat and sliver triangles;
+  // the smallest denormals make crossings that round to zero in float; random coordinates make
+  // awkward slopes and crossings that round.
+#if COHORT_X86_DISPATCH
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "no AVX2 on this CPU: only one version";
+#else
+  GTEST_SKIP() << "no vector version in this build";
+#endif
+  constexpr float kTiny = std::numeric_limits<float>::denorm_min();
+  const std::array<float, 12> grid{-1.f,  -0.5f, -kTiny, -0.f, 0.f, kTiny,
+                                   0.25f, 1.f / 3.f, 0.5f, 0.7f, 1.f, 1.5f};
+  const std::array<float, 8> tiny{-3 * kTiny, -2 * kTiny, -kTiny, -0.f,
+                                  0.f,        kTiny,      2 * kTiny, 3 * kTiny};
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<std::size_t> pick(0, 11);
+  std::uniform_real_distribution<float> any(-1.2f, 1.7f);
+  // Kind 0: the grid; 1: multiples of the smallest denormal, whose crossings round to zero or
+  // to a denormal in float; 2: random.
+  auto coordinate = [&](int kind) {
+    const std::size_t i = pick(rng);
+    return kind == 0 ? grid[i] : kind == 1 ? tiny[i % tiny.size()] : any(rng);
+  };
+  int compared = 0, straddling = 0;
+  for (int trial = 0; trial < 300000; ++trial) {
+    const int kind = trial % 3;
+    glm::vec3 v[3];
+    for (glm::vec3& p : v) p = {coordinate(kind), coordinate(kind), coordinate(kind)};
+    Bounds cell;
+    for (int k = 0; k < 3; ++k) {
+      float lo = coordinate(kind), hi = coordinate(kind);
+      if (hi < lo) std::swap(lo, hi);
+      if (!(lo < hi)) hi = lo + 0.5f;
+      cell.lo[k] = lo;
+      cell.hi[k] = hi;
+    }
+    const int axis = (trial / 3) % 3;
+    const float lo = cell.lo[axis], hi = cell.hi[axis];
+    float pos = coordinate(kind);
+    if (!(pos > lo && pos < hi)) pos = lo + (hi - lo) * 0.5f;
+    if (!(pos > lo && pos < hi)) continue;
+    const std::array<Bounds, 2> fast = split_triangle_bounds(v[0], v[1], v[2], cell, axis, pos);
+    const std::array<Bounds, 2> portable =
+        split_triangle_bounds_portable(v[0], v[1], v[2], cell, axis, pos);
+    for (int side = 0; side < 2; ++side) {
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(fast[side].lo[k]),
+                  std::bit_cast<std::uint32_t>(portable[side].lo[k]))
+            << "trial " << trial << " side " << side << " axis " << k;
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(fast[side].hi[k]),
+                  std::bit_cast<std::uint32_t>(portable[side].hi[k]))
+            << "trial " << trial << " side " << side << " axis " << k;
+      }
+    }
+    ++compared;
+    straddling += !portable[0].empty() && !portable[1].empty();
+  }
+  EXPECT_GT(compared, 250000);
+  EXPECT_GT(straddling, 30000) << "the trials must exercise triangles cut by the plane";
 }
 
 }  // namespace
