@@ -55,17 +55,29 @@ struct BinCounts {
 
 // Counts the references' bins and keeps them (6 per reference: start and end bin per axis) in
 // `ref_bins`, for refine() to look up instead of binning every reference again.
+// One reference's start and end bins (per axis) counted and kept.
+inline void tally(const std::uint32_t (&lo)[4], const std::uint32_t (&hi)[4], std::size_t bins,
+                  std::uint32_t* start_counts, std::uint32_t* end_counts,
+                  std::uint16_t* ref_bins) {
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    ++start_counts[axis * bins + lo[axis]];
+    ++end_counts[axis * bins + hi[axis]];
+    ref_bins[2 * axis] = static_cast<std::uint16_t>(lo[axis]);
+    ref_bins[2 * axis + 1] = static_cast<std::uint16_t>(hi[axis]);
+  }
+}
+
 void count_scalar(const Binner& binner, std::span<const Ref> refs,
                   std::vector<std::uint32_t>& starts, std::vector<std::uint32_t>& ends,
                   std::uint16_t* ref_bins) {
+  const auto bins = static_cast<std::size_t>(binner.bins);
   for (const Ref& r : refs) {
+    std::uint32_t lo[4] = {}, hi[4] = {};
     for (int axis = 0; axis < 3; ++axis) {
-      const int lo = binner.bin(axis, r.box.lo[axis]), hi = binner.bin(axis, r.box.hi[axis]);
-      ++starts[axis * binner.bins + lo];
-      ++ends[axis * binner.bins + hi];
-      ref_bins[2 * axis] = static_cast<std::uint16_t>(lo);
-      ref_bins[2 * axis + 1] = static_cast<std::uint16_t>(hi);
+      lo[axis] = static_cast<std::uint32_t>(binner.bin(axis, r.box.lo[axis]));
+      hi[axis] = static_cast<std::uint32_t>(binner.bin(axis, r.box.hi[axis]));
     }
+    tally(lo, hi, bins, starts.data(), ends.data(), ref_bins);
     ref_bins += 6;
   }
 }
@@ -97,12 +109,7 @@ __attribute__((target("sse4.1"))) void count_sse41(const Binner& binner,
     alignas(16) std::uint32_t l[4], h[4];
     _mm_store_si128(reinterpret_cast<__m128i*>(l), low_bins);
     _mm_store_si128(reinterpret_cast<__m128i*>(h), high_bins);
-    for (std::size_t axis = 0; axis < 3; ++axis) {
-      ++start_counts[axis * bins + l[axis]];
-      ++end_counts[axis * bins + h[axis]];
-      ref_bins[2 * axis] = static_cast<std::uint16_t>(l[axis]);
-      ref_bins[2 * axis + 1] = static_cast<std::uint16_t>(h[axis]);
-    }
+    tally(l, h, bins, start_counts, end_counts, ref_bins);
     ref_bins += 6;
   }
 }

@@ -328,10 +328,11 @@ __attribute__((target("avx2"))) void small_count_sides(const float* pos, std::si
 }
 
 template <int K>
-__attribute__((target("avx2"))) void small_search(const CostTerms& t,
+__attribute__((target("avx2"))) Pick small_search(const CostTerms& t,
                                                   const AxisCandidates& candidates,
-                                                  const SplitPlane& best, Pick& out) {
+                                                  const SplitPlane& best) {
   const std::size_t n = candidates.size;
+  Pick out{};
   __m256 pos[K], cost_a[K], plain_a[K], cost_b[K], plain_b[K];
   for (int k = 0; k < K; ++k) pos[k] = _mm256_loadu_ps(candidates.pos.data() + 8 * k);
   small_costs<K>(t, n, pos, candidates.left_a.data(), candidates.right_a.data(), cost_a, plain_a);
@@ -360,6 +361,7 @@ __attribute__((target("avx2"))) void small_search(const CostTerms& t,
       out.plain = plain_lanes[out.chosen];
     }
   }
+  return out;
 }
 #endif
 
@@ -440,10 +442,10 @@ void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& ca
   if (n <= kSmallCandidates && __builtin_cpu_supports("avx2")) {
     Pick pick;
     switch (whole_lanes(n) / kCandidateLanes) {
-      case 1: small_search<1>(terms, candidates, best, pick); break;
-      case 2: small_search<2>(terms, candidates, best, pick); break;
-      case 3: small_search<3>(terms, candidates, best, pick); break;
-      default: small_search<4>(terms, candidates, best, pick); break;
+      case 1: pick = small_search<1>(terms, candidates, best); break;
+      case 2: pick = small_search<2>(terms, candidates, best); break;
+      case 3: pick = small_search<3>(terms, candidates, best); break;
+      default: pick = small_search<4>(terms, candidates, best); break;
     }
     apply_pick(pick, a, candidates, best);
     return;
