@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """scripts/bench-large: the tree line of `cohort info` read for every tree it can build (the BVH's
 build seconds add the pass that keeps the triangles, as a render's build_seconds do), a missing
-tree line an error, and, given a cohort binary (argv[1]), the figures of real builds of the shipped
-Cornell box. Standard library only."""
+tree line an error, the CPU lists it pins to, issue 26's target as a ratio to Embree, and, given a
+cohort binary (argv[1]), the figures of real builds of the shipped Cornell box (and Embree's build
+of it when cohort-embree-bench was built beside it). Standard library only."""
 import importlib.machinery
 import importlib.util
 import sys
@@ -38,6 +39,19 @@ class ParseTree(unittest.TestCase):
             bench_large.parse_tree("scene: x\ntriangles: 3\n")
 
 
+class EmbreeTarget(unittest.TestCase):
+    def test_cpu_lists(self):
+        self.assertEqual(bench_large.cpu_count("0,1"), 2)
+        self.assertEqual(bench_large.cpu_count("0-15"), 16)
+        self.assertEqual(bench_large.cpu_count("0-3,8"), 5)
+        self.assertEqual(bench_large.cpu_count(""), bench_large.os.cpu_count())
+
+    def test_target_ratio(self):
+        # 1 s for 1M triangles where Embree-high takes 0.70 s for 977K: 1.40x Embree's time
+        self.assertAlmostEqual(bench_large.EMBREE_TARGET_RATIO, 977 / 700, places=6)
+        self.assertAlmostEqual(1e6 * 0.70 / 977e3 * bench_large.EMBREE_TARGET_RATIO, 1.0)
+
+
 @unittest.skipUnless(COHORT, "no cohort binary given")
 class RealBuilds(unittest.TestCase):
     def test_every_tree_of_the_cornell_box(self):
@@ -52,6 +66,16 @@ class RealBuilds(unittest.TestCase):
         self.assertEqual(figures[""]["nodes"], figures["deep"]["nodes"])
         self.assertLessEqual(figures["compact"]["nodes"], figures["deep"]["nodes"])
         self.assertNotEqual(figures["bvh4"]["nodes"], figures["deep"]["nodes"])
+
+    def test_embree_build_of_the_cornell_box(self):
+        embree = COHORT.parent / "cohort-embree-bench"
+        if not embree.exists():
+            self.skipTest("cohort-embree-bench was not built (no Embree 3)")
+        # a build line was found (embree_seconds exits without one); the Cornell box builds in
+        # well under a millisecond, which the bench prints as 0.000 s
+        seconds = bench_large.embree_seconds(embree, ROOT / "scenes" / "cornell-box.gltf", "0")
+        self.assertGreaterEqual(seconds, 0.0)
+        self.assertLess(seconds, 60.0)
 
 
 if __name__ == "__main__":
