@@ -212,7 +212,8 @@ namespace {
 using Point = double __attribute__((vector_size(32)));  // x, y, z, unused
 using Mask = std::int64_t __attribute__((vector_size(32)));
 using Float4 = float __attribute__((vector_size(16)));
-using Bits4 = std::int32_t __attribute__((vector_size(16)));
+using Bits4 = std::uint32_t __attribute__((vector_size(16)));  // unsigned: steps wrap, no overflow
+using Mask4 = std::int32_t __attribute__((vector_size(16)));
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -297,16 +298,18 @@ struct PointBounds {
 Float4 round_down(Point x) {
   const Float4 f = __builtin_convertvector(x, Float4);
   const Bits4 bits = reinterpret_cast<Bits4>(f);
-  const Bits4 down = bits + (bits < 0 ? Bits4{1, 1, 1, 1} : Bits4{-1, -1, -1, -1});
-  const Bits4 rounded_up = __builtin_convertvector(__builtin_convertvector(f, Point) > x, Bits4);
+  const Mask4 negative = reinterpret_cast<Mask4>(bits) < 0;
+  const Bits4 down = negative ? bits + 1u : bits - 1u;
+  const Mask4 rounded_up = __builtin_convertvector(__builtin_convertvector(f, Point) > x, Mask4);
   return reinterpret_cast<Float4>(rounded_up ? down : bits);
 }
 
 Float4 round_up(Point x) {
   const Float4 f = __builtin_convertvector(x, Float4);
   const Bits4 bits = reinterpret_cast<Bits4>(f);
-  const Bits4 up = bits + (bits < 0 ? Bits4{-1, -1, -1, -1} : Bits4{1, 1, 1, 1});
-  const Bits4 rounded_down = __builtin_convertvector(__builtin_convertvector(f, Point) < x, Bits4);
+  const Mask4 negative = reinterpret_cast<Mask4>(bits) < 0;
+  const Bits4 up = negative ? bits - 1u : bits + 1u;
+  const Mask4 rounded_down = __builtin_convertvector(__builtin_convertvector(f, Point) < x, Mask4);
   return reinterpret_cast<Float4>(rounded_down ? up : bits);
 }
 
@@ -317,7 +320,7 @@ Bounds bounds_within(const PointBounds& points, const Bounds& box) {
   const Float4 down = round_down(points.lo), up = round_up(points.hi);
   const Float4 lo = box_lo > down ? box_lo : down;  // std::max(down, box_lo)
   const Float4 hi = box_hi < up ? box_hi : up;      // std::min(up, box_hi)
-  const Bits4 sliver = lo > hi;
+  const Mask4 sliver = lo > hi;
   if (sliver[0] | sliver[1] | sliver[2]) return Bounds{};
   Bounds result;
   result.lo = {lo[0], lo[1], lo[2]};
