@@ -15,7 +15,7 @@ loader = importlib.machinery.SourceFileLoader("bench_large", str(ROOT / "scripts
 spec = importlib.util.spec_from_loader("bench_large", loader)
 bench_large = importlib.util.module_from_spec(spec)
 loader.exec_module(bench_large)
-COHORT = Path(sys.argv.pop(1)) if len(sys.argv) > 1 else None
+COHORT = Path(sys.argv.pop(1)).resolve() if len(sys.argv) > 1 else None  # ./cohort works too
 
 BVH_LINE = ("4-wide BVH: depth 13, 668798 nodes, 1338419 leaves, 1597397 references to 1111216 triangles, "
             "1.19 per leaf, SAH cost 12.66, built in 0.874s (triangles kept in 0.119s)")
@@ -45,6 +45,22 @@ class EmbreeTarget(unittest.TestCase):
         self.assertEqual(bench_large.cpu_count("0-15"), 16)
         self.assertEqual(bench_large.cpu_count("0-3,8"), 5)
         self.assertEqual(bench_large.cpu_count(""), bench_large.os.cpu_count())
+
+    def test_rows_pair_each_build_with_its_round(self):
+        # rounds (build, Embree): 1.3/1.0, 1.6/1.0, 1.2/1.0 -> ratios 1.2, 1.3, 1.6, median 1.3: met
+        rows = bench_large.embree_rows("m", [1.3, 1.6, 1.2], [1.0, 1.0, 1.0])
+        self.assertIn("1.30x (1.20-1.60)", rows[1])
+        self.assertIn(": met", rows[1])
+        # pairing by round, not by sorted value: 2.0/1.0 and 1.0/2.0 are 2.0 and 0.5, median 1.25
+        rows = bench_large.embree_rows("m", [2.0, 1.0], [1.0, 2.0])
+        self.assertIn("1.25x (0.50-2.00)", rows[1])
+        rows = bench_large.embree_rows("m", [1.5, 1.5, 1.5], [1.0, 1.0, 1.0])
+        self.assertIn("not met", rows[1])
+
+    def test_an_untimed_embree_build_gives_no_ratio(self):
+        rows = bench_large.embree_rows("m", [0.001, 0.001], [0.001, 0.0])
+        self.assertEqual(len(rows), 1)
+        self.assertIn("too small to time", rows[0])
 
     def test_target_ratio(self):
         # 1 s for 1M triangles where Embree-high takes 0.70 s for 977K: 1.40x Embree's time
