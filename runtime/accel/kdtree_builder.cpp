@@ -75,7 +75,8 @@ class Builder {
                                 int bad_refines) const;
   static std::uint32_t make_leaf(Subtree& out, const Scratch& s, std::size_t begin,
                                  std::size_t end, const Bounds& voxel, int depth);
-  static std::uint32_t add_inner(Subtree& out, const SplitPlane& plane, const Bounds& voxel);
+  static std::uint32_t add_inner(Subtree& out, const SplitPlane& plane, const Bounds& voxel,
+                                 int depth);
 
   std::span<const Triangle> triangles_;
   const KdBuildOptions& options_;
@@ -105,14 +106,17 @@ std::uint32_t Builder::make_leaf(Subtree& out, const Scratch& s, std::size_t beg
   sums.references += end - begin;
   if (end > begin) sums.leaf_reference_area += cell_area(voxel) * static_cast<double>(end - begin);
   sums.depth = std::max(sums.depth, depth);
+  sums.add_node(depth, end - begin);
   return index;
 }
 
-std::uint32_t Builder::add_inner(Subtree& out, const SplitPlane& plane, const Bounds& voxel) {
+std::uint32_t Builder::add_inner(Subtree& out, const SplitPlane& plane, const Bounds& voxel,
+                                 int depth) {
   const std::uint32_t index = checked_offset(out.nodes.size());
   out.nodes.push_back({static_cast<std::uint32_t>(plane.axis), plane.pos, 0, 0});
   ++out.sums.inner;
   out.sums.inner_area += cell_area(voxel);
+  out.sums.add_node(depth, 0);
   return index;
 }
 
@@ -178,7 +182,7 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
   if (parallel) {
     std::array<std::vector<Ref>, 2> children = partition_apart(
         std::span<const Ref>(s.refs).subspan(begin, count), voxel, plane, triangles_);
-    const std::uint32_t index = add_inner(out, plane, voxel);
+    const std::uint32_t index = add_inner(out, plane, voxel, depth);
     build_children_parallel(out, index, s, std::move(children), cells, depth, bad_refines);
     return index;
   }
@@ -188,7 +192,7 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
       partition(s.refs, begin, end, voxel, plane, triangles_, s.right, clipped);
   // The extents of this node are those of a child that got every reference unchanged.
   const bool hand_on = exact(count) && clipped == 0 && (counts[0] == 0 || counts[1] == 0);
-  const std::uint32_t index = add_inner(out, plane, voxel);
+  const std::uint32_t index = add_inner(out, plane, voxel, depth);
   s.extents_inherited = hand_on && counts[0] > 0;
   const std::uint32_t left =
       build(out, s, begin, begin + counts[0], cells[0], depth + 1, bad_refines);
@@ -207,7 +211,7 @@ std::uint32_t Builder::build_one_sided(Subtree& out, Scratch& s, std::size_t beg
                                        std::size_t end, const SplitPlane& plane,
                                        const Bounds& voxel, int depth, int bad_refines) const {
   const std::array<Bounds, 2> cells = child_cells(voxel, plane.axis, plane.pos);
-  const std::uint32_t index = add_inner(out, plane, voxel);
+  const std::uint32_t index = add_inner(out, plane, voxel, depth);
   const bool all_left = plane.right_count == 0;
   s.extents_inherited = all_left;
   const std::uint32_t left = all_left

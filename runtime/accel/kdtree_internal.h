@@ -318,12 +318,22 @@ inline double cell_area(const Bounds& box) {
 // What the statistics need of the nodes, summed as the builder makes them (each node's cell is at
 // hand there), so no pass over the finished tree is needed. Sums of cell areas, not yet divided by
 // the root's: the SAH cost is (K_T inner_area + K_I leaf_reference_area) / area(root).
+// Depths a node can have (root = 0); the builder stops below KD_MAX_DEPTH (kDepthCap).
+constexpr std::size_t kLevels = KD_MAX_DEPTH;
+
 struct SubtreeSums {
   double inner_area = 0;           // the cells of the inner nodes
   double leaf_reference_area = 0;  // each leaf's cell times its triangle count
   std::size_t inner = 0, leaves = 0, empty_leaves = 0, references = 0;
   int depth = 0;  // deepest leaf (root = depth 0)
+  // Nodes and leaf-list entries per depth: where each level of the breadth-first layout starts,
+  // and how far a subtree built by another task moves the nodes right of it (kdtree_layout.cpp).
+  std::array<std::size_t, kLevels> level_nodes{}, level_leaf_entries{};
 
+  void add_node(int at_depth, std::size_t leaf_entries) {
+    ++level_nodes[static_cast<std::size_t>(at_depth)];
+    level_leaf_entries[static_cast<std::size_t>(at_depth)] += leaf_entries;
+  }
   void add(const SubtreeSums& other) {
     inner_area += other.inner_area;
     leaf_reference_area += other.leaf_reference_area;
@@ -332,6 +342,10 @@ struct SubtreeSums {
     empty_leaves += other.empty_leaves;
     references += other.references;
     depth = std::max(depth, other.depth);
+    for (std::size_t d = 0; d < kLevels; ++d) {
+      level_nodes[d] += other.level_nodes[d];
+      level_leaf_entries[d] += other.level_leaf_entries[d];
+    }
   }
 };
 
@@ -342,6 +356,9 @@ struct Subtree {
   SubtreeSums sums;              // of `nodes` only, not of `spawned`
 };
 
+// The subtree's sums and those of everything it spawned, in their fixed order (kdtree_stats.cpp).
+SubtreeSums total_sums(const Subtree& subtree);
+
 // The recursive SAH build over the kept triangles (kdtree_builder.cpp).
 Subtree build_subtree(std::span<const Triangle> triangles, const Bounds& bounds,
                       const KdBuildOptions& options);
@@ -350,14 +367,16 @@ Subtree build_subtree(std::span<const Triangle> triangles, const Bounds& bounds,
 // inner node on the path, so depth KD_MAX_DEPTH would just fit its 48-entry stack; the margin keeps
 // room for traversal variants that push one more entry (a restart point, the PTH subtree root).
 constexpr int kDepthCap = KD_MAX_DEPTH - 4;
+static_assert(kDepthCap < static_cast<int>(kLevels));
 
 // The depth limit actually used: options.max_depth, or 8 + 1.8 log2(N), capped (see kDepthCap). The
 // factor was 1.3 until GPU runs showed the limit binding: on the H100, 1.8 gave 1.8x the diffuse
 // rays/s of the armadillo and the Sponza interior (docs/results.md); 2.0 to 3.0 gained nothing more.
 int effective_max_depth(const KdBuildOptions& options, std::size_t triangle_count);
 
-// Breadth-first device layout of the subtree and those it spawned (kdtree_layout.cpp). Throws
-// std::length_error when an index does not fit the 30 bits of KdNode::word0.
+// Breadth-first device layout of the subtree and those it spawned (kdtree_layout.cpp), written by
+// a depth-first walk. Throws std::length_error when an index does not fit the 30 bits of
+// KdNode::word0.
 void flatten(const Subtree& subtree, KdTree& tree);
 
 // Fills tree.stats from the sums of the subtree and those it spawned (joined in their fixed

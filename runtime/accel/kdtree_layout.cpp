@@ -2,7 +2,6 @@
 // node order with the two children of every inner node adjacent, so one index names both and the
 // top L levels are a prefix of the array (what a kernel caching the top of the tree needs).
 #include <fmt/format.h>
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
@@ -10,9 +9,8 @@
 #include <array>
 #include <cstring>
 #include <limits>
-#include <memory>
-#include <utility>
 #include <stdexcept>
+#include <vector>
 
 #include "runtime/accel/kdtree_internal.h"
 
@@ -40,140 +38,83 @@ KdNode leaf_node(std::size_t count, std::size_t first) {
   return {static_cast<std::uint32_t>(count) << 2 | KD_LEAF, static_cast<std::uint32_t>(first)};
 }
 
-// Nodes and leaf entries of a subtree and those it spawned.
-std::array<std::size_t, 2> sizes(const Subtree& subtree) {
-  std::array<std::size_t, 2> total{subtree.nodes.size(), subtree.leaf_triangles.size()};
-  for (const Subtree& child : subtree.spawned) {
-    const auto [nodes, leaf_triangles] = sizes(child);
-    total[0] += nodes;
-    total[1] += leaf_triangles;
-  }
-  return total;
-}
-
-// Working memory that grows as needed and is never cleared: every element a pass reads, the pass
-// before it wrote (a std::vector would zero each level's new tail, serially).
-template <typename T>
-class GrowBuffer {
- public:
-  T* get(std::size_t n) {
-    if (n > capacity_) {
-      capacity_ = std::max(n, 2 * capacity_);
-      data_ = std::make_unique_for_overwrite<T[]>(capacity_);
-    }
-    return data_.get();
-  }
-  T* data() { return data_.get(); }
-
- private:
-  std::unique_ptr<T[]> data_;
-  std::size_t capacity_ = 0;
+// Per depth, the next index of the breadth-first node array and of the leaf lists that a node
+// or leaf list met there takes.
+struct Cursor {
+  std::array<std::size_t, kLevels> node{}, leaf{};
 };
+
+// Breadth-first order is, level by level, the left-to-right order of the nodes, and that is the
+// order in which a depth-first walk (left child first) meets them. So walking the tree depth-first
+// with a cursor per level puts each node where the level-by-level layout puts it: its index is the
+// next of its level, its left child the next of the level below (met right after it), and its leaf
+// list the next of its level's leaf lists. The walk reads each subtree's nodes in the order they
+// were built (sequential, where a level-by-level pass jumps between subtrees); a spawned subtree
+// is skipped by moving the cursors by its sizes per level and laid out by a task of its own from
+// the cursors it was met with.
+void lay_out(const Subtree& subtree, int root_depth, Cursor cursor, KdTree& tree) {
+  struct Pending {
+    std::uint32_t node;  // may carry kSpawnedBit
+    int depth;
+  };
+  struct Spawned {
+    const Subtree* subtree;
+    int depth;
+    Cursor cursor;
+  };
+  std::vector<Pending> stack{{0, root_depth}};
+  std::vector<Spawned> spawned;
+  while (!stack.empty()) {
+    const auto [index, depth] = stack.back();
+    stack.pop_back();
+    const auto d = static_cast<std::size_t>(depth);
+    if (index & kSpawnedBit) {
+      const Subtree& child = subtree.spawned[index & ~kSpawnedBit];
+      spawned.push_back({&child, depth, cursor});
+      const SubtreeSums sizes = total_sums(child);
+      for (std::size_t level = d; level < kLevels; ++level) {
+        cursor.node[level] += sizes.level_nodes[level];
+        cursor.leaf[level] += sizes.level_leaf_entries[level];
+      }
+      continue;
+    }
+    const BuildNode& node = subtree.nodes[index];
+    const std::size_t at = cursor.node[d]++;
+    if (node.axis == KD_LEAF) {
+      const std::size_t first = cursor.leaf[d];
+      tree.nodes[at] = leaf_node(node.b, first);
+      const auto from = subtree.leaf_triangles.begin() + node.a;
+      std::copy(from, from + node.b, tree.leaf_triangles.begin() + static_cast<std::ptrdiff_t>(first));
+      cursor.leaf[d] += node.b;
+      continue;
+    }
+    if (d + 1 >= kLevels) throw std::length_error("KD-tree deeper than the layout's levels");
+    tree.nodes[at] = inner_node(node.axis, node.split, cursor.node[d + 1]);
+    stack.push_back({node.b, depth + 1});
+    stack.push_back({node.a, depth + 1});
+  }
+  tbb::parallel_for(std::size_t{0}, spawned.size(), [&](std::size_t k) {
+    lay_out(*spawned[k].subtree, spawned[k].depth, spawned[k].cursor, tree);
+  });
+}
 
 }  // namespace
 
 void flatten(const Subtree& subtree, KdTree& tree) {
-  const auto [node_count, leaf_entries] = sizes(subtree);
+  const SubtreeSums sizes = total_sums(subtree);
+  Cursor first;  // where each level starts
+  std::size_t node_count = 0, leaf_entries = 0;
+  for (std::size_t level = 0; level < kLevels; ++level) {
+    first.node[level] = node_count;
+    first.leaf[level] = leaf_entries;
+    node_count += sizes.level_nodes[level];
+    leaf_entries += sizes.level_leaf_entries[level];
+  }
+  check_fits(node_count, KD_MAX_INDEX, "the node count");
   // Sizing clears the new memory, one thread per vector (hundreds of MB on a large scene): side by side.
   tbb::parallel_invoke([&] { tree.nodes.assign(node_count, KdNode{}); },
                        [&] { tree.leaf_triangles.assign(leaf_entries, 0u); });
-  // One level of the breadth-first order at a time: a level is the children of the previous one's
-  // inner nodes in order, two each, so counts of inner nodes and leaf entries before each node give
-  // its output index, its children's and its leaf list's offset. The level is cut into chunks of a
-  // fixed size: a first parallel pass reads the chunk's nodes and counts them, a short serial scan
-  // over the chunks' counts gives each chunk's first offsets, and a second parallel pass writes the
-  // chunk's nodes, leaf lists and the next level's entries, counting on from there. Nothing runs
-  // over a whole level serially (a scan over every node did not scale past two cores), and the
-  // working buffers grow without being cleared. The same layout as a breadth-first queue.
-  struct Entry {
-    const Subtree* tree;
-    std::uint32_t node;
-  };
-  struct ChunkCounts {
-    std::size_t inner = 0, leaf_entries = 0;
-  };
-  constexpr std::size_t kChunk = 4096;
-  constexpr std::size_t kPrefetchAhead = 16;
-  GrowBuffer<Entry> level, next;
-  // The level's nodes, read once from their subtrees (BuildNode's fields without its initialisers,
-  // so the buffer needs no clearing either).
-  struct LevelNode {
-    std::uint32_t axis;
-    float split;
-    std::uint32_t a, b;
-  };
-  GrowBuffer<LevelNode> level_nodes;
-  std::vector<ChunkCounts> chunk_first;
-  Entry* current = level.get(1);
-  current[0] = {&subtree, 0};
-  std::size_t n = 1, level_first = 0, leaf_first = 0;
-  while (n > 0) {
-    const std::size_t chunks = (n + kChunk - 1) / kChunk;
-    LevelNode* nodes = level_nodes.get(n);
-    chunk_first.assign(chunks + 1, ChunkCounts{});
-    // What each chunk adds (read in parallel: the nodes are scattered over the subtrees).
-    tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
-      ChunkCounts counts;
-      const std::size_t last = std::min(n, (k + 1) * kChunk);
-      for (std::size_t i = k * kChunk; i < last; ++i) {
-        // The nodes of a level lie far apart in memory (depth-first, as they were built): each
-        // read is a cache miss, so the one kPrefetchAhead entries on is fetched early (and the
-        // leaf lists likewise below).
-        if (i + kPrefetchAhead < last) {
-          const Entry& ahead = current[i + kPrefetchAhead];
-          __builtin_prefetch(ahead.tree->nodes.data() + ahead.node);
-        }
-        const BuildNode& read = current[i].tree->nodes[current[i].node];
-        const LevelNode& node = nodes[i] = {read.axis, read.split, read.a, read.b};
-        if (node.axis == KD_LEAF) {
-          counts.leaf_entries += node.b;
-        } else {
-          ++counts.inner;
-        }
-      }
-      chunk_first[k + 1] = counts;
-    });
-    for (std::size_t k = 0; k < chunks; ++k) {
-      chunk_first[k + 1].inner += chunk_first[k].inner;
-      chunk_first[k + 1].leaf_entries += chunk_first[k].leaf_entries;
-    }
-    const std::size_t inner = chunk_first[chunks].inner;
-    const std::size_t children_first = level_first + n;
-    if (inner > 0) check_fits(children_first + 2 * inner, KD_MAX_INDEX, "a child node index");
-    Entry* children = next.get(2 * inner);
-    tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
-      std::size_t inner_before = chunk_first[k].inner;
-      std::size_t leaf_before = leaf_first + chunk_first[k].leaf_entries;
-      const std::size_t last = std::min(n, (k + 1) * kChunk);
-      for (std::size_t i = k * kChunk; i < last; ++i) {
-        if (i + kPrefetchAhead < last && nodes[i + kPrefetchAhead].axis == KD_LEAF) {
-          const Entry& ahead = current[i + kPrefetchAhead];
-          __builtin_prefetch(ahead.tree->leaf_triangles.data() + nodes[i + kPrefetchAhead].a);
-        }
-        const Subtree* in = current[i].tree;
-        const LevelNode& node = nodes[i];
-        if (node.axis == KD_LEAF) {
-          tree.nodes[level_first + i] = leaf_node(node.b, leaf_before);
-          const auto from = in->leaf_triangles.begin() + node.a;
-          std::copy(from, from + node.b, tree.leaf_triangles.begin() + static_cast<std::ptrdiff_t>(leaf_before));
-          leaf_before += node.b;
-          continue;
-        }
-        const std::size_t child = 2 * inner_before++;
-        tree.nodes[level_first + i] = inner_node(node.axis, node.split, children_first + child);
-        for (std::uint32_t c = 0; c < 2; ++c) {
-          const std::uint32_t index = c == 0 ? node.a : node.b;
-          children[child + c] = (index & kSpawnedBit) ? Entry{&in->spawned[index & ~kSpawnedBit], 0}
-                                                      : Entry{in, index};
-        }
-      }
-    });
-    level_first = children_first;
-    leaf_first += chunk_first[chunks].leaf_entries;
-    n = 2 * inner;
-    std::swap(level, next);
-    current = level.data();
-  }
+  lay_out(subtree, 0, first, tree);
 }
 
 }  // namespace cohort::kd

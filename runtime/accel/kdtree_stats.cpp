@@ -9,19 +9,14 @@
 #include "runtime/accel/kdtree_internal.h"
 
 namespace cohort::kd {
-namespace {
-
-// The subtree's sums and those of everything it spawned, in their fixed order.
-SubtreeSums total(const Subtree& subtree) {
+SubtreeSums total_sums(const Subtree& subtree) {
   SubtreeSums sums = subtree.sums;
-  for (const Subtree& child : subtree.spawned) sums.add(total(child));
+  for (const Subtree& child : subtree.spawned) sums.add(total_sums(child));
   return sums;
 }
 
-}  // namespace
-
 void compute_stats(const Subtree& subtree, KdTree& tree, const KdBuildOptions& options) {
-  const SubtreeSums sums = total(subtree);
+  const SubtreeSums sums = total_sums(subtree);
   KdTreeStats& s = tree.stats;
   s.node_count = tree.nodes.size();
   s.leaf_count = sums.leaves;

@@ -175,6 +175,9 @@ std::vector<std::string> layout_errors(const KdTree& tree, int max_depth) {
     if (i > 0 && depth[i] < depth[i - 1])
       errors.add("node {}: depth {} after depth {}", i, depth[i], depth[i - 1]);
     if (kd_is_leaf(node)) {
+      // The leaf lists follow one another in node order, with no gap (the layout's contract).
+      if (kd_leaf_first(node) != refs)
+        errors.add("leaf {}: list at {}, after the lists before it at {}", i, kd_leaf_first(node), refs);
       ++leaves;
       empty_leaves += kd_leaf_count(node) == 0;
       refs += kd_leaf_count(node);
@@ -194,6 +197,8 @@ std::vector<std::string> layout_errors(const KdTree& tree, int max_depth) {
   for (std::size_t i = 1; i < tree.nodes.size(); ++i) {
     if (references[i] != 1) errors.add("node {} referenced {} times", i, references[i]);
   }
+  if (refs != tree.leaf_triangles.size())
+    errors.add("leaf lists hold {} entries, the leaves {}", tree.leaf_triangles.size(), refs);
   if (deepest > max_depth || deepest > KD_MAX_DEPTH)
     errors.add("depth {} over the limit {}", deepest, max_depth);
   for (std::size_t tri = 0; tri < seen.size(); ++tri) {
