@@ -163,8 +163,7 @@ std::size_t lowest_at(const float* cost, const float* pos, float least, std::siz
 // count_candidates' comparisons: for each of the 2n candidates pos[i] (the n low ends, then the
 // n high ends), the references starting before it (left) and ending after it (right). Written
 // over the candidates, with the references in the outer loop, so the inner loop is a vector of
-// candidates compared with one broadcast reference.
-COHORT_AVX2_CLONES
+// candidates compared with one broadcast reference. (With AVX2, count_sides_avx2 runs instead.)
 void count_sides(const float* __restrict pos, std::size_t n, float* __restrict left,
                  float* __restrict right) {
   const std::size_t m = whole_lanes(2 * n);
@@ -228,9 +227,6 @@ void apply_pick(const Pick& pick, const AxisSah& a, const AxisCandidates& candid
 #if COHORT_X86_DISPATCH
 // Up to this many candidates per axis (four vectors of 8) the search runs in AVX2 registers.
 constexpr std::size_t kSmallCandidates = 32;
-// Up to this many (two vectors) the candidates are also counted in registers; at 3-4 vectors the
-// register count was slower than the vector loop (490 against 425 ns a node of 16 references).
-constexpr std::size_t kSmallCountedCandidates = 16;
 
 __attribute__((target("avx2"))) inline float horizontal_min(__m256 v) {
   __m128 m = _mm_min_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
@@ -304,26 +300,48 @@ __attribute__((target("avx2"))) inline std::size_t small_lowest_at(const __m256 
   return mask == 0 ? n : static_cast<std::size_t>(__builtin_ctz(mask));
 }
 
-// count_sides on K vectors of candidates, the counts held in registers across the references.
+// count_sides on K vectors of candidates from `first` on, the counts held in registers across
+// the references. A comparison's lanes are all ones (-1 as an integer) where it holds, so
+// subtracting them counts in integers: two operations per vector and reference instead of a
+// comparison, a mask and a float addition, and no chain of float additions' latency. Integers
+// below 2^24 convert to the same floats the portable sums give.
 template <int K>
-__attribute__((target("avx2"))) void small_count_sides(const float* pos, std::size_t n,
-                                                       float* left, float* right) {
-  const __m256 one = _mm256_set1_ps(1.f);
-  __m256 p[K], l[K], r[K];
+__attribute__((target("avx2"))) inline void count_block(const float* pos, std::size_t n,
+                                                        std::size_t first, float* left,
+                                                        float* right) {
+  __m256 p[K];
+  __m256i l[K], r[K];
   for (int k = 0; k < K; ++k) {
-    p[k] = _mm256_loadu_ps(pos + 8 * k);
-    l[k] = r[k] = _mm256_setzero_ps();
+    p[k] = _mm256_loadu_ps(pos + first + 8 * k);
+    l[k] = r[k] = _mm256_setzero_si256();
   }
   for (std::size_t j = 0; j < n; ++j) {
     const __m256 lo = _mm256_broadcast_ss(pos + j), hi = _mm256_broadcast_ss(pos + n + j);
     for (int k = 0; k < K; ++k) {
-      l[k] = _mm256_add_ps(l[k], _mm256_and_ps(_mm256_cmp_ps(lo, p[k], _CMP_LT_OQ), one));
-      r[k] = _mm256_add_ps(r[k], _mm256_and_ps(_mm256_cmp_ps(hi, p[k], _CMP_GT_OQ), one));
+      l[k] = _mm256_sub_epi32(l[k], _mm256_castps_si256(_mm256_cmp_ps(lo, p[k], _CMP_LT_OQ)));
+      r[k] = _mm256_sub_epi32(r[k], _mm256_castps_si256(_mm256_cmp_ps(hi, p[k], _CMP_GT_OQ)));
     }
   }
   for (int k = 0; k < K; ++k) {
-    _mm256_storeu_ps(left + 8 * k, l[k]);
-    _mm256_storeu_ps(right + 8 * k, r[k]);
+    _mm256_storeu_ps(left + first + 8 * k, _mm256_cvtepi32_ps(l[k]));
+    _mm256_storeu_ps(right + first + 8 * k, _mm256_cvtepi32_ps(r[k]));
+  }
+}
+
+// count_sides in blocks of four vectors (32 candidates; 8 accumulators and 4 positions fit the
+// 16 registers), the rest in one smaller block.
+__attribute__((target("avx2"))) void count_sides_avx2(const float* pos, std::size_t n,
+                                                      float* left, float* right) {
+  const std::size_t m = whole_lanes(2 * n);
+  std::size_t first = 0;
+  for (; first + 4 * kCandidateLanes <= m; first += 4 * kCandidateLanes) {
+    count_block<4>(pos, n, first, left, right);
+  }
+  switch ((m - first) / kCandidateLanes) {
+    case 3: count_block<3>(pos, n, first, left, right); break;
+    case 2: count_block<2>(pos, n, first, left, right); break;
+    case 1: count_block<1>(pos, n, first, left, right); break;
+    default: break;
   }
 }
 
@@ -413,12 +431,8 @@ void count_candidates(std::span<const Ref> refs, NodeCandidates& out) {
       planar |= lo == hi;
     }
 #if COHORT_X86_DISPATCH
-    if (2 * n <= kSmallCountedCandidates && __builtin_cpu_supports("avx2")) {
-      if (2 * n <= kCandidateLanes) {
-        small_count_sides<1>(pos, n, x.left_a.data(), x.right_a.data());
-      } else {
-        small_count_sides<2>(pos, n, x.left_a.data(), x.right_a.data());
-      }
+    if (__builtin_cpu_supports("avx2")) {
+      count_sides_avx2(pos, n, x.left_a.data(), x.right_a.data());
     } else
 #endif
     count_sides(pos, n, x.left_a.data(), x.right_a.data());
