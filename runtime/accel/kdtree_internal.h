@@ -205,6 +205,7 @@ struct AxisCandidates {
   std::vector<float> left_a, right_a, left_b, right_b;
   std::size_t size = 0;
   bool planar = false;  // some candidate has planar references (else b equals a)
+  std::vector<float> flats;  // count_candidates' working memory: where flat references lie
 
   void clear() {
     size = 0;

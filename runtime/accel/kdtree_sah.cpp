@@ -163,7 +163,7 @@ std::size_t lowest_at(const float* cost, const float* pos, float least, std::siz
 // count_candidates' comparisons: for each of the 2n candidates pos[i] (the n low ends, then the
 // n high ends), the references starting before it (left) and ending after it (right). Written
 // over the candidates, with the references in the outer loop, so the inner loop is a vector of
-// candidates compared with one broadcast reference. (With AVX2, count_sides_avx2 runs instead.)
+// candidates compared with one broadcast reference. (With AVX2, count_avx2 runs instead.)
 void count_sides(const float* __restrict pos, std::size_t n, float* __restrict left,
                  float* __restrict right) {
   const std::size_t m = whole_lanes(2 * n);
@@ -300,20 +300,21 @@ __attribute__((target("avx2"))) inline std::size_t small_lowest_at(const __m256 
   return mask == 0 ? n : static_cast<std::size_t>(__builtin_ctz(mask));
 }
 
-// count_sides on K vectors of candidates from `first` on, the counts held in registers across
-// the references. A comparison's lanes are all ones (-1 as an integer) where it holds, so
-// subtracting them counts in integers: two operations per vector and reference instead of a
-// comparison, a mask and a float addition, and no chain of float additions' latency. Integers
-// below 2^24 convert to the same floats the portable sums give.
+// count_sides and count_planar on K vectors of candidates from `first` on, the counts held in
+// registers across the references. A comparison's lanes are all ones (-1 as an integer) where it
+// holds, so subtracting them counts in integers: two operations per vector and reference instead
+// of a comparison, a mask and a float addition, and no chain of float additions' latency.
+// Integers below 2^24 convert to the same floats the portable sums give. `flats` are the
+// positions of the references lying flat across the axis (none: no planar counts written).
 template <int K>
 __attribute__((target("avx2"))) inline void count_block(const float* pos, std::size_t n,
-                                                        std::size_t first, float* left,
-                                                        float* right) {
+                                                        const float* flats, std::size_t n_flats,
+                                                        std::size_t first, AxisCandidates& x) {
   __m256 p[K];
-  __m256i l[K], r[K];
+  __m256i l[K], r[K], f[K];
   for (int k = 0; k < K; ++k) {
     p[k] = _mm256_loadu_ps(pos + first + 8 * k);
-    l[k] = r[k] = _mm256_setzero_si256();
+    l[k] = r[k] = f[k] = _mm256_setzero_si256();
   }
   for (std::size_t j = 0; j < n; ++j) {
     const __m256 lo = _mm256_broadcast_ss(pos + j), hi = _mm256_broadcast_ss(pos + n + j);
@@ -322,25 +323,38 @@ __attribute__((target("avx2"))) inline void count_block(const float* pos, std::s
       r[k] = _mm256_sub_epi32(r[k], _mm256_castps_si256(_mm256_cmp_ps(hi, p[k], _CMP_GT_OQ)));
     }
   }
+  for (std::size_t j = 0; j < n_flats; ++j) {
+    const __m256 at = _mm256_broadcast_ss(flats + j);
+    for (int k = 0; k < K; ++k) {
+      f[k] = _mm256_sub_epi32(f[k], _mm256_castps_si256(_mm256_cmp_ps(at, p[k], _CMP_EQ_OQ)));
+    }
+  }
+  // As count_planar leaves them: a with the planar references on the left, b on the right.
   for (int k = 0; k < K; ++k) {
-    _mm256_storeu_ps(left + first + 8 * k, _mm256_cvtepi32_ps(l[k]));
-    _mm256_storeu_ps(right + first + 8 * k, _mm256_cvtepi32_ps(r[k]));
+    const std::size_t at = first + 8 * k;
+    _mm256_storeu_ps(x.left_a.data() + at, _mm256_cvtepi32_ps(_mm256_add_epi32(l[k], f[k])));
+    _mm256_storeu_ps(x.right_a.data() + at, _mm256_cvtepi32_ps(r[k]));
+    if (n_flats > 0) {
+      _mm256_storeu_ps(x.left_b.data() + at, _mm256_cvtepi32_ps(l[k]));
+      _mm256_storeu_ps(x.right_b.data() + at, _mm256_cvtepi32_ps(_mm256_add_epi32(r[k], f[k])));
+    }
   }
 }
 
-// count_sides in blocks of four vectors (32 candidates; 8 accumulators and 4 positions fit the
-// 16 registers), the rest in one smaller block.
-__attribute__((target("avx2"))) void count_sides_avx2(const float* pos, std::size_t n,
-                                                      float* left, float* right) {
+// The counts of count_candidates in blocks of four vectors (32 candidates; 12 accumulators and 4
+// positions fit the 16 registers), the rest in one smaller block.
+__attribute__((target("avx2"))) void count_avx2(const float* pos, std::size_t n,
+                                                const float* flats, std::size_t n_flats,
+                                                AxisCandidates& x) {
   const std::size_t m = whole_lanes(2 * n);
   std::size_t first = 0;
   for (; first + 4 * kCandidateLanes <= m; first += 4 * kCandidateLanes) {
-    count_block<4>(pos, n, first, left, right);
+    count_block<4>(pos, n, flats, n_flats, first, x);
   }
   switch ((m - first) / kCandidateLanes) {
-    case 3: count_block<3>(pos, n, first, left, right); break;
-    case 2: count_block<2>(pos, n, first, left, right); break;
-    case 1: count_block<1>(pos, n, first, left, right); break;
+    case 3: count_block<3>(pos, n, flats, n_flats, first, x); break;
+    case 2: count_block<2>(pos, n, flats, n_flats, first, x); break;
+    case 1: count_block<1>(pos, n, flats, n_flats, first, x); break;
     default: break;
   }
 }
@@ -423,21 +437,25 @@ void count_candidates(std::span<const Ref> refs, NodeCandidates& out) {
     // The candidates: every reference's low end, then every high end (a flat extent gives the
     // same position twice; a duplicate counts the same and loses the tie to its twin).
     float* pos = x.pos.data();
-    bool planar = false;
+    if (x.flats.size() < n) x.flats.resize(std::max(n, 2 * x.flats.size()));
+    float* flats = x.flats.data();
+    std::size_t n_flats = 0;
     for (std::size_t j = 0; j < n; ++j) {
       const float lo = refs[j].box.lo[axis] + 0.f, hi = refs[j].box.hi[axis] + 0.f;
       pos[j] = lo;
       pos[n + j] = hi;
-      planar |= lo == hi;
+      flats[n_flats] = lo;  // kept when flat
+      n_flats += lo == hi;
     }
+    x.planar = n_flats > 0;
 #if COHORT_X86_DISPATCH
     if (__builtin_cpu_supports("avx2")) {
-      count_sides_avx2(pos, n, x.left_a.data(), x.right_a.data());
-    } else
+      count_avx2(pos, n, flats, n_flats, x);
+      continue;
+    }
 #endif
     count_sides(pos, n, x.left_a.data(), x.right_a.data());
-    x.planar = planar;
-    if (planar) {
+    if (x.planar) {
       count_planar(pos, n, x.left_a.data(), x.right_a.data(), x.left_b.data(), x.right_b.data());
     }
   }
