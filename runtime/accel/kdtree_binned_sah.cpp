@@ -221,6 +221,169 @@ std::size_t in_bins_up_to(std::span<const float> sorted, std::size_t first, cons
   return end - first;
 }
 
+#if COHORT_X86_DISPATCH
+// Up to this many candidates per axis (four blocks of four vectors, faces set aside) the refined
+// bins' candidates are counted directly instead of sorted and swept.
+constexpr std::size_t kCountedRefined = 128;
+
+// Adds to `count`, per candidate p, how many of the values v have `v Predicate p`.
+template <int K, int Predicate>
+__attribute__((target("avx2"))) inline void count_values(const __m256 (&p)[K], const float* values,
+                                                         std::size_t n, __m256i (&count)[K]) {
+  for (std::size_t j = 0; j < n; ++j) {
+    const __m256 v = _mm256_broadcast_ss(values + j);
+    for (int k = 0; k < K; ++k) {
+      count[k] = _mm256_sub_epi32(count[k], _mm256_castps_si256(_mm256_cmp_ps(v, p[k], Predicate)));
+    }
+  }
+}
+
+// count_refined on K vectors of candidates from `first` on, in registers across the values (as
+// count_block in kdtree_sah.cpp: a comparison's all-ones lanes subtracted from integer counts).
+template <int K>
+__attribute__((target("avx2"))) inline void count_refined_block(const float* pos,
+                                                                std::size_t n_starts,
+                                                                std::size_t n_ends,
+                                                                std::size_t n_flats,
+                                                                const std::array<float, 2>& face,
+                                                                const std::array<int, 2>& at_face,
+                                                                std::size_t first,
+                                                                AxisCandidates& x) {
+  __m256 p[K];
+  __m256i l[K], h[K], e[K];
+  for (int k = 0; k < K; ++k) {
+    p[k] = _mm256_loadu_ps(pos + first + 8 * k);
+    l[k] = h[k] = e[k] = _mm256_setzero_si256();
+  }
+  const float* starts = pos;
+  const float* ends = pos + n_starts;
+  const float* flats = ends + n_ends;
+  count_values<K, _CMP_LT_OQ>(p, starts, n_starts, l);
+  count_values<K, _CMP_LE_OQ>(p, ends, n_ends, h);
+  count_values<K, _CMP_LT_OQ>(p, flats, n_flats, l);
+  count_values<K, _CMP_LE_OQ>(p, flats, n_flats, h);
+  count_values<K, _CMP_EQ_OQ>(p, flats, n_flats, e);
+  const __m256 lo = _mm256_set1_ps(face[0]), hi = _mm256_set1_ps(face[1]);
+  const __m256i at_lo = _mm256_set1_epi32(at_face[0]), at_hi = _mm256_set1_epi32(at_face[1]);
+  for (int k = 0; k < K; ++k) {
+    // The starts on the cell's low face lie left of every candidate above it; the ends on its
+    // high face at or left of the candidate there only.
+    l[k] = _mm256_add_epi32(
+        l[k], _mm256_and_si256(at_lo, _mm256_castps_si256(_mm256_cmp_ps(lo, p[k], _CMP_LT_OQ))));
+    h[k] = _mm256_add_epi32(
+        h[k], _mm256_and_si256(at_hi, _mm256_castps_si256(_mm256_cmp_ps(hi, p[k], _CMP_LE_OQ))));
+    const std::size_t at = first + 8 * k;
+    const __m256 left_b = _mm256_add_ps(_mm256_loadu_ps(x.left_b.data() + at), _mm256_cvtepi32_ps(l[k]));
+    const __m256 right_a = _mm256_sub_ps(_mm256_loadu_ps(x.right_a.data() + at), _mm256_cvtepi32_ps(h[k]));
+    const __m256 planar = _mm256_cvtepi32_ps(e[k]);
+    _mm256_storeu_ps(x.left_b.data() + at, left_b);
+    _mm256_storeu_ps(x.left_a.data() + at, _mm256_add_ps(left_b, planar));
+    _mm256_storeu_ps(x.right_a.data() + at, right_a);
+    _mm256_storeu_ps(x.right_b.data() + at, _mm256_add_ps(right_a, planar));
+  }
+}
+
+// The counts merge_candidates gives the candidates x.pos[0, x.size): the non-face starts (the
+// first n_starts), the non-face ends (next n_ends), the flat positions (next n_flats), then the
+// faces. x.left_b and x.right_a come in holding each candidate's counts from the bins outside the
+// refined ones below it: references starting there, and those not ending there. Counted against
+// every refined value, as a candidate's counts are those of all values before it.
+__attribute__((target("avx2"))) void count_refined(std::size_t n_starts, std::size_t n_ends,
+                                                   std::size_t n_flats,
+                                                   const std::array<float, 2>& face,
+                                                   const std::array<int, 2>& at_face,
+                                                   AxisCandidates& x) {
+  const float* pos = x.pos.data();
+  const std::size_t m = whole_lanes(x.size);
+  std::size_t first = 0;
+  for (; first + 4 * kCandidateLanes <= m; first += 4 * kCandidateLanes) {
+    count_refined_block<4>(pos, n_starts, n_ends, n_flats, face, at_face, first, x);
+  }
+  switch ((m - first) / kCandidateLanes) {
+    case 3: count_refined_block<3>(pos, n_starts, n_ends, n_flats, face, at_face, first, x); break;
+    case 2: count_refined_block<2>(pos, n_starts, n_ends, n_flats, face, at_face, first, x); break;
+    case 1: count_refined_block<1>(pos, n_starts, n_ends, n_flats, face, at_face, first, x); break;
+    default: break;
+  }
+}
+#endif
+
+// The candidates of one axis's refined bins with their counts, counted directly instead of sorted
+// and swept where there are few of them (most binned nodes below a few hundred references): the
+// same candidates with the same counts, so evaluate_candidates chooses the same plane. A start
+// on the cell's low face or an end on its high face (often half of the values: references
+// clipped by an ancestor's plane) is counted once per face instead of once per candidate. False
+// where this does not apply (too many candidates, or no AVX2); then `out` is left empty.
+bool count_refined_axis(const SahContext& c, const Binner& binner, int axis,
+                        const std::array<Ranges, 3>& ranges, const PlaneScratch& scratch,
+                        AxisCandidates& out) {
+#if COHORT_X86_DISPATCH
+  const AxisExtents& x = scratch.extents[axis];
+  const std::size_t values = x.starts.size() + x.ends.size() + x.flats.size();
+  if (scratch.sweep_refined || !__builtin_cpu_supports("avx2")) return false;
+  const std::array<float, 2> face{c.lo[axis] + 0.f, c.hi[axis] + 0.f};
+  out.clear();
+  out.reserve_more(values + 2);
+  float* pos = out.pos.data();
+  std::size_t m = 0;
+  std::array<int, 2> at_face{0, 0};
+  for (const float v : x.starts) {
+    pos[m] = v;  // kept unless on the low face (branch-free)
+    const bool on_face = v == face[0];
+    at_face[0] += on_face;
+    m += !on_face;
+  }
+  const std::size_t n_starts = m;
+  for (const float v : x.ends) {
+    pos[m] = v;
+    const bool on_face = v == face[1];
+    at_face[1] += on_face;
+    m += !on_face;
+  }
+  const std::size_t n_ends = m - n_starts;
+  for (const float v : x.flats) pos[m++] = v;
+  if (at_face[0] > 0) pos[m++] = face[0];
+  if (at_face[1] > 0) pos[m++] = face[1];
+  if (m > kCountedRefined) {
+    out.clear();
+    return false;
+  }
+  out.size = m;
+  out.planar = !x.flats.empty();
+  // Per range, the counts of the bins below it that are not refined (the refined ones below it
+  // are counted value by value).
+  const auto bins = static_cast<std::size_t>(binner.bins);
+  const std::uint8_t* refined = scratch.refined.data() + static_cast<std::size_t>(axis) * bins;
+  const std::uint32_t* start_counts = scratch.starts.data() + static_cast<std::size_t>(axis) * bins;
+  const std::uint32_t* end_counts = scratch.ends.data() + static_cast<std::size_t>(axis) * bins;
+  const Ranges& r = ranges[axis];
+  std::array<float, 3> base_left{}, base_right{};
+  std::uint32_t n_left = 0, n_right = c.count;
+  std::size_t counted = 0;
+  for (int k = 0; k < r.count; ++k) {
+    for (; counted < static_cast<std::size_t>(r.range[k][0]); ++counted) {
+      if (refined[counted]) continue;
+      n_left += start_counts[counted];
+      n_right -= end_counts[counted];
+    }
+    base_left[k] = static_cast<float>(n_left);
+    base_right[k] = static_cast<float>(n_right);
+  }
+  for (std::size_t i = 0; i < m; ++i) {
+    const int bin = binner.bin(axis, pos[i]);
+    int k = 0;
+    while (k + 1 < r.count && r.range[k + 1][0] <= bin) ++k;
+    out.left_b[i] = base_left[k];
+    out.right_a[i] = base_right[k];
+  }
+  count_refined(n_starts, n_ends, x.flats.size(), face, at_face, out);
+  return true;
+#else
+  (void)c, (void)binner, (void)axis, (void)ranges, (void)scratch, (void)out;
+  return false;
+#endif
+}
+
 // Exact counts inside a range of bins: every reference starting in a lower bin lies left of each
 // position there, every one ending in a lower bin right of none (the bin index is monotone in the
 // position), so a Wald & Havran sweep over the extents of the range, started from the prefix
@@ -310,11 +473,15 @@ void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs
     }
   }
   for (int axis = 0; axis < 3; ++axis) {
+    AxisCandidates& candidates = scratch.candidates[axis];
+    if (count_refined_axis(c, binner, axis, ranges, scratch, candidates)) {
+      evaluate_candidates(c, axis, candidates, scratch.costs, best);
+      continue;
+    }
     AxisExtents& x = scratch.extents[axis];
     x.sort(c.lo[axis], c.hi[axis]);
     // The sorted positions fall into the ranges in order; each range's sweep starts from the
     // counts of the bins below it.
-    AxisCandidates& candidates = scratch.candidates[axis];
     candidates.clear();
     std::size_t s = 0, e = 0, f = 0;
     std::uint32_t n_left = 0, n_right = c.count;

@@ -259,6 +259,8 @@ struct PlaneScratch {
   NodeExtents extents;
   NodeCandidates candidates;
   std::vector<float> costs;  // evaluate_candidates' working memory
+  // Tests: the refined bins' candidates always sorted and swept, never counted (the two must agree).
+  bool sweep_refined = false;
 };
 
 // Wald & Havran's sweep (their FindPlane) over a node of `count` references' sorted extents:

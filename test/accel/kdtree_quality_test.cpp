@@ -168,6 +168,53 @@ TEST(KdTreeQuality, BinnedSearchCutsOffEmptySpaceAtTheGeometry) {
   EXPECT_EQ(plane.right_count, 0u);
 }
 
+// The refined bins' candidates of a binned node, counted directly (few of them) or sorted and swept
+// (many, or without AVX2): the same plane, cost and counts. Nodes as the build sees them: positions
+// on a coarse grid, so starts on the cell's low face and ends on its high face (references clipped
+// by an ancestor's plane), flat extents and repeated positions are common.
+TEST(KdTreeQuality, BinnedSearchCountsRefinedBinsAsTheSweepDoes) {
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> grid(0, 16);
+  Bounds cell;
+  cell.extend(glm::vec3(-1.f, 0.f, 0.f));
+  cell.extend(glm::vec3(1.f, 2.f, 0.5f));
+  kd::PlaneScratch counted, swept;
+  swept.sweep_refined = true;
+  for (int trial = 0; trial < 300; ++trial) {
+    const std::size_t count = 65 + static_cast<std::size_t>(trial) % 400;
+    std::vector<kd::Ref> refs;
+    for (std::size_t i = 0; i < count; ++i) {
+      Bounds b;
+      for (int axis = 0; axis < 3; ++axis) {
+        auto at = [&] {
+          const int g = std::clamp(grid(rng) - 4, 0, 16);  // a quarter on the low face
+          return cell.lo[axis] + cell.extent()[axis] * static_cast<float>(g) / 16.f;
+        };
+        float lo = at(), hi = grid(rng) < 4 ? cell.hi[axis] : at();
+        if (grid(rng) < 2) hi = lo;  // flat along this axis
+        b.lo[axis] = std::min(lo, hi);
+        b.hi[axis] = std::max(lo, hi);
+      }
+      refs.push_back({b, static_cast<std::uint32_t>(i)});
+    }
+    kd::SahContext context{};
+    ASSERT_TRUE(kd::make_sah_context(cell, count, KdBuildOptions{}, context));
+    const int bins = static_cast<int>(std::max<std::size_t>(8, count / 4));
+    const kd::SplitPlane expected = kd::find_binned_plane(context, refs, bins, false, swept);
+    const kd::SplitPlane found = kd::find_binned_plane(context, refs, bins, false, counted);
+    SCOPED_TRACE(testing::Message() << "trial " << trial << ", " << count << " references");
+    ASSERT_EQ(found.valid(), expected.valid());
+    EXPECT_EQ(found.axis, expected.axis);
+    EXPECT_EQ(found.pos, expected.pos);
+    EXPECT_EQ(found.planar_left, expected.planar_left);
+    EXPECT_EQ(found.left_count, expected.left_count);
+    EXPECT_EQ(found.right_count, expected.right_count);
+    EXPECT_EQ(found.cost, expected.cost);
+    EXPECT_EQ(found.plain_cost, expected.plain_cost);
+    EXPECT_EQ(found.lowest_plain_cost, expected.lowest_plain_cost);
+  }
+}
+
 // A budget takes the compact tree first, then lowers the compact tree's depth until it fits.
 TEST(KdTreeQuality, BudgetTakesTheCompactTreeThenLowersTheDepthUntilTheTreeFits) {
   const std::vector<glm::vec3> p = random_soup(5'000, 9);
