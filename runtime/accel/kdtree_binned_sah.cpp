@@ -149,25 +149,42 @@ void count_all(const Binner& binner, std::span<const Ref> refs, bool parallel,
   scratch.ends = std::move(total.ends);
 }
 
-// The best bin boundary of one axis (0: none) with its plane.
-int best_boundary(const SahContext& c, const Binner& binner, const PlaneScratch& counts, int axis,
+// The best bin boundary of one axis (0: none) with its plane: evaluate_plane over the boundaries
+// in ascending order, as evaluate_candidates computes it a vector of boundaries at a time (the
+// first of the cheapest, by position). Uses the axis's candidates in `scratch`, which refine()
+// fills afresh afterwards.
+int best_boundary(const SahContext& c, const Binner& binner, PlaneScratch& scratch, int axis,
                   SplitPlane& axis_best) {
   const int bins = binner.bins;
+  const float lo = c.lo[axis], hi = c.hi[axis];
   const float step = c.extent[axis] / static_cast<float>(bins);
-  const AxisSah a = axis_sah(c, axis);
-  int boundary = 0;
+  const std::uint32_t* start_counts = scratch.starts.data() + static_cast<std::size_t>(axis * bins);
+  const std::uint32_t* end_counts = scratch.ends.data() + static_cast<std::size_t>(axis * bins);
+  AxisCandidates& candidates = scratch.candidates[axis];
+  candidates.clear();
+  candidates.reserve_more(static_cast<std::size_t>(bins));
+  std::size_t n = 0;
   std::uint32_t n_left = 0, n_right = c.count;
   for (int b = 1; b < bins; ++b) {
     // Boundary b: references starting in a lower bin reach left of it, those ending in a lower
     // bin do not reach right of it.
-    n_left += counts.starts[axis * bins + b - 1];
-    n_right -= counts.ends[axis * bins + b - 1];
-    const float pos = c.lo[axis] + step * static_cast<float>(b);
-    if (!(pos > c.lo[axis] && pos < c.hi[axis])) continue;
-    evaluate_plane(c, a, pos, n_left, n_right, 0, axis_best);
-    if (axis_best.valid() && axis_best.pos == pos) boundary = b;
+    n_left += start_counts[b - 1];
+    n_right -= end_counts[b - 1];
+    const float pos = lo + step * static_cast<float>(b);
+    candidates.pos[n] = pos;
+    candidates.left_a[n] = static_cast<float>(n_left);
+    candidates.right_a[n] = static_cast<float>(n_right);
+    n += pos > lo && pos < hi;  // kept inside the cell only (branch-free)
   }
-  return boundary;
+  candidates.size = n;
+  evaluate_candidates(c, axis, candidates, scratch.costs, axis_best);
+  if (!axis_best.valid()) return 0;
+  // The last boundary at the chosen position (where the step is below the floats' spacing,
+  // neighbouring boundaries round to one position).
+  for (int b = bins - 1; b >= 1; --b) {
+    if (lo + step * static_cast<float>(b) == axis_best.pos) return b;
+  }
+  return 0;
 }
 
 // The bins whose extents get the exact sweep, per axis: up to three disjoint ascending ranges
