@@ -243,20 +243,24 @@ std::size_t in_bins_up_to(std::span<const float> sorted, std::size_t first, cons
 // bins' candidates are counted directly instead of sorted and swept.
 constexpr std::size_t kCountedRefined = 128;
 
-// Adds to `count`, per candidate p, how many of the values v have `v Predicate p`.
+// Adds to c0-c3 (the first K used), per candidate of p0-p3, how many of the values v have
+// `v Predicate p` (count_if).
 template <int K, int Predicate>
-__attribute__((target("avx2"))) inline void count_values(const __m256 (&p)[K], const float* values,
-                                                         std::size_t n, __m256i (&count)[K]) {
+__attribute__((target("avx2"))) inline void count_values(const float* values, std::size_t n,
+                                                         __m256 p0, __m256 p1, __m256 p2,
+                                                         __m256 p3, __m256i& c0, __m256i& c1,
+                                                         __m256i& c2, __m256i& c3) {
   for (std::size_t j = 0; j < n; ++j) {
     const __m256 v = _mm256_broadcast_ss(values + j);
-    for (int k = 0; k < K; ++k) {
-      count[k] = _mm256_sub_epi32(count[k], _mm256_castps_si256(_mm256_cmp_ps(v, p[k], Predicate)));
-    }
+    count_if<Predicate>(c0, v, p0);
+    if constexpr (K > 1) count_if<Predicate>(c1, v, p1);
+    if constexpr (K > 2) count_if<Predicate>(c2, v, p2);
+    if constexpr (K > 3) count_if<Predicate>(c3, v, p3);
   }
 }
 
-// count_refined on K vectors of candidates from `first` on, in registers across the values (as
-// count_block in kdtree_sah.cpp: a comparison's all-ones lanes subtracted from integer counts).
+// count_refined on K (1-4) vectors of candidates from `first` on, in registers across the values
+// (as count_block in kdtree_sah.cpp).
 template <int K>
 __attribute__((target("avx2"))) inline void count_refined_block(const float* pos,
                                                                 std::size_t n_starts,
@@ -266,37 +270,40 @@ __attribute__((target("avx2"))) inline void count_refined_block(const float* pos
                                                                 const std::array<int, 2>& at_face,
                                                                 std::size_t first,
                                                                 AxisCandidates& x) {
-  __m256 p[K];
-  __m256i l[K], h[K], e[K];
-  for (int k = 0; k < K; ++k) {
-    p[k] = _mm256_loadu_ps(pos + first + 8 * k);
-    l[k] = h[k] = e[k] = _mm256_setzero_si256();
-  }
+  static_assert(K >= 1 && K <= 4);
+  const float* at = pos + first;
+  const __m256 p0 = _mm256_loadu_ps(at), p1 = _mm256_loadu_ps(at + 8 * (K > 1));
+  const __m256 p2 = _mm256_loadu_ps(at + 16 * (K > 2)), p3 = _mm256_loadu_ps(at + 24 * (K > 3));
+  const __m256i zero = _mm256_setzero_si256();
+  __m256i l0 = zero, l1 = zero, l2 = zero, l3 = zero, h0 = zero, h1 = zero, h2 = zero, h3 = zero;
   const float* starts = pos;
   const float* ends = pos + n_starts;
   const float* flats = ends + n_ends;
-  count_values<K, _CMP_LT_OQ>(p, starts, n_starts, l);
-  count_values<K, _CMP_LE_OQ>(p, ends, n_ends, h);
-  count_values<K, _CMP_LT_OQ>(p, flats, n_flats, l);
-  count_values<K, _CMP_LE_OQ>(p, flats, n_flats, h);
-  count_values<K, _CMP_EQ_OQ>(p, flats, n_flats, e);
+  count_values<K, _CMP_LT_OQ>(starts, n_starts, p0, p1, p2, p3, l0, l1, l2, l3);
+  count_values<K, _CMP_LT_OQ>(flats, n_flats, p0, p1, p2, p3, l0, l1, l2, l3);
+  count_values<K, _CMP_LE_OQ>(ends, n_ends, p0, p1, p2, p3, h0, h1, h2, h3);
+  count_values<K, _CMP_LE_OQ>(flats, n_flats, p0, p1, p2, p3, h0, h1, h2, h3);
+  __m256i e0 = zero, e1 = zero, e2 = zero, e3 = zero;
+  count_values<K, _CMP_EQ_OQ>(flats, n_flats, p0, p1, p2, p3, e0, e1, e2, e3);
+  const __m256 ps[4] = {p0, p1, p2, p3};
+  const __m256i ls[4] = {l0, l1, l2, l3}, hs[4] = {h0, h1, h2, h3}, es[4] = {e0, e1, e2, e3};
   const __m256 lo = _mm256_set1_ps(face[0]), hi = _mm256_set1_ps(face[1]);
   const __m256i at_lo = _mm256_set1_epi32(at_face[0]), at_hi = _mm256_set1_epi32(at_face[1]);
   for (int k = 0; k < K; ++k) {
     // The starts on the cell's low face lie left of every candidate above it; the ends on its
     // high face at or left of the candidate there only.
-    l[k] = _mm256_add_epi32(
-        l[k], _mm256_and_si256(at_lo, _mm256_castps_si256(_mm256_cmp_ps(lo, p[k], _CMP_LT_OQ))));
-    h[k] = _mm256_add_epi32(
-        h[k], _mm256_and_si256(at_hi, _mm256_castps_si256(_mm256_cmp_ps(hi, p[k], _CMP_LE_OQ))));
-    const std::size_t at = first + 8 * k;
-    const __m256 left_b = _mm256_add_ps(_mm256_loadu_ps(x.left_b.data() + at), _mm256_cvtepi32_ps(l[k]));
-    const __m256 right_a = _mm256_sub_ps(_mm256_loadu_ps(x.right_a.data() + at), _mm256_cvtepi32_ps(h[k]));
-    const __m256 planar = _mm256_cvtepi32_ps(e[k]);
-    _mm256_storeu_ps(x.left_b.data() + at, left_b);
-    _mm256_storeu_ps(x.left_a.data() + at, _mm256_add_ps(left_b, planar));
-    _mm256_storeu_ps(x.right_a.data() + at, right_a);
-    _mm256_storeu_ps(x.right_b.data() + at, _mm256_add_ps(right_a, planar));
+    const __m256i l = _mm256_add_epi32(
+        ls[k], _mm256_and_si256(at_lo, _mm256_castps_si256(_mm256_cmp_ps(lo, ps[k], _CMP_LT_OQ))));
+    const __m256i h = _mm256_add_epi32(
+        hs[k], _mm256_and_si256(at_hi, _mm256_castps_si256(_mm256_cmp_ps(hi, ps[k], _CMP_LE_OQ))));
+    const std::size_t i = first + 8 * static_cast<std::size_t>(k);
+    const __m256 left_b = _mm256_add_ps(_mm256_loadu_ps(x.left_b.data() + i), _mm256_cvtepi32_ps(l));
+    const __m256 right_a = _mm256_sub_ps(_mm256_loadu_ps(x.right_a.data() + i), _mm256_cvtepi32_ps(h));
+    const __m256 planar = _mm256_cvtepi32_ps(es[k]);
+    _mm256_storeu_ps(x.left_b.data() + i, left_b);
+    _mm256_storeu_ps(x.left_a.data() + i, _mm256_add_ps(left_b, planar));
+    _mm256_storeu_ps(x.right_a.data() + i, right_a);
+    _mm256_storeu_ps(x.right_b.data() + i, _mm256_add_ps(right_a, planar));
   }
 }
 

@@ -300,43 +300,55 @@ __attribute__((target("avx2"))) inline std::size_t small_lowest_at(const __m256 
   return mask == 0 ? n : static_cast<std::size_t>(__builtin_ctz(mask));
 }
 
-// count_sides and count_planar on K vectors of candidates from `first` on, the counts held in
-// registers across the references. A comparison's lanes are all ones (-1 as an integer) where it
-// holds, so subtracting them counts in integers: two operations per vector and reference instead
-// of a comparison, a mask and a float addition, and no chain of float additions' latency.
-// Integers below 2^24 convert to the same floats the portable sums give. `flats` are the
-// positions of the references lying flat across the axis (none: no planar counts written).
+// count_sides and count_planar on K (1-4) vectors of candidates from `first` on, the counts held
+// in registers across the references: two operations per vector and reference instead of a
+// comparison, a mask and a float addition (count_if). Integers below 2^24 convert to the same
+// floats the portable sums give. `flats` are the positions of the references lying flat across
+// the axis (none: no planar counts written).
 template <int K>
 __attribute__((target("avx2"))) inline void count_block(const float* pos, std::size_t n,
                                                         const float* flats, std::size_t n_flats,
                                                         std::size_t first, AxisCandidates& x) {
-  __m256 p[K];
-  __m256i l[K], r[K], f[K];
-  for (int k = 0; k < K; ++k) {
-    p[k] = _mm256_loadu_ps(pos + first + 8 * k);
-    l[k] = r[k] = f[k] = _mm256_setzero_si256();
-  }
+  static_assert(K >= 1 && K <= 4);
+  const float* at = pos + first;
+  const __m256 p0 = _mm256_loadu_ps(at), p1 = _mm256_loadu_ps(at + 8 * (K > 1));
+  const __m256 p2 = _mm256_loadu_ps(at + 16 * (K > 2)), p3 = _mm256_loadu_ps(at + 24 * (K > 3));
+  const __m256i zero = _mm256_setzero_si256();
+  __m256i l0 = zero, l1 = zero, l2 = zero, l3 = zero, r0 = zero, r1 = zero, r2 = zero, r3 = zero;
   for (std::size_t j = 0; j < n; ++j) {
     const __m256 lo = _mm256_broadcast_ss(pos + j), hi = _mm256_broadcast_ss(pos + n + j);
-    for (int k = 0; k < K; ++k) {
-      l[k] = _mm256_sub_epi32(l[k], _mm256_castps_si256(_mm256_cmp_ps(lo, p[k], _CMP_LT_OQ)));
-      r[k] = _mm256_sub_epi32(r[k], _mm256_castps_si256(_mm256_cmp_ps(hi, p[k], _CMP_GT_OQ)));
+    count_if<_CMP_LT_OQ>(l0, lo, p0);
+    count_if<_CMP_GT_OQ>(r0, hi, p0);
+    if constexpr (K > 1) {
+      count_if<_CMP_LT_OQ>(l1, lo, p1);
+      count_if<_CMP_GT_OQ>(r1, hi, p1);
+    }
+    if constexpr (K > 2) {
+      count_if<_CMP_LT_OQ>(l2, lo, p2);
+      count_if<_CMP_GT_OQ>(r2, hi, p2);
+    }
+    if constexpr (K > 3) {
+      count_if<_CMP_LT_OQ>(l3, lo, p3);
+      count_if<_CMP_GT_OQ>(r3, hi, p3);
     }
   }
+  __m256i f0 = zero, f1 = zero, f2 = zero, f3 = zero;
   for (std::size_t j = 0; j < n_flats; ++j) {
-    const __m256 at = _mm256_broadcast_ss(flats + j);
-    for (int k = 0; k < K; ++k) {
-      f[k] = _mm256_sub_epi32(f[k], _mm256_castps_si256(_mm256_cmp_ps(at, p[k], _CMP_EQ_OQ)));
-    }
+    const __m256 flat = _mm256_broadcast_ss(flats + j);
+    count_if<_CMP_EQ_OQ>(f0, flat, p0);
+    if constexpr (K > 1) count_if<_CMP_EQ_OQ>(f1, flat, p1);
+    if constexpr (K > 2) count_if<_CMP_EQ_OQ>(f2, flat, p2);
+    if constexpr (K > 3) count_if<_CMP_EQ_OQ>(f3, flat, p3);
   }
   // As count_planar leaves them: a with the planar references on the left, b on the right.
+  const __m256i ls[4] = {l0, l1, l2, l3}, rs[4] = {r0, r1, r2, r3}, fs[4] = {f0, f1, f2, f3};
   for (int k = 0; k < K; ++k) {
-    const std::size_t at = first + 8 * k;
-    _mm256_storeu_ps(x.left_a.data() + at, _mm256_cvtepi32_ps(_mm256_add_epi32(l[k], f[k])));
-    _mm256_storeu_ps(x.right_a.data() + at, _mm256_cvtepi32_ps(r[k]));
+    const std::size_t i = first + 8 * static_cast<std::size_t>(k);
+    _mm256_storeu_ps(x.left_a.data() + i, _mm256_cvtepi32_ps(_mm256_add_epi32(ls[k], fs[k])));
+    _mm256_storeu_ps(x.right_a.data() + i, _mm256_cvtepi32_ps(rs[k]));
     if (n_flats > 0) {
-      _mm256_storeu_ps(x.left_b.data() + at, _mm256_cvtepi32_ps(l[k]));
-      _mm256_storeu_ps(x.right_b.data() + at, _mm256_cvtepi32_ps(_mm256_add_epi32(r[k], f[k])));
+      _mm256_storeu_ps(x.left_b.data() + i, _mm256_cvtepi32_ps(ls[k]));
+      _mm256_storeu_ps(x.right_b.data() + i, _mm256_cvtepi32_ps(_mm256_add_epi32(rs[k], fs[k])));
     }
   }
 }
