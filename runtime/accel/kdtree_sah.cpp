@@ -371,13 +371,16 @@ __attribute__((target("avx2"))) void count_avx2(const float* pos, std::size_t n,
   }
 }
 
+// The search of evaluate_candidates on K vectors of candidates held in registers, taken into
+// `best` here: returned, the pick went through memory in pieces and the caller's wider loads of
+// it waited on those stores (a quarter of evaluate_candidates' own time).
 template <int K>
-__attribute__((target("avx2"))) Pick small_search(const CostTerms& t,
+__attribute__((target("avx2"))) void small_search(const CostTerms& t, const AxisSah& a,
                                                   const AxisCandidates& candidates,
-                                                  const SplitPlane& best) {
+                                                  SplitPlane& best) {
   const std::size_t n = candidates.size;
   Pick out{};
-  __m256 pos[K], cost_a[K], plain_a[K], cost_b[K], plain_b[K];
+  __m256 pos[K], cost_a[K], plain_a[K], cost_b[K] = {}, plain_b[K] = {};  // b only when planar
   for (int k = 0; k < K; ++k) pos[k] = _mm256_loadu_ps(candidates.pos.data() + 8 * k);
   small_costs<K>(t, n, pos, candidates.left_a.data(), candidates.right_a.data(), cost_a, plain_a);
   const bool planar = candidates.planar;
@@ -405,7 +408,7 @@ __attribute__((target("avx2"))) Pick small_search(const CostTerms& t,
       out.plain = plain_lanes[out.chosen];
     }
   }
-  return out;
+  apply_pick(out, a, candidates, best);
 }
 #endif
 
@@ -484,14 +487,12 @@ void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& ca
                         c.intersection_cost, c.empty_factor};
 #if COHORT_X86_DISPATCH
   if (n <= kSmallCandidates && __builtin_cpu_supports("avx2")) {
-    Pick pick;
     switch (whole_lanes(n) / kCandidateLanes) {
-      case 1: pick = small_search<1>(terms, candidates, best); break;
-      case 2: pick = small_search<2>(terms, candidates, best); break;
-      case 3: pick = small_search<3>(terms, candidates, best); break;
-      default: pick = small_search<4>(terms, candidates, best); break;
+      case 1: small_search<1>(terms, a, candidates, best); break;
+      case 2: small_search<2>(terms, a, candidates, best); break;
+      case 3: small_search<3>(terms, a, candidates, best); break;
+      default: small_search<4>(terms, a, candidates, best); break;
     }
-    apply_pick(pick, a, candidates, best);
     return;
   }
 #endif
