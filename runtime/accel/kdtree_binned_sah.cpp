@@ -243,22 +243,6 @@ std::size_t in_bins_up_to(std::span<const float> sorted, std::size_t first, cons
 // bins' candidates are counted directly instead of sorted and swept.
 constexpr std::size_t kCountedRefined = 128;
 
-// Adds to c0-c3 (the first K used), per candidate of p0-p3, how many of the values v have
-// `v Predicate p` (count_if).
-template <int K, int Predicate>
-__attribute__((target("avx2"))) inline void count_values(const float* values, std::size_t n,
-                                                         __m256 p0, __m256 p1, __m256 p2,
-                                                         __m256 p3, __m256i& c0, __m256i& c1,
-                                                         __m256i& c2, __m256i& c3) {
-  for (std::size_t j = 0; j < n; ++j) {
-    const __m256 v = _mm256_broadcast_ss(values + j);
-    count_if<Predicate>(c0, v, p0);
-    if constexpr (K > 1) count_if<Predicate>(c1, v, p1);
-    if constexpr (K > 2) count_if<Predicate>(c2, v, p2);
-    if constexpr (K > 3) count_if<Predicate>(c3, v, p3);
-  }
-}
-
 // count_refined on K (1-4) vectors of candidates from `first` on, in registers across the values
 // (as count_block in kdtree_sah.cpp).
 template <int K>
@@ -270,10 +254,7 @@ __attribute__((target("avx2"))) inline void count_refined_block(const float* pos
                                                                 const std::array<int, 2>& at_face,
                                                                 std::size_t first,
                                                                 AxisCandidates& x) {
-  static_assert(K >= 1 && K <= 4);
-  const float* at = pos + first;
-  const __m256 p0 = _mm256_loadu_ps(at), p1 = _mm256_loadu_ps(at + 8 * (K > 1));
-  const __m256 p2 = _mm256_loadu_ps(at + 16 * (K > 2)), p3 = _mm256_loadu_ps(at + 24 * (K > 3));
+  const auto [p0, p1, p2, p3] = load_vectors<K>(pos + first);
   const __m256i zero = _mm256_setzero_si256();
   __m256i l0 = zero, l1 = zero, l2 = zero, l3 = zero, h0 = zero, h1 = zero, h2 = zero, h3 = zero;
   const float* starts = pos;

@@ -309,10 +309,7 @@ template <int K>
 __attribute__((target("avx2"))) inline void count_block(const float* pos, std::size_t n,
                                                         const float* flats, std::size_t n_flats,
                                                         std::size_t first, AxisCandidates& x) {
-  static_assert(K >= 1 && K <= 4);
-  const float* at = pos + first;
-  const __m256 p0 = _mm256_loadu_ps(at), p1 = _mm256_loadu_ps(at + 8 * (K > 1));
-  const __m256 p2 = _mm256_loadu_ps(at + 16 * (K > 2)), p3 = _mm256_loadu_ps(at + 24 * (K > 3));
+  const auto [p0, p1, p2, p3] = load_vectors<K>(pos + first);
   const __m256i zero = _mm256_setzero_si256();
   __m256i l0 = zero, l1 = zero, l2 = zero, l3 = zero, r0 = zero, r1 = zero, r2 = zero, r3 = zero;
   for (std::size_t j = 0; j < n; ++j) {
@@ -333,13 +330,7 @@ __attribute__((target("avx2"))) inline void count_block(const float* pos, std::s
     }
   }
   __m256i f0 = zero, f1 = zero, f2 = zero, f3 = zero;
-  for (std::size_t j = 0; j < n_flats; ++j) {
-    const __m256 flat = _mm256_broadcast_ss(flats + j);
-    count_if<_CMP_EQ_OQ>(f0, flat, p0);
-    if constexpr (K > 1) count_if<_CMP_EQ_OQ>(f1, flat, p1);
-    if constexpr (K > 2) count_if<_CMP_EQ_OQ>(f2, flat, p2);
-    if constexpr (K > 3) count_if<_CMP_EQ_OQ>(f3, flat, p3);
-  }
+  count_values<K, _CMP_EQ_OQ>(flats, n_flats, p0, p1, p2, p3, f0, f1, f2, f3);
   // As count_planar leaves them: a with the planar references on the left, b on the right.
   const __m256i ls[4] = {l0, l1, l2, l3}, rs[4] = {r0, r1, r2, r3}, fs[4] = {f0, f1, f2, f3};
   for (int k = 0; k < K; ++k) {

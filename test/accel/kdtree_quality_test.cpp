@@ -88,6 +88,19 @@ kd::SplitPlane brute_force_plane(const kd::SahContext& c, const std::vector<Boun
   return best;
 }
 
+// The same plane, bit for bit: side, position, counts and costs.
+void expect_same_plane(const kd::SplitPlane& found, const kd::SplitPlane& expected) {
+  ASSERT_EQ(found.valid(), expected.valid());
+  EXPECT_EQ(found.axis, expected.axis);
+  EXPECT_EQ(found.pos, expected.pos);
+  EXPECT_EQ(found.planar_left, expected.planar_left);
+  EXPECT_EQ(found.left_count, expected.left_count);
+  EXPECT_EQ(found.right_count, expected.right_count);
+  EXPECT_EQ(found.cost, expected.cost);
+  EXPECT_EQ(found.plain_cost, expected.plain_cost);
+  EXPECT_EQ(found.lowest_plain_cost, expected.lowest_plain_cost);
+}
+
 // Both exact searches, the sweep over sorted extents and the direct count of small nodes, choose
 // Wald & Havran's plane: the same plane, cost and counts, ties going to the lowest position.
 TEST(KdTreeQuality, ExactSearchesFindTheBruteForcePlane) {
@@ -131,14 +144,7 @@ TEST(KdTreeQuality, ExactSearchesFindTheBruteForcePlane) {
       const kd::SplitPlane found = kd::find_best_plane(context, *candidates, costs);
       SCOPED_TRACE(testing::Message() << "trial " << trial << ", "
                                       << (candidates == &swept ? "swept" : "counted"));
-      ASSERT_EQ(found.valid(), expected.valid());
-      EXPECT_EQ(found.axis, expected.axis);
-      EXPECT_EQ(found.pos, expected.pos);
-      EXPECT_EQ(found.planar_left, expected.planar_left);
-      EXPECT_EQ(found.left_count, expected.left_count);
-      EXPECT_EQ(found.right_count, expected.right_count);
-      EXPECT_EQ(found.cost, expected.cost);
-      EXPECT_EQ(found.lowest_plain_cost, expected.lowest_plain_cost);
+      expect_same_plane(found, expected);
     }
   }
 }
@@ -203,15 +209,7 @@ TEST(KdTreeQuality, BinnedSearchCountsRefinedBinsAsTheSweepDoes) {
     const kd::SplitPlane expected = kd::find_binned_plane(context, refs, bins, false, swept);
     const kd::SplitPlane found = kd::find_binned_plane(context, refs, bins, false, counted);
     SCOPED_TRACE(testing::Message() << "trial " << trial << ", " << count << " references");
-    ASSERT_EQ(found.valid(), expected.valid());
-    EXPECT_EQ(found.axis, expected.axis);
-    EXPECT_EQ(found.pos, expected.pos);
-    EXPECT_EQ(found.planar_left, expected.planar_left);
-    EXPECT_EQ(found.left_count, expected.left_count);
-    EXPECT_EQ(found.right_count, expected.right_count);
-    EXPECT_EQ(found.cost, expected.cost);
-    EXPECT_EQ(found.plain_cost, expected.plain_cost);
-    EXPECT_EQ(found.lowest_plain_cost, expected.lowest_plain_cost);
+    expect_same_plane(found, expected);
   }
 }
 
