@@ -62,11 +62,16 @@ void lay_out(const Subtree& subtree, int root_depth, Cursor cursor, KdTree& tree
     int depth;
     Cursor cursor;
   };
-  std::vector<Pending> stack{{0, root_depth}};
+  // A node's children are pushed right, then left: besides the two children of the last node,
+  // at most one pending right child per level.
+  std::array<Pending, kLevels + 2> stack;
+  std::size_t top = 0;
+  stack[top++] = {0, root_depth};
   std::vector<Spawned> spawned;
-  while (!stack.empty()) {
-    const auto [index, depth] = stack.back();
-    stack.pop_back();
+  KdNode* const nodes = tree.nodes.data();
+  std::uint32_t* const lists = tree.leaf_triangles.data();
+  while (top > 0) {
+    const auto [index, depth] = stack[--top];
     const auto d = static_cast<std::size_t>(depth);
     if (index & kSpawnedBit) {
       const Subtree& child = subtree.spawned[index & ~kSpawnedBit];
@@ -82,16 +87,16 @@ void lay_out(const Subtree& subtree, int root_depth, Cursor cursor, KdTree& tree
     const std::size_t at = cursor.node[d]++;
     if (node.axis == KD_LEAF) {
       const std::size_t first = cursor.leaf[d];
-      tree.nodes[at] = leaf_node(node.b, first);
-      const auto from = subtree.leaf_triangles.begin() + node.a;
-      std::copy(from, from + node.b, tree.leaf_triangles.begin() + static_cast<std::ptrdiff_t>(first));
+      nodes[at] = leaf_node(node.b, first);
+      const std::uint32_t* from = subtree.leaf_triangles.data() + node.a;
+      for (std::uint32_t k = 0; k < node.b; ++k) lists[first + k] = from[k];  // about 3 entries
       cursor.leaf[d] += node.b;
       continue;
     }
     if (d + 1 >= kLevels) throw std::length_error("KD-tree deeper than the layout's levels");
-    tree.nodes[at] = inner_node(node.axis, node.split, cursor.node[d + 1]);
-    stack.push_back({node.b, depth + 1});
-    stack.push_back({node.a, depth + 1});
+    nodes[at] = inner_node(node.axis, node.split, cursor.node[d + 1]);
+    stack[top++] = {node.b, depth + 1};
+    stack[top++] = {node.a, depth + 1};
   }
   tbb::parallel_for(std::size_t{0}, spawned.size(), [&](std::size_t k) {
     lay_out(*spawned[k].subtree, spawned[k].depth, spawned[k].cursor, tree);
