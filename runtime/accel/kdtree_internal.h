@@ -279,6 +279,26 @@ SplitPlane find_best_plane(const SahContext& context, const NodeCandidates& cand
 SplitPlane find_binned_plane(const SahContext& context, std::span<const Ref> refs, int bins,
                              bool parallel, PlaneScratch& scratch);
 
+// What the plain SAH cost (K_T + K_I (P_L N_L + P_R N_R)) of a node's planes can be, without
+// searching them (kdtree_sah.cpp):
+// - `any`: a lower bound for every plane through the cell. A reference going left lies in
+//   [lo, plane], so P_L is at least that of the cell cut at its end, and likewise on the right.
+// - `empty_cut`: the least plain cost of the candidates that cut off empty space (the planes where
+//   the references start or end; infinite when they reach every face of the cell).
+// Computed in float: every term is a sum or product of non-negative values, so these are within
+// a few ulps of the exact bounds, as the search's costs are of the exact costs.
+struct PlainCostBounds {
+  double any = std::numeric_limits<double>::infinity();
+  double empty_cut = std::numeric_limits<double>::infinity();
+};
+PlainCostBounds plain_cost_bounds(const SahContext& context, std::span<const Ref> refs);
+
+// Whether the compact criterion (split only when the plain cost is at most K_I N) makes a node of
+// these references a leaf whatever plane the search finds: judged by the lowest plain cost of any
+// plane, or by the chosen plane's (`by_chosen_plane`, the small nodes'), from plain_cost_bounds
+// (kdtree_sah.cpp).
+bool split_cannot_pay(const SahContext& context, std::span<const Ref> refs, bool by_chosen_plane);
+
 // ---- Partition ---------------------------------------------------------------------------------
 // Splits the references refs[begin, end) along `plane` (kdtree_partition.cpp): the left child's
 // are written over the front of the range, the right child's appended to `refs` (gathered in

@@ -540,6 +540,63 @@ void sweep_candidates(const NodeExtents& extents, std::uint32_t count, NodeCandi
   }
 }
 
+PlainCostBounds plain_cost_bounds(const SahContext& c, std::span<const Ref> refs) {
+  // The three axes at once (lanes x, y, z; the fourth is ignored), in float: every term is a sum
+  // or product of non-negative values, each rounded once, so the result is within a few ulps.
+  using Vec = float __attribute__((vector_size(16)));
+  const Vec lo{c.lo.x, c.lo.y, c.lo.z, 0.f}, hi{c.hi.x, c.hi.y, c.hi.z, 0.f};
+  const Vec extent{c.extent.x, c.extent.y, c.extent.z, 0.f};
+  const Vec extent_u{c.extent.y, c.extent.z, c.extent.x, 0.f};  // the two other axes of each
+  const Vec extent_v{c.extent.z, c.extent.x, c.extent.y, 0.f};
+  const Vec face = extent_u * extent_v, rim = extent_u + extent_v;
+  // Per axis, the sum over references of the narrower of the two cells a plane must leave each in:
+  // [lo, its end] when it goes left, [its start, hi] when it goes right (a straddling one is in
+  // both, whose probabilities sum to at least 1, the most a width clamped to the cell gives).
+  Vec widths{}, first = hi, last = lo;  // and where the references start and end
+  for (const Ref& r : refs) {
+    const Vec start{r.box.lo.x, r.box.lo.y, r.box.lo.z, 0.f};
+    const Vec end{r.box.hi.x, r.box.hi.y, r.box.hi.z, 0.f};
+    const Vec left = end - lo, right = hi - start;
+    const Vec narrower = left < right ? left : right;
+    widths += narrower < extent ? narrower : extent;
+    first = start < first ? start : first;
+    last = end > last ? end : last;
+  }
+  const float n = static_cast<float>(refs.size());
+  const float scale = 2.f * c.intersection_cost * c.inv_area;
+  const Vec any = c.traversal_cost + scale * (n * face + widths * rim);
+  // The only empty cuts: the planes where the references start and end, every reference on the
+  // other side, when the empty side has width (Wald & Havran's lambda).
+  const Vec cut_first = c.traversal_cost + scale * n * (face + (hi - first) * rim);
+  const Vec cut_last = c.traversal_cost + scale * n * (face + (last - lo) * rim);
+  PlainCostBounds bounds;
+  for (int axis = 0; axis < 3; ++axis) {
+    bounds.any = std::min(bounds.any, static_cast<double>(any[axis]));
+    if (first[axis] > lo[axis]) bounds.empty_cut = std::min(bounds.empty_cut, static_cast<double>(cut_first[axis]));
+    if (last[axis] < hi[axis]) bounds.empty_cut = std::min(bounds.empty_cut, static_cast<double>(cut_last[axis]));
+  }
+  return bounds;
+}
+
+// Whether the compact criterion (split only when the plain cost is at most K_I N) must make the
+// node a leaf whatever plane the search would find, from bounds of the costs (plain_cost_bounds):
+// - when no plane's plain cost can reach K_I N;
+// - for a node judged by its chosen plane (`by_chosen`), also when an empty cut's cost with the
+//   bonus beats every other plane's and yet no empty cut's plain cost reaches K_I N: the chosen
+//   plane is then an empty cut (where most small nodes of the compact tree end as leaves).
+// Each comparison keeps a margin far wider than the float rounding of the search's costs, so the
+// tree is the one the search would have given.
+bool split_cannot_pay(const SahContext& context, std::span<const Ref> refs, bool by_chosen) {
+  constexpr double kMargin = 1e-4;
+  const double leaf_cost =
+      static_cast<double>(context.intersection_cost * static_cast<float>(refs.size()));
+  const PlainCostBounds bounds = plain_cost_bounds(context, refs);
+  if (bounds.any * (1.0 - kMargin) > leaf_cost) return true;
+  const double empty_factor = context.empty_factor;
+  return by_chosen && empty_factor < 1.0 && bounds.empty_cut * (1.0 - kMargin) > leaf_cost &&
+         bounds.any * (1.0 - kMargin) > bounds.empty_cut * empty_factor * (1.0 + kMargin);
+}
+
 SplitPlane find_best_plane(const SahContext& context, const NodeCandidates& candidates,
                            std::vector<float>& costs) {
   // Axis order and a strict comparison: the same plane whatever the order of the references.

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <climits>
+#include <cmath>
+#include <limits>
 #include <random>
 
 #include "accel/test_meshes.h"
@@ -211,6 +213,117 @@ TEST(KdTreeQuality, BinnedSearchCountsRefinedBinsAsTheSweepDoes) {
     SCOPED_TRACE(testing::Message() << "trial " << trial << ", " << count << " references");
     expect_same_plane(found, expected);
   }
+}
+
+// Every candidate's plain cost, as the exact searches evaluate it, with whether it cuts off empty
+// space (one side without references but with width).
+struct CandidateCost {
+  float plain;
+  bool empty_cut;
+};
+
+std::vector<CandidateCost> every_candidate_cost(const kd::SahContext& c,
+                                                const std::vector<kd::Ref>& refs) {
+  std::vector<CandidateCost> out;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!(c.extent[axis] > 0.f)) continue;
+    const kd::AxisSah a = kd::axis_sah(c, axis);
+    for (const kd::Ref& candidate : refs) {
+      for (const float p : {candidate.box.lo[axis], candidate.box.hi[axis]}) {
+        std::uint32_t left = 0, right = 0, planar = 0;
+        for (const kd::Ref& r : refs) {
+          const float lo = r.box.lo[axis], hi = r.box.hi[axis];
+          left += lo == hi ? lo < p : lo < p;
+          right += lo == hi ? lo > p : hi > p;
+          planar += lo == hi && lo == p;
+        }
+        const float width_left = p - a.lo, width_right = a.hi - p;
+        const float p_left = 2.f * (a.face + width_left * a.rim) * c.inv_area;
+        const float p_right = 2.f * (a.face + width_right * a.rim) * c.inv_area;
+        for (const bool planar_left : {true, false}) {
+          const std::uint32_t l = planar_left ? left + planar : left;
+          const std::uint32_t r = planar_left ? right : right + planar;
+          float plain = 0.f;
+          const float cost = kd::plane_cost(c, p_left, p_right, l, r, width_left, width_right, plain);
+          out.push_back({plain, cost != plain});
+        }
+      }
+    }
+  }
+  return out;
+}
+
+// The bounds that let the compact build make a small node a leaf without searching it: `any` is at
+// most every candidate's plain cost (and exact for one reference), `empty_cut` is the least plain
+// cost of the empty cuts; and whenever split_cannot_pay says so, the exact search's plane indeed
+// fails the compact criterion, which it must do for most small nodes of this kind (not vacuously).
+TEST(KdTreeQuality, LeafBoundsNeverOverruleTheSearch) {
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> grid(0, 16);
+  Bounds cell;
+  cell.extend(glm::vec3(-1.f, 0.5f, 0.f));
+  cell.extend(glm::vec3(1.f, 2.f, 0.25f));
+  KdBuildOptions options;
+  options.compact = true;
+  kd::NodeCandidates candidates;
+  std::vector<float> costs;
+  int leaves_by_bound = 0, leaves_by_search = 0;
+  constexpr int kTrials = 2000;
+  for (int trial = 0; trial < kTrials; ++trial) {
+    const std::size_t count = 1 + static_cast<std::size_t>(trial) % 6;
+    std::vector<kd::Ref> refs;
+    for (std::size_t i = 0; i < count; ++i) {
+      Bounds b;
+      for (int axis = 0; axis < 3; ++axis) {
+        auto at = [&] {
+          const int g = std::clamp(grid(rng) - 4, 0, 16);  // a quarter on the low face
+          return cell.lo[axis] + cell.extent()[axis] * static_cast<float>(g) / 16.f;
+        };
+        float lo = at(), hi = grid(rng) < 6 ? cell.hi[axis] : at();
+        if (grid(rng) < 2) hi = lo;  // flat along this axis
+        b.lo[axis] = std::min(lo, hi);
+        b.hi[axis] = std::max(lo, hi);
+      }
+      refs.push_back({b, static_cast<std::uint32_t>(i)});
+    }
+    SCOPED_TRACE(testing::Message() << "trial " << trial << ", " << count << " references");
+    kd::SahContext context{};
+    ASSERT_TRUE(kd::make_sah_context(cell, count, options, context));
+    const kd::PlainCostBounds bounds = kd::plain_cost_bounds(context, refs);
+    float least = std::numeric_limits<float>::infinity();
+    float least_empty = std::numeric_limits<float>::infinity();
+    for (const CandidateCost& candidate : every_candidate_cost(context, refs)) {
+      least = std::min(least, candidate.plain);
+      if (candidate.empty_cut) least_empty = std::min(least_empty, candidate.plain);
+    }
+    EXPECT_LE(bounds.any, least * (1.0 + 1e-6));
+    if (count == 1) {
+      EXPECT_NEAR(bounds.any, least, 1e-6 * least);
+    }
+    if (std::isinf(least_empty)) {
+      EXPECT_TRUE(std::isinf(bounds.empty_cut));
+    } else {
+      EXPECT_NEAR(bounds.empty_cut, least_empty, 1e-6 * least_empty);
+    }
+
+    kd::count_candidates(refs, candidates);
+    const kd::SplitPlane plane = kd::find_best_plane(context, candidates, costs);
+    const float leaf_cost = options.intersection_cost * static_cast<float>(count);
+    for (const bool by_chosen : {true, false}) {
+      const float split_cost = by_chosen ? plane.plain_cost : plane.lowest_plain_cost;
+      const bool leaf = !plane.valid() || !(split_cost <= leaf_cost);
+      const bool bound_leaf = kd::split_cannot_pay(context, refs, by_chosen);
+      if (bound_leaf) {
+        EXPECT_TRUE(leaf) << (by_chosen ? "chosen plane" : "any plane");
+      }
+      if (by_chosen) {
+        leaves_by_bound += bound_leaf;
+        leaves_by_search += leaf;
+      }
+    }
+  }
+  EXPECT_GT(leaves_by_search, kTrials / 10);
+  EXPECT_GT(leaves_by_bound, leaves_by_search / 2);
 }
 
 // A budget takes the compact tree first, then lowers the compact tree's depth until it fits.
