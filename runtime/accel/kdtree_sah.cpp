@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 
 
@@ -541,9 +543,20 @@ void sweep_candidates(const NodeExtents& extents, std::uint32_t count, NodeCandi
 }
 
 PlainCostBounds plain_cost_bounds(const SahContext& c, std::span<const Ref> refs) {
-  // The three axes at once (lanes x, y, z; the fourth is ignored), in float: every term is a sum
-  // or product of non-negative values, each rounded once, so the result is within a few ulps.
+  // The three axes at once (lanes x, y, z; the fourth is kept at zero), in float: every term is a
+  // sum or product of non-negative values, each rounded once, so the result is within a few ulps.
   using Vec = float __attribute__((vector_size(16)));
+  using Lanes = std::int32_t __attribute__((vector_size(16)));
+  constexpr Lanes kXyz{-1, -1, -1, 0};
+  auto xyz = [](const Vec& v) { return reinterpret_cast<Vec>(reinterpret_cast<Lanes>(v) & kXyz); };
+  // A reference's start and end: 16 bytes from its box's lo and from its hi (the fourth lane,
+  // hi.x or the triangle index, is cleared before any arithmetic).
+  static_assert(offsetof(Ref, box) == 0 && sizeof(Bounds) == 24 && sizeof(Ref) >= 28);
+  auto load = [&](const Ref& r, std::size_t offset) {
+    Vec v;
+    std::memcpy(&v, reinterpret_cast<const char*>(&r) + offset, sizeof v);
+    return xyz(v);
+  };
   const Vec lo{c.lo.x, c.lo.y, c.lo.z, 0.f}, hi{c.hi.x, c.hi.y, c.hi.z, 0.f};
   const Vec extent{c.extent.x, c.extent.y, c.extent.z, 0.f};
   const Vec extent_u{c.extent.y, c.extent.z, c.extent.x, 0.f};  // the two other axes of each
@@ -554,8 +567,7 @@ PlainCostBounds plain_cost_bounds(const SahContext& c, std::span<const Ref> refs
   // both, whose probabilities sum to at least 1, the most a width clamped to the cell gives).
   Vec widths{}, first = hi, last = lo;  // and where the references start and end
   for (const Ref& r : refs) {
-    const Vec start{r.box.lo.x, r.box.lo.y, r.box.lo.z, 0.f};
-    const Vec end{r.box.hi.x, r.box.hi.y, r.box.hi.z, 0.f};
+    const Vec start = load(r, 0), end = load(r, 12);
     const Vec left = end - lo, right = hi - start;
     const Vec narrower = left < right ? left : right;
     widths += narrower < extent ? narrower : extent;
@@ -564,18 +576,17 @@ PlainCostBounds plain_cost_bounds(const SahContext& c, std::span<const Ref> refs
   }
   const float n = static_cast<float>(refs.size());
   const float scale = 2.f * c.intersection_cost * c.inv_area;
-  const Vec any = c.traversal_cost + scale * (n * face + widths * rim);
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  constexpr Vec kNone{kInf, kInf, kInf, kInf};
+  const Vec any = kXyz ? c.traversal_cost + scale * (n * face + widths * rim) : kNone;
   // The only empty cuts: the planes where the references start and end, every reference on the
-  // other side, when the empty side has width (Wald & Havran's lambda).
+  // other side, when the empty side has width (Wald & Havran's lambda; never in the fourth lane).
   const Vec cut_first = c.traversal_cost + scale * n * (face + (hi - first) * rim);
   const Vec cut_last = c.traversal_cost + scale * n * (face + (last - lo) * rim);
-  PlainCostBounds bounds;
-  for (int axis = 0; axis < 3; ++axis) {
-    bounds.any = std::min(bounds.any, static_cast<double>(any[axis]));
-    if (first[axis] > lo[axis]) bounds.empty_cut = std::min(bounds.empty_cut, static_cast<double>(cut_first[axis]));
-    if (last[axis] < hi[axis]) bounds.empty_cut = std::min(bounds.empty_cut, static_cast<double>(cut_last[axis]));
-  }
-  return bounds;
+  const Vec first_cut = first > lo ? cut_first : kNone, last_cut = last < hi ? cut_last : kNone;
+  const Vec empty_cut = first_cut < last_cut ? first_cut : last_cut;
+  auto least = [](const Vec& v) { return std::min(std::min(v[0], v[1]), std::min(v[2], v[3])); };
+  return {least(any), least(empty_cut)};
 }
 
 // Whether the compact criterion (split only when the plain cost is at most K_I N) must make the
