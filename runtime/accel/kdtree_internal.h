@@ -87,6 +87,7 @@ class RefBuffer {
     }
     return data_;
   }
+  Ref* data() { return data_; }
   const Ref* data() const { return data_; }
 
  private:
@@ -102,6 +103,49 @@ class RefBuffer {
   std::allocator<Ref> allocator_;
   Ref* data_ = nullptr;
   std::size_t capacity_ = 0;
+};
+
+// A task's references as a stack (kdtree_builder.cpp): a node's range, with its children's
+// pushed on top. Grown uninitialised (RefBuffer), so the parallel splits fill it from several
+// threads, page faults included, where a vector would first initialise it on one thread.
+class RefStack {
+ public:
+  RefStack() = default;
+  RefStack(RefStack&& other) noexcept
+      : storage_(std::move(other.storage_)),
+        size_(std::exchange(other.size_, 0)),
+        capacity_(std::exchange(other.capacity_, 0)) {}
+  RefStack& operator=(RefStack&& other) noexcept {
+    storage_ = std::move(other.storage_);
+    size_ = std::exchange(other.size_, 0);
+    capacity_ = std::exchange(other.capacity_, 0);
+    return *this;
+  }
+
+  std::size_t size() const { return size_; }
+  Ref* data() { return storage_.data(); }
+  const Ref* data() const { return storage_.data(); }
+  const Ref& operator[](std::size_t i) const { return storage_.data()[i]; }
+  std::span<const Ref> span(std::size_t first, std::size_t count) const {
+    return {storage_.data() + first, count};
+  }
+  // Makes the stack n references longer and returns the first of them, not yet written.
+  Ref* push(std::size_t n) {
+    if (size_ + n > capacity_) {
+      const std::size_t capacity = std::max(size_ + n, 2 * capacity_);
+      RefBuffer grown;
+      std::copy_n(storage_.data(), size_, grown.room(capacity));
+      storage_ = std::move(grown);
+      capacity_ = capacity;
+    }
+    size_ += n;
+    return storage_.data() + size_ - n;
+  }
+  void pop_to(std::size_t size) { size_ = std::min(size, size_); }
+
+ private:
+  RefBuffer storage_;
+  std::size_t size_ = 0, capacity_ = 0;
 };
 
 // ---- SAH ---------------------------------------------------------------------------------------
@@ -305,16 +349,16 @@ bool split_cannot_pay(const SahContext& context, std::span<const Ref> refs, bool
 // `right` first); straddling references are clipped to each child cell. Both keep the parent's
 // order. Returns the counts per child; `clipped` counts the straddling references (0: every child
 // reference is a parent reference unchanged).
-std::array<std::size_t, 2> partition(std::vector<Ref>& refs, std::size_t begin, std::size_t end,
+std::array<std::size_t, 2> partition(RefStack& refs, std::size_t begin, std::size_t end,
                                      const Bounds& voxel, const SplitPlane& plane,
                                      std::span<const Triangle> triangles, RefBuffer& right,
                                      std::size_t& clipped);
 
 // The same split for a node whose children are built as parallel tasks: each child's references
-// in a vector of their own, in the parent's order, the work split in chunks across threads.
-std::array<std::vector<Ref>, 2> partition_apart(std::span<const Ref> refs, const Bounds& voxel,
-                                                const SplitPlane& plane,
-                                                std::span<const Triangle> triangles);
+// on a stack of their own, in the parent's order, the work split in chunks across threads.
+std::array<RefStack, 2> partition_apart(std::span<const Ref> refs, const Bounds& voxel,
+                                        const SplitPlane& plane,
+                                        std::span<const Triangle> triangles);
 
 std::array<Bounds, 2> child_cells(const Bounds& voxel, int axis, float pos);
 

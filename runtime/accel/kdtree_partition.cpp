@@ -77,30 +77,30 @@ std::array<std::size_t, 2> split_refs(const Ref* refs, std::size_t first, std::s
 
 }  // namespace
 
-std::array<std::size_t, 2> partition(std::vector<Ref>& refs, std::size_t begin, std::size_t end,
+std::array<std::size_t, 2> partition(RefStack& refs, std::size_t begin, std::size_t end,
                                      const Bounds& voxel, const SplitPlane& plane,
                                      std::span<const Triangle> triangles, RefBuffer& right,
                                      std::size_t& clipped) {
   clipped = 0;
   // Left references overwrite the range in place, right ones are gathered in `right` and then
-  // appended (`refs` may reallocate only then).
+  // pushed (`refs` may reallocate only then).
   Ref* const right_refs = right.room(end - begin);
   const std::array<std::size_t, 2> counts = split_refs(
       refs.data(), begin, end, voxel, plane, triangles, refs.data() + begin, right_refs, clipped);
-  refs.insert(refs.end(), right_refs, right_refs + counts[1]);
+  std::copy_n(right_refs, counts[1], refs.push(counts[1]));
   return counts;
 }
 
-// Fixed-size chunks split on their own, then concatenated in chunk order, so the result is the
-// serial one whatever the thread count; each child's references are copied once, into its own
-// vector.
-std::array<std::vector<Ref>, 2> partition_apart(std::span<const Ref> refs, const Bounds& voxel,
-                                                const SplitPlane& plane,
-                                                std::span<const Triangle> triangles) {
+// Fixed-size chunks split on their own, then copied in chunk order (each chunk to its place, in
+// parallel), so the result is the serial one whatever the thread count.
+std::array<RefStack, 2> partition_apart(std::span<const Ref> refs, const Bounds& voxel,
+                                        const SplitPlane& plane,
+                                        std::span<const Triangle> triangles) {
   const std::size_t chunks = (refs.size() + kParallelChunk - 1) / kParallelChunk;
   struct Part {
     std::array<RefBuffer, 2> room;  // each with room for the whole chunk
     std::array<std::size_t, 2> size{};
+    std::array<std::size_t, 2> at{};  // where the chunk's references go in each child
   };
   std::vector<Part> parts(chunks);
   tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
@@ -112,16 +112,22 @@ std::array<std::vector<Ref>, 2> partition_apart(std::span<const Ref> refs, const
                            part.room[0].room(last - first), part.room[1].room(last - first),
                            clipped);
   });
-  std::array<std::vector<Ref>, 2> children;
+  std::array<RefStack, 2> children;
+  std::array<Ref*, 2> child_refs{};
   for (int c = 0; c < 2; ++c) {
     std::size_t total = 0;
-    for (const Part& part : parts) total += part.size[c];
-    children[c].reserve(total);
-    for (const Part& part : parts) {
-      const Ref* first = part.room[c].data();
-      children[c].insert(children[c].end(), first, first + part.size[c]);
+    for (Part& part : parts) {
+      part.at[c] = total;
+      total += part.size[c];
     }
+    child_refs[c] = children[c].push(total);
   }
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
+    const Part& part = parts[k];
+    for (int c = 0; c < 2; ++c) {
+      std::copy_n(part.room[c].data(), part.size[c], child_refs[c] + part.at[c]);
+    }
+  });
   return children;
 }
 
