@@ -345,14 +345,13 @@ bool split_cannot_pay(const SahContext& context, std::span<const Ref> refs, bool
 
 // ---- Partition ---------------------------------------------------------------------------------
 // Splits the references refs[begin, end) along `plane` (kdtree_partition.cpp): the left child's
-// are written over the front of the range, the right child's appended to `refs` (gathered in
-// `right` first); straddling references are clipped to each child cell. Both keep the parent's
+// are written over the front of the range, the right child's pushed onto `refs` (the range lies
+// below its top); straddling references are clipped to each child cell. Both keep the parent's
 // order. Returns the counts per child; `clipped` counts the straddling references (0: every child
 // reference is a parent reference unchanged).
 std::array<std::size_t, 2> partition(RefStack& refs, std::size_t begin, std::size_t end,
                                      const Bounds& voxel, const SplitPlane& plane,
-                                     std::span<const Triangle> triangles, RefBuffer& right,
-                                     std::size_t& clipped);
+                                     std::span<const Triangle> triangles, std::size_t& clipped);
 
 // The same split for a node whose children are built as parallel tasks: each child's references
 // on a stack of their own, in the parent's order, the work split in chunks across threads.

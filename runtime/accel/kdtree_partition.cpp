@@ -79,15 +79,16 @@ std::array<std::size_t, 2> split_refs(const Ref* refs, std::size_t first, std::s
 
 std::array<std::size_t, 2> partition(RefStack& refs, std::size_t begin, std::size_t end,
                                      const Bounds& voxel, const SplitPlane& plane,
-                                     std::span<const Triangle> triangles, RefBuffer& right,
-                                     std::size_t& clipped) {
+                                     std::span<const Triangle> triangles, std::size_t& clipped) {
   clipped = 0;
-  // Left references overwrite the range in place, right ones are gathered in `right` and then
-  // pushed (`refs` may reallocate only then).
-  Ref* const right_refs = right.room(end - begin);
-  const std::array<std::size_t, 2> counts = split_refs(
-      refs.data(), begin, end, voxel, plane, triangles, refs.data() + begin, right_refs, clipped);
-  std::copy_n(right_refs, counts[1], refs.push(counts[1]));
+  // Left references overwrite the range in place, right ones go straight onto the top of the
+  // stack, past its end (room for all of them first: `refs` may reallocate only then).
+  const std::size_t right_begin = refs.size();
+  refs.push(end - begin);
+  const std::array<std::size_t, 2> counts =
+      split_refs(refs.data(), begin, end, voxel, plane, triangles, refs.data() + begin,
+                 refs.data() + right_begin, clipped);
+  refs.pop_to(right_begin + counts[1]);
   return counts;
 }
 
