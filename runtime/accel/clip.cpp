@@ -236,32 +236,31 @@ using Doubles = double __attribute__((vector_size(32)));
 // Each vertex's signed distance to the plane (negated for `upper`) and, per edge (vertex i - 1 to
 // vertex i, the first from the last), where along it the plane lies: d_prev / (d_prev - d_cur),
 // the scalar clip's arithmetic four edges at a time. (One division per edge on the way was the
-// clip's critical path.)
+// clip's critical path; lanes past the polygon divide 1 by 1.)
 struct Crossings {
-  // distance[i + 1] is vertex i's, distance[0] the last vertex's again: edge i's two ends are
-  // distance[i] and distance[i + 1], so both come as plain vector loads.
-  alignas(32) std::array<double, kRoom + 5> distance;
+  alignas(32) std::array<double, kRoom + 4> d;
   alignas(32) std::array<double, kRoom + 4> t;
-
-  double d(std::size_t i) const { return distance[i + 1]; }
 };
 
 template <int axis, bool upper>
 void crossings(const Polygon& in, double plane, Crossings& c) {
   const std::size_t n = in.n;
+  alignas(32) std::array<double, kRoom + 4> d_prev;
   for (std::size_t i = 0; i < n; ++i) {
     const double d = in.v[i][axis] - plane;
-    c.distance[i + 1] = upper ? -d : d;
+    c.d[i] = upper ? -d : d;
   }
-  c.distance[0] = c.distance[n];
-  // The lanes past the polygon divide finite values (stored as one vector: a loop here became a
-  // call to memset).
-  const Doubles filler{-1.0, -1.0, -1.0, -1.0};
-  std::memcpy(&c.distance[n + 1], &filler, sizeof filler);
-  for (std::size_t i = 0; i < n; i += 4) {
+  d_prev[0] = c.d[n - 1];
+  for (std::size_t i = 1; i < n; ++i) d_prev[i] = c.d[i - 1];
+  const std::size_t lanes = (n + 3) / 4 * 4;
+  for (std::size_t i = n; i < lanes; ++i) {
+    d_prev[i] = 1.0;
+    c.d[i] = 0.0;
+  }
+  for (std::size_t i = 0; i < lanes; i += 4) {
     Doubles dp, dc;
-    std::memcpy(&dp, &c.distance[i], sizeof dp);
-    std::memcpy(&dc, &c.distance[i + 1], sizeof dc);
+    std::memcpy(&dp, &d_prev[i], sizeof dp);
+    std::memcpy(&dc, &c.d[i], sizeof dc);
     const Doubles t = dp / (dp - dc);
     std::memcpy(&c.t[i], &t, sizeof t);
   }
@@ -274,10 +273,10 @@ void clip_plane(const Polygon& in, double plane, Polygon& out) {
   crossings<axis, upper>(in, plane, c);
   std::size_t n = 0;
   Point prev = in.v[in.n - 1];
-  double d_prev = c.d(in.n - 1);
+  double d_prev = c.d[in.n - 1];
   for (std::size_t i = 0; i < in.n; ++i) {
     const Point cur = in.v[i];
-    const double d_cur = c.d(i);
+    const double d_cur = c.d[i];
     Point p = prev + (cur - prev) * c.t[i];
     p[axis] = plane;
     out.v[n] = p;
@@ -378,10 +377,10 @@ std::array<Bounds, 2> split(const Polygon& inside, const Bounds& cell, float pos
   Crossings c;
   crossings<axis, false>(inside, plane, c);
   Point prev = inside.v[inside.n - 1];
-  double d_prev = c.d(inside.n - 1);
+  double d_prev = c.d[inside.n - 1];
   for (std::size_t i = 0; i < inside.n; ++i) {
     const Point cur = inside.v[i];
-    const double d_cur = c.d(i);
+    const double d_cur = c.d[i];
     Point p = prev + (cur - prev) * c.t[i];
     p[axis] = plane;
     side[0].add(p, all((d_prev <= 0.0) != (d_cur <= 0.0)));
