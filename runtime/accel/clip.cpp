@@ -9,7 +9,6 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -231,53 +230,16 @@ Mask all(bool b) {
   return Mask{m, m, m, m};
 }
 
-using Doubles = double __attribute__((vector_size(32)));
-
-// Each vertex's signed distance to the plane (negated for `upper`) and, per edge (vertex i - 1 to
-// vertex i, the first from the last), where along it the plane lies: d_prev / (d_prev - d_cur),
-// the scalar clip's arithmetic four edges at a time. (One division per edge on the way was the
-// clip's critical path; lanes past the polygon divide 1 by 1.)
-struct Crossings {
-  alignas(32) std::array<double, kRoom + 4> d;
-  alignas(32) std::array<double, kRoom + 4> t;
-};
-
-template <int axis, bool upper>
-void crossings(const Polygon& in, double plane, Crossings& c) {
-  const std::size_t n = in.n;
-  alignas(32) std::array<double, kRoom + 4> d_prev;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double d = in.v[i][axis] - plane;
-    c.d[i] = upper ? -d : d;
-  }
-  d_prev[0] = c.d[n - 1];
-  for (std::size_t i = 1; i < n; ++i) d_prev[i] = c.d[i - 1];
-  const std::size_t lanes = (n + 3) / 4 * 4;
-  for (std::size_t i = n; i < lanes; ++i) {
-    d_prev[i] = 1.0;
-    c.d[i] = 0.0;
-  }
-  for (std::size_t i = 0; i < lanes; i += 4) {
-    Doubles dp, dc;
-    std::memcpy(&dp, &d_prev[i], sizeof dp);
-    std::memcpy(&dc, &c.d[i], sizeof dc);
-    const Doubles t = dp / (dp - dc);
-    std::memcpy(&c.t[i], &t, sizeof t);
-  }
-}
-
 // clip_plane for a fixed axis; keeps the side with p[axis] >= plane (upper false) or <= plane.
 template <int axis, bool upper>
 void clip_plane(const Polygon& in, double plane, Polygon& out) {
-  Crossings c;
-  crossings<axis, upper>(in, plane, c);
   std::size_t n = 0;
   Point prev = in.v[in.n - 1];
-  double d_prev = c.d[in.n - 1];
+  double d_prev = upper ? -(prev[axis] - plane) : prev[axis] - plane;
   for (std::size_t i = 0; i < in.n; ++i) {
     const Point cur = in.v[i];
-    const double d_cur = c.d[i];
-    Point p = prev + (cur - prev) * c.t[i];
+    const double d_cur = upper ? -(cur[axis] - plane) : cur[axis] - plane;
+    Point p = prev + (cur - prev) * (d_prev / (d_prev - d_cur));
     p[axis] = plane;
     out.v[n] = p;
     n += (d_prev >= 0.0) != (d_cur >= 0.0);
@@ -374,14 +336,12 @@ std::array<Bounds, 2> split(const Polygon& inside, const Bounds& cell, float pos
   children[1].lo[axis] = pos;
   const double plane = pos;
   std::array<PointBounds, 2> side;
-  Crossings c;
-  crossings<axis, false>(inside, plane, c);
   Point prev = inside.v[inside.n - 1];
-  double d_prev = c.d[inside.n - 1];
+  double d_prev = prev[axis] - plane;
   for (std::size_t i = 0; i < inside.n; ++i) {
     const Point cur = inside.v[i];
-    const double d_cur = c.d[i];
-    Point p = prev + (cur - prev) * c.t[i];
+    const double d_cur = cur[axis] - plane;
+    Point p = prev + (cur - prev) * (d_prev / (d_prev - d_cur));
     p[axis] = plane;
     side[0].add(p, all((d_prev <= 0.0) != (d_cur <= 0.0)));
     side[0].add(cur, all(d_cur <= 0.0));
