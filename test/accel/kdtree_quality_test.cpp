@@ -176,13 +176,35 @@ TEST(KdTreeQuality, BinnedSearchCutsOffEmptySpaceAtTheGeometry) {
   EXPECT_EQ(plane.right_count, 0u);
 }
 
+// A node as the build sees them: `count` references with positions on a grid of 16 steps per
+// axis, so starts on the cell's low face (a quarter of them) and ends on its high face (references
+// clipped by an ancestor's plane: `reach_high` in 17), flat extents and repeated positions are
+// common.
+std::vector<kd::Ref> grid_node(std::mt19937& rng, const Bounds& cell, std::size_t count,
+                               int reach_high) {
+  std::uniform_int_distribution<int> grid(0, 16);
+  std::vector<kd::Ref> refs;
+  for (std::size_t i = 0; i < count; ++i) {
+    Bounds b;
+    for (int axis = 0; axis < 3; ++axis) {
+      auto at = [&] {
+        const int g = std::clamp(grid(rng) - 4, 0, 16);  // a quarter on the low face
+        return cell.lo[axis] + cell.extent()[axis] * static_cast<float>(g) / 16.f;
+      };
+      float lo = at(), hi = grid(rng) < reach_high ? cell.hi[axis] : at();
+      if (grid(rng) < 2) hi = lo;  // flat along this axis
+      b.lo[axis] = std::min(lo, hi);
+      b.hi[axis] = std::max(lo, hi);
+    }
+    refs.push_back({b, static_cast<std::uint32_t>(i)});
+  }
+  return refs;
+}
+
 // The refined bins' candidates of a binned node, counted directly (few of them) or sorted and swept
-// (many, or without AVX2): the same plane, cost and counts. Nodes as the build sees them: positions
-// on a coarse grid, so starts on the cell's low face and ends on its high face (references clipped
-// by an ancestor's plane), flat extents and repeated positions are common.
+// (many, or without AVX2): the same plane, cost and counts, on grid nodes.
 TEST(KdTreeQuality, BinnedSearchCountsRefinedBinsAsTheSweepDoes) {
   std::mt19937 rng(11);
-  std::uniform_int_distribution<int> grid(0, 16);
   Bounds cell;
   cell.extend(glm::vec3(-1.f, 0.f, 0.f));
   cell.extend(glm::vec3(1.f, 2.f, 0.5f));
@@ -190,21 +212,7 @@ TEST(KdTreeQuality, BinnedSearchCountsRefinedBinsAsTheSweepDoes) {
   swept.sweep_refined = true;
   for (int trial = 0; trial < 300; ++trial) {
     const std::size_t count = 65 + static_cast<std::size_t>(trial) % 400;
-    std::vector<kd::Ref> refs;
-    for (std::size_t i = 0; i < count; ++i) {
-      Bounds b;
-      for (int axis = 0; axis < 3; ++axis) {
-        auto at = [&] {
-          const int g = std::clamp(grid(rng) - 4, 0, 16);  // a quarter on the low face
-          return cell.lo[axis] + cell.extent()[axis] * static_cast<float>(g) / 16.f;
-        };
-        float lo = at(), hi = grid(rng) < 4 ? cell.hi[axis] : at();
-        if (grid(rng) < 2) hi = lo;  // flat along this axis
-        b.lo[axis] = std::min(lo, hi);
-        b.hi[axis] = std::max(lo, hi);
-      }
-      refs.push_back({b, static_cast<std::uint32_t>(i)});
-    }
+    const std::vector<kd::Ref> refs = grid_node(rng, cell, count, 4);
     kd::SahContext context{};
     ASSERT_TRUE(kd::make_sah_context(cell, count, KdBuildOptions{}, context));
     const int bins = static_cast<int>(std::max<std::size_t>(8, count / 4));
@@ -259,7 +267,6 @@ std::vector<CandidateCost> every_candidate_cost(const kd::SahContext& c,
 // fails the compact criterion, which it must do for most small nodes of this kind (not vacuously).
 TEST(KdTreeQuality, LeafBoundsNeverOverruleTheSearch) {
   std::mt19937 rng(5);
-  std::uniform_int_distribution<int> grid(0, 16);
   Bounds cell;
   cell.extend(glm::vec3(-1.f, 0.5f, 0.f));
   cell.extend(glm::vec3(1.f, 2.f, 0.25f));
@@ -271,21 +278,7 @@ TEST(KdTreeQuality, LeafBoundsNeverOverruleTheSearch) {
   constexpr int kTrials = 2000;
   for (int trial = 0; trial < kTrials; ++trial) {
     const std::size_t count = 1 + static_cast<std::size_t>(trial) % 6;
-    std::vector<kd::Ref> refs;
-    for (std::size_t i = 0; i < count; ++i) {
-      Bounds b;
-      for (int axis = 0; axis < 3; ++axis) {
-        auto at = [&] {
-          const int g = std::clamp(grid(rng) - 4, 0, 16);  // a quarter on the low face
-          return cell.lo[axis] + cell.extent()[axis] * static_cast<float>(g) / 16.f;
-        };
-        float lo = at(), hi = grid(rng) < 6 ? cell.hi[axis] : at();
-        if (grid(rng) < 2) hi = lo;  // flat along this axis
-        b.lo[axis] = std::min(lo, hi);
-        b.hi[axis] = std::max(lo, hi);
-      }
-      refs.push_back({b, static_cast<std::uint32_t>(i)});
-    }
+    const std::vector<kd::Ref> refs = grid_node(rng, cell, count, 6);
     SCOPED_TRACE(testing::Message() << "trial " << trial << ", " << count << " references");
     kd::SahContext context{};
     ASSERT_TRUE(kd::make_sah_context(cell, count, options, context));
