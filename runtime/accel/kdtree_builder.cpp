@@ -160,7 +160,7 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
   // references makes them leaves; a bound that costs a tenth of the search finds most of those.
   const bool small = count <= static_cast<std::size_t>(std::max(options_.plain_sah_triangles, 0));
   if (options_.compact && small &&
-      split_cannot_pay(context, s.refs.span(begin, count), true)) {
+      split_cannot_pay(context, s.refs.span(begin, count))) {
     return make_leaf(out, s, begin, end, voxel, depth);
   }
   const bool parallel = options_.parallel && count >= kParallelTriangles;

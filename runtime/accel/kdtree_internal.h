@@ -341,11 +341,10 @@ struct PlainCostBounds {
 };
 PlainCostBounds plain_cost_bounds(const SahContext& context, std::span<const Ref> refs);
 
-// Whether the compact criterion (split only when the plain cost is at most K_I N) makes a node of
-// these references a leaf whatever plane the search finds: judged by the lowest plain cost of any
-// plane, or by the chosen plane's (`by_chosen_plane`, the small nodes'), from plain_cost_bounds
-// (kdtree_sah.cpp).
-bool split_cannot_pay(const SahContext& context, std::span<const Ref> refs, bool by_chosen_plane);
+// Whether the compact criterion for small nodes (split only when the chosen plane's plain cost is
+// at most K_I N) makes a node of these references a leaf whatever plane the search finds, from
+// plain_cost_bounds (kdtree_sah.cpp).
+bool split_cannot_pay(const SahContext& context, std::span<const Ref> refs);
 
 // ---- Partition ---------------------------------------------------------------------------------
 // Splits the references refs[begin, end) along `plane` (kdtree_partition.cpp): the left child's

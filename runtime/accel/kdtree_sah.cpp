@@ -589,22 +589,21 @@ PlainCostBounds plain_cost_bounds(const SahContext& c, std::span<const Ref> refs
   return {least(any), least(empty_cut)};
 }
 
-// Whether the compact criterion (split only when the plain cost is at most K_I N) must make the
-// node a leaf whatever plane the search would find, from bounds of the costs (plain_cost_bounds):
+// From bounds of the costs (plain_cost_bounds), the chosen plane's plain cost exceeds K_I N:
 // - when no plane's plain cost can reach K_I N;
-// - for a node judged by its chosen plane (`by_chosen`), also when an empty cut's cost with the
-//   bonus beats every other plane's and yet no empty cut's plain cost reaches K_I N: the chosen
-//   plane is then an empty cut (where most small nodes of the compact tree end as leaves).
+// - when an empty cut's cost with the bonus beats every other plane's and yet no empty cut's plain
+//   cost reaches K_I N: the chosen plane is then an empty cut (where most small nodes of the
+//   compact tree end as leaves).
 // Each comparison keeps a margin far wider than the float rounding of the search's costs, so the
 // tree is the one the search would have given.
-bool split_cannot_pay(const SahContext& context, std::span<const Ref> refs, bool by_chosen) {
+bool split_cannot_pay(const SahContext& context, std::span<const Ref> refs) {
   constexpr double kMargin = 1e-4;
   const double leaf_cost =
       static_cast<double>(context.intersection_cost * static_cast<float>(refs.size()));
   const PlainCostBounds bounds = plain_cost_bounds(context, refs);
   if (bounds.any * (1.0 - kMargin) > leaf_cost) return true;
   const double empty_factor = context.empty_factor;
-  return by_chosen && empty_factor < 1.0 && bounds.empty_cut * (1.0 - kMargin) > leaf_cost &&
+  return empty_factor < 1.0 && bounds.empty_cut * (1.0 - kMargin) > leaf_cost &&
          bounds.any * (1.0 - kMargin) > bounds.empty_cut * empty_factor * (1.0 + kMargin);
 }
 
