@@ -125,14 +125,11 @@ void count(const Binner& binner, std::span<const Ref> refs, std::vector<std::uin
 
 void count_all(const Binner& binner, std::span<const Ref> refs, bool parallel,
                PlaneScratch& scratch) {
-  if (scratch.ref_bins_size < 6 * refs.size()) {
-    scratch.ref_bins_size = std::max(6 * refs.size(), 2 * scratch.ref_bins_size);
-    scratch.ref_bins = std::make_unique_for_overwrite<std::uint16_t[]>(scratch.ref_bins_size);
-  }
+  std::uint16_t* const ref_bins = scratch.ref_bins.room(6 * refs.size());
   if (!parallel || refs.size() <= 2 * kParallelGrain) {
     scratch.starts.assign(3 * static_cast<std::size_t>(binner.bins), 0u);
     scratch.ends.assign(3 * static_cast<std::size_t>(binner.bins), 0u);
-    count(binner, refs, scratch.starts, scratch.ends, scratch.ref_bins.get());
+    count(binner, refs, scratch.starts, scratch.ends, ref_bins);
     return;
   }
   BinCounts empty;
@@ -141,7 +138,7 @@ void count_all(const Binner& binner, std::span<const Ref> refs, bool parallel,
       tbb::blocked_range<std::size_t>(0, refs.size(), kParallelGrain), empty,
       [&](const tbb::blocked_range<std::size_t>& r, BinCounts partial) {
         count(binner, refs.subspan(r.begin(), r.size()), partial.starts, partial.ends,
-              scratch.ref_bins.get() + 6 * r.begin());
+              ref_bins + 6 * r.begin());
         return partial;
       },
       [](BinCounts a, const BinCounts& b) {
@@ -425,7 +422,7 @@ void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs
     }
     for (std::size_t i = first; i < last; ++i) {
       const Ref& r = refs[i];
-      const std::uint16_t* ref_bins = scratch.ref_bins.get() + 6 * i;
+      const std::uint16_t* ref_bins = scratch.ref_bins.data() + 6 * i;
       // Most references have no end in a refined bin (in the largest nodes about 2 in 100 ends
       // are kept): one well-predicted branch skips them.
       const std::uint8_t* refined_bins = scratch.refined.data();
@@ -456,11 +453,7 @@ void refine(const SahContext& c, const Binner& binner, std::span<const Ref> refs
     }
   };
   if (!parallel || refs.size() <= 2 * kParallelGrain) {
-    if (scratch.gathered_size < 9 * refs.size()) {
-      scratch.gathered_size = std::max(9 * refs.size(), 2 * scratch.gathered_size);
-      scratch.gathered = std::make_unique_for_overwrite<float[]>(scratch.gathered_size);
-    }
-    gather(0, refs.size(), scratch.gathered.get(), scratch.extents);
+    gather(0, refs.size(), scratch.gathered.room(9 * refs.size()), scratch.extents);
   } else {
     // Chunks gathered in parallel and joined; the order does not matter, the lists are sorted.
     const std::size_t chunks = (refs.size() + kParallelGrain - 1) / kParallelGrain;

@@ -64,34 +64,39 @@ struct Ref {
   std::uint32_t tri;
 };
 
-// Uninitialised room for references, what the branch-free partitions write into: a reference is
-// written to both sides and kept by the count of the side it lies on. (Ref is an implicit-lifetime
-// aggregate, so its allocator's storage holds Refs once they are written; a vector would first
-// initialise every element.) Grows without keeping its contents.
-class RefBuffer {
+// Uninitialised room for n values, for buffers whose every entry is written before it is read:
+// the references the branch-free partitions write (each written to both sides and kept by the
+// count of the side it lies on), the binned search's per-reference bins and gathered extents.
+// (T is an implicit-lifetime type, so its allocator's storage holds Ts once they are written; a
+// vector would first initialise every element, on one thread.) Grows, by at least doubling,
+// without keeping its contents.
+template <class T>
+class UninitialisedArray {
  public:
-  RefBuffer() = default;
-  RefBuffer(RefBuffer&& other) noexcept { swap(other); }
-  RefBuffer& operator=(RefBuffer&& other) noexcept {
-    RefBuffer(std::move(other)).swap(*this);
+  UninitialisedArray() = default;
+  UninitialisedArray(UninitialisedArray&& other) noexcept { swap(other); }
+  UninitialisedArray& operator=(UninitialisedArray&& other) noexcept {
+    UninitialisedArray(std::move(other)).swap(*this);
     return *this;
   }
-  ~RefBuffer() { release(); }
+  ~UninitialisedArray() { release(); }
 
-  // Room for at least n references.
-  Ref* room(std::size_t n) {
+  // Room for at least n values.
+  T* room(std::size_t n) {
     if (n > capacity_) {
+      const std::size_t capacity = std::max(n, 2 * capacity_);
       release();
-      data_ = allocator_.allocate(n);
-      capacity_ = n;
+      data_ = allocator_.allocate(capacity);
+      capacity_ = capacity;
     }
     return data_;
   }
-  Ref* data() { return data_; }
-  const Ref* data() const { return data_; }
+  T* data() { return data_; }
+  const T* data() const { return data_; }
+  std::size_t capacity() const { return capacity_; }
 
  private:
-  void swap(RefBuffer& other) noexcept {
+  void swap(UninitialisedArray& other) noexcept {
     std::swap(data_, other.data_);
     std::swap(capacity_, other.capacity_);
   }
@@ -100,10 +105,12 @@ class RefBuffer {
     data_ = nullptr;
     capacity_ = 0;
   }
-  std::allocator<Ref> allocator_;
-  Ref* data_ = nullptr;
+  std::allocator<T> allocator_;
+  T* data_ = nullptr;
   std::size_t capacity_ = 0;
 };
+
+using RefBuffer = UninitialisedArray<Ref>;
 
 // A task's references as a stack (kdtree_builder.cpp): a node's range, with its children's
 // pushed on top. Grown uninitialised (RefBuffer), so the parallel splits fill it from several
@@ -112,13 +119,10 @@ class RefStack {
  public:
   RefStack() = default;
   RefStack(RefStack&& other) noexcept
-      : storage_(std::move(other.storage_)),
-        size_(std::exchange(other.size_, 0)),
-        capacity_(std::exchange(other.capacity_, 0)) {}
+      : storage_(std::move(other.storage_)), size_(std::exchange(other.size_, 0)) {}
   RefStack& operator=(RefStack&& other) noexcept {
     storage_ = std::move(other.storage_);
     size_ = std::exchange(other.size_, 0);
-    capacity_ = std::exchange(other.capacity_, 0);
     return *this;
   }
 
@@ -131,12 +135,10 @@ class RefStack {
   }
   // Makes the stack n references longer and returns the first of them, not yet written.
   Ref* push(std::size_t n) {
-    if (size_ + n > capacity_) {
-      const std::size_t capacity = std::max(size_ + n, 2 * capacity_);
+    if (size_ + n > storage_.capacity()) {
       RefBuffer grown;
-      std::copy_n(storage_.data(), size_, grown.room(capacity));
+      std::copy_n(storage_.data(), size_, grown.room(std::max(size_ + n, 2 * storage_.capacity())));
       storage_ = std::move(grown);
-      capacity_ = capacity;
     }
     size_ += n;
     return storage_.data() + size_ - n;
@@ -145,7 +147,7 @@ class RefStack {
 
  private:
   RefBuffer storage_;
-  std::size_t size_ = 0, capacity_ = 0;
+  std::size_t size_ = 0;
 };
 
 // ---- SAH ---------------------------------------------------------------------------------------
@@ -295,15 +297,12 @@ void evaluate_candidates(const SahContext& c, int axis, const AxisCandidates& ca
 struct PlaneScratch {
   std::vector<std::uint32_t> starts, ends;  // binned counts, [axis * bins + bin]
   std::vector<std::uint8_t> refined;        // 1 for the bins the exact sweep covers, same index
-  // Per reference: start and end bin of each axis. Grown without being cleared (every entry is
-  // written by the count before it is read): a cleared array cost the root's count a serial pass
-  // over 13 MB of fresh pages for Sponza x4.
-  std::unique_ptr<std::uint16_t[]> ref_bins;
-  std::size_t ref_bins_size = 0;
+  // Per reference: start and end bin of each axis (a cleared array cost the root's count a serial
+  // pass over 13 MB of fresh pages for Sponza x4).
+  UninitialisedArray<std::uint16_t> ref_bins;
   // The refinement's gathering of every extent end, 9 per reference, before it keeps those in the
-  // refined bins: grown without being cleared (a cleared vector cost 2.4% of the build in memset).
-  std::unique_ptr<float[]> gathered;
-  std::size_t gathered_size = 0;
+  // refined bins (a cleared vector cost 2.4% of the build in memset).
+  UninitialisedArray<float> gathered;
   NodeExtents extents;
   NodeCandidates candidates;
   std::vector<float> costs;  // evaluate_candidates' working memory
