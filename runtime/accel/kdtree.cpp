@@ -3,7 +3,6 @@
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <chrono>
@@ -48,21 +47,18 @@ std::size_t keep_good_triangles(std::span<const glm::vec3> positions, KdTree& tr
   std::vector<std::uint8_t> good(input);
   std::vector<std::size_t> kept(chunks + 1, 0);
   std::vector<Bounds> bounds(chunks);
-  // Sizing clears the new memory on one thread per vector (53 MB of triangles for 1.1M): sized
-  // for every input triangle (fewer are kept only from bad input) beside the first pass instead
-  // of after it (keep 0.045 -> 0.025 s of Sponza x4 on 2 cores), then shrunk without reallocating.
-  tbb::parallel_invoke(
-      [&] { tree.triangles.resize(input); }, [&] { tree.source_index.resize(input); },
-      [&] {
-        tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
-          for (std::size_t i = k * kTriangleChunk; i < std::min(input, (k + 1) * kTriangleChunk); ++i) {
-            good[i] = is_good(positions, i);
-            if (!good[i]) continue;
-            ++kept[k + 1];
-            for (int v = 0; v < 3; ++v) bounds[k].extend(positions[3 * i + v]);
-          }
-        });
-      });
+  // Sized for every input triangle (fewer are kept only from bad input), uninitialised: the second
+  // pass writes them on every core, then they are shrunk without reallocating.
+  tree.triangles.resize(input);
+  tree.source_index.resize(input);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
+    for (std::size_t i = k * kTriangleChunk; i < std::min(input, (k + 1) * kTriangleChunk); ++i) {
+      good[i] = is_good(positions, i);
+      if (!good[i]) continue;
+      ++kept[k + 1];
+      for (int v = 0; v < 3; ++v) bounds[k].extend(positions[3 * i + v]);
+    }
+  });
   for (std::size_t k = 0; k < chunks; ++k) {
     kept[k + 1] += kept[k];
     tree.bounds.extend(bounds[k]);

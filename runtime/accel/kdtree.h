@@ -10,6 +10,7 @@
 
 #include "kernels/common/types.h"
 #include "runtime/scene/bounds.h"
+#include "runtime/util/uninitialised_vector.h"
 
 namespace cohort {
 
@@ -59,11 +60,12 @@ struct KdTreeStats {
 // "compact" or "deep": the tree's kind as --tree, --stats and the bench JSON name it.
 inline const char* tree_kind(const KdTreeStats& stats) { return stats.compact ? "compact" : "deep"; }
 
+// The arrays are written in parallel right after sizing (UninitialisedVector: resize does not clear).
 struct KdTree {
-  std::vector<KdNode> nodes;               // breadth-first, children adjacent; node 0 is the root
-  std::vector<std::uint32_t> leaf_triangles;  // leaf lists, entries index `triangles`
-  std::vector<Triangle> triangles;         // kept triangles, in input order
-  std::vector<std::uint32_t> source_index; // input triangle index of each kept triangle
+  UninitialisedVector<KdNode> nodes;        // breadth-first, children adjacent; node 0 is the root
+  UninitialisedVector<std::uint32_t> leaf_triangles;  // leaf lists, entries index `triangles`
+  UninitialisedVector<Triangle> triangles;  // kept triangles, in input order
+  UninitialisedVector<std::uint32_t> source_index;  // input triangle index of each kept triangle
   Bounds bounds;                           // of the kept triangles
   KdTreeStats stats;
 };

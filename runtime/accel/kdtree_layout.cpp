@@ -3,7 +3,6 @@
 // top L levels are a prefix of the array (what a kernel caching the top of the tree needs).
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <array>
@@ -116,9 +115,9 @@ void flatten(const Subtree& subtree, KdTree& tree) {
     leaf_entries += sizes.level_leaf_entries[level];
   }
   check_fits(node_count, KD_MAX_INDEX, "the node count");
-  // Sizing clears the new memory, one thread per vector (hundreds of MB on a large scene): side by side.
-  tbb::parallel_invoke([&] { tree.nodes.assign(node_count, KdNode{}); },
-                       [&] { tree.leaf_triangles.assign(leaf_entries, 0u); });
+  // Uninitialised (lay_out writes every node and list entry once, in parallel over subtrees).
+  tree.nodes.resize(node_count);
+  tree.leaf_triangles.resize(leaf_entries);
   lay_out(subtree, 0, first, tree);
 }
 

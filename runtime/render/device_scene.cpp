@@ -16,11 +16,6 @@ namespace {
 
 co_float4 to_float4(const glm::vec3& v, float w = 0.f) { return co_float4{v.x, v.y, v.z, w}; }
 
-template <class T>
-std::size_t bytes_of(const std::vector<T>& v) {
-  return v.size() * sizeof(T);
-}
-
 // Nodes are breadth-first, so each depth is a contiguous range; walk the tree once to find them.
 std::vector<std::uint32_t> level_starts(const KdTree& tree) {
   std::vector<std::uint32_t> depth(tree.nodes.size(), 0);

@@ -19,6 +19,12 @@
 
 namespace cohort {
 
+// The bytes of an array as uploaded.
+template <class T, class Allocator>
+std::size_t bytes_of(const std::vector<T, Allocator>& v) {
+  return v.size() * sizeof(T);
+}
+
 // What the shading code of a scene needs compiled: the BSDF families its materials can select
 // (bsdf_from_gltf's rules; the Lambertian is always there), texture lookups, and the lights
 // beyond emissive triangles and the constant environment. Every rendering program of a render is

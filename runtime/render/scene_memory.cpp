@@ -5,14 +5,6 @@
 #include <algorithm>
 
 namespace cohort {
-namespace {
-
-template <class T>
-std::size_t bytes_of(const std::vector<T>& v) {
-  return v.size() * sizeof(T);
-}
-
-}  // namespace
 
 SceneMemory scene_memory(const KdTree& tree, const SceneTables& tables, const Bvh4* bvh) {
   SceneMemory m;

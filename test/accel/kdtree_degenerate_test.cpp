@@ -77,7 +77,7 @@ TEST(KdTreeDegenerate, BadTrianglesAreDroppedAndCounted) {
   const KdTree tree = build_kdtree(p);
   EXPECT_EQ(tree.stats.dropped_triangles, 5u);
   ASSERT_EQ(tree.triangles.size(), 2u);
-  EXPECT_EQ(tree.source_index, (std::vector<std::uint32_t>{0, 5}));
+  EXPECT_EQ(tree.source_index, (UninitialisedVector<std::uint32_t>{0, 5}));
   EXPECT_EQ(tree.triangles[1].v0.z, 1.f);
   EXPECT_EQ(tree.triangles[1].v0.w, 0.f);
   EXPECT_EQ(tree.bounds.lo, glm::vec3(0.f));

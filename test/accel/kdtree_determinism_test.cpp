@@ -4,6 +4,7 @@
 #include <tbb/task_arena.h>
 
 #include <cstring>
+#include <span>
 
 #include "accel/test_meshes.h"
 #include "runtime/accel/kdtree.h"
@@ -11,7 +12,7 @@
 namespace cohort::test {
 namespace {
 
-bool same_nodes(const std::vector<KdNode>& a, const std::vector<KdNode>& b) {
+bool same_nodes(std::span<const KdNode> a, std::span<const KdNode> b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(KdNode)) == 0;
 }
 
