@@ -42,6 +42,7 @@ constexpr int kMaxBadRefines = 3;
 struct Scratch {
   RefStack refs;
   PlaneScratch plane;
+  UninitialisedArray<Straddler> straddling;  // the partition's
   // plane.candidates are already the merged candidates of the next node's references: its parent
   // swept them and handed all of them on unchanged (an empty-space cut with nothing clipped, the most
   // common split in a KD-tree), so the child skips gathering and sorting them again.
@@ -194,7 +195,7 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
   const std::size_t right_begin = s.refs.size();
   std::size_t clipped = 0;
   const std::array<std::size_t, 2> counts =
-      partition(s.refs, begin, end, voxel, plane, triangles_, clipped);
+      partition(s.refs, begin, end, voxel, plane, triangles_, s.straddling, clipped);
   // The extents of this node are those of a child that got every reference unchanged.
   const bool hand_on = exact(count) && clipped == 0 && (counts[0] == 0 || counts[1] == 0);
   const std::uint32_t index = add_inner(out, plane, voxel, depth);

@@ -351,9 +351,15 @@ bool split_cannot_pay(const SahContext& context, std::span<const Ref> refs);
 // below its top); straddling references are clipped to each child cell. Both keep the parent's
 // order. Returns the counts per child; `clipped` counts the straddling references (0: every child
 // reference is a parent reference unchanged).
+// `straddling` is working memory.
+struct Straddler {
+  std::uint32_t left, right;  // a straddling reference's slots in each child's output
+};
 std::array<std::size_t, 2> partition(RefStack& refs, std::size_t begin, std::size_t end,
                                      const Bounds& voxel, const SplitPlane& plane,
-                                     std::span<const Triangle> triangles, std::size_t& clipped);
+                                     std::span<const Triangle> triangles,
+                                     UninitialisedArray<Straddler>& straddling,
+                                     std::size_t& clipped);
 
 // The same split for a node whose children are built as parallel tasks: each child's references
 // on a stack of their own, in the parent's order, the work split in chunks across threads.

@@ -4,9 +4,10 @@
 // to the side the SAH chose. Straddling references are clipped to each child cell (perfect splits),
 // and one whose triangle misses a child cell is left out of that child.
 //
-// Both partitions are branch-free for the references on one side (most of them, and which side is
-// as good as random): each is written to both sides and kept by the count of the side it lies on.
-// Only the straddling ones branch.
+// Both partitions place every reference without a branch (which side a reference lies on is as good
+// as random, and whether it straddles nearly so): each is written to both sides and kept by the
+// count of the side it lies on, a straddling one by both. The straddling ones are clipped in a
+// second pass over their slots, with the next one's triangle prefetched.
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -30,47 +31,65 @@ constexpr std::size_t kParallelChunk = 32768;  // references per task of a paral
 
 // An extent reaching both sides of the plane: its triangle is clipped to each child cell.
 bool straddles(float lo, float hi, const SplitPlane& plane) {
-  return lo != hi && lo < plane.pos && hi > plane.pos;
+  return (lo != hi) & (lo < plane.pos) & (hi > plane.pos);
 }
 
 // Whether an extent that does not straddle the plane goes left: a flat one by the plane's planar
 // side, any other by which side of the plane it starts on.
 bool goes_left(float lo, float hi, const SplitPlane& plane) {
-  return lo == hi ? lo < plane.pos || (lo == plane.pos && plane.planar_left) : lo < plane.pos;
+  return lo == hi ? (lo < plane.pos) | ((lo == plane.pos) & plane.planar_left) : lo < plane.pos;
 }
 
-// A straddling reference's triangle clipped to each child cell; a side it misses is empty.
-std::array<Bounds, 2> clip_straddling(const Ref& r, const SplitPlane& plane, const Bounds& voxel,
-                                      std::span<const Triangle> triangles) {
-  const Triangle& t = triangles[r.tri];
-  return split_triangle_bounds(vertex(t.v0), vertex(t.v1), vertex(t.v2), voxel, plane.axis,
-                               plane.pos);
+// Drops the references whose clipped box came out empty (a triangle that only grazes the cell),
+// keeping the order.
+std::size_t drop_empty(Ref* refs, std::size_t count) {
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    refs[kept] = refs[i];
+    kept += !refs[i].box.empty();
+  }
+  return kept;
 }
 
 // Splits refs[first, last) into `left` and `right` (each with room for last - first), in order;
 // returns how many each got. `left` may be refs + first itself: it is never written ahead of the
-// reference being read.
+// reference being read. Two passes: the first places every reference without a branch (which
+// side is as good as random), a straddling one on both sides with its slots noted in
+// `straddling`; the second clips those (a reference whose triangle misses a child cell is then
+// dropped from it).
 std::array<std::size_t, 2> split_refs(const Ref* refs, std::size_t first, std::size_t last,
                                       const Bounds& voxel, const SplitPlane& plane,
                                       std::span<const Triangle> triangles, Ref* left, Ref* right,
-                                      std::size_t& clipped) {
-  std::size_t n_left = 0, n_right = 0;
+                                      Straddler* straddling, std::size_t& clipped) {
+  std::size_t n_left = 0, n_right = 0, n_straddling = 0;
   const int axis = plane.axis;
   for (std::size_t i = first; i < last; ++i) {
-    const Ref r = refs[i];
-    const float lo = r.box.lo[axis], hi = r.box.hi[axis];
-    if (straddles(lo, hi, plane)) {
-      ++clipped;
-      const std::array<Bounds, 2> boxes = clip_straddling(r, plane, voxel, triangles);
-      if (!boxes[0].empty()) left[n_left++] = {boxes[0], r.tri};
-      if (!boxes[1].empty()) right[n_right++] = {boxes[1], r.tri};
-      continue;
-    }
+    const float lo = refs[i].box.lo[axis], hi = refs[i].box.hi[axis];
+    const bool both = straddles(lo, hi, plane);
     const bool go_left = goes_left(lo, hi, plane);
-    left[n_left] = r;
-    right[n_right] = r;
-    n_left += go_left;
-    n_right += !go_left;
+    right[n_right] = refs[i];
+    left[n_left] = refs[i];
+    straddling[n_straddling] = {static_cast<std::uint32_t>(n_left),
+                                static_cast<std::uint32_t>(n_right)};
+    n_left += both | go_left;
+    n_right += both | !go_left;
+    n_straddling += both;
+  }
+  clipped += n_straddling;
+  bool missed = false;
+  for (std::size_t k = 0; k < n_straddling; ++k) {
+    if (k + 4 < n_straddling) __builtin_prefetch(&triangles[left[straddling[k + 4].left].tri]);
+    Ref& to_left = left[straddling[k].left];
+    const Triangle& t = triangles[to_left.tri];
+    const std::array<Bounds, 2> boxes = split_triangle_bounds(
+        vertex(t.v0), vertex(t.v1), vertex(t.v2), voxel, plane.axis, plane.pos);
+    to_left.box = boxes[0];
+    right[straddling[k].right].box = boxes[1];
+    missed |= boxes[0].empty() | boxes[1].empty();
+  }
+  if (missed) {
+    n_left = drop_empty(left, n_left);
+    n_right = drop_empty(right, n_right);
   }
   return {n_left, n_right};
 }
@@ -79,7 +98,9 @@ std::array<std::size_t, 2> split_refs(const Ref* refs, std::size_t first, std::s
 
 std::array<std::size_t, 2> partition(RefStack& refs, std::size_t begin, std::size_t end,
                                      const Bounds& voxel, const SplitPlane& plane,
-                                     std::span<const Triangle> triangles, std::size_t& clipped) {
+                                     std::span<const Triangle> triangles,
+                                     UninitialisedArray<Straddler>& straddling,
+                                     std::size_t& clipped) {
   clipped = 0;
   // Left references overwrite the range in place, right ones go straight onto the top of the
   // stack, past its end (room for all of them first: `refs` may reallocate only then).
@@ -87,7 +108,7 @@ std::array<std::size_t, 2> partition(RefStack& refs, std::size_t begin, std::siz
   refs.push(end - begin);
   const std::array<std::size_t, 2> counts =
       split_refs(refs.data(), begin, end, voxel, plane, triangles, refs.data() + begin,
-                 refs.data() + right_begin, clipped);
+                 refs.data() + right_begin, straddling.room(end - begin), clipped);
   refs.pop_to(right_begin + counts[1]);
   return counts;
 }
@@ -100,6 +121,7 @@ std::array<RefStack, 2> partition_apart(std::span<const Ref> refs, const Bounds&
   const std::size_t chunks = (refs.size() + kParallelChunk - 1) / kParallelChunk;
   struct Part {
     std::array<RefBuffer, 2> room;  // each with room for the whole chunk
+    UninitialisedArray<Straddler> straddling;
     std::array<std::size_t, 2> size{};
     std::array<std::size_t, 2> at{};  // where the chunk's references go in each child
   };
@@ -111,7 +133,7 @@ std::array<RefStack, 2> partition_apart(std::span<const Ref> refs, const Bounds&
     std::size_t clipped = 0;
     part.size = split_refs(refs.data(), first, last, voxel, plane, triangles,
                            part.room[0].room(last - first), part.room[1].room(last - first),
-                           clipped);
+                           part.straddling.room(last - first), clipped);
   });
   std::array<RefStack, 2> children;
   std::array<Ref*, 2> child_refs{};
