@@ -83,22 +83,25 @@ class Builder {
   int max_depth_;
 };
 
-// The intermediate tree uses 32-bit offsets like the device layout; kdtree_layout.cpp checks the
-// tighter 30-bit limits, this only keeps the offsets from wrapping before it gets there.
-std::uint32_t checked_offset(std::size_t value) {
-  if (value > std::numeric_limits<std::uint32_t>::max()) {
+// The intermediate tree's indices (BuildNode) hold fewer bits than a size_t; kdtree_layout.cpp
+// checks the device layout's limits, this only keeps the indices from wrapping before it gets
+// there.
+std::uint32_t checked_index(std::size_t value, std::size_t limit, const char* what) {
+  if (value > limit) {
     throw std::length_error(
-        fmt::format("KD-tree has {} leaf references or nodes; at most 2^32 fit", value));
+        fmt::format("KD-tree has {} {} in one subtree; at most {} fit", value, what, limit));
   }
   return static_cast<std::uint32_t>(value);
 }
 
 std::uint32_t Builder::make_leaf(Subtree& out, const Scratch& s, std::size_t begin,
                                  std::size_t end, const Bounds& voxel, int depth) {
-  const std::uint32_t index = checked_offset(out.nodes.size());
-  checked_offset(out.leaf_triangles.size() + (end - begin));
-  out.nodes.push_back({KD_LEAF, 0.f, static_cast<std::uint32_t>(out.leaf_triangles.size()),
-                       static_cast<std::uint32_t>(end - begin)});
+  const std::uint32_t index = checked_index(out.nodes.size(), BuildNode::kMaxIndex, "nodes");
+  checked_index(out.leaf_triangles.size() + (end - begin), std::numeric_limits<std::uint32_t>::max(),
+                "leaf references");
+  out.nodes.push_back(BuildNode::leaf(
+      checked_index(end - begin, BuildNode::kMaxCount, "references in a leaf"),
+      static_cast<std::uint32_t>(out.leaf_triangles.size())));
   for (std::size_t i = begin; i < end; ++i) out.leaf_triangles.push_back(s.refs[i].tri);
   SubtreeSums& sums = out.sums;
   ++sums.leaves;
@@ -112,8 +115,8 @@ std::uint32_t Builder::make_leaf(Subtree& out, const Scratch& s, std::size_t beg
 
 std::uint32_t Builder::add_inner(Subtree& out, const SplitPlane& plane, const Bounds& voxel,
                                  int depth) {
-  const std::uint32_t index = checked_offset(out.nodes.size());
-  out.nodes.push_back({static_cast<std::uint32_t>(plane.axis), plane.pos, 0, 0});
+  const std::uint32_t index = checked_index(out.nodes.size(), BuildNode::kMaxIndex, "nodes");
+  out.nodes.push_back(BuildNode::inner(plane.axis, plane.pos));
   ++out.sums.inner;
   out.sums.inner_area += cell_area(voxel);
   out.sums.add_node(depth, 0);
@@ -200,14 +203,12 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
   const bool hand_on = exact(count) && clipped == 0 && (counts[0] == 0 || counts[1] == 0);
   const std::uint32_t index = add_inner(out, plane, voxel, depth);
   s.extents_inherited = hand_on && counts[0] > 0;
-  const std::uint32_t left =
-      build(out, s, begin, begin + counts[0], cells[0], depth + 1, bad_refines);
+  build(out, s, begin, begin + counts[0], cells[0], depth + 1, bad_refines);  // at index + 1
   s.extents_inherited = hand_on && counts[1] > 0;
   const std::uint32_t right = build(out, s, right_begin, right_begin + counts[1], cells[1],
                                     depth + 1, bad_refines);
   s.refs.pop_to(right_begin);
-  out.nodes[index].a = left;  // re-indexed: the recursion grew the vector
-  out.nodes[index].b = right;
+  out.nodes[index].set_right(right);  // re-indexed: the recursion grew the vector
   return index;
 }
 
@@ -220,16 +221,17 @@ std::uint32_t Builder::build_one_sided(Subtree& out, Scratch& s, std::size_t beg
   const std::uint32_t index = add_inner(out, plane, voxel, depth);
   const bool all_left = plane.right_count == 0;
   s.extents_inherited = all_left;
-  const std::uint32_t left = all_left
-                                 ? build(out, s, begin, end, cells[0], depth + 1, bad_refines)
-                                 : make_leaf(out, s, begin, begin, cells[0], depth + 1);
+  if (all_left) {  // the left child at index + 1
+    build(out, s, begin, end, cells[0], depth + 1, bad_refines);
+  } else {
+    make_leaf(out, s, begin, begin, cells[0], depth + 1);
+  }
   s.extents_inherited = !all_left;
   const std::uint32_t right = all_left
                                   ? make_leaf(out, s, begin, begin, cells[1], depth + 1)
                                   : build(out, s, begin, end, cells[1], depth + 1, bad_refines);
   s.extents_inherited = false;
-  out.nodes[index].a = left;
-  out.nodes[index].b = right;
+  out.nodes[index].set_right(right);
   return index;
 }
 
@@ -248,8 +250,8 @@ void Builder::build_children_parallel(Subtree& out, std::uint32_t index, Scratch
     counts[c] = children[c].size();
     child[c].refs = std::move(children[c]);
   }
-  const auto first_spawned = checked_offset(out.spawned.size());
-  if (first_spawned + 2 > kSpawnedBit) throw std::length_error("KD-tree has too many subtrees");
+  const auto first_spawned =
+      checked_index(out.spawned.size() + 1, BuildNode::kMaxIndex, "spawned subtrees") - 1;
   out.spawned.resize(out.spawned.size() + 2);
   Subtree* trees = out.spawned.data() + first_spawned;
   auto build_child = [&](int c) {
@@ -257,8 +259,7 @@ void Builder::build_children_parallel(Subtree& out, std::uint32_t index, Scratch
     child[c] = {};
   };
   tbb::parallel_invoke([&] { build_child(0); }, [&] { build_child(1); });
-  out.nodes[index].a = kSpawnedBit | first_spawned;
-  out.nodes[index].b = kSpawnedBit | (first_spawned + 1);
+  out.nodes[index].set_spawned(first_spawned);
 }
 
 // The root: every kept triangle with its own bounds, in input order.

@@ -82,20 +82,23 @@ void lay_out(const Subtree& subtree, int root_depth, Cursor cursor, KdTree& tree
       }
       continue;
     }
-    const BuildNode& node = subtree.nodes[index];
+    const BuildNode node = subtree.nodes[index];
     const std::size_t at = cursor.node[d]++;
-    if (node.axis == KD_LEAF) {
+    if (node.is_leaf()) {
       const std::size_t first = cursor.leaf[d];
-      nodes[at] = leaf_node(node.b, first);
-      const std::uint32_t* from = subtree.leaf_triangles.data() + node.a;
-      for (std::uint32_t k = 0; k < node.b; ++k) lists[first + k] = from[k];  // about 3 entries
-      cursor.leaf[d] += node.b;
+      const std::uint32_t count = node.count();
+      nodes[at] = leaf_node(count, first);
+      const std::uint32_t* from = subtree.leaf_triangles.data() + node.first();
+      for (std::uint32_t k = 0; k < count; ++k) lists[first + k] = from[k];  // about 3 entries
+      cursor.leaf[d] += count;
       continue;
     }
     if (d + 1 >= kLevels) throw std::length_error("KD-tree deeper than the layout's levels");
-    nodes[at] = inner_node(node.axis, node.split, cursor.node[d + 1]);
-    stack[top++] = {node.b, depth + 1};
-    stack[top++] = {node.a, depth + 1};
+    nodes[at] = inner_node(node.axis(), node.split(), cursor.node[d + 1]);
+    const std::uint32_t left = node.spawned() ? kSpawnedBit | node.index() : index + 1;
+    const std::uint32_t right = node.spawned() ? kSpawnedBit | (node.index() + 1) : node.index();
+    stack[top++] = {right, depth + 1};
+    stack[top++] = {left, depth + 1};
   }
   tbb::parallel_for(std::size_t{0}, spawned.size(), [&](std::size_t k) {
     lay_out(*spawned[k].subtree, spawned[k].depth, spawned[k].cursor, tree);

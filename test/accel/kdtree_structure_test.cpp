@@ -2,6 +2,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <limits>
 #include <stdexcept>
 
 #include "accel/test_meshes.h"
@@ -74,11 +76,34 @@ TEST(KdTreeStructure, SplitIsStoredAsFloatBits) {
   EXPECT_EQ(kd_leaf_count(tree.nodes[2]), 1u);
 }
 
-TEST(KdTreeStructure, OversizedLeafIsALengthError) {
-  kd::Subtree subtree;
-  subtree.nodes.push_back({KD_LEAF, 0.f, 0, KD_MAX_INDEX + 1});
-  KdTree tree;
-  EXPECT_THROW(kd::flatten(subtree, tree), std::length_error);
+// The intermediate node packs what the device layout holds: a leaf of up to KD_MAX_INDEX
+// references anywhere in 32-bit leaf lists, any split bits, and right children or spawned slots up
+// to its limit, none of the fields spilling into another.
+TEST(KdTreeStructure, BuildNodeKeepsEveryField) {
+  static_assert(kd::BuildNode::kMaxCount == KD_MAX_INDEX);
+  const kd::BuildNode leaf = kd::BuildNode::leaf(KD_MAX_INDEX, 0xFFFFFFFFu);
+  EXPECT_TRUE(leaf.is_leaf());
+  EXPECT_EQ(leaf.count(), KD_MAX_INDEX);
+  EXPECT_EQ(leaf.first(), 0xFFFFFFFFu);
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const float split : {-0.f, 1.f / 3.f, -std::numeric_limits<float>::max()}) {
+      kd::BuildNode inner = kd::BuildNode::inner(axis, split);
+      EXPECT_FALSE(inner.is_leaf());
+      inner.set_right(kd::BuildNode::kMaxIndex);
+      EXPECT_EQ(inner.axis(), static_cast<std::uint32_t>(axis));
+      EXPECT_FALSE(inner.spawned());
+      EXPECT_EQ(inner.index(), kd::BuildNode::kMaxIndex);
+      EXPECT_EQ(std::bit_cast<std::uint32_t>(inner.split()), std::bit_cast<std::uint32_t>(split));
+      inner.set_spawned(kd::BuildNode::kMaxIndex - 1);
+      EXPECT_EQ(inner.axis(), static_cast<std::uint32_t>(axis));
+      EXPECT_TRUE(inner.spawned());
+      EXPECT_EQ(inner.index(), kd::BuildNode::kMaxIndex - 1);
+      inner.set_right(7);
+      EXPECT_FALSE(inner.spawned());
+      EXPECT_EQ(inner.index(), 7u);
+      EXPECT_FALSE(inner.is_leaf());
+    }
+  }
 }
 
 TEST(KdTreeStructure, StatsAddUp) {
