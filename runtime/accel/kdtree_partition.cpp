@@ -51,24 +51,43 @@ std::size_t drop_empty(Ref* refs, std::size_t count) {
   return kept;
 }
 
-// Splits refs[first, last) into `left` and `right` (each with room for last - first), in order;
-// returns how many each got. `left` may be refs + first itself: it is never written ahead of the
-// reference being read. Two passes: the first places every reference without a branch (which
-// side is as good as random), a straddling one on both sides with its slots noted in
-// `straddling`; the second clips those (a reference whose triangle misses a child cell is then
-// dropped from it).
-std::array<std::size_t, 2> split_refs(const Ref* refs, std::size_t first, std::size_t last,
-                                      const Bounds& voxel, const SplitPlane& plane,
-                                      std::span<const Triangle> triangles, Ref* left, Ref* right,
-                                      Straddler* straddling, std::size_t& clipped) {
-  std::size_t n_left = 0, n_right = 0, n_straddling = 0;
+// How many references of refs[first, last) each child gets before any is clipped: a straddling
+// one counts on both sides.
+std::array<std::size_t, 2> count_sides(const Ref* refs, std::size_t first, std::size_t last,
+                                       const SplitPlane& plane) {
+  std::size_t n_left = 0, n_right = 0;
   const int axis = plane.axis;
   for (std::size_t i = first; i < last; ++i) {
     const float lo = refs[i].box.lo[axis], hi = refs[i].box.hi[axis];
     const bool both = straddles(lo, hi, plane);
     const bool go_left = goes_left(lo, hi, plane);
-    right[n_right] = refs[i];
-    left[n_left] = refs[i];
+    n_left += both | go_left;
+    n_right += both | !go_left;
+  }
+  return {n_left, n_right};
+}
+
+// Splits refs[first, last) into `left` and `right`, in order; returns how many each got. `room`:
+// how many each side may hold, at least its count_sides (a write to a side that is full goes to
+// a spare slot instead, so no output is written past its room). `left` may be refs + first
+// itself: it is never written ahead of the reference being read. Two passes: the first places
+// every reference without a branch (which side is as good as random), a straddling one on both
+// sides with its slots noted in `straddling`; the second clips those (a reference whose triangle
+// misses a child cell is then dropped from it).
+std::array<std::size_t, 2> split_refs(const Ref* refs, std::size_t first, std::size_t last,
+                                      const Bounds& voxel, const SplitPlane& plane,
+                                      std::span<const Triangle> triangles, Ref* left, Ref* right,
+                                      std::array<std::size_t, 2> room, Straddler* straddling,
+                                      std::size_t& clipped) {
+  std::size_t n_left = 0, n_right = 0, n_straddling = 0;
+  const int axis = plane.axis;
+  Ref spare;
+  for (std::size_t i = first; i < last; ++i) {
+    const float lo = refs[i].box.lo[axis], hi = refs[i].box.hi[axis];
+    const bool both = straddles(lo, hi, plane);
+    const bool go_left = goes_left(lo, hi, plane);
+    *(n_right < room[1] ? right + n_right : &spare) = refs[i];
+    *(n_left < room[0] ? left + n_left : &spare) = refs[i];
     straddling[n_straddling] = {static_cast<std::uint32_t>(n_left),
                                 static_cast<std::uint32_t>(n_right)};
     n_left += both | go_left;
@@ -108,32 +127,33 @@ std::array<std::size_t, 2> partition(RefStack& refs, std::size_t begin, std::siz
   refs.push(end - begin);
   const std::array<std::size_t, 2> counts =
       split_refs(refs.data(), begin, end, voxel, plane, triangles, refs.data() + begin,
-                 refs.data() + right_begin, straddling.room(end - begin), clipped);
+                 refs.data() + right_begin, {end - begin, end - begin},
+                 straddling.room(end - begin), clipped);
   refs.pop_to(right_begin + counts[1]);
   return counts;
 }
 
-// Fixed-size chunks split on their own, then copied in chunk order (each chunk to its place, in
-// parallel), so the result is the serial one whatever the thread count.
+// Fixed-size chunks, each split straight into its place in the children: a first pass counts
+// each chunk's references per side before clipping, so their places are known. The result is the
+// serial one whatever the thread count. Where clipping dropped a reference (rare: a triangle that
+// only grazes a child cell), the chunks are closed up afterwards.
 std::array<RefStack, 2> partition_apart(std::span<const Ref> refs, const Bounds& voxel,
                                         const SplitPlane& plane,
                                         std::span<const Triangle> triangles) {
   const std::size_t chunks = (refs.size() + kParallelChunk - 1) / kParallelChunk;
   struct Part {
-    std::array<RefBuffer, 2> room;  // each with room for the whole chunk
-    UninitialisedArray<Straddler> straddling;
-    std::array<std::size_t, 2> size{};
-    std::array<std::size_t, 2> at{};  // where the chunk's references go in each child
+    std::array<std::size_t, 2> room{};  // references per side before clipping
+    std::array<std::size_t, 2> at{};    // where the chunk's references go in each child
+    std::array<std::size_t, 2> size{};  // kept after clipping
   };
   std::vector<Part> parts(chunks);
+  auto chunk = [&](std::size_t k) {
+    return std::array<std::size_t, 2>{k * kParallelChunk,
+                                      std::min(refs.size(), (k + 1) * kParallelChunk)};
+  };
   tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
-    const std::size_t first = k * kParallelChunk;
-    const std::size_t last = std::min(refs.size(), first + kParallelChunk);
-    Part& part = parts[k];
-    std::size_t clipped = 0;
-    part.size = split_refs(refs.data(), first, last, voxel, plane, triangles,
-                           part.room[0].room(last - first), part.room[1].room(last - first),
-                           part.straddling.room(last - first), clipped);
+    const auto [first, last] = chunk(k);
+    parts[k].room = count_sides(refs.data(), first, last, plane);
   });
   std::array<RefStack, 2> children;
   std::array<Ref*, 2> child_refs{};
@@ -141,16 +161,27 @@ std::array<RefStack, 2> partition_apart(std::span<const Ref> refs, const Bounds&
     std::size_t total = 0;
     for (Part& part : parts) {
       part.at[c] = total;
-      total += part.size[c];
+      total += part.room[c];
     }
     child_refs[c] = children[c].push(total);
   }
   tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
-    const Part& part = parts[k];
-    for (int c = 0; c < 2; ++c) {
-      std::copy_n(part.room[c].data(), part.size[c], child_refs[c] + part.at[c]);
-    }
+    const auto [first, last] = chunk(k);
+    Part& part = parts[k];
+    UninitialisedArray<Straddler> straddling;
+    std::size_t clipped = 0;
+    part.size = split_refs(refs.data(), first, last, voxel, plane, triangles,
+                           child_refs[0] + part.at[0], child_refs[1] + part.at[1], part.room,
+                           straddling.room(last - first), clipped);
   });
+  for (int c = 0; c < 2; ++c) {
+    std::size_t kept = 0;
+    for (const Part& part : parts) {
+      if (kept != part.at[c]) std::copy_n(child_refs[c] + part.at[c], part.size[c], child_refs[c] + kept);
+      kept += part.size[c];
+    }
+    children[c].pop_to(kept);
+  }
   return children;
 }
 
