@@ -111,7 +111,7 @@ ReferenceChunks make_references(std::span<const Triangle> triangles) {
       cell.hi = {box.hi[0], box.hi[1], box.hi[2]};
       const float mid = 0.5f * (box.lo[axis] + box.hi[axis]);
       const auto halves = kd::split_triangle_bounds({t.v0.x, t.v0.y, t.v0.z}, {t.v1.x, t.v1.y, t.v1.z},
-                                                    {t.v2.x, t.v2.y, t.v2.z}, cell, axis, mid);
+                                                    {t.v2.x, t.v2.y, t.v2.z}, cell, cell, axis, mid);
       for (const Bounds& h : halves) {
         if (h.empty()) continue;
         self(self, t, index, Box{{h.lo.x, h.lo.y, h.lo.z}, {h.hi.x, h.hi.y, h.hi.z}}, depth + 1);

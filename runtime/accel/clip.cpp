@@ -77,13 +77,33 @@ float round_up(double x) {
   return static_cast<double>(f) < x ? next_up(f) : f;
 }
 
-// The triangle clipped to `box`, in one of `poly` (the other is working memory; neither is
-// cleared or copied: the clipping runs for every straddling reference of the KD build). A plane
-// that no vertex lies beyond leaves the polygon as it is: only the planes that cut the triangle
-// (usually one or two of the six) are worth a pass.
-const Polygon& clip_to_box(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
-                           const Bounds& box, std::array<Polygon, 2>& poly) {
+// The faces of `box` whose planes can cut the triangle's part in it: where a vertex lies beyond
+// the face and `extent` (containing that part) reaches the face. The triangle clipped by the other
+// five planes is convex; had it points beyond a face as well as the part inside, it would have
+// points on the face too, and so would the part. So a face the extent stays clear of cuts
+// nothing, and its pass is skipped (18-22 % of the passes of the Sponza x4 and bunny x16 builds).
+struct CutFaces {
+  glm::bvec3 lo, hi;
+};
+
+CutFaces cut_faces(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const Bounds& box,
+                   const Bounds& extent) {
   const glm::vec3 tri_lo = glm::min(a, glm::min(b, c)), tri_hi = glm::max(a, glm::max(b, c));
+  CutFaces cut;
+  for (int k = 0; k < 3; ++k) {
+    cut.lo[k] = tri_lo[k] < box.lo[k] && extent.lo[k] <= box.lo[k];
+    cut.hi[k] = tri_hi[k] > box.hi[k] && extent.hi[k] >= box.hi[k];
+  }
+  return cut;
+}
+
+// The triangle clipped to `box`, in one of `poly` (the other is working memory; neither is
+// cleared or copied: the clipping runs for every straddling reference of the KD build). Only the
+// planes of cut_faces get a pass (usually one or two of the six): another plane leaves the
+// polygon as it is.
+const Polygon& clip_to_box(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
+                           const Bounds& box, const Bounds& extent, std::array<Polygon, 2>& poly) {
+  const CutFaces cut = cut_faces(a, b, c, box, extent);
   poly[0].v[0] = glm::dvec3(a);
   poly[0].v[1] = glm::dvec3(b);
   poly[0].v[2] = glm::dvec3(c);
@@ -94,8 +114,8 @@ const Polygon& clip_to_box(const glm::vec3& a, const glm::vec3& b, const glm::ve
     cur = 1 - cur;
   };
   for (int axis = 0; axis < 3 && poly[cur].n > 0; ++axis) {
-    if (tri_lo[axis] < box.lo[axis]) clip(axis, box.lo[axis], 1.0);
-    if (poly[cur].n > 0 && tri_hi[axis] > box.hi[axis]) clip(axis, box.hi[axis], -1.0);
+    if (cut.lo[axis]) clip(axis, box.lo[axis], 1.0);
+    if (poly[cur].n > 0 && cut.hi[axis]) clip(axis, box.hi[axis], -1.0);
   }
   return poly[cur];
 }
@@ -163,31 +183,33 @@ std::array<PointBounds, 2> split_bounds(const Polygon& in, int axis, double plan
 Bounds clip_triangle_bounds(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
                             const Bounds& box) {
   std::array<Polygon, 2> poly;
-  return bounds_within(clip_to_box(a, b, c, box, poly), box);
+  return bounds_within(clip_to_box(a, b, c, box, box, poly), box);
 }
 
 #if COHORT_X86_DISPATCH
 namespace avx2 {
 std::array<Bounds, 2> split_triangle_bounds(const glm::vec3& a, const glm::vec3& b,
-                                            const glm::vec3& c, const Bounds& cell, int axis,
-                                            float pos);
+                                            const glm::vec3& c, const Bounds& cell,
+                                            const Bounds& extent, int axis, float pos);
 }  // namespace avx2
 #endif
 
 std::array<Bounds, 2> split_triangle_bounds(const glm::vec3& a, const glm::vec3& b,
-                                            const glm::vec3& c, const Bounds& cell, int axis,
-                                            float pos) {
+                                            const glm::vec3& c, const Bounds& cell,
+                                            const Bounds& extent, int axis, float pos) {
 #if COHORT_X86_DISPATCH
-  if (__builtin_cpu_supports("avx2")) return avx2::split_triangle_bounds(a, b, c, cell, axis, pos);
+  if (__builtin_cpu_supports("avx2")) {
+    return avx2::split_triangle_bounds(a, b, c, cell, extent, axis, pos);
+  }
 #endif
-  return split_triangle_bounds_portable(a, b, c, cell, axis, pos);
+  return split_triangle_bounds_portable(a, b, c, cell, extent, axis, pos);
 }
 
 std::array<Bounds, 2> split_triangle_bounds_portable(const glm::vec3& a, const glm::vec3& b,
                                                      const glm::vec3& c, const Bounds& cell,
-                                                     int axis, float pos) {
+                                                     const Bounds& extent, int axis, float pos) {
   std::array<Polygon, 2> poly;
-  const Polygon& inside = clip_to_box(a, b, c, cell, poly);
+  const Polygon& inside = clip_to_box(a, b, c, cell, extent, poly);
   std::array<Bounds, 2> children{cell, cell};
   children[0].hi[axis] = pos;
   children[1].lo[axis] = pos;
@@ -252,29 +274,28 @@ void clip_plane(const Polygon& in, double plane, Polygon& out) {
 }
 
 template <int axis>
-void clip_axis(const glm::vec3& tri_lo, const glm::vec3& tri_hi, const Bounds& box,
-               std::array<Polygon, 2>& poly, int& cur) {
-  if (poly[cur].n > 0 && tri_lo[axis] < box.lo[axis]) {
+void clip_axis(const CutFaces& cut, const Bounds& box, std::array<Polygon, 2>& poly, int& cur) {
+  if (poly[cur].n > 0 && cut.lo[axis]) {
     clip_plane<axis, false>(poly[cur], box.lo[axis], poly[1 - cur]);
     cur = 1 - cur;
   }
-  if (poly[cur].n > 0 && tri_hi[axis] > box.hi[axis]) {
+  if (poly[cur].n > 0 && cut.hi[axis]) {
     clip_plane<axis, true>(poly[cur], box.hi[axis], poly[1 - cur]);
     cur = 1 - cur;
   }
 }
 
 const Polygon& clip_to_box(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
-                           const Bounds& box, std::array<Polygon, 2>& poly) {
-  const glm::vec3 tri_lo = glm::min(a, glm::min(b, c)), tri_hi = glm::max(a, glm::max(b, c));
+                           const Bounds& box, const Bounds& extent, std::array<Polygon, 2>& poly) {
+  const CutFaces cut = cut_faces(a, b, c, box, extent);
   poly[0].v[0] = point(a);
   poly[0].v[1] = point(b);
   poly[0].v[2] = point(c);
   poly[0].n = 3;
   int cur = 0;
-  clip_axis<0>(tri_lo, tri_hi, box, poly, cur);
-  clip_axis<1>(tri_lo, tri_hi, box, poly, cur);
-  clip_axis<2>(tri_lo, tri_hi, box, poly, cur);
+  clip_axis<0>(cut, box, poly, cur);
+  clip_axis<1>(cut, box, poly, cur);
+  clip_axis<2>(cut, box, poly, cur);
   return poly[cur];
 }
 
@@ -356,10 +377,10 @@ std::array<Bounds, 2> split(const Polygon& inside, const Bounds& cell, float pos
 }  // namespace
 
 std::array<Bounds, 2> split_triangle_bounds(const glm::vec3& a, const glm::vec3& b,
-                                            const glm::vec3& c, const Bounds& cell, int axis,
-                                            float pos) {
+                                            const glm::vec3& c, const Bounds& cell,
+                                            const Bounds& extent, int axis, float pos) {
   std::array<Polygon, 2> poly;
-  const Polygon& inside = clip_to_box(a, b, c, cell, poly);
+  const Polygon& inside = clip_to_box(a, b, c, cell, extent, poly);
   if (inside.n == 0) return {Bounds{}, Bounds{}};
   switch (axis) {
     case 0: return split<0>(inside, cell, pos);

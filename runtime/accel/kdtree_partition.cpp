@@ -101,7 +101,7 @@ std::array<std::size_t, 2> split_refs(const Ref* refs, std::size_t first, std::s
     Ref& to_left = left[straddling[k].left];
     const Triangle& t = triangles[to_left.tri];
     const std::array<Bounds, 2> boxes = split_triangle_bounds(
-        vertex(t.v0), vertex(t.v1), vertex(t.v2), voxel, plane.axis, plane.pos);
+        vertex(t.v0), vertex(t.v1), vertex(t.v2), voxel, to_left.box, plane.axis, plane.pos);
     to_left.box = boxes[0];
     right[straddling[k].right].box = boxes[1];
     missed |= boxes[0].empty() | boxes[1].empty();

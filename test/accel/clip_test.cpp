@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <random>
@@ -77,34 +79,45 @@ TEST(Clip, ResultIsConservativeAndInsideTheBox) {
 
 TEST(Clip, SplitGivesTheBoundsOfEachHalf) {
   // split_triangle_bounds clips to the cell once and then to each side of the plane; the boxes
-  // must be those of clipping to each half on its own (to rounding), and empty on the same sides.
+  // must be those of clipping to each half on its own (to rounding), and empty on the same sides:
+  // with the cell as the extent (every face the triangle crosses clipped), and with the triangle's
+  // own bounds in the cell, as a KD reference's box gives them (the faces those stay clear of
+  // skipped).
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(-1.f, 2.f);
   const Bounds cell = box(glm::vec3(0.f), glm::vec3(1.f));
-  int straddling = 0;
+  int straddling = 0, tighter = 0;
   for (int trial = 0; trial < 2000; ++trial) {
     const glm::vec3 a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng)), c(u(rng), u(rng), u(rng));
     const int axis = trial % 3;
     const float pos = 0.1f + 0.8f * static_cast<float>(trial % 7) / 6.f;
-    const std::array<Bounds, 2> split = split_triangle_bounds(a, b, c, cell, axis, pos);
+    const Bounds part = clip_triangle_bounds(a, b, c, cell);
     std::array<Bounds, 2> halves{cell, cell};
     halves[0].hi[axis] = pos;
     halves[1].lo[axis] = pos;
-    for (int side = 0; side < 2; ++side) {
-      SCOPED_TRACE(testing::Message() << "trial " << trial << " side " << side);
-      const Bounds alone = clip_triangle_bounds(a, b, c, halves[side]);
-      ASSERT_EQ(split[side].empty(), alone.empty());
-      if (alone.empty()) continue;
-      for (int k = 0; k < 3; ++k) {
-        EXPECT_NEAR(split[side].lo[k], alone.lo[k], 1e-6f);
-        EXPECT_NEAR(split[side].hi[k], alone.hi[k], 1e-6f);
-        EXPECT_GE(split[side].lo[k], halves[side].lo[k]);
-        EXPECT_LE(split[side].hi[k], halves[side].hi[k]);
+    for (const Bounds& extent : {cell, part.empty() ? cell : part}) {
+      const std::array<Bounds, 2> split = split_triangle_bounds(a, b, c, cell, extent, axis, pos);
+      for (int side = 0; side < 2; ++side) {
+        SCOPED_TRACE(testing::Message() << "trial " << trial << " side " << side);
+        const Bounds alone = clip_triangle_bounds(a, b, c, halves[side]);
+        ASSERT_EQ(split[side].empty(), alone.empty());
+        if (alone.empty()) continue;
+        for (int k = 0; k < 3; ++k) {
+          EXPECT_NEAR(split[side].lo[k], alone.lo[k], 1e-6f);
+          EXPECT_NEAR(split[side].hi[k], alone.hi[k], 1e-6f);
+          EXPECT_GE(split[side].lo[k], halves[side].lo[k]);
+          EXPECT_LE(split[side].hi[k], halves[side].hi[k]);
+        }
       }
+      straddling += !split[0].empty() && !split[1].empty();
     }
-    straddling += !split[0].empty() && !split[1].empty();
+    for (int k = 0; k < 3 && !part.empty(); ++k) {
+      tighter += (part.lo[k] > cell.lo[k] && std::min({a[k], b[k], c[k]}) < cell.lo[k]) +
+                 (part.hi[k] < cell.hi[k] && std::max({a[k], b[k], c[k]}) > cell.hi[k]);
+    }
   }
-  EXPECT_GT(straddling, 200) << "the trials must exercise triangles cut by the plane";
+  EXPECT_GT(straddling, 400) << "the trials must exercise triangles cut by the plane";
+  EXPECT_GT(tighter, 200) << "the trials must exercise faces the triangle crosses outside the cell";
 }
 
 TEST(Clip, VectorSplitMatchesPortableBitForBit) {
@@ -150,9 +163,18 @@ TEST(Clip, VectorSplitMatchesPortableBitForBit) {
     float pos = coordinate(kind);
     if (!(pos > lo && pos < hi)) pos = lo + (hi - lo) * 0.5f;
     if (!(pos > lo && pos < hi)) continue;
-    const std::array<Bounds, 2> fast = split_triangle_bounds(v[0], v[1], v[2], cell, axis, pos);
+    // The extent reaches each face or stops one step short of it (that face is then skipped).
+    Bounds extent = cell;
+    for (int k = 0; k < 3; ++k) {
+      const float inside_lo = std::nextafter(cell.lo[k], cell.hi[k]);
+      const float inside_hi = std::nextafter(cell.hi[k], cell.lo[k]);
+      if (rng() % 3 == 0 && inside_lo <= inside_hi) extent.lo[k] = inside_lo;
+      if (rng() % 3 == 0 && extent.lo[k] <= inside_hi) extent.hi[k] = inside_hi;
+    }
+    const std::array<Bounds, 2> fast =
+        split_triangle_bounds(v[0], v[1], v[2], cell, extent, axis, pos);
     const std::array<Bounds, 2> portable =
-        split_triangle_bounds_portable(v[0], v[1], v[2], cell, axis, pos);
+        split_triangle_bounds_portable(v[0], v[1], v[2], cell, extent, axis, pos);
     for (int side = 0; side < 2; ++side) {
       for (int k = 0; k < 3; ++k) {
         ASSERT_EQ(std::bit_cast<std::uint32_t>(fast[side].lo[k]),

@@ -69,7 +69,7 @@ std::array<std::vector<Ref>, 2> reference_split(const Case& c, const kd::SplitPl
     if (lo != hi && lo < plane.pos && hi > plane.pos) {
       const Triangle& t = c.triangles[r.tri];
       const std::array<Bounds, 2> boxes = kd::split_triangle_bounds(
-          kd::vertex(t.v0), kd::vertex(t.v1), kd::vertex(t.v2), c.cell, a, plane.pos);
+          kd::vertex(t.v0), kd::vertex(t.v1), kd::vertex(t.v2), c.cell, r.box, a, plane.pos);
       for (int side = 0; side < 2; ++side) {
         if (!boxes[side].empty()) out[side].push_back({boxes[side], r.tri});
       }
