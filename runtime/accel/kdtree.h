@@ -37,8 +37,11 @@ struct KdBuildOptions {
   int plain_sah_triangles = 6;
   // Nodes with more triangle references than this choose among `bins - 1` evenly spaced planes per
   // axis (linear time); smaller ones by the exact sweep over every triangle boundary (a sort).
-  // INT_MAX: exact everywhere, the tree of Wald & Havran's O(N log N) build (slower).
-  int exact_triangles = 64;
+  // INT_MAX: exact everywhere, the tree of Wald & Havran's O(N log N) build (slower). 128 rather
+  // than 64: the exact nodes of 65-128 references build Sponza x4 and the bunny x16 0.95x as long
+  // (an empty cut hands its candidates to the child without a search), SAH within 0.6 % either way
+  // on 13 models (docs/results.md, nineteenth session).
+  int exact_triangles = 128;
   int bins = 512;
   bool parallel = true;            // build subtrees with TBB
 };
