@@ -40,8 +40,8 @@ bool goes_left(float lo, float hi, const SplitPlane& plane) {
   return lo == hi ? (lo < plane.pos) | ((lo == plane.pos) & plane.planar_left) : lo < plane.pos;
 }
 
-// Drops the references whose clipped box came out empty (a triangle that only grazes the cell),
-// keeping the order.
+// Drops the references whose clipped box came out empty (a triangle that only grazes the cell;
+// no other reference has an empty box), keeping the order.
 std::size_t drop_empty(Ref* refs, std::size_t count) {
   std::size_t kept = 0;
   for (std::size_t i = 0; i < count; ++i) {
