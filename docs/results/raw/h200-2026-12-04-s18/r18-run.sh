@@ -5,9 +5,11 @@
 # alternated within each round so that ratios compare builds run at the same machine speed:
 # Crytek Sponza subdivided twice (4.47M) on all 16 cores, Sponza x4 (subdivided once, 1.1M) and the
 # bunny x16 (bun_zipper.ply subdivided twice, 1.11M) on 2 cores (taskset -c 0,1).
-# Usage: [ROUNDS=N] docs/results/raw/h200-2026-12-04-s18/r18-run.sh OUT_DIR
+# Usage: [ROUNDS=N] [BASELINE=cohort-COMMIT] docs/results/raw/h200-2026-12-04-s18/r18-run.sh OUT_DIR
+# (the nineteenth session ran it with BASELINE=cohort-c820c8c, the eighteenth session's HEAD)
 set -uo pipefail
 R="${1:?usage: r18-run.sh OUT_DIR}"
+BASE="${BASELINE:-cohort-4fb8979}"
 mkdir -p "$R" /tmp/r18
 [[ -f gpu-bundle/lib/libembree3.so.3 ]] || xz -dk gpu-bundle/lib/libembree3.so.3.xz
 export LD_LIBRARY_PATH="$PWD/gpu-bundle/lib"
@@ -20,7 +22,7 @@ $B/cohort export "$G/bunny/bun_zipper.ply" -o /tmp/r18/bunny16.ply --subdivide 2
 for round in $(seq "${ROUNDS:-3}"); do
   for spec in "0-15 sponza4m" "0,1 sponza1m" "0,1 bunny16"; do
     set -- $spec
-    for run in "cohort compact" "cohort-4fb8979 compact" "cohort deep" "cohort-4fb8979 deep" "embree high"; do
+    for run in "cohort compact" "$BASE compact" "cohort deep" "$BASE deep" "embree high"; do
       read -r bin tree <<<"$run"
       if [[ $bin == embree ]]; then
         [[ $1 == 0,1 ]] || continue
