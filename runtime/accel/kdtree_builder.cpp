@@ -12,6 +12,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -71,7 +72,10 @@ class Builder {
                                std::array<RefStack, 2> children,
                                const std::array<Bounds, 2>& cells, int depth,
                                int bad_refines) const;
+  // The split of build() that puts every reference on one side (all_left or not); hand_on: the
+  // search was exact, so its candidates are the child's too.
   std::uint32_t build_one_sided(Subtree& out, Scratch& s, std::size_t begin, std::size_t end,
+                                bool all_left, bool hand_on, const std::array<Bounds, 2>& cells,
                                 const SplitPlane& plane, const Bounds& voxel, int depth,
                                 int bad_refines) const;
   static std::uint32_t make_leaf(Subtree& out, const Scratch& s, std::size_t begin,
@@ -181,14 +185,33 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
   bad_refines = no_progress ? bad_refines + 1 : 0;
   if (bad_refines >= kMaxBadRefines) return make_leaf(out, s, begin, end, voxel, depth);
 
-  // An exact plane with nothing on one side (an empty-space cut, most of the nodes of the deep
-  // tree): the exact counts say every reference goes to the other side unchanged (none straddles,
-  // so none is clipped), so the child reuses this node's references and sorted extents in place
-  // instead of partitioning them.
-  if (exact(count) && !parallel && (plane.left_count == 0 || plane.right_count == 0)) {
-    return build_one_sided(out, s, begin, end, plane, voxel, depth, bad_refines);
-  }
+  // A plane with nothing on one side (an empty-space cut, most of the nodes of the deep tree, and
+  // a third of the binned nodes' references in the compact one): every reference goes to the other
+  // side unchanged (none straddles, so none is clipped), so that child takes this node's
+  // references in place instead of a partition copying them, and after an exact search its
+  // sorted extents too. An exact search's counts are the partition's; a binned search's are
+  // checked against the partition's rules first (side_counts).
   const std::array<Bounds, 2> cells = child_cells(voxel, plane.axis, plane.pos);
+  if (plane.left_count == 0 || plane.right_count == 0) {
+    const bool exact_counts = exact(count);
+    const std::array<std::size_t, 2> sides =
+        exact_counts ? std::array<std::size_t, 2>{plane.left_count, plane.right_count}
+                     : side_counts(s.refs.span(begin, count), plane);
+    if (sides[0] == 0 || sides[1] == 0) {
+      const bool all_left = sides[1] == 0;
+      if (!parallel) {
+        return build_one_sided(out, s, begin, end, all_left, exact_counts, cells, plane, voxel,
+                               depth, bad_refines);
+      }
+      // A node this large has the stack to itself (build_children_parallel).
+      assert(begin == 0 && end == s.refs.size());
+      std::array<RefStack, 2> children;
+      children[all_left ? 0 : 1] = std::move(s.refs);
+      const std::uint32_t index = add_inner(out, plane, voxel, depth);
+      build_children_parallel(out, index, s, std::move(children), cells, depth, bad_refines);
+      return index;
+    }
+  }
   if (parallel) {
     std::array<RefStack, 2> children =
         partition_apart(s.refs.span(begin, count), voxel, plane, triangles_);
@@ -216,18 +239,18 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
 // The split of build() whose exact counts put every reference on one side: the same nodes, in the
 // same order, as partitioning them would give.
 std::uint32_t Builder::build_one_sided(Subtree& out, Scratch& s, std::size_t begin,
-                                       std::size_t end, const SplitPlane& plane,
-                                       const Bounds& voxel, int depth, int bad_refines) const {
-  const std::array<Bounds, 2> cells = child_cells(voxel, plane.axis, plane.pos);
+                                       std::size_t end, bool all_left, bool hand_on,
+                                       const std::array<Bounds, 2>& cells,
+                                       const SplitPlane& plane, const Bounds& voxel, int depth,
+                                       int bad_refines) const {
   const std::uint32_t index = add_inner(out, plane, voxel, depth);
-  const bool all_left = plane.right_count == 0;
-  s.extents_inherited = all_left;
+  s.extents_inherited = hand_on && all_left;
   if (all_left) {  // the left child at index + 1
     build(out, s, begin, end, cells[0], depth + 1, bad_refines);
   } else {
     make_leaf(out, s, begin, begin, cells[0], depth + 1);
   }
-  s.extents_inherited = !all_left;
+  s.extents_inherited = hand_on && !all_left;
   const std::uint32_t right = all_left
                                   ? make_leaf(out, s, begin, begin, cells[1], depth + 1)
                                   : build(out, s, begin, end, cells[1], depth + 1, bad_refines);

@@ -115,6 +115,10 @@ std::array<std::size_t, 2> split_refs(const Ref* refs, std::size_t first, std::s
 
 }  // namespace
 
+std::array<std::size_t, 2> side_counts(std::span<const Ref> refs, const SplitPlane& plane) {
+  return count_sides(refs.data(), 0, refs.size(), plane);
+}
+
 std::array<std::size_t, 2> partition(RefStack& refs, std::size_t begin, std::size_t end,
                                      const Bounds& voxel, const SplitPlane& plane,
                                      std::span<const Triangle> triangles,
