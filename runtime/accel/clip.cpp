@@ -86,13 +86,13 @@ struct CutFaces {
   glm::bvec3 lo, hi;
 };
 
-CutFaces cut_faces(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const Bounds& box,
-                   const Bounds& extent) {
+inline CutFaces cut_faces(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
+                          const Bounds& box, const Bounds& extent) {
   const glm::vec3 tri_lo = glm::min(a, glm::min(b, c)), tri_hi = glm::max(a, glm::max(b, c));
   CutFaces cut;
-  for (int k = 0; k < 3; ++k) {
-    cut.lo[k] = tri_lo[k] < box.lo[k] && extent.lo[k] <= box.lo[k];
-    cut.hi[k] = tri_hi[k] > box.hi[k] && extent.hi[k] >= box.hi[k];
+  for (int k = 0; k < 3; ++k) {  // bitwise: no branch per face
+    cut.lo[k] = (tri_lo[k] < box.lo[k]) & (extent.lo[k] <= box.lo[k]);
+    cut.hi[k] = (tri_hi[k] > box.hi[k]) & (extent.hi[k] >= box.hi[k]);
   }
   return cut;
 }
