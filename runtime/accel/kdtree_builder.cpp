@@ -236,8 +236,8 @@ std::uint32_t Builder::build(Subtree& out, Scratch& s, std::size_t begin, std::s
   return index;
 }
 
-// The split of build() whose exact counts put every reference on one side: the same nodes, in the
-// same order, as partitioning them would give.
+// The split of build() that puts every reference on one side: the same nodes, in the same order,
+// as partitioning them would give.
 std::uint32_t Builder::build_one_sided(Subtree& out, Scratch& s, std::size_t begin,
                                        std::size_t end, bool all_left, bool hand_on,
                                        const std::array<Bounds, 2>& cells,

@@ -347,16 +347,15 @@ PlainCostBounds plain_cost_bounds(const SahContext& context, std::span<const Ref
 bool split_cannot_pay(const SahContext& context, std::span<const Ref> refs);
 
 // ---- Partition ---------------------------------------------------------------------------------
-// Splits the references refs[begin, end) along `plane` (kdtree_partition.cpp): the left child's
-// are written over the front of the range, the right child's pushed onto `refs` (the range lies
-// below its top); straddling references are clipped to each child cell. Both keep the parent's
-// order. Returns the counts per child; `clipped` counts the straddling references (0: every child
-// reference is a parent reference unchanged).
 // How many of `refs` each child of `plane` gets before clipping (a straddling one on both sides),
 // by the rules of the partitions below.
 std::array<std::size_t, 2> side_counts(std::span<const Ref> refs, const SplitPlane& plane);
 
-// `straddling` is working memory.
+// Splits the references refs[begin, end) along `plane` (kdtree_partition.cpp): the left child's
+// are written over the front of the range, the right child's pushed onto `refs` (the range lies
+// below its top); straddling references are clipped to each child cell. Both keep the parent's
+// order. Returns the counts per child; `clipped` counts the straddling references (0: every child
+// reference is a parent reference unchanged). `straddling` is working memory.
 struct Straddler {
   std::uint32_t left, right;  // a straddling reference's slots in each child's output
 };

@@ -7,7 +7,7 @@
 // Both partitions place every reference without a branch (which side a reference lies on is as good
 // as random, and whether it straddles nearly so): each is written to both sides and kept by the
 // count of the side it lies on, a straddling one by both. The straddling ones are clipped in a
-// second pass over their slots, with the next one's triangle prefetched.
+// second pass over their slots, the triangle four ahead prefetched.
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -51,24 +51,8 @@ std::size_t drop_empty(Ref* refs, std::size_t count) {
   return kept;
 }
 
-// How many references of refs[first, last) each child gets before any is clipped: a straddling
-// one counts on both sides.
-std::array<std::size_t, 2> count_sides(const Ref* refs, std::size_t first, std::size_t last,
-                                       const SplitPlane& plane) {
-  std::size_t n_left = 0, n_right = 0;
-  const int axis = plane.axis;
-  for (std::size_t i = first; i < last; ++i) {
-    const float lo = refs[i].box.lo[axis], hi = refs[i].box.hi[axis];
-    const bool both = straddles(lo, hi, plane);
-    const bool go_left = goes_left(lo, hi, plane);
-    n_left += both | go_left;
-    n_right += both | !go_left;
-  }
-  return {n_left, n_right};
-}
-
 // Splits refs[first, last) into `left` and `right`, in order; returns how many each got. `room`:
-// how many each side may hold, at least its count_sides (a write to a side that is full goes to
+// how many each side may hold, at least its side_counts (a write to a side that is full goes to
 // a spare slot instead, so no output is written past its room). `left` may be refs + first
 // itself: it is never written ahead of the reference being read. Two passes: the first places
 // every reference without a branch (which side is as good as random), a straddling one on both
@@ -116,7 +100,16 @@ std::array<std::size_t, 2> split_refs(const Ref* refs, std::size_t first, std::s
 }  // namespace
 
 std::array<std::size_t, 2> side_counts(std::span<const Ref> refs, const SplitPlane& plane) {
-  return count_sides(refs.data(), 0, refs.size(), plane);
+  std::size_t n_left = 0, n_right = 0;
+  const int axis = plane.axis;
+  for (const Ref& r : refs) {
+    const float lo = r.box.lo[axis], hi = r.box.hi[axis];
+    const bool both = straddles(lo, hi, plane);
+    const bool go_left = goes_left(lo, hi, plane);
+    n_left += both | go_left;
+    n_right += both | !go_left;
+  }
+  return {n_left, n_right};
 }
 
 std::array<std::size_t, 2> partition(RefStack& refs, std::size_t begin, std::size_t end,
@@ -157,7 +150,7 @@ std::array<RefStack, 2> partition_apart(std::span<const Ref> refs, const Bounds&
   };
   tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t k) {
     const auto [first, last] = chunk(k);
-    parts[k].room = count_sides(refs.data(), first, last, plane);
+    parts[k].room = side_counts(refs.subspan(first, last - first), plane);
   });
   std::array<RefStack, 2> children;
   std::array<Ref*, 2> child_refs{};
