@@ -183,13 +183,19 @@ CO_INLINE uint32_t co_f4_less(co_float4 a, co_float4 b) {
 }
 #endif
 
-/* A hint to start loading the cache line at p. OpenCL C's prefetch() is a no-op on PoCL, so CPU
- * devices get Clang's builtin where the host asks for it with -DCOHORT_PREFETCH (CPU devices:
- * runtime/cl/kernel_program.cpp) and the compiler is Clang (PoCL's and Intel's are); GPUs hide the
- * latency with other warps, and another compiler gets nothing it might reject. */
+/* A hint to start loading the cache line at p, where the host asks for it with -DCOHORT_PREFETCH
+ * (devices whose local memory is the cached global memory: runtime/cl/kernel_program.cpp); GPUs hide
+ * the latency with other warps. The form is chosen from what the compiler says it is, at program
+ * build: Clang compiling straight to the machine (PoCL) takes Clang's builtin, which PoCL lowers to
+ * a real prefetch where its OpenCL C prefetch() is a no-op; a compiler that goes through SPIR or
+ * SPIR-V (Mesa's rusticl, whose SPIR-V writer stops the process at llvm.prefetch; Intel's runtime)
+ * gets OpenCL C 1.2's own prefetch(), which every conforming compiler accepts. */
 #if defined(__OPENCL_VERSION__)
-#if defined(COHORT_PREFETCH) && defined(__clang__)
+#if defined(COHORT_PREFETCH) && defined(__clang__) && !defined(__SPIR__) && !defined(__SPIRV__) && \
+    !defined(__SPIR32__) && !defined(__SPIR64__)
 #define co_prefetch(p) __builtin_prefetch(p)
+#elif defined(COHORT_PREFETCH)
+#define co_prefetch(p) prefetch((p), 1)
 #else
 #define co_prefetch(p) ((void)(p))
 #endif

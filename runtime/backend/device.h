@@ -7,6 +7,7 @@
 // the program cache (the rest of runtime/backend), and never link each other.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -69,7 +70,28 @@ class KernelObject {
   virtual ~KernelObject() = default;
   // The most work items one work-group of this kernel may have on its device.
   virtual std::size_t max_group() const = 0;
+  // The group-size multiple the device runs best (OpenCL: the kernel's preferred work-group size
+  // multiple; CUDA: the warp).
+  virtual std::size_t group_multiple() const = 0;
 };
+
+// The work items a launch that leaves the size to the kernel aims at: two warps of 32 (NVIDIA), one
+// wavefront of 64 (AMD), eight AVX2 vectors (PoCL). Measured no slower than other sizes on PoCL and
+// the H200 (docs/vendors.md).
+inline constexpr std::size_t kDefaultGroup = 64;
+
+// The work-group size of a launch: `wanted` items (0: kDefaultGroup, or the preferred multiple when
+// that is larger, rounded down to the multiple) within the most the kernel allows on its device, and
+// never below 1. Kernels with a group-wide step work at every size (docs/vendors.md), so a device
+// that allows fewer items (a small GPU, PoCL under POCL_MAX_WORK_GROUP_SIZE) only gets smaller groups.
+inline std::size_t launch_group(std::size_t max_group, std::size_t multiple, std::size_t wanted) {
+  max_group = std::max<std::size_t>(max_group, 1);
+  multiple = std::max<std::size_t>(multiple, 1);
+  if (wanted != 0) return std::min(wanted, max_group);
+  std::size_t group = std::min(std::max(kDefaultGroup, multiple), max_group);
+  if (group >= multiple) group -= group % multiple;
+  return group;
+}
 
 // A kernel and the arguments of its next launch, set by index in the order of the kernel's OpenCL
 // parameter list.
@@ -98,6 +120,10 @@ class DeviceKernel {
   KernelObject* object() const { return object_.get(); }
   const std::string& name() const { return name_; }
   std::size_t max_group() const { return object_->max_group(); }
+  // The size of a launch of this kernel that wants `wanted` items per group (launch_group).
+  std::size_t launch_group(std::size_t wanted = 0) const {
+    return cohort::launch_group(object_->max_group(), object_->group_multiple(), wanted);
+  }
 
  private:
   KernelArg& slot(std::size_t index) {
@@ -181,9 +207,14 @@ class Device {
   // The options every program of this device is compiled with, besides `defines` (for the record).
   virtual std::string compile_options() const { return {}; }
 
-  // Runs `kernel` over `items` work items in work-groups of `group` (items rounded up to a
-  // multiple of it), in order after every earlier command. Nothing runs for 0 items.
-  virtual DeviceEvent launch(const DeviceKernel& kernel, std::size_t items, std::size_t group) const = 0;
+  // Runs `kernel` over `items` work items in work-groups of kernel.launch_group(group) items (0: the
+  // kernel's own size; items rounded up to a multiple of it), in order after every earlier command.
+  // Nothing runs for 0 items. A kernel whose work-group size is fixed at compile time (the radix
+  // sort's) is launched with exactly that size, which its builder checks against the kernel's limit.
+  DeviceEvent launch(const DeviceKernel& kernel, std::size_t items, std::size_t group = 0) const {
+    if (items == 0) return {};
+    return enqueue(kernel, items, kernel.launch_group(group));
+  }
 
   // Commands run in the order they were issued. A non-blocking write reads `data` later: it must
   // outlive the command.
@@ -196,6 +227,8 @@ class Device {
   virtual void finish() const = 0;
 
  protected:
+  // launch with the group size settled.
+  virtual DeviceEvent enqueue(const DeviceKernel& kernel, std::size_t items, std::size_t group) const = 0;
   // build_program's first call for a name and defines: compile, or load the cache's binary.
   virtual DeviceProgram compile_program(const ProgramCache& cache, const std::string& name,
                                         const std::string& defines) const = 0;

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 
+#include <fmt/format.h>
+
 #include "runtime/backend/device_choice.h"
+#include "runtime/backend/device_support.h"
 #include "runtime/cl/context.h"
 #include "runtime/util/error.h"
 #ifdef COHORT_WITH_CUDA
@@ -43,6 +46,8 @@ std::unique_ptr<Device> open_device(Backend backend, const std::string& spec, st
 #endif
   }
   DeviceInfo device = select_device(installed_devices(), spec);
+  if (const DeviceSupport support = device_support(device); !support.runs)
+    throw InputError(fmt::format("--device {}: Cohort cannot run on {}", spec.empty() ? "(default)" : spec, support.refusal));
   if (memory_limit) {
     device.global_memory = std::min(device.global_memory, memory_limit);
     device.max_allocation = std::min(device.max_allocation, memory_limit);

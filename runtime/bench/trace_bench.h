@@ -27,7 +27,7 @@ class TraceBench {
   TraceBench(const Device& device, const ProgramCache& cache, const KdTree& tree, const Bvh4* bvh = nullptr);
 
   // Traces `rays` `reps` times (reps >= 1); hits come from the last repetition.
-  TraceFigures trace(std::span<const RayIn> rays, unsigned reps, std::size_t group_size = 64) const;
+  TraceFigures trace(std::span<const RayIn> rays, unsigned reps, std::size_t group_size = 0) const;
 
   double compile_seconds() const { return compile_seconds_; }
 

@@ -23,6 +23,10 @@ struct ClKernelObject : KernelObject {
   std::size_t max_group() const override {
     return translate_cl_errors([&] { return kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device); });
   }
+  std::size_t group_multiple() const override {
+    return translate_cl_errors(
+        [&] { return kernel.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(device); });
+  }
 };
 
 struct ClProgramObject : ProgramObject {
@@ -79,8 +83,7 @@ DeviceProgram ClContext::compile_program(const ProgramCache& cache, const std::s
 
 std::string ClContext::compile_options() const { return base_build_options(device); }
 
-DeviceEvent ClContext::launch(const DeviceKernel& kernel, std::size_t items, std::size_t group) const {
-  if (items == 0) return {};
+DeviceEvent ClContext::enqueue(const DeviceKernel& kernel, std::size_t items, std::size_t group) const {
   auto* object = static_cast<ClKernelObject*>(kernel.object());
   cl::Kernel& k = object->kernel;
   const auto& args = kernel.args();

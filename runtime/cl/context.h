@@ -36,7 +36,7 @@ struct ClContext : Device {
   DeviceProgram compile_program(const ProgramCache& cache, const std::string& name,
                                 const std::string& defines) const override;
   std::string compile_options() const override;
-  DeviceEvent launch(const DeviceKernel& kernel, std::size_t items, std::size_t group) const override;
+  DeviceEvent enqueue(const DeviceKernel& kernel, std::size_t items, std::size_t group) const override;
   void write(const DeviceBuffer& to, std::size_t offset, std::size_t bytes, const void* data,
              bool blocking = true) const override;
   void read(const DeviceBuffer& from, std::size_t offset, std::size_t bytes, void* data) const override;

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "runtime/backend/device_support.h"
 #include "runtime/backend/embedded_sources.h"
 #include "runtime/cl/cl_error.h"
 #include "runtime/cl/devices.h"
@@ -28,9 +29,9 @@ std::string build_log(const cl::Program& program, const cl::Device& device) {
 std::string base_build_options(const DeviceInfo& device) {
   std::string options = "-cl-std=CL1.2";
   if (device.correctly_rounded_divide_sqrt) options += " -cl-fp32-correctly-rounded-divide-sqrt";
-  // software prefetch in the BVH walk (port.h, co_prefetch): CPUs whose OpenCL compiler is Clang's
-  // (PoCL, Intel's runtime); not Oclgrind, which checks the kernels and does not time them
-  if (device.is_cpu && !is_oclgrind(device)) options += " -DCOHORT_PREFETCH";
+  // software prefetch in the BVH walk where device_support says so (port.h's co_prefetch picks its
+  // form from the compiler)
+  if (device_support(device).prefetch) options += " -DCOHORT_PREFETCH";
   return options;
 }
 

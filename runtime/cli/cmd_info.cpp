@@ -1,5 +1,6 @@
 #include <fmt/format.h>
 
+#include "runtime/backend/device_support.h"
 #include "runtime/backend/open_device.h"
 #include "runtime/cli/commands.h"
 #include "runtime/render/prepared_scene.h"
@@ -39,6 +40,19 @@ int run_info(const std::filesystem::path& path, const std::string& tree) {
   return 0;
 }
 
+namespace {
+// What Cohort does on the device (runtime/backend/device_support.h).
+void print_support(const DeviceSupport& s) {
+  if (!s.runs) {
+    fmt::print("    Cohort: cannot run here: {}\n", s.refusal);
+    return;
+  }
+  fmt::print("    Cohort: runs; work-groups of up to {} items (each kernel's own limit applies), PTH subtree {} levels "
+             "in {} KiB of local memory, BVH prefetch {}\n",
+             s.work_group, s.pth_levels, s.local_budget / 1024, s.prefetch ? "on" : "off");
+}
+}  // namespace
+
 int run_devices() {
   std::vector<DeviceInfo> devices;
   try {
@@ -54,8 +68,10 @@ int run_devices() {
                d.global_memory >> 20, d.max_allocation >> 20);
     fmt::print("    {}, driver {}\n", d.version, d.driver_version);
     // what the kernels adapt to: sub-group votes (speculative traversal) and IEEE division
-    fmt::print("    sub-groups (cl_khr_subgroups): {}, correctly rounded divide/sqrt: {}\n", d.subgroups ? "yes" : "no",
-               d.correctly_rounded_divide_sqrt ? "yes" : "no");
+    fmt::print("    {}, max work-group {}, sub-groups (cl_khr_subgroups): {}, correctly rounded divide/sqrt: {}, images: {}\n",
+               d.opencl_c_version, d.max_work_group, d.subgroups ? "yes" : "no",
+               d.correctly_rounded_divide_sqrt ? "yes" : "no", d.image_support ? "yes" : "no");
+    print_support(device_support(d));
   }
   if (cuda_backend_built()) {
     try {

@@ -109,6 +109,7 @@ struct CudaKernel : KernelObject {
                      "cuFuncGetAttribute");
     return static_cast<std::size_t>(v);
   }
+  std::size_t group_multiple() const override { return 32; }  // the warp
 };
 
 struct CudaProgram : ProgramObject {
@@ -196,8 +197,7 @@ class CudaDevice final : public Device {
     return joined;
   }
 
-  DeviceEvent launch(const DeviceKernel& kernel, std::size_t items, std::size_t group) const override {
-    if (items == 0) return {};
+  DeviceEvent enqueue(const DeviceKernel& kernel, std::size_t items, std::size_t group) const override {
     const auto& args = kernel.args();
     // CUDA takes a pointer to each argument's value; local arrays become dynamic shared memory
     std::vector<CUdeviceptr> pointers(args.size());

@@ -55,12 +55,11 @@ AovImages render_aovs(const Device& device, const ProgramCache& cache, const Dev
   // launches of at most ~16M camera rays, short enough for a GPU's watchdog; the sums go on in
   // sample order from one launch to the next, so the split changes no bit
   const std::uint32_t per_launch = std::max<std::uint32_t>(1, (1u << 24) / std::max<std::uint32_t>(pixels, 1));
-  const std::size_t group = std::min<std::size_t>(64, kernel.max_group());
   for (std::uint32_t done = 0; done < samples;) {
     params.sample_offset = done;
     params.samples_per_pass = std::min(per_launch, samples - done);
     device.write(args.params, 0, sizeof(params), &params);
-    device.launch(kernel, pixels, group);
+    device.launch(kernel, pixels);
     done += params.samples_per_pass;
   }
   std::vector<co_float4> albedo_sums(pixels), normal_sums(pixels);

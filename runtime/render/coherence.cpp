@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "runtime/backend/device_support.h"
 #include "runtime/util/error.h"
 
 namespace cohort {
@@ -134,8 +135,8 @@ SubtreeChoice choose_subtree(const DeviceInfo& device, const DeviceScene& scene,
   const auto& starts = scene.level_starts;  // starts[d] = first node of depth d; back() = node count
   const std::uint32_t tree_levels = static_cast<std::uint32_t>(starts.size() - 1);
   c.levels = std::min<std::uint32_t>(requested ? requested : 10, tree_levels);
-  if (!device.local_memory_is_global && requested == 0) {
-    const std::size_t budget = device.local_memory / 2;  // room for 2 work-groups per compute unit
+  if (requested == 0) {
+    const std::size_t budget = device_support(device).local_budget;
     while (c.levels > 0 && starts[c.levels] * sizeof(KdNode) > budget) --c.levels;
   }
   c.nodes = starts[c.levels];

@@ -53,8 +53,8 @@ struct SubtreeChoice {
 };
 
 // requested = 0: the paper's 10 levels, fewer when the tree is shallower or when the subtree would
-// not leave room for 2 work-groups per compute unit in local memory (devices whose local memory is
-// a scratchpad; PoCL's is ordinary memory, so there only the option limits it).
+// not fit the device's local budget (device_support: half a scratchpad, room for 2 work-groups per
+// compute unit; all of a CPU runtime's cached local memory, 32 KiB on rusticl's llvmpipe).
 SubtreeChoice choose_subtree(const DeviceInfo& device, const DeviceScene& scene, std::uint32_t requested);
 
 }  // namespace cohort

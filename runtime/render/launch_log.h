@@ -13,10 +13,10 @@ namespace cohort {
 
 class LaunchLog {
  public:
-  // Enqueues `kernel` over `count` work items (rounded up to the work-group size). Nothing is
-  // launched for count 0.
+  // Enqueues `kernel` over `count` work items (rounded up to the work-group size; `group` as
+  // Device::launch: 0 is the kernel's own size). Nothing is launched for count 0.
   void launch(const Device& device, const DeviceKernel& kernel, const char* name, std::size_t count,
-              std::size_t group = 64) {
+              std::size_t group = 0) {
     if (count == 0) return;
     pending_.emplace_back(name, device.launch(kernel, count, group));
   }

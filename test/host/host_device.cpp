@@ -19,6 +19,7 @@ struct HostBuffer : BufferObject {
 struct HostKernel : KernelObject {
   HostKernelFunction run;
   std::size_t max_group() const override { return 1; }
+  std::size_t group_multiple() const override { return 1; }
 };
 
 struct HostProgramObject : ProgramObject {
@@ -84,7 +85,7 @@ DeviceProgram HostDevice::compile_program(const ProgramCache&, const std::string
   return p;
 }
 
-DeviceEvent HostDevice::launch(const DeviceKernel& kernel, std::size_t items, std::size_t group) const {
+DeviceEvent HostDevice::enqueue(const DeviceKernel& kernel, std::size_t items, std::size_t group) const {
   // every work-group of `group` items becomes `group` work-groups of one item: the global ids stay
   const std::size_t total = (items + group - 1) / group * group;
   const auto& run = static_cast<const HostKernel*>(kernel.object())->run;

@@ -39,13 +39,15 @@ class HostDevice final : public Device {
                         Access access = Access::read_write) const override;
   DeviceProgram compile_program(const ProgramCache& cache, const std::string& name,
                                 const std::string& defines) const override;
-  DeviceEvent launch(const DeviceKernel& kernel, std::size_t items, std::size_t group) const override;
   void write(const DeviceBuffer& to, std::size_t offset, std::size_t bytes, const void* data,
              bool blocking = true) const override;
   void read(const DeviceBuffer& from, std::size_t offset, std::size_t bytes, void* data) const override;
   DeviceEvent copy(const DeviceBuffer& from, const DeviceBuffer& to, std::size_t bytes) const override;
   void fill(const DeviceBuffer& to, std::uint32_t value, std::size_t count) const override;
   void finish() const override {}
+
+ protected:
+  DeviceEvent enqueue(const DeviceKernel& kernel, std::size_t items, std::size_t group) const override;
 
  private:
   DeviceInfo info_;

@@ -132,7 +132,7 @@ void SortedTraversal::resume(WavefrontPass& p) {
   args.use_queue = p.use_queue();
   args.bind(resume_);
   // the speculative kernel votes per work-group: make it one SIMD group
-  p.log.launch(p.device, resume_, "resume", count, speculative_ ? SIMD_GROUP : 64);
+  p.log.launch(p.device, resume_, "resume", count, speculative_ ? SIMD_GROUP : 0);
   measure_traversal(p, &values_, count);
 }
 

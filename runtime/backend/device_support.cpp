@@ -1,0 +1,41 @@
+#include "runtime/backend/device_support.h"
+
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "common/types.h"
+#include "runtime/backend/device.h"
+
+namespace cohort {
+
+int parse_opencl_c_version(const std::string& text) {
+  const std::string prefix = "OpenCL C ";
+  const auto at = text.find(prefix);
+  if (at == std::string::npos) return 0;
+  int major = 0, minor = 0;
+  if (std::sscanf(text.c_str() + at + prefix.size(), "%d.%d", &major, &minor) != 2) return 0;
+  return major * 100 + minor;
+}
+
+DeviceSupport device_support(const DeviceInfo& device) {
+  DeviceSupport s;
+  s.work_group = launch_group(device.max_work_group, 1, 0);
+  // a scratchpad shared by the groups of a compute unit: leave room for two of them; PoCL's and
+  // other CPU runtimes' local memory is cached global memory, all of it usable
+  s.local_budget = device.local_memory_is_global ? device.local_memory : device.local_memory / 2;
+  while (s.pth_levels < 10 && ((std::size_t(2) << s.pth_levels) - 1) * sizeof(KdNode) <= s.local_budget) ++s.pth_levels;
+  // prefetch pays where the caches are all there is (local memory is global memory: PoCL, Intel's
+  // CPU runtime, rusticl's llvmpipe); GPUs hide the latency with other warps; Oclgrind checks the
+  // kernels and does not time them
+  s.prefetch = device.local_memory_is_global && device.platform_name != "Oclgrind";
+  const int c = parse_opencl_c_version(device.opencl_c_version);  // 0 for CUDA devices
+  if (c != 0 && c < kRequiredOpenClC) {
+    s.runs = false;
+    s.refusal = fmt::format("{} compiles OpenCL C {}.{}; Cohort's kernels need OpenCL C 1.2", device.name, c / 100,
+                            c % 100);
+  }
+  return s;
+}
+
+}  // namespace cohort

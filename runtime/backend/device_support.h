@@ -1,0 +1,32 @@
+// What Cohort can do on a device, from the limits it reports: whether it runs there at all, the
+// work-group sizes its launches take, how many PTH levels fit in its local memory, and whether the
+// BVH walk prefetches. `cohort devices` prints it; opening a device that cannot run refuses it with
+// the reason (exit 2) instead of a driver error at the first launch.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "runtime/backend/device_info.h"
+
+namespace cohort {
+
+struct DeviceSupport {
+  bool runs = true;
+  std::string refusal;              // why not, naming the device and the limit; empty when it runs
+  std::size_t work_group = 1;       // the most work items a launch of the default size takes there
+  std::size_t local_budget = 0;     // bytes of local memory the PTH subtree may take
+  std::uint32_t pth_levels = 0;     // full levels of a tree's top that fit in local_budget
+  bool prefetch = false;            // the BVH walk prefetches (kernels/common/port.h, co_prefetch)
+};
+
+// The OpenCL C version the kernels are written in; older devices are refused.
+inline constexpr int kRequiredOpenClC = 102;  // 1.2
+
+// "OpenCL C 1.2 ..." as 102; 0 when the text says no version.
+int parse_opencl_c_version(const std::string& text);
+
+DeviceSupport device_support(const DeviceInfo& device);
+
+}  // namespace cohort
