@@ -270,6 +270,72 @@ def single_triangle(out_dir):
     g.write(out_dir / "single-triangle.gltf")
 
 
+def voxel_heights(size=12, seed=3):
+    """Column heights 1-5 of a size x size terrain, from a 32-bit LCG (deterministic)."""
+    state, heights = seed, []
+    for _ in range(size * size):
+        state = (state * 1664525 + 1013904223) % 2**32
+        heights.append(1 + (state >> 16) % 5)
+    return [heights[z * size:(z + 1) * size] for z in range(size)]
+
+
+def voxel_terrain(out_dir, size=12):
+    """Unit blocks stacked on a size x size grid: only the faces open to the air, two triangles each,
+    every one in an integer plane, so the KD-tree's split planes hold flat triangles and paths bounce
+    off concave corners with origins on those planes (the case the split-plane tests cover)."""
+    h = voxel_heights(size)
+    top, side = [], []
+
+    def quad(a, b, c, d, into):
+        into.append((a, b, c))
+        into.append((a, c, d))
+
+    def height(x, z):
+        return h[z][x] if 0 <= x < size and 0 <= z < size else 0
+
+    for z in range(size):
+        for x in range(size):
+            y = float(h[z][x])
+            quad((x, y, z + 1.0), (x + 1.0, y, z + 1.0), (x + 1.0, y, float(z)), (float(x), y, float(z)), top)
+            # side faces above the lower neighbour, one unit block at a time
+            for dx, dz in ((1, 0), (-1, 0), (0, 1), (0, -1)):
+                for level in range(height(x + dx, z + dz), h[z][x]):
+                    y0, y1 = float(level), float(level + 1)
+                    if dx == 1:
+                        quad((x + 1.0, y0, z + 1.0), (x + 1.0, y0, float(z)), (x + 1.0, y1, float(z)), (x + 1.0, y1, z + 1.0), side)
+                    elif dx == -1:
+                        quad((float(x), y0, float(z)), (float(x), y0, z + 1.0), (float(x), y1, z + 1.0), (float(x), y1, float(z)), side)
+                    elif dz == 1:
+                        quad((float(x), y0, z + 1.0), (x + 1.0, y0, z + 1.0), (x + 1.0, y1, z + 1.0), (float(x), y1, z + 1.0), side)
+                    else:
+                        quad((x + 1.0, y0, float(z)), (float(x), y0, float(z)), (float(x), y1, float(z)), (x + 1.0, y1, float(z)), side)
+    g = Gltf("Voxel terrain: %dx%d unit columns 1-5 high (LCG heights), open faces only, lit by a square "
+             "emitter above; every triangle lies in an integer plane." % (size, size))
+    grass = g.material("grass", (0.35, 0.6, 0.25))
+    dirt = g.material("dirt", (0.55, 0.4, 0.3))
+    light = g.material("light", (0.0, 0.0, 0.0), (1.0, 1.0, 1.0), 20.0)
+    g.mesh("tops", top, grass)
+    g.mesh("sides", side, dirt)
+    c = size / 2.0
+    quad_light = []
+    quad((c - 2.0, 12.0, c - 2.0), (c + 2.0, 12.0, c - 2.0), (c + 2.0, 12.0, c + 2.0), (c - 2.0, 12.0, c + 2.0), quad_light)
+    g.mesh("light", quad_light, light)
+    # from the -z, +x corner, looking at the centre and down: a quarter turn about Y, then a tilt
+    yaw, pitch = math.radians(-35.0), math.radians(-35.0)
+    qy = (0.0, math.sin(yaw / 2), 0.0, math.cos(yaw / 2))
+    qx = (math.sin(pitch / 2), 0.0, 0.0, math.cos(pitch / 2))
+    q = (qy[3] * qx[0] + qy[0] * qx[3] + qy[1] * qx[2] - qy[2] * qx[1],
+         qy[3] * qx[1] - qy[0] * qx[2] + qy[1] * qx[3] + qy[2] * qx[0],
+         qy[3] * qx[2] + qy[0] * qx[1] - qy[1] * qx[0] + qy[2] * qx[3],
+         qy[3] * qx[3] - qy[0] * qx[0] - qy[1] * qx[1] - qy[2] * qx[2])
+    dist = 19.0
+    fwd = (-math.sin(yaw) * math.cos(pitch), math.sin(pitch), -math.cos(yaw) * math.cos(pitch))
+    eye = (c - dist * fwd[0], 2.0 - dist * fwd[1], c - dist * fwd[2])
+    g.camera("camera", 45.0, translation=eye, rotation=q)
+    g.write(out_dir / "voxel-terrain.gltf")
+    return len(top) + len(side) + 2
+
+
 QUAD_LIGHT_OBJ = """\
 # Floor quad facing up and a smaller emissive quad one unit above it facing down.
 # Written by scripts/make-scenes.py.
@@ -320,6 +386,7 @@ def main():
     furnace_sphere(args.out)
     single_triangle(args.out)
     quad_light(args.out)
+    voxel_terrain(args.out)
 
 
 if __name__ == "__main__":

@@ -66,7 +66,12 @@ CO_INLINE int intersect_box(co_vec3 org, co_vec3 inv_dir, co_vec3 lo, co_vec3 hi
   float tx0 = (lo.x - org.x) * inv_dir.x, tx1 = (hi.x - org.x) * inv_dir.x;
   float ty0 = (lo.y - org.y) * inv_dir.y, ty1 = (hi.y - org.y) * inv_dir.y;
   float tz0 = (lo.z - org.z) * inv_dir.z, tz1 = (hi.z - org.z) * inv_dir.z;
-  /* fmin/fmax drop the NaN of 0 * inf (origin on a slab plane with a zero direction component) */
+  /* An origin on a face of the box with a zero direction component across it (0 * inf, NaN) runs
+   * in that face: the whole slab, as for an origin inside it, so the box stays closed. fmin/fmax
+   * would drop the NaN and keep the other bound's infinity, which for the upper face is -inf. */
+  if (tx0 != tx0 || tx1 != tx1) { tx0 = -INFINITY; tx1 = INFINITY; }
+  if (ty0 != ty0 || ty1 != ty1) { ty0 = -INFINITY; ty1 = INFINITY; }
+  if (tz0 != tz0 || tz1 != tz1) { tz0 = -INFINITY; tz1 = INFINITY; }
   float tnear = fmax(fmax(fmin(tx0, tx1), fmin(ty0, ty1)), fmax(fmin(tz0, tz1), *t0));
   float tfar = fmin(fmin(fmax(tx0, tx1), fmax(ty0, ty1)), fmin(fmax(tz0, tz1), *t1));
   /* widen by a few ulps so rays grazing the box face are not lost to rounding */

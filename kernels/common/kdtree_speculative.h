@@ -47,10 +47,14 @@ CO_INLINE uint32_t kd_spec_vote_bits(const KdSpeculativeRay* r) {
 /* One step of the walk: visit an inner node, or postpone the leaf found. */
 CO_INLINE void kd_spec_walk_step(const KdTreeView* tree, KdSpeculativeRay* r, KdStackEntry* stack) {
   if (r->done || !r->walking || r->waiting) return;
-  if (kd_beyond_hit(r->hit.t, r->t0)) {  /* kd_resume stops here; a pending leaf, in front, is still tested */
-    r->walking = 0;
-    r->sp = 0;
-    if (!r->has_leaf) r->done = 1;
+  if (kd_beyond_hit(r->hit.t, r->t0)) {  /* kd_resume skips the cell; a pending leaf, in front, is still tested */
+    if (r->sp == 0) {
+      r->walking = 0;
+      if (!r->has_leaf) r->done = 1;
+    } else {
+      r->sp -= 1;
+      r->node = stack[r->sp].node; r->t0 = stack[r->sp].tmin; r->t1 = stack[r->sp].tmax;
+    }
     return;
   }
   KdNode node = tree->nodes[r->node];
@@ -75,15 +79,13 @@ CO_INLINE void kd_spec_walk_step(const KdTreeView* tree, KdSpeculativeRay* r, Kd
   }
 }
 
-/* The group's leaf phase: test the postponed leaf, with kd_resume's termination check. */
+/* The group's leaf phase: test the postponed leaf unless kd_resume would skip it (it starts
+ * beyond the closest hit); the walk goes on either way, as kd_resume's does. */
 CO_INLINE void kd_spec_leaf_phase(const KdTreeView* tree, KdSpeculativeRay* r) {
   if (r->done) return;
   if (r->has_leaf) {
-    if (kd_beyond_hit(r->hit.t, r->leaf_t0)) {
-      r->done = 1;
-      return;
-    }
-    kd_intersect_leaf(tree, tree->nodes[r->leaf], &r->wr, r->tmin, &r->hit, 0);
+    if (!kd_beyond_hit(r->hit.t, r->leaf_t0))
+      kd_intersect_leaf(tree, tree->nodes[r->leaf], &r->wr, r->tmin, &r->hit, 0);
     r->has_leaf = 0;
     r->waiting = 0;
   }

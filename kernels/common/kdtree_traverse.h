@@ -89,13 +89,20 @@ CO_INLINE uint32_t kd_inner_step(KdNode node, co_vec3 org, co_vec3 dir, co_vec3 
   float split = co_as_float(node.word1);
   float o = v3_get(org, axis), d = v3_get(dir, axis);
   float t_plane = (split - o) * v3_get(inv_dir, axis);
-  int below_first = (o < split) || (o == split && d <= 0.0f);
+  /* An origin in the plane touches both children at t = 0, and the plane may hold flat triangles
+   * stored on either side: the side the ray does not go into is the near one there (t_plane is
+   * +-0, so it is visited over [t0, eps] when the cell starts at the origin, and the side the ray
+   * goes into is pushed with the whole interval). Any other origin: the side it lies on. */
+  int in_plane = o == split;
+  int below_first = (o < split) || (in_plane && d > 0.0f);
   uint32_t near_child = kd_left_child(node) + (below_first ? 0u : 1u);
   uint32_t far_child = kd_left_child(node) + (below_first ? 1u : 0u);
   /* The plane distance and the watertight hit distance round differently, so a hit on the
    * split plane can fall just outside the cell the plane bounds. Widening the decision and
    * both intervals by a few ulps keeps such hits (on shared edges and vertices that lie in
-   * split planes) inside a visited cell. !(t_plane > 0) catches the NaN of a ray in the plane.
+   * split planes) inside a visited cell. !(t_plane >= 0) takes the near side alone when the plane
+   * lies behind the origin (t_plane < 0); a ray lying in the plane (t_plane NaN) visits both
+   * sides over its whole interval, for the flat triangles and the edges that lie in the plane.
    * The widening is relative to the plane distance, capped at twice the cell's exit: past that
    * cap the plane lies beyond the cell and every comparison below decides as without it, but a
    * ray parallel to the plane (direction component 0 or -0, t_plane infinite) would otherwise get
@@ -103,7 +110,12 @@ CO_INLINE uint32_t kd_inner_step(KdNode node, co_vec3 org, co_vec3 dir, co_vec3 
    * walk a large part of the tree (the straggler rays of docs/design.md). */
   float eps = 4e-6f * fmax(fmin(fabs(t_plane), 2.0f * fabs(*t1)), fabs(*t1));
   uint32_t next, pushed = 0u;
-  if (t_plane > *t1 + eps || !(t_plane > 0.0f)) {
+  if (in_plane && d == 0.0f) {
+    stack[*sp].node = far_child; stack[*sp].tmin = *t0; stack[*sp].tmax = *t1;
+    *sp += 1;
+    next = near_child;
+    pushed = 1u;
+  } else if (t_plane > *t1 + eps || !(t_plane >= 0.0f)) {
     next = near_child;
   } else if (t_plane < *t0 - eps) {
     next = far_child;
@@ -138,7 +150,15 @@ CO_INLINE HitOut kd_resume(const KdTreeView* tree, co_vec3 org, co_vec3 dir, flo
   WatertightRay wr = watertight_ray(org, dir);
   uint32_t visited = 0u;
   for (;;) {
-    if (kd_beyond_hit(hit.t, t0)) break;  /* the closest hit lies before this cell */
+    /* A cell that starts beyond the closest hit is skipped. The cells stacked under it usually
+     * start later still (front to back), but a ray lying in a split plane stacks a side with its
+     * whole interval (kd_inner_step), so the walk goes on through the stack rather than stop. */
+    if (kd_beyond_hit(hit.t, t0)) {
+      if (sp == 0) break;
+      --sp;
+      node_index = stack[sp].node; t0 = stack[sp].tmin; t1 = stack[sp].tmax;
+      continue;
+    }
     KdNode node = tree->nodes[node_index];
     ++visited;
     if (!kd_is_leaf(node)) {

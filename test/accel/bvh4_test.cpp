@@ -101,7 +101,7 @@ KdTree kept_triangles(const std::vector<glm::vec3>& positions) {
   return build_kdtree(positions, one_leaf);
 }
 
-// Feature rays (at shared vertices and edge midpoints) and random ones: closest hit through the BVH
+// Feature rays (at shared vertices and edge midpoints), rays from split planes and random ones: closest hit through the BVH
 // against the deep KD-tree's, bit for bit, and against brute force on every 16th ray; any hit before
 // half the closest distance and before 1.5 times it.
 void expect_kd_hits(const std::vector<glm::vec3>& positions, const char* name) {
@@ -117,6 +117,8 @@ void expect_kd_hits(const std::vector<glm::vec3>& positions, const char* name) {
   std::vector<TestRay> rays = make_feature_rays(kd, 20'000, 41);
   const std::vector<TestRay> random = make_rays(kd.bounds, 10'000, 42);
   rays.insert(rays.end(), random.begin(), random.end());
+  const std::vector<TestRay> in_planes = make_split_plane_rays(kd, 10'000, 43);
+  rays.insert(rays.end(), in_planes.begin(), in_planes.end());
   std::size_t hits = 0, differ = 0, brute_differ = 0, occlusion_differ = 0;
   std::uint64_t kd_steps = 0, bvh_steps = 0;
   for (std::size_t i = 0; i < rays.size(); ++i) {
@@ -152,6 +154,7 @@ void expect_kd_hits(const std::vector<glm::vec3>& positions, const char* name) {
 TEST(Bvh4, GivesTheKdTreesHitsBitForBit) {
   expect_kd_hits(coplanar_grid(100, 100), "20k coplanar");
   expect_kd_hits(random_soup(4000, 7), "soup");
+  expect_kd_hits(load_shipped("voxel-terrain.gltf"), "voxel terrain");
   for (const char* model : {"bunny/bun_zipper_res2.ply", "cornell-box-mcguire/CornellBox-Original.obj"})
     if (const auto positions = load_shared(model)) expect_kd_hits(*positions, model);
 }

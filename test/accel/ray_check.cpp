@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <tuple>
 
 namespace cohort::test {
 namespace {
@@ -145,6 +146,62 @@ std::vector<TestRay> make_feature_rays(const KdTree& tree, std::size_t count, st
     if (glm::length(target - org) > 1e-3f * tree.bounds.diagonal()) {
       rays.push_back({org, glm::normalize(target - org)});
     }
+  }
+  return rays;
+}
+
+std::vector<TestRay> make_split_plane_rays(const KdTree& tree, std::size_t count, std::uint32_t seed) {
+  struct Plane {
+    std::uint32_t axis;
+    float split;
+    std::vector<std::uint32_t> flat;  // triangles lying in it
+    auto operator<=>(const Plane& o) const { return std::tie(axis, split) <=> std::tie(o.axis, o.split); }
+    bool operator==(const Plane& o) const { return axis == o.axis && split == o.split; }
+  };
+  std::vector<Plane> planes;
+  for (const KdNode& n : tree.nodes)
+    if (!kd_is_leaf(n)) planes.push_back({kd_axis(n), co_as_float(n.word1), {}});
+  std::sort(planes.begin(), planes.end());
+  planes.erase(std::unique(planes.begin(), planes.end()), planes.end());
+  if (planes.empty()) return {};
+  for (std::uint32_t i = 0; i < tree.triangles.size(); ++i) {
+    const Triangle& t = tree.triangles[i];
+    for (std::uint32_t axis = 0; axis < 3; ++axis) {
+      const float c = (&t.v0.x)[axis];
+      if ((&t.v1.x)[axis] != c || (&t.v2.x)[axis] != c) continue;
+      const auto it = std::lower_bound(planes.begin(), planes.end(), Plane{axis, c, {}});
+      if (it != planes.end() && it->axis == axis && it->split == c) it->flat.push_back(i);
+    }
+  }
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(0.f, 1.f);
+  std::uniform_int_distribution<std::size_t> pick_plane(0, planes.size() - 1);
+  std::normal_distribution<float> gauss;
+  std::vector<TestRay> rays;
+  rays.reserve(count);
+  while (rays.size() < count) {
+    const Plane& plane = planes[pick_plane(rng)];
+    glm::vec3 org;
+    if (!plane.flat.empty() && unit(rng) < 0.75f) {
+      const Triangle& t = tree.triangles[plane.flat[std::size_t(unit(rng) * plane.flat.size()) % plane.flat.size()]];
+      const glm::vec3 v[3] = {{t.v0.x, t.v0.y, t.v0.z}, {t.v1.x, t.v1.y, t.v1.z}, {t.v2.x, t.v2.y, t.v2.z}};
+      const float where = unit(rng), s = unit(rng);
+      const int corner = int(unit(rng) * 3.f) % 3;
+      if (where < 0.3f) org = v[corner];  // a vertex: a concave corner in voxel geometry
+      else if (where < 0.7f) org = glm::mix(v[corner], v[(corner + 1) % 3], s);  // an edge
+      else {
+        const float a = unit(rng), b = unit(rng) * (1.f - a);
+        org = v[0] + a * (v[1] - v[0]) + b * (v[2] - v[0]);
+      }
+    } else {
+      org = random_point(tree.bounds, rng);
+    }
+    org[plane.axis] = plane.split;  // exactly in the plane, whatever the interpolation rounded
+    glm::vec3 dir(gauss(rng), gauss(rng), gauss(rng));
+    const float way = unit(rng);
+    dir[plane.axis] = way < 0.1f ? 0.f : (way < 0.55f ? -std::abs(dir[plane.axis]) : std::abs(dir[plane.axis]));
+    if (glm::length(dir) < 1e-3f) continue;
+    rays.push_back({org, glm::normalize(dir)});
   }
   return rays;
 }

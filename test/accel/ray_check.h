@@ -30,6 +30,14 @@ std::vector<TestRay> make_rays(const Bounds& box, std::size_t count, std::uint32
 // random triangle: the hits lie on shared edges and vertices, often on split planes.
 std::vector<TestRay> make_feature_rays(const KdTree& tree, std::size_t count, std::uint32_t seed);
 
+// Rays whose origin lies exactly in a split plane of the tree (the axis coordinate is the split's
+// float): most on a triangle lying flat in that plane (at a vertex, on an edge or inside it), the rest
+// anywhere in the plane within the bounds; the direction leaves the plane to the lower side, to the
+// upper side, or (one ray in ten) runs in it. A ray that starts on a face it just left, next to a
+// flat face that shares the plane (a voxel's concave corner), is the case a traversal that visits
+// only the side the ray heads into gets wrong.
+std::vector<TestRay> make_split_plane_rays(const KdTree& tree, std::size_t count, std::uint32_t seed);
+
 KdTreeView view_of(const KdTree& tree);
 
 // Every triangle through intersect_triangle, the closest hit on (tmin, tmax): the least t, and of

@@ -79,6 +79,11 @@ std::optional<std::vector<glm::vec3>> load_shared(const std::filesystem::path& r
   return path.extension() == ".ply" ? read_ascii_ply(path) : read_obj(path);
 }
 
+std::vector<glm::vec3> load_shipped(const char* name) {
+  const char* root = std::getenv("COHORT_SOURCE_DIR");
+  return load_scene(std::filesystem::path(root && *root ? root : COHORT_SOURCE_DIR) / "scenes" / name).positions;
+}
+
 std::vector<glm::vec3> read_ascii_ply(const std::filesystem::path& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot open " + path.string());

@@ -20,6 +20,9 @@ std::optional<std::filesystem::path> shared_scenes();
 // nullopt when the folder or the file is missing, so the caller can skip.
 std::optional<std::vector<glm::vec3>> load_shared(const std::filesystem::path& relative);
 
+// A scene shipped in the project's scenes/ folder (COHORT_SOURCE_DIR), through cohort::load_scene.
+std::vector<glm::vec3> load_shipped(const char* name);
+
 // ASCII PLY with `x y z ...` vertex lines and `n i0 i1 ...` face lines (fan-triangulated).
 std::vector<glm::vec3> read_ascii_ply(const std::filesystem::path& path);
 

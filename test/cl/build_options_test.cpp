@@ -1,6 +1,7 @@
 // The OpenCL build options every program gets (runtime/cl/kernel_program.h): the software prefetch of
-// the BVH walk (kernels/common/port.h, co_prefetch) only on CPU devices whose compiler is Clang's,
-// never on Oclgrind (which checks, not times) nor on a GPU (which hides the latency with other warps).
+// the BVH walk (kernels/common/port.h, co_prefetch, whose form the compiler's own macros choose) only
+// on devices whose local memory is the cached global memory (device_support), never on Oclgrind
+// (which checks, not times) nor on a GPU with a scratchpad (which hides the latency with other warps).
 // That the walk's hits do not change with it is TraceKernel.Bvh4* on the CPU device.
 #include <gtest/gtest.h>
 
@@ -15,6 +16,7 @@ DeviceInfo device(const char* platform, bool cpu) {
   d.platform_name = platform;
   d.is_cpu = cpu;
   d.is_gpu = !cpu;
+  d.local_memory_is_global = cpu;
   return d;
 }
 
@@ -22,11 +24,15 @@ bool prefetches(const DeviceInfo& d) { return base_build_options(d).find("-DCOHO
 
 }  // namespace
 
-TEST(BuildOptions, PrefetchOnCpuDevicesOnly) {
+TEST(BuildOptions, PrefetchWhereLocalMemoryIsTheCache) {
   EXPECT_TRUE(prefetches(device("Portable Computing Language", true)));
   EXPECT_TRUE(prefetches(device("Intel(R) OpenCL", true)));
+  EXPECT_TRUE(prefetches(device("rusticl", true)));  // port.h gives it OpenCL C's prefetch()
   EXPECT_FALSE(prefetches(device("Oclgrind", true)));
   EXPECT_FALSE(prefetches(device("NVIDIA CUDA", false)));
+  DeviceInfo gpu_like_cpu = device("Some runtime", true);
+  gpu_like_cpu.local_memory_is_global = false;  // a scratchpad: the decision is not "is a CPU"
+  EXPECT_FALSE(prefetches(gpu_like_cpu));
 }
 
 TEST(BuildOptions, AlwaysOpenClC12) {
