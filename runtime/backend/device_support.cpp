@@ -29,6 +29,12 @@ DeviceSupport device_support(const DeviceInfo& device) {
   // CPU runtime, rusticl's llvmpipe); GPUs hide the latency with other warps; Oclgrind checks the
   // kernels and does not time them
   s.prefetch = device.local_memory_is_global && device.platform_name != "Oclgrind";
+  if (device.platform_name == "rusticl" || device.platform_name == "Clover") {
+    s.sorts = false;
+    s.sort_refusal = fmt::format("{} ({}) does not run the work-groups of a launch independently, which the "
+                                 "device radix sort's look-back needs (docs/vendors.md)",
+                                 device.name, device.platform_name);
+  }
   const int c = parse_opencl_c_version(device.opencl_c_version);  // 0 for CUDA devices
   if (c != 0 && c < kRequiredOpenClC) {
     s.runs = false;

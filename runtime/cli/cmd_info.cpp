@@ -50,6 +50,7 @@ void print_support(const DeviceSupport& s) {
   fmt::print("    Cohort: runs; work-groups of up to {} items (each kernel's own limit applies), PTH subtree {} levels "
              "in {} KiB of local memory, BVH prefetch {}\n",
              s.work_group, s.pth_levels, s.local_budget / 1024, s.prefetch ? "on" : "off");
+  if (!s.sorts) fmt::print("    Cohort: no sorting methods (hash, pth): {}\n", s.sort_refusal);
 }
 }  // namespace
 

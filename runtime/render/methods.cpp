@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "runtime/backend/device_support.h"
 #include "runtime/render/render_params.h"
 #include "runtime/util/error.h"
 
@@ -42,6 +43,8 @@ const char* device_default_method(bool is_gpu) { return is_gpu ? "sc+rg" : "naiv
 RenderResult render(const Device& cl, const ProgramCache& cache, const DeviceScene& scene, const SceneCamera& camera,
                     const RenderSettings& settings, const ProgressCallback& progress, const RenderControl& control) {
   const Method& method = find_method(settings.method);
+  if (const DeviceSupport support = device_support(cl.info()); method.sorts && !support.sorts)
+    throw InputError(fmt::format("--method {}: not on this device: {}", method.name, support.sort_refusal));
   const RenderParams params = make_render_params(scene, camera, settings);
   const MethodInputs in{cl, cache, scene, params, settings, progress, control};
   const std::unique_ptr<PassLauncher> launcher = method.set_up(in);

@@ -77,3 +77,15 @@ TEST(DeviceSupport, WorkGroupFollowsTheDevicesLimit) {
   d.max_work_group = 4096;
   EXPECT_EQ(device_support(d).work_group, 64u);
 }
+
+TEST(DeviceSupport, MesasOpenClRunsNoSortingMethod) {
+  DeviceInfo d;
+  d.name = "llvmpipe (LLVM 15.0.6, 256 bits)";
+  d.platform_name = "rusticl";
+  const DeviceSupport s = device_support(d);
+  EXPECT_TRUE(s.runs);
+  EXPECT_FALSE(s.sorts);
+  EXPECT_NE(s.sort_refusal.find("llvmpipe"), std::string::npos);
+  d.platform_name = "Portable Computing Language";
+  EXPECT_TRUE(device_support(d).sorts);
+}

@@ -75,8 +75,11 @@ DeviceTrace trace(const KdTree& tree, const std::vector<TestRay>& rays, std::uin
     k.setArg(a++, cl_uint(0));
   }
   k.setArg(a++, cl_uint(0));  // co_params_end (kernels/common/kernel_params.h)
-  // the speculative kernel votes per work-group: one SIMD group of 32
-  const std::size_t group = mode == Traversal::speculative ? 32 : 64;
+  // the speculative kernel votes per work-group: one SIMD group of 32 where the kernel allows it;
+  // the renderers' sizes (Device::launch) within the kernel's limit on this device
+  const std::size_t group = launch_group(k.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(cl.cl_device),
+                                         k.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(cl.cl_device),
+                                         mode == Traversal::speculative ? 32 : 0);
   cl.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange((in.size() + group - 1) / group * group),
                                 cl::NDRange(group));
   DeviceTrace out;

@@ -42,5 +42,37 @@ TEST(AutoFinalists, UnscreenedMethodsNeverQualify) {
   EXPECT_TRUE(auto_finalists(screened, 0.9, 0).empty());
 }
 
+
+TEST(AutoPick, TheDefaultStaysUnlessBeatenBeyondItsOwnNoise) {
+  // naive (0) timed at 100 and 96: 4 % noise, a bar of 8 %
+  const std::vector<double> rates = {100, 105, 90, -1};
+  EXPECT_EQ(auto_pick(rates, 0, 96, 0.05), 0u);
+  const std::vector<double> faster = {100, 109, 90, -1};
+  EXPECT_EQ(auto_pick(faster, 0, 96, 0.05), 1u);
+}
+
+TEST(AutoPick, AQuietProbeStillNeedsTheMinimumMargin) {
+  const std::vector<double> rates = {100, 104, 103};
+  EXPECT_EQ(auto_pick(rates, 0, 100, 0.05), 0u);
+  const std::vector<double> clear = {100, 104, 106};
+  EXPECT_EQ(auto_pick(clear, 0, 100, 0.05), 2u);
+}
+
+TEST(AutoPick, TheBetterOfTheDefaultsTwoTimingsIsTheReference) {
+  // a default slowed in its first timing (the other core was busy) is not beaten by that dip
+  const std::vector<double> rates = {40, 95, 90};
+  EXPECT_EQ(auto_pick(rates, 0, 100, 0.05), 0u);
+}
+
+TEST(AutoPick, TheFastestOfThoseAboveTheBarWins) {
+  const std::vector<double> rates = {30, 80, 100, 90};
+  EXPECT_EQ(auto_pick(rates, 0, 31, 0.05), 2u);
+}
+
+TEST(AutoPick, AnUntimedSecondTimingLeavesTheMinimumMargin) {
+  const std::vector<double> rates = {100, 106};
+  EXPECT_EQ(auto_pick(rates, 0, -1, 0.05), 1u);
+}
+
 }  // namespace
 }  // namespace cohort

@@ -18,6 +18,7 @@
 #include "runtime/cl/context.h"
 #include "runtime/cl/devices.h"
 #include "runtime/sort/radix_sort.h"
+#include "runtime/util/error.h"
 #include "sort/radix_sort_access.h"
 
 using namespace cohort;
@@ -333,8 +334,14 @@ TEST(RadixSort, OtherTilings) {
     if (c.group > info.max_work_group ||
         (!info.local_memory_is_global && tile_bytes + std::size_t(c.group) * 70 + 4096 > info.local_memory))
       continue;  // does not fit this device (these run on PoCL; a GPU runs its own tiling above)
-    auto sort = RadixSortTestAccess::make(device().cl, device().cache, 200000, c.group, c.items, c.local_exchange,
-                                          c.key);
+    std::unique_ptr<RadixSort> sort;
+    try {
+      sort = RadixSortTestAccess::make(device().cl, device().cache, 200000, c.group, c.items, c.local_exchange, c.key);
+    } catch (const DeviceError& e) {
+      // a kernel may allow fewer items than the device (llvmpipe: 32 of 1024); the sort says so
+      EXPECT_NE(std::string(e.what()).find("at most"), std::string::npos) << e.what();
+      continue;
+    }
     expect_sorted_like_reference(*sort, random_keys(c.count, c.group + c.items), bits);
     expect_sorted_like_reference(*sort, random_keys(777, c.items), 23);
   }

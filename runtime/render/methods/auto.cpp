@@ -16,6 +16,12 @@
 // at which sorting pays or does not, and picks the fastest there; the best sorting method within
 // kKeep always gets a place (auto_finalists). All methods share one pool.
 //
+// The device's default method is the incumbent: it runs in the final whatever the screen said, timed
+// first and last, and another method takes over only when it beats the default by more than the
+// spread of the default's two timings (twice over, and by kMinMargin at least: auto_pick). The pick is
+// then checked against its own cost: its rate over its first kCheckLaunches launches of the render,
+// against the default's in the final; below kCheckKeep of it, the default renders the rest.
+//
 // A short render cannot pay for the probe: where the screen would take more than 1/kShortRender
 // of the render's samples per pixel, auto takes the device's default without probing
 // (device_default_method: the method measured fastest on that kind of device).
@@ -27,6 +33,7 @@
 
 #include <fmt/format.h>
 
+#include "runtime/backend/device_support.h"
 #include "runtime/render/launch_log.h"
 #include "runtime/render/methods.h"
 #include "runtime/render/methods/auto_finalists.h"
@@ -46,12 +53,18 @@ constexpr std::uint32_t kScreenRowStride = 8;
 constexpr std::uint32_t kScreenRowsMinPixels = 4096;
 // The screen may take at most this fraction (its inverse) of the render's samples per pixel.
 constexpr std::uint32_t kShortRender = 8;
+// A method other than the default must beat it by this much at least in the final (auto_pick).
+constexpr double kMinMargin = 0.05;
+// The pick's first launches after the final, and the share of the default's final rate they must keep.
+constexpr std::uint32_t kCheckLaunches = 2;
+constexpr double kCheckKeep = 0.97;
 
 struct Candidate {
   const Method* method = nullptr;
   RenderSettings settings;  // the render's, named for the method (its launcher keeps a reference)
   std::unique_ptr<PassLauncher> launcher;
   double screen_rate = -1, final_rate = -1;  // rays per second; -1: not probed in that round
+  double final_rate_again = -1;               // the default's second timing in the final
 };
 
 void add_output(PassOutput& total, PassOutput out, std::size_t straggler_rays) {
@@ -72,6 +85,7 @@ class AutoMethod final : public PassLauncher {
     for (const Method& m : methods()) {
       if (m.set_up == auto_method) continue;
       if (m.sorts && in.scene.bvh4) continue;  // hash and pth walk the KD-tree
+      if (m.sorts && !device_support(in.device.info()).sorts) continue;  // the device cannot sort
       auto c = std::make_unique<Candidate>();
       c->method = &m;
       c->settings = in.settings;
@@ -93,6 +107,9 @@ class AutoMethod final : public PassLauncher {
       other_rows_ = {device_.allocate("auto's other rows", rest.size() * 4, rest.data(), Access::read_only),
                      static_cast<std::uint32_t>(rest.size())};
     }
+    const std::string fallback = device_default_method(in.device.info().is_gpu);
+    for (const auto& c : candidates_)
+      if (c->method->name == fallback) default_ = c.get();
     take_default_if_short(in);
   }
 
@@ -105,7 +122,10 @@ class AutoMethod final : public PassLauncher {
     for (std::uint32_t done = 0; done < p.samples_per_pass;) {
       const std::uint32_t left = p.samples_per_pass - done;
       if (chosen_) {
-        add_output(total, run(*chosen_, b, p, done, left), settings_.straggler_rays);
+        const auto start = std::chrono::steady_clock::now();
+        PassOutput out = run(*chosen_, b, p, done, left);
+        check_pick(out.rays, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        add_output(total, std::move(out), settings_.straggler_rays);
         break;
       }
       // the first screen step splits one sample by rows (not in adaptive passes: they list pixels)
@@ -147,7 +167,7 @@ class AutoMethod final : public PassLauncher {
     a.probe_seconds = probe_seconds_;
     for (const auto& c : candidates_) {
       if (c->screen_rate >= 0) a.probe_rays_per_second[c->method->name] = c->screen_rate;
-      if (c->final_rate >= 0) a.final_rays_per_second[c->method->name] = c->final_rate;
+      if (c->final_rate >= 0) a.final_rays_per_second[c->method->name] = std::max(c->final_rate, c->final_rate_again);
     }
   }
 
@@ -160,9 +180,7 @@ class AutoMethod final : public PassLauncher {
     const auto others = static_cast<std::uint32_t>(candidates_.size());
     const std::uint32_t screen = screen_rows_.pixels ? 1 + (others - 2) * quarter_wave : others * quarter_wave;
     if (in.settings.spp == 0 || std::uint64_t(screen) * kShortRender <= in.settings.spp) return;
-    const std::string fallback = device_default_method(in.device.info().is_gpu);
-    for (const auto& c : candidates_)
-      if (c->method->name == fallback) chosen_ = c.get();
+    chosen_ = default_;
     queue_.clear();
     reason_ = fmt::format("the default on a {}: the render ({} spp) is too short to probe (the screen takes {} spp)",
                           in.device.info().is_gpu ? "GPU" : "CPU", in.settings.spp, screen);
@@ -195,7 +213,9 @@ class AutoMethod final : public PassLauncher {
     PassOutput out = run(c, b, p, done, samples, active_pixels);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     probe_seconds_ += seconds;
-    (screening_ ? c.screen_rate : c.final_rate) = seconds > 0 ? double(out.rays) / seconds : 0.0;
+    const double rate = seconds > 0 ? double(out.rays) / seconds : 0.0;
+    if (screening_) c.screen_rate = rate;
+    else (c.final_rate < 0 ? c.final_rate : c.final_rate_again) = rate;
     queue_.pop_front();
     if (queue_.empty()) end_round();
     return out;
@@ -222,16 +242,61 @@ class AutoMethod final : public PassLauncher {
 
   void end_round() {
     if (!screening_) {
-      chosen_ = best(false);
+      pick_from_final();
       return;
     }
     screening_ = false;
     std::vector<ScreenedMethod> screened;
     for (const auto& c : candidates_) screened.push_back({c->screen_rate, c->method->sorts});
     for (std::size_t i : auto_finalists(screened, kKeep, kFinalists)) queue_.push_back(candidates_[i].get());
-    if (queue_.size() == 1) {  // nothing to compare: the screen's pick
+    // the default runs first and last in the final, whatever its screen
+    if (default_) {
+      std::erase(queue_, default_);
+      if (queue_.empty()) {  // the screen kept the default alone
+        chosen_ = default_;
+        return;
+      }
+      queue_.push_front(default_);
+      queue_.push_back(default_);
+    } else if (queue_.size() == 1) {  // nothing to compare: the screen's pick
       chosen_ = queue_.front();
       queue_.clear();
+    }
+  }
+
+  void pick_from_final() {
+    if (!default_ || default_->final_rate < 0) {
+      chosen_ = best(false);
+      return;
+    }
+    std::vector<double> rates;
+    std::size_t default_index = 0;
+    for (std::size_t i = 0; i < candidates_.size(); ++i) {
+      rates.push_back(candidates_[i]->final_rate);
+      if (candidates_[i].get() == default_) default_index = i;
+    }
+    chosen_ = candidates_[auto_pick(rates, default_index, default_->final_rate_again, kMinMargin)].get();
+    if (chosen_ == default_) {
+      const Candidate* fastest = best(false);
+      if (fastest != default_)
+        reason_ = fmt::format("the default: {} was not faster beyond the probe's noise", fastest->method->name);
+    } else {
+      checks_left_ = kCheckLaunches;
+    }
+  }
+
+  // The pick's first launches against the default's final rate (the better of its two timings).
+  void check_pick(std::uint64_t rays, double seconds) {
+    if (checks_left_ == 0 || chosen_ == default_ || seconds <= 0) return;
+    check_rays_ += rays;
+    check_seconds_ += seconds;
+    if (--checks_left_ > 0) return;
+    const double rate = double(check_rays_) / check_seconds_;
+    const double reference = std::max(default_->final_rate, default_->final_rate_again);
+    if (rate < kCheckKeep * reference) {
+      reason_ = fmt::format("the default: {} ran at {:.3g} rays/s in the render, below {} x the default's {:.3g}",
+                            chosen_->method->name, rate, kCheckKeep, reference);
+      chosen_ = default_;
     }
   }
 
@@ -247,6 +312,10 @@ class AutoMethod final : public PassLauncher {
   bool split_done_ = false;
   bool screening_ = true;
   Candidate* chosen_ = nullptr;
+  Candidate* default_ = nullptr;  // the device's default method (device_default_method)
+  std::uint32_t checks_left_ = 0;  // launches of the pick still to check against the default
+  std::uint64_t check_rays_ = 0;
+  double check_seconds_ = 0;
   std::uint32_t pool_slots_ = 1;
   std::uint32_t max_per_launch_ = UINT32_MAX;
   double probe_seconds_ = 0;

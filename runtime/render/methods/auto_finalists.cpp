@@ -1,6 +1,7 @@
 #include "runtime/render/methods/auto_finalists.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace cohort {
 
@@ -21,6 +22,20 @@ std::vector<std::size_t> auto_finalists(std::span<const ScreenedMethod> screened
     kept.resize(finalists);
   }
   return kept;
+}
+
+std::size_t auto_pick(std::span<const double> rates, std::size_t default_index, double default_second_rate,
+                      double min_margin) {
+  const double first = rates[default_index];
+  const double reference = std::max(first, default_second_rate);
+  const double noise = reference > 0 && first >= 0 && default_second_rate >= 0
+                           ? std::abs(first - default_second_rate) / reference
+                           : 0.0;
+  const double bar = reference * (1.0 + std::max(min_margin, 2.0 * noise));
+  std::size_t pick = default_index;
+  for (std::size_t i = 0; i < rates.size(); ++i)
+    if (i != default_index && rates[i] > bar && (pick == default_index || rates[i] > rates[pick])) pick = i;
+  return pick;
 }
 
 }  // namespace cohort
