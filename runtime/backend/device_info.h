@@ -25,6 +25,7 @@ struct DeviceInfo {
   std::size_t max_work_group = 0;
   bool correctly_rounded_divide_sqrt = false;  // OpenCL: CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT
   bool subgroups = false;                      // OpenCL: cl_khr_subgroups (sub-group votes)
+  bool denormals = true;                       // OpenCL: CL_FP_DENORM in the single-precision config
   bool image_support = false;                  // OpenCL: CL_DEVICE_IMAGE_SUPPORT (Cohort reads textures from buffers)
   std::string opencl_c_version;                // OpenCL: CL_DEVICE_OPENCL_C_VERSION; empty for CUDA
 };

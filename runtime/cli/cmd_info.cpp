@@ -69,9 +69,10 @@ int run_devices() {
                d.global_memory >> 20, d.max_allocation >> 20);
     fmt::print("    {}, driver {}\n", d.version, d.driver_version);
     // what the kernels adapt to: sub-group votes (speculative traversal) and IEEE division
-    fmt::print("    {}, max work-group {}, sub-groups (cl_khr_subgroups): {}, correctly rounded divide/sqrt: {}, images: {}\n",
+    fmt::print("    {}, max work-group {}, sub-groups (cl_khr_subgroups): {}, correctly rounded divide/sqrt: {}, "
+               "float denormals: {}, images: {}\n",
                d.opencl_c_version, d.max_work_group, d.subgroups ? "yes" : "no",
-               d.correctly_rounded_divide_sqrt ? "yes" : "no", d.image_support ? "yes" : "no");
+               d.correctly_rounded_divide_sqrt ? "yes" : "no", d.denormals ? "yes" : "no", d.image_support ? "yes" : "no");
     print_support(device_support(d));
   }
   if (cuda_backend_built()) {
