@@ -17,7 +17,7 @@ CO_INLINE uint32_t pth_walk(const CO_LOCAL KdNode* subtree, uint32_t subtree_nod
   for (; level < levels && *node < subtree_nodes; ++level) {
     KdNode n = subtree[*node];
     if (kd_is_leaf(n)) break;
-    bits = (bits << 2) | kd_inner_step(n, org, dir, inv_dir, node, t0, t1, stack, sp);
+    bits = (bits << 2) | (kd_inner_step(n, org, dir, inv_dir, node, t0, t1, stack, sp) & 3u);
   }
   return levels ? bits << (2u * (levels - level)) : 0u;
 }

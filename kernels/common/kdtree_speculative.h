@@ -31,6 +31,7 @@ typedef struct KdSpeculativeRay {
   int waiting;         /* node is a second leaf: the walk waits for the group's leaf phase */
   int done;
   int sp;
+  int unordered;       /* the stack holds a KD_STACK_UNORDERED entry: a cell beyond the hit is skipped, not the end */
   uint32_t visited;
   HitOut hit;
 } KdSpeculativeRay;
@@ -47,20 +48,21 @@ CO_INLINE uint32_t kd_spec_vote_bits(const KdSpeculativeRay* r) {
 /* One step of the walk: visit an inner node, or postpone the leaf found. */
 CO_INLINE void kd_spec_walk_step(const KdTreeView* tree, KdSpeculativeRay* r, KdStackEntry* stack) {
   if (r->done || !r->walking || r->waiting) return;
-  if (kd_beyond_hit(r->hit.t, r->t0)) {  /* kd_resume skips the cell; a pending leaf, in front, is still tested */
-    if (r->sp == 0) {
+  if (kd_beyond_hit(r->hit.t, r->t0)) {  /* as kd_resume; a pending leaf, in front, is still tested */
+    if (!r->unordered || r->sp == 0) {
       r->walking = 0;
+      r->sp = 0;
       if (!r->has_leaf) r->done = 1;
     } else {
       r->sp -= 1;
-      r->node = stack[r->sp].node; r->t0 = stack[r->sp].tmin; r->t1 = stack[r->sp].tmax;
+      r->node = stack[r->sp].node & ~KD_STACK_UNORDERED; r->t0 = stack[r->sp].tmin; r->t1 = stack[r->sp].tmax;
     }
     return;
   }
   KdNode node = tree->nodes[r->node];
   if (!kd_is_leaf(node)) {
     ++r->visited;
-    kd_inner_step(node, r->org, r->dir, r->inv_dir, &r->node, &r->t0, &r->t1, stack, &r->sp);
+    r->unordered |= (int)(kd_inner_step(node, r->org, r->dir, r->inv_dir, &r->node, &r->t0, &r->t1, stack, &r->sp) >> 2);
     return;
   }
   if (r->has_leaf) {
@@ -75,17 +77,23 @@ CO_INLINE void kd_spec_walk_step(const KdTreeView* tree, KdSpeculativeRay* r, Kd
     r->walking = 0;
   } else {
     r->sp -= 1;
-    r->node = stack[r->sp].node; r->t0 = stack[r->sp].tmin; r->t1 = stack[r->sp].tmax;
+    r->node = stack[r->sp].node & ~KD_STACK_UNORDERED; r->t0 = stack[r->sp].tmin; r->t1 = stack[r->sp].tmax;
   }
 }
 
-/* The group's leaf phase: test the postponed leaf unless kd_resume would skip it (it starts
- * beyond the closest hit); the walk goes on either way, as kd_resume's does. */
+/* The group's leaf phase: test the postponed leaf, with kd_resume's termination check (with an
+ * unordered stack, a leaf beyond the hit is skipped and the walk goes on, as kd_resume's does). */
 CO_INLINE void kd_spec_leaf_phase(const KdTreeView* tree, KdSpeculativeRay* r) {
   if (r->done) return;
   if (r->has_leaf) {
-    if (!kd_beyond_hit(r->hit.t, r->leaf_t0))
+    if (kd_beyond_hit(r->hit.t, r->leaf_t0)) {
+      if (!r->unordered) {
+        r->done = 1;
+        return;
+      }
+    } else {
       kd_intersect_leaf(tree, tree->nodes[r->leaf], &r->wr, r->tmin, &r->hit, 0);
+    }
     r->has_leaf = 0;
     r->waiting = 0;
   }
@@ -101,6 +109,7 @@ CO_INLINE void kd_spec_start(KdSpeculativeRay* r, int active, co_vec3 org, co_ve
   r->leaf = 0u; r->leaf_t0 = 0.0f;
   r->walking = active; r->has_leaf = 0; r->waiting = 0; r->done = !active;
   r->sp = sp;
+  r->unordered = 0;  /* a restored stack: the caller sets it (kd_stack_unordered) */
   r->visited = 0u;
   r->hit.t = tmax; r->hit.u = 0.0f; r->hit.v = 0.0f; r->hit.triangle = HIT_NONE;
 }

@@ -28,9 +28,23 @@ CO_INLINE KdTreeView make_tree_view(const CO_GLOBAL KdNode* nodes, const CO_GLOB
 }
 
 typedef struct KdStackEntry {
-  uint32_t node;
+  uint32_t node;  /* with KD_STACK_UNORDERED where kd_inner_step pushed it for a ray lying in the plane */
   float tmin, tmax;
 } KdStackEntry;
+
+/* Entries are pushed front to back: a deeper entry never starts before one above it, so a walk that
+ * pops a cell beyond its closest hit can stop there. A ray lying in a split plane breaks that order:
+ * kd_inner_step pushes the far side with the cell's whole interval and marks the entry with this bit
+ * of the node index (nodes stay below 2^31); a walk whose stack holds such an entry goes on through
+ * the stack instead of stopping (kd_resume). The bit is stripped on every pop. */
+#define KD_STACK_UNORDERED 0x80000000u
+
+/* Whether any of the `sp` entries (a stack restored from a saved state) carries KD_STACK_UNORDERED. */
+CO_INLINE int kd_stack_unordered(const KdStackEntry* stack, int sp) {
+  uint32_t any = 0u;
+  for (int k = 0; k < sp; ++k) any |= stack[k].node;
+  return (any & KD_STACK_UNORDERED) != 0u;
+}
 
 /* The closest hit is the least (t, triangle index) over every triangle the ray meets, whatever the
  * tree: a tie in t goes to the lower index, and a cell is skipped only when it starts beyond the
@@ -80,7 +94,8 @@ CO_INLINE int kd_intersect_leaf(const KdTreeView* tree, KdNode leaf, const Water
 
 /* One step at an inner node: picks the next node and pushes the far child when the ray needs
  * both. Returns the step's partial-traversal bits (Wang & Deng, Figure 1): bit 1 is set when the
- * ray goes to the left child next, bit 0 when it pushes the other child. Every traversal (full,
+ * ray goes to the left child next, bit 0 when it pushes the other child; bit 2 (not a PTH bit) when
+ * the push was out of front-to-back order (KD_STACK_UNORDERED). Every traversal (full,
  * partial in local memory, resumed) takes its inner steps through this one function, so they all
  * round the same way and a resumed traversal finds exactly the hit of a full one. */
 CO_INLINE uint32_t kd_inner_step(KdNode node, co_vec3 org, co_vec3 dir, co_vec3 inv_dir, uint32_t* node_index,
@@ -111,10 +126,10 @@ CO_INLINE uint32_t kd_inner_step(KdNode node, co_vec3 org, co_vec3 dir, co_vec3 
   float eps = 4e-6f * fmax(fmin(fabs(t_plane), 2.0f * fabs(*t1)), fabs(*t1));
   uint32_t next, pushed = 0u;
   if (in_plane && d == 0.0f) {
-    stack[*sp].node = far_child; stack[*sp].tmin = *t0; stack[*sp].tmax = *t1;
+    stack[*sp].node = far_child | KD_STACK_UNORDERED; stack[*sp].tmin = *t0; stack[*sp].tmax = *t1;
     *sp += 1;
     next = near_child;
-    pushed = 1u;
+    pushed = 5u;
   } else if (t_plane > *t1 + eps || !(t_plane >= 0.0f)) {
     next = near_child;
   } else if (t_plane < *t0 - eps) {
@@ -149,26 +164,27 @@ CO_INLINE HitOut kd_resume(const KdTreeView* tree, co_vec3 org, co_vec3 dir, flo
   co_vec3 inv_dir = kd_inverse(dir);
   WatertightRay wr = watertight_ray(org, dir);
   uint32_t visited = 0u;
+  int unordered = sp > 0 ? kd_stack_unordered(stack, sp) : 0;
   for (;;) {
-    /* A cell that starts beyond the closest hit is skipped. The cells stacked under it usually
-     * start later still (front to back), but a ray lying in a split plane stacks a side with its
-     * whole interval (kd_inner_step), so the walk goes on through the stack rather than stop. */
+    /* A cell that starts beyond the closest hit ends the walk: the cells stacked under it start
+     * later still, unless an unordered entry is among them (KD_STACK_UNORDERED): then the walk skips
+     * the cell and goes on through the stack. */
     if (kd_beyond_hit(hit.t, t0)) {
-      if (sp == 0) break;
+      if (!unordered || sp == 0) break;
       --sp;
-      node_index = stack[sp].node; t0 = stack[sp].tmin; t1 = stack[sp].tmax;
+      node_index = stack[sp].node & ~KD_STACK_UNORDERED; t0 = stack[sp].tmin; t1 = stack[sp].tmax;
       continue;
     }
     KdNode node = tree->nodes[node_index];
     ++visited;
     if (!kd_is_leaf(node)) {
-      kd_inner_step(node, org, dir, inv_dir, &node_index, &t0, &t1, stack, &sp);
+      unordered |= (int)(kd_inner_step(node, org, dir, inv_dir, &node_index, &t0, &t1, stack, &sp) >> 2);
       continue;
     }
     if (kd_intersect_leaf(tree, node, &wr, tmin, &hit, any_hit)) break;
     if (sp == 0) break;
     --sp;
-    node_index = stack[sp].node; t0 = stack[sp].tmin; t1 = stack[sp].tmax;
+    node_index = stack[sp].node & ~KD_STACK_UNORDERED; t0 = stack[sp].tmin; t1 = stack[sp].tmax;
   }
   if (steps) *steps = visited;
   return hit;

@@ -154,6 +154,7 @@ CO_KERNEL pth_resume_speculative(CO_PARAMS(PTH_RESUME_PARAMS)) {
   kd_spec_start(&ray, active, active ? v3_from4(path_org[from]) : v3(0.0f, 0.0f, 1.0f),
                 active ? v3_from4(path_dir[from]) : v3(0.0f, 0.0f, 1.0f), 0.0f, INFINITY, state.node,
                 state.tmin, state.tmax, (int)state.depth);
+  if (active) ray.unordered = kd_stack_unordered(stack, (int)state.depth);
   kd_spec_run_group(&s.tree, &ray, stack, votes);
   if (i >= count) return;
   if (active) hits[slot] = ray.hit;

@@ -64,6 +64,8 @@ void expect_same_hits(const std::vector<glm::vec3>& positions, const char* name)
   std::vector<TestRay> rays = make_rays(tree.bounds, 20'000, 99);
   const std::vector<TestRay> feature = make_feature_rays(tree, 5'000, 7);
   rays.insert(rays.end(), feature.begin(), feature.end());
+  const std::vector<TestRay> in_planes = make_split_plane_rays(tree, 5'000, 8);  // unordered stacks too
+  rays.insert(rays.end(), in_planes.begin(), in_planes.end());
   for (std::size_t group : {1u, 7u, 32u}) {
     const GroupRun run = run_groups(tree, rays, group);
     fmt::print("[{}] group {}: {} rays, {} hit differences, {:.2f} nodes per ray speculative vs {:.2f} plain, "
@@ -80,6 +82,10 @@ void expect_same_hits(const std::vector<glm::vec3>& positions, const char* name)
 }
 
 TEST(SpeculativeTraversal, SoupSameHitsAsKdTrace) { expect_same_hits(random_soup(3000, 5), "soup"); }
+
+TEST(SpeculativeTraversal, VoxelTerrainSameHitsAsKdTrace) {
+  expect_same_hits(load_shipped("voxel-terrain.gltf"), "voxel terrain");
+}
 
 TEST(SpeculativeTraversal, BunnySameHitsAsKdTrace) {
   const auto positions = load_shared("bunny/bun_zipper_res3.ply");
