@@ -14,10 +14,11 @@ CO_INLINE uint32_t pth_walk(const CO_LOCAL KdNode* subtree, uint32_t subtree_nod
                             co_vec3 dir, co_vec3 inv_dir, uint32_t* node, float* t0, float* t1, KdStackEntry* stack,
                             int* sp) {
   uint32_t bits = 0u, level = 0u;
+  int unordered = 0; /* kept in the saved stack's entries: kd_resume reads it from there */
   for (; level < levels && *node < subtree_nodes; ++level) {
     KdNode n = subtree[*node];
     if (kd_is_leaf(n)) break;
-    bits = (bits << 2) | (kd_inner_step(n, org, dir, inv_dir, node, t0, t1, stack, sp) & 3u);
+    bits = (bits << 2) | kd_inner_step(n, org, dir, inv_dir, node, t0, t1, stack, sp, &unordered);
   }
   return levels ? bits << (2u * (levels - level)) : 0u;
 }

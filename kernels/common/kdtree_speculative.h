@@ -62,7 +62,7 @@ CO_INLINE void kd_spec_walk_step(const KdTreeView* tree, KdSpeculativeRay* r, Kd
   KdNode node = tree->nodes[r->node];
   if (!kd_is_leaf(node)) {
     ++r->visited;
-    r->unordered |= (int)(kd_inner_step(node, r->org, r->dir, r->inv_dir, &r->node, &r->t0, &r->t1, stack, &r->sp) >> 2);
+    kd_inner_step(node, r->org, r->dir, r->inv_dir, &r->node, &r->t0, &r->t1, stack, &r->sp, &r->unordered);
     return;
   }
   if (r->has_leaf) {

@@ -94,44 +94,52 @@ CO_INLINE int kd_intersect_leaf(const KdTreeView* tree, KdNode leaf, const Water
 
 /* One step at an inner node: picks the next node and pushes the far child when the ray needs
  * both. Returns the step's partial-traversal bits (Wang & Deng, Figure 1): bit 1 is set when the
- * ray goes to the left child next, bit 0 when it pushes the other child; bit 2 (not a PTH bit) when
- * the push was out of front-to-back order (KD_STACK_UNORDERED). Every traversal (full,
- * partial in local memory, resumed) takes its inner steps through this one function, so they all
- * round the same way and a resumed traversal finds exactly the hit of a full one. */
+ * ray goes to the left child next, bit 0 when it pushes the other child. Sets *unordered when it
+ * pushed an entry out of front-to-back order (KD_STACK_UNORDERED). Every traversal (full, partial in
+ * local memory, resumed) takes its inner steps through this one function, so they all round the
+ * same way and a resumed traversal finds exactly the hit of a full one. */
 CO_INLINE uint32_t kd_inner_step(KdNode node, co_vec3 org, co_vec3 dir, co_vec3 inv_dir, uint32_t* node_index,
-                                 float* t0, float* t1, KdStackEntry* stack, int* sp) {
+                                 float* t0, float* t1, KdStackEntry* stack, int* sp, int* unordered) {
   uint32_t axis = kd_axis(node);
   float split = co_as_float(node.word1);
   float o = v3_get(org, axis), d = v3_get(dir, axis);
   float t_plane = (split - o) * v3_get(inv_dir, axis);
-  /* An origin in the plane touches both children at t = 0, and the plane may hold flat triangles
-   * stored on either side: the side the ray does not go into is the near one there (t_plane is
-   * +-0, so it is visited over [t0, eps] when the cell starts at the origin, and the side the ray
-   * goes into is pushed with the whole interval). Any other origin: the side it lies on. */
-  int in_plane = o == split;
-  int below_first = (o < split) || (in_plane && d > 0.0f);
+  int below_first = (o < split) || (o == split && d <= 0.0f);
   uint32_t near_child = kd_left_child(node) + (below_first ? 0u : 1u);
   uint32_t far_child = kd_left_child(node) + (below_first ? 1u : 0u);
   /* The plane distance and the watertight hit distance round differently, so a hit on the
    * split plane can fall just outside the cell the plane bounds. Widening the decision and
    * both intervals by a few ulps keeps such hits (on shared edges and vertices that lie in
-   * split planes) inside a visited cell. !(t_plane >= 0) takes the near side alone when the plane
-   * lies behind the origin (t_plane < 0); a ray lying in the plane (t_plane NaN) visits both
-   * sides over its whole interval, for the flat triangles and the edges that lie in the plane.
-   * The widening is relative to the plane distance, capped at twice the cell's exit: past that
-   * cap the plane lies beyond the cell and every comparison below decides as without it, but a
-   * ray parallel to the plane (direction component 0 or -0, t_plane infinite) would otherwise get
-   * an infinite eps, push the far child with the whole interval at every split on that axis and
-   * walk a large part of the tree (the straggler rays of docs/design.md). */
+   * split planes) inside a visited cell. !(t_plane > 0) takes the near side alone when the plane
+   * lies behind the origin, and catches an origin in the plane (t_plane +-0, or NaN for a ray lying
+   * in it), handled below. The widening is relative to the plane distance, capped at twice the
+   * cell's exit: past that cap the plane lies beyond the cell and every comparison below decides as
+   * without it, but a ray parallel to the plane (direction component 0 or -0, t_plane infinite)
+   * would otherwise get an infinite eps, push the far child with the whole interval at every split
+   * on that axis and walk a large part of the tree (the straggler rays of docs/design.md). */
   float eps = 4e-6f * fmax(fmin(fabs(t_plane), 2.0f * fabs(*t1)), fabs(*t1));
   uint32_t next, pushed = 0u;
-  if (in_plane && d == 0.0f) {
-    stack[*sp].node = far_child | KD_STACK_UNORDERED; stack[*sp].tmin = *t0; stack[*sp].tmax = *t1;
-    *sp += 1;
+  if (t_plane > *t1 + eps || !(t_plane > 0.0f)) {
     next = near_child;
-    pushed = 5u;
-  } else if (t_plane > *t1 + eps || !(t_plane >= 0.0f)) {
-    next = near_child;
+    if (o == split) {
+      /* The origin lies in the plane, which may hold flat triangles stored on either side. The near
+       * child is the side the ray goes into. A ray lying in the plane meets both sides over its
+       * whole interval: the other one is pushed with it, out of front-to-back order. Otherwise the
+       * other side is touched at the origin only: where the cell starts there, it is visited first
+       * over [t0, eps] and the side the ray goes into is pushed with the whole interval. */
+      if (d == 0.0f) {
+        stack[*sp].node = far_child | KD_STACK_UNORDERED; stack[*sp].tmin = *t0; stack[*sp].tmax = *t1;
+        *sp += 1;
+        pushed = 1u;
+        *unordered = 1;
+      } else if (!(*t0 > eps)) {
+        stack[*sp].node = near_child; stack[*sp].tmin = *t0; stack[*sp].tmax = *t1;
+        *sp += 1;
+        next = far_child;
+        *t1 = fmin(*t1, eps);
+        pushed = 1u;
+      }
+    }
   } else if (t_plane < *t0 - eps) {
     next = far_child;
   } else {
@@ -178,7 +186,7 @@ CO_INLINE HitOut kd_resume(const KdTreeView* tree, co_vec3 org, co_vec3 dir, flo
     KdNode node = tree->nodes[node_index];
     ++visited;
     if (!kd_is_leaf(node)) {
-      unordered |= (int)(kd_inner_step(node, org, dir, inv_dir, &node_index, &t0, &t1, stack, &sp) >> 2);
+      kd_inner_step(node, org, dir, inv_dir, &node_index, &t0, &t1, stack, &sp, &unordered);
       continue;
     }
     if (kd_intersect_leaf(tree, node, &wr, tmin, &hit, any_hit)) break;
