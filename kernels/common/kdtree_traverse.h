@@ -174,23 +174,27 @@ CO_INLINE HitOut kd_resume(const KdTreeView* tree, co_vec3 org, co_vec3 dir, flo
   uint32_t visited = 0u;
   int unordered = sp > 0 ? kd_stack_unordered(stack, sp) : 0;
   for (;;) {
-    /* A cell that starts beyond the closest hit ends the walk: the cells stacked under it start
-     * later still, unless an unordered entry is among them (KD_STACK_UNORDERED): then the walk skips
-     * the cell and goes on through the stack. */
-    if (kd_beyond_hit(hit.t, t0)) {
-      if (!unordered || sp == 0) break;
+    int beyond = 0;
+    for (;;) {
+      if (kd_beyond_hit(hit.t, t0)) {  /* the closest hit lies before this cell */
+        beyond = 1;
+        break;
+      }
+      KdNode node = tree->nodes[node_index];
+      ++visited;
+      if (!kd_is_leaf(node)) {
+        kd_inner_step(node, org, dir, inv_dir, &node_index, &t0, &t1, stack, &sp, &unordered);
+        continue;
+      }
+      if (kd_intersect_leaf(tree, node, &wr, tmin, &hit, any_hit)) break;
+      if (sp == 0) break;
       --sp;
       node_index = stack[sp].node & ~KD_STACK_UNORDERED; t0 = stack[sp].tmin; t1 = stack[sp].tmax;
-      continue;
     }
-    KdNode node = tree->nodes[node_index];
-    ++visited;
-    if (!kd_is_leaf(node)) {
-      kd_inner_step(node, org, dir, inv_dir, &node_index, &t0, &t1, stack, &sp, &unordered);
-      continue;
-    }
-    if (kd_intersect_leaf(tree, node, &wr, tmin, &hit, any_hit)) break;
-    if (sp == 0) break;
+    /* The cells stacked under one that starts beyond the hit start later still, unless an unordered
+     * entry is among them (KD_STACK_UNORDERED): then the walk skips the cell and goes on through the
+     * stack. Outside the walk's loop, so the walks of other rays are the same code as without it. */
+    if (!beyond || !unordered || sp == 0) break;
     --sp;
     node_index = stack[sp].node & ~KD_STACK_UNORDERED; t0 = stack[sp].tmin; t1 = stack[sp].tmax;
   }
