@@ -270,14 +270,14 @@ TEST(Methods, MalformedCodeLayoutsAreInputErrors) {
 // whatever it picks: the probe's launches are part of the image.
 TEST(Methods, AutoRendersTheNaiveImageWithTheFastestProbedMethod) {
   RenderSettings s = small_box_settings(4u);
-  s.spp = 64;  // the screen (6 spp) is at most an eighth of the render: it probes
+  s.spp = 448;  // the screen (7 spp) is at most a 64th of the render (a CPU's rule): it probes
   s.wavefront_size = 2 * s.width * s.height;  // a wave of 2 samples per pixel: the screen takes 1
   const auto path = shipped_scene("cornell-box.gltf");
   const RenderResult reference = render_scene(path, s);
   s.method = "auto";
   const RenderResult r = render_scene(path, s);
   expect_bitwise_equal(reference, r, "auto");
-  EXPECT_EQ(r.samples, 64u);
+  EXPECT_EQ(r.samples, 448u);
   EXPECT_EQ(r.passes, reference.passes) << "the probe splits launches, not passes";
   const AutoChoice& a = r.auto_choice;
   ASSERT_EQ(a.probe_rays_per_second.size(), methods().size() - 1) << "every other method screened";
@@ -287,17 +287,25 @@ TEST(Methods, AutoRendersTheNaiveImageWithTheFastestProbedMethod) {
     EXPECT_GT(rate, 0.0) << name;
     fastest_screen = std::max(fastest_screen, rate);
   }
+  // the device's default is in the final whatever its screen; the others within 0.9x of the best
+  const std::string fallback = device_default_method(select_device("").is_gpu);
   for (const auto& [name, rate] : a.final_rays_per_second) {
-    EXPECT_GE(a.probe_rays_per_second.at(name), 0.9 * fastest_screen) << name << " should have been screened out";
+    if (name != fallback) {
+      EXPECT_GE(a.probe_rays_per_second.at(name), 0.9 * fastest_screen) << name << " should have been screened out";
+    }
     EXPECT_GT(rate, 0.0) << name;
   }
-  // the pick: the final round's fastest, or the screen's when it left one method
-  const auto& deciding = a.final_rays_per_second.empty() ? a.probe_rays_per_second : a.final_rays_per_second;
-  ASSERT_EQ(deciding.count(a.method), 1u) << a.method;
-  for (const auto& [name, rate] : deciding) EXPECT_LE(rate, deciding.at(a.method)) << name;
-  EXPECT_NE(a.final_rays_per_second.size(), 1u) << "a final round of one method times nothing";
-  EXPECT_LE(a.final_rays_per_second.size(), 3u) << "at most the screen's three fastest";
-  EXPECT_EQ(a.reason, "the fastest of the probe");
+  // the pick: the default, unless another method of the final beat it by 5 % at least (auto_pick)
+  if (!a.final_rays_per_second.empty()) {
+    EXPECT_EQ(a.final_rays_per_second.count(fallback), 1u) << "the default runs in the final";
+    ASSERT_EQ(a.final_rays_per_second.count(a.method), 1u) << a.method;
+    if (a.method != fallback) {
+      EXPECT_GT(a.final_rays_per_second.at(a.method), 1.05 * a.final_rays_per_second.at(fallback));
+    }
+    EXPECT_NE(a.final_rays_per_second.size(), 1u) << "a final round of one method times nothing";
+    EXPECT_LE(a.final_rays_per_second.size(), 4u) << "the default and at most the screen's three fastest";
+  }
+  EXPECT_FALSE(a.reason.empty());
   EXPECT_GT(a.probe_seconds, 0.0);
   EXPECT_GE(r.render_seconds, a.probe_seconds);
   // the pick's own figures: a wavefront pick reports the shared pool
@@ -337,7 +345,7 @@ TEST(Methods, AutoScreensTheMegakernelOnEveryEighthRow) {
   RenderSettings s = small_box_settings(8u);
   s.width = 256;
   s.height = 128;
-  s.spp = 48;  // the screen: 1 + 5 spp, an eighth of the render
+  s.spp = 384;  // the screen: 1 + 5 spp, a 64th of the render (a CPU's rule)
   s.wavefront_size = s.width * s.height;
   const auto path = shipped_scene("cornell-box.gltf");
   const RenderResult reference = render_scene(path, s);
@@ -346,11 +354,10 @@ TEST(Methods, AutoScreensTheMegakernelOnEveryEighthRow) {
   expect_bitwise_equal(reference, r, "auto, rows screen");
   EXPECT_TRUE(r.auto_choice.screen_rows);
   EXPECT_EQ(r.auto_choice.probe_rays_per_second.size(), methods().size() - 1);
-  EXPECT_EQ(r.auto_choice.reason, "the fastest of the probe");
 }
 
-// A render whose screen would take more than an eighth of its samples takes the device's default
-// without probing (on a CPU, the megakernel): a 3-spp render on PoCL.
+// A render whose screen would take more than a 64th of its samples on a CPU (an eighth on a GPU)
+// takes the device's default without probing (on a CPU, the megakernel): a 3-spp render on PoCL.
 TEST(Methods, AutoTakesTheDevicesDefaultForAShortRender) {
   RenderSettings s = small_box_settings(6u);
   const auto path = shipped_scene("cornell-box.gltf");

@@ -22,9 +22,12 @@
 // then checked against its own cost: its rate over its first kCheckLaunches launches of the render,
 // against the default's in the final; below kCheckKeep of it, the default renders the rest.
 //
-// A short render cannot pay for the probe: where the screen would take more than 1/kShortRender
-// of the render's samples per pixel, auto takes the device's default without probing
-// (device_default_method: the method measured fastest on that kind of device).
+// A short render cannot pay for the probe: where the screen would take more than 1/kShortRender of
+// the render's samples per pixel on a GPU, 1/kShortRenderCpu on a CPU, auto takes the device's
+// default without probing (device_default_method: the method measured fastest on that kind of
+// device). On a CPU the methods are further apart (sc+rg at 0.3-0.4x naive's rate on 2 cores), so
+// each screened sample of a slow method costs two or three of the default's: at 256 spp and 256x256
+// the 8x rule cost the probe 3 % of the render (0.968x the best on a 100K-triangle model).
 #include <algorithm>
 #include <chrono>
 #include <deque>
@@ -53,6 +56,7 @@ constexpr std::uint32_t kScreenRowStride = 8;
 constexpr std::uint32_t kScreenRowsMinPixels = 4096;
 // The screen may take at most this fraction (its inverse) of the render's samples per pixel.
 constexpr std::uint32_t kShortRender = 8;
+constexpr std::uint32_t kShortRenderCpu = 64;
 // A method other than the default must beat it by this much at least in the final (auto_pick).
 constexpr double kMinMargin = 0.05;
 // The pick's first launches after the final, and the share of the default's final rate they must keep.
@@ -179,7 +183,8 @@ class AutoMethod final : public PassLauncher {
     const std::uint32_t quarter_wave = std::max<std::uint32_t>(std::clamp<std::uint32_t>(pool_slots_ / pixels, 1, max_per_launch_) / 4, 1);
     const auto others = static_cast<std::uint32_t>(candidates_.size());
     const std::uint32_t screen = screen_rows_.pixels ? 1 + (others - 2) * quarter_wave : others * quarter_wave;
-    if (in.settings.spp == 0 || std::uint64_t(screen) * kShortRender <= in.settings.spp) return;
+    const std::uint32_t short_render = in.device.info().is_gpu ? kShortRender : kShortRenderCpu;
+    if (in.settings.spp == 0 || std::uint64_t(screen) * short_render <= in.settings.spp) return;
     chosen_ = default_;
     queue_.clear();
     reason_ = fmt::format("the default on a {}: the render ({} spp) is too short to probe (the screen takes {} spp)",
