@@ -18,6 +18,7 @@ std::string render_line(const fs::path& out, const std::string& method, const st
   return std::string(COHORT_BINARY) + " render " + shipped_scene("cornell-box.gltf") +
          " --res 32x32 --spp 64 --pass-spp 1 --seed 5 --max-depth 6 --method " + method + " -o " + out.string() +
          // a pool of one sample per pixel: auto's screen (6 spp) is short enough to probe at 64 spp
+         // where its share may be an eighth (COHORT_AUTO_PROBE_SHARE=8; a CPU's own rule is a 256th)
          " --wavefront-size 1024 " + extra;
 }
 
@@ -34,9 +35,9 @@ class TwoDevices : public ::testing::TestWithParam<const char*> {};
 TEST_P(TwoDevices, GiveTheOneDeviceImageBitForBit) {
   if (!two_devices_present()) GTEST_SKIP() << "POCL_DEVICES=\"pthread pthread\" does not give two devices here";
   TempDir dir("cohort-multi-");
-  const CommandResult one = run_shell(render_line(dir.path / "one", GetParam()));
+  const CommandResult one = run_shell("env COHORT_AUTO_PROBE_SHARE=8 " + render_line(dir.path / "one", GetParam()));
   ASSERT_EQ(one.code, 0) << one.output;
-  const CommandResult two = run_shell("env '" + kTwoDevices + "' " +
+  const CommandResult two = run_shell("env COHORT_AUTO_PROBE_SHARE=8 '" + kTwoDevices + "' " +
                                       render_line(dir.path / "two", GetParam(),
                                                   "--device all --stats " + (dir.path / "two.json").string()));
   ASSERT_EQ(two.code, 0) << two.output;
@@ -54,7 +55,8 @@ TEST_P(TwoDevices, GiveTheOneDeviceImageBitForBit) {
   EXPECT_EQ(passes, 64u) << "64 spp at 32x32 is 64 passes of one sample";
   EXPECT_EQ(rays, stats["rays"].get<std::uint64_t>());
   if (std::string(GetParam()) == "auto") {
-    EXPECT_EQ(stats["auto"]["reason"], "the fastest of the probe");
+    // it probed (the reason is the probe's pick, or the default kept within the probe's noise)
+    EXPECT_EQ(stats["auto"]["reason"].get<std::string>().find("too short"), std::string::npos) << stats["auto"];
   }
 }
 

@@ -2,6 +2,8 @@
 // so it must give the NAIVE image bit for bit on the same device.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include <cstring>
 #include <filesystem>
 
@@ -37,6 +39,15 @@ RenderSettings small_box_settings(std::uint32_t seed) {
   s.seed = seed;
   return s;
 }
+
+// Sets COHORT_AUTO_PROBE_SHARE for the test's scope: auto probes where its screen is at most 1/N of
+// the render (a CPU's own rule, 1/256, would need thousands of samples per pixel).
+struct ProbeShare {
+  explicit ProbeShare(const char* n) { setenv("COHORT_AUTO_PROBE_SHARE", n, 1); }
+  ~ProbeShare() { unsetenv("COHORT_AUTO_PROBE_SHARE"); }
+  ProbeShare(const ProbeShare&) = delete;
+  ProbeShare& operator=(const ProbeShare&) = delete;
+};
 
 // hash and pth sort on the device; a device whose work-groups do not run independently cannot
 // (device_support), and render() refuses them there.
@@ -270,14 +281,15 @@ TEST(Methods, MalformedCodeLayoutsAreInputErrors) {
 // whatever it picks: the probe's launches are part of the image.
 TEST(Methods, AutoRendersTheNaiveImageWithTheFastestProbedMethod) {
   RenderSettings s = small_box_settings(4u);
-  s.spp = 448;  // the screen (7 spp) is at most a 64th of the render (a CPU's rule): it probes
+  ProbeShare share("8");  // the screen (7 spp) is at most an eighth of the render: it probes
+  s.spp = 64;
   s.wavefront_size = 2 * s.width * s.height;  // a wave of 2 samples per pixel: the screen takes 1
   const auto path = shipped_scene("cornell-box.gltf");
   const RenderResult reference = render_scene(path, s);
   s.method = "auto";
   const RenderResult r = render_scene(path, s);
   expect_bitwise_equal(reference, r, "auto");
-  EXPECT_EQ(r.samples, 448u);
+  EXPECT_EQ(r.samples, 64u);
   EXPECT_EQ(r.passes, reference.passes) << "the probe splits launches, not passes";
   const AutoChoice& a = r.auto_choice;
   ASSERT_EQ(a.probe_rays_per_second.size(), methods().size() - 1) << "every other method screened";
@@ -345,7 +357,8 @@ TEST(Methods, AutoScreensTheMegakernelOnEveryEighthRow) {
   RenderSettings s = small_box_settings(8u);
   s.width = 256;
   s.height = 128;
-  s.spp = 384;  // the screen: 1 + 5 spp, a 64th of the render (a CPU's rule)
+  ProbeShare share("8");
+  s.spp = 48;  // the screen: 1 + 5 spp, an eighth of the render
   s.wavefront_size = s.width * s.height;
   const auto path = shipped_scene("cornell-box.gltf");
   const RenderResult reference = render_scene(path, s);
@@ -356,7 +369,7 @@ TEST(Methods, AutoScreensTheMegakernelOnEveryEighthRow) {
   EXPECT_EQ(r.auto_choice.probe_rays_per_second.size(), methods().size() - 1);
 }
 
-// A render whose screen would take more than a 64th of its samples on a CPU (an eighth on a GPU)
+// A render whose screen would take more than a 256th of its samples on a CPU (an eighth on a GPU)
 // takes the device's default without probing (on a CPU, the megakernel): a 3-spp render on PoCL.
 TEST(Methods, AutoTakesTheDevicesDefaultForAShortRender) {
   RenderSettings s = small_box_settings(6u);

@@ -25,11 +25,13 @@
 // A short render cannot pay for the probe: where the screen would take more than 1/kShortRender of
 // the render's samples per pixel on a GPU, 1/kShortRenderCpu on a CPU, auto takes the device's
 // default without probing (device_default_method: the method measured fastest on that kind of
-// device). On a CPU the methods are further apart (sc+rg at 0.3-0.4x naive's rate on 2 cores), so
-// each screened sample of a slow method costs two or three of the default's: at 256 spp and 256x256
-// the 8x rule cost the probe 3 % of the render (0.968x the best on a 100K-triangle model).
+// device). On a CPU the methods are further apart (sc+rg at 0.22-0.40x naive's rate on 2 cores), so
+// each screened sample of a slow method costs two to four of the default's: the probe cost 3 % of
+// the render with the screen at an eighth (256x256, 256 spp) and 2.6-3.7 % at a 64th (128x128,
+// 1024 spp); at a 256th its share is about 1 %.
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <deque>
 #include <memory>
 #include <utility>
@@ -56,12 +58,24 @@ constexpr std::uint32_t kScreenRowStride = 8;
 constexpr std::uint32_t kScreenRowsMinPixels = 4096;
 // The screen may take at most this fraction (its inverse) of the render's samples per pixel.
 constexpr std::uint32_t kShortRender = 8;
-constexpr std::uint32_t kShortRenderCpu = 64;
+constexpr std::uint32_t kShortRenderCpu = 256;
 // A method other than the default must beat it by this much at least in the final (auto_pick).
 constexpr double kMinMargin = 0.05;
 // The pick's first launches after the final, and the share of the default's final rate they must keep.
 constexpr std::uint32_t kCheckLaunches = 2;
 constexpr double kCheckKeep = 0.97;
+
+// The inverse of the largest share of the render's samples the screen may take: the device's rule,
+// or COHORT_AUTO_PROBE_SHARE where set to a positive integer (for tests and experiments that need
+// auto to probe a short render; docs/design.md).
+std::uint32_t probe_share(bool is_gpu) {
+  if (const char* v = std::getenv("COHORT_AUTO_PROBE_SHARE")) {
+    char* end = nullptr;
+    const unsigned long n = std::strtoul(v, &end, 10);
+    if (end != v && *end == '\0' && n > 0 && n <= 1u << 20) return static_cast<std::uint32_t>(n);
+  }
+  return is_gpu ? kShortRender : kShortRenderCpu;
+}
 
 struct Candidate {
   const Method* method = nullptr;
@@ -183,7 +197,7 @@ class AutoMethod final : public PassLauncher {
     const std::uint32_t quarter_wave = std::max<std::uint32_t>(std::clamp<std::uint32_t>(pool_slots_ / pixels, 1, max_per_launch_) / 4, 1);
     const auto others = static_cast<std::uint32_t>(candidates_.size());
     const std::uint32_t screen = screen_rows_.pixels ? 1 + (others - 2) * quarter_wave : others * quarter_wave;
-    const std::uint32_t short_render = in.device.info().is_gpu ? kShortRender : kShortRenderCpu;
+    const std::uint32_t short_render = probe_share(in.device.info().is_gpu);
     if (in.settings.spp == 0 || std::uint64_t(screen) * short_render <= in.settings.spp) return;
     chosen_ = default_;
     queue_.clear();
