@@ -54,8 +54,7 @@ CO_INLINE void kd_spec_walk_step(const KdTreeView* tree, KdSpeculativeRay* r, Kd
       r->sp = 0;
       if (!r->has_leaf) r->done = 1;
     } else {
-      r->sp -= 1;
-      r->node = stack[r->sp].node & ~KD_STACK_UNORDERED; r->t0 = stack[r->sp].tmin; r->t1 = stack[r->sp].tmax;
+      kd_pop(stack, &r->sp, &r->node, &r->t0, &r->t1);
     }
     return;
   }
@@ -76,8 +75,7 @@ CO_INLINE void kd_spec_walk_step(const KdTreeView* tree, KdSpeculativeRay* r, Kd
   if (r->sp == 0) {
     r->walking = 0;
   } else {
-    r->sp -= 1;
-    r->node = stack[r->sp].node & ~KD_STACK_UNORDERED; r->t0 = stack[r->sp].tmin; r->t1 = stack[r->sp].tmax;
+    kd_pop(stack, &r->sp, &r->node, &r->t0, &r->t1);
   }
 }
 

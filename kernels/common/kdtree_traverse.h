@@ -39,6 +39,14 @@ typedef struct KdStackEntry {
  * the stack instead of stopping (kd_resume). The bit is stripped on every pop. */
 #define KD_STACK_UNORDERED 0x80000000u
 
+/* Pops the top entry into the walk's cell, without the KD_STACK_UNORDERED mark. */
+CO_INLINE void kd_pop(const KdStackEntry* stack, int* sp, uint32_t* node, float* t0, float* t1) {
+  *sp -= 1;
+  *node = stack[*sp].node & ~KD_STACK_UNORDERED;
+  *t0 = stack[*sp].tmin;
+  *t1 = stack[*sp].tmax;
+}
+
 /* Whether any of the `sp` entries (a stack restored from a saved state) carries KD_STACK_UNORDERED. */
 CO_INLINE int kd_stack_unordered(const KdStackEntry* stack, int sp) {
   uint32_t any = 0u;
@@ -172,7 +180,7 @@ CO_INLINE HitOut kd_resume(const KdTreeView* tree, co_vec3 org, co_vec3 dir, flo
   co_vec3 inv_dir = kd_inverse(dir);
   WatertightRay wr = watertight_ray(org, dir);
   uint32_t visited = 0u;
-  int unordered = sp > 0 ? kd_stack_unordered(stack, sp) : 0;
+  int unordered = kd_stack_unordered(stack, sp);
   for (;;) {
     int beyond = 0;
     for (;;) {
@@ -188,15 +196,13 @@ CO_INLINE HitOut kd_resume(const KdTreeView* tree, co_vec3 org, co_vec3 dir, flo
       }
       if (kd_intersect_leaf(tree, node, &wr, tmin, &hit, any_hit)) break;
       if (sp == 0) break;
-      --sp;
-      node_index = stack[sp].node & ~KD_STACK_UNORDERED; t0 = stack[sp].tmin; t1 = stack[sp].tmax;
+      kd_pop(stack, &sp, &node_index, &t0, &t1);
     }
     /* The cells stacked under one that starts beyond the hit start later still, unless an unordered
      * entry is among them (KD_STACK_UNORDERED): then the walk skips the cell and goes on through the
      * stack. Outside the walk's loop, so the walks of other rays are the same code as without it. */
     if (!beyond || !unordered || sp == 0) break;
-    --sp;
-    node_index = stack[sp].node & ~KD_STACK_UNORDERED; t0 = stack[sp].tmin; t1 = stack[sp].tmax;
+    kd_pop(stack, &sp, &node_index, &t0, &t1);
   }
   if (steps) *steps = visited;
   return hit;

@@ -30,4 +30,9 @@ struct DeviceInfo {
   std::string opencl_c_version;                // OpenCL: CL_DEVICE_OPENCL_C_VERSION; empty for CUDA
 };
 
+// The simulator of scripts/test-oclgrind, whose checks need host-side detours: whole-buffer writes
+// and fills (runtime/cl/cl_device.cpp), buffers the driver allocates itself (runtime/cl/context.cpp),
+// and no prefetch (it checks the kernels, never times them: device_support).
+inline bool is_oclgrind(const DeviceInfo& d) { return d.platform_name == "Oclgrind"; }
+
 }  // namespace cohort

@@ -28,7 +28,7 @@ DeviceSupport device_support(const DeviceInfo& device) {
   // prefetch pays where the caches are all there is (local memory is global memory: PoCL, Intel's
   // CPU runtime, rusticl's llvmpipe); GPUs hide the latency with other warps; Oclgrind checks the
   // kernels and does not time them
-  s.prefetch = device.local_memory_is_global && device.platform_name != "Oclgrind";
+  s.prefetch = device.local_memory_is_global && !is_oclgrind(device);
   if (device.platform_name == "rusticl" || device.platform_name == "Clover") {
     s.sorts = false;
     s.sort_refusal = fmt::format("{} ({}) does not run the work-groups of a launch independently, which the "

@@ -16,17 +16,21 @@ struct ClBufferObject : BufferObject {
   explicit ClBufferObject(cl::Buffer b) : buffer(std::move(b)) {}
 };
 
+std::size_t kernel_max_group(const cl::Kernel& kernel, const cl::Device& device) {
+  return translate_cl_errors([&] { return kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device); });
+}
+
+std::size_t kernel_group_multiple(const cl::Kernel& kernel, const cl::Device& device) {
+  return translate_cl_errors(
+      [&] { return kernel.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(device); });
+}
+
 struct ClKernelObject : KernelObject {
   cl::Kernel kernel;
   cl::Device device;
   ClKernelObject(cl::Kernel k, cl::Device d) : kernel(std::move(k)), device(std::move(d)) {}
-  std::size_t max_group() const override {
-    return translate_cl_errors([&] { return kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device); });
-  }
-  std::size_t group_multiple() const override {
-    return translate_cl_errors(
-        [&] { return kernel.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(device); });
-  }
+  std::size_t max_group() const override { return kernel_max_group(kernel, device); }
+  std::size_t group_multiple() const override { return kernel_group_multiple(kernel, device); }
 };
 
 struct ClProgramObject : ProgramObject {
@@ -59,6 +63,10 @@ struct ClEventObject : EventObject {
 DeviceEvent wrap_event(const cl::Event& e) { return DeviceEvent(std::make_shared<ClEventObject>(e)); }
 
 }  // namespace
+
+std::size_t cl_launch_group(const cl::Kernel& kernel, const cl::Device& device, std::size_t wanted) {
+  return launch_group(kernel_max_group(kernel, device), kernel_group_multiple(kernel, device), wanted);
+}
 
 const cl::Buffer& cl_buffer(const DeviceBuffer& b) {
   const auto* object = dynamic_cast<const ClBufferObject*>(b.object());

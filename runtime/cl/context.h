@@ -45,6 +45,10 @@ struct ClContext : Device {
   void finish() const override;
 };
 
+// Device::launch's work-group size (launch_group) for a kernel launched outside the backend
+// interface (tests that set cl::Kernel arguments themselves).
+std::size_t cl_launch_group(const cl::Kernel& kernel, const cl::Device& device, std::size_t wanted = 0);
+
 // The OpenCL buffer behind a buffer of the OpenCL backend.
 const cl::Buffer& cl_buffer(const DeviceBuffer& b);
 

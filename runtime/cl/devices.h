@@ -20,10 +20,6 @@ std::vector<DeviceInfo> installed_devices();
 // select_device's rule (runtime/backend/device_choice.h) over installed_devices().
 DeviceInfo select_device(const std::string& spec);
 
-// The simulator of scripts/test-oclgrind, whose checks need host-side detours: whole-buffer writes
-// and fills (cl_device.cpp) and buffers the driver allocates itself (context.cpp).
-inline bool is_oclgrind(const DeviceInfo& d) { return d.platform_name == "Oclgrind"; }
-
 // The OpenCL device that list_devices() described as `info`. Throws DeviceError when it is gone.
 cl::Device find_cl_device(const DeviceInfo& info);
 

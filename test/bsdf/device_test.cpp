@@ -52,8 +52,7 @@ std::vector<BsdfTestOut> run_on_device(const std::vector<BsdfTestIn>& in) {
   k.setArg(0, in_buf);
   k.setArg(1, out_buf);
   k.setArg(2, static_cast<cl_uint>(in.size()));
-  const std::size_t group = launch_group(k.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(cl.cl_device),
-                                         k.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(cl.cl_device), 0);
+  const std::size_t group = cl_launch_group(k, cl.cl_device);
   cl.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange((in.size() + group - 1) / group * group), cl::NDRange(group));
   std::vector<BsdfTestOut> out(in.size());
   cl.queue.enqueueReadBuffer(out_buf, CL_TRUE, 0, out.size() * sizeof(BsdfTestOut), out.data());

@@ -77,9 +77,7 @@ DeviceTrace trace(const KdTree& tree, const std::vector<TestRay>& rays, std::uin
   k.setArg(a++, cl_uint(0));  // co_params_end (kernels/common/kernel_params.h)
   // the speculative kernel votes per work-group: one SIMD group of 32 where the kernel allows it;
   // the renderers' sizes (Device::launch) within the kernel's limit on this device
-  const std::size_t group = launch_group(k.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(cl.cl_device),
-                                         k.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(cl.cl_device),
-                                         mode == Traversal::speculative ? 32 : 0);
+  const std::size_t group = cl_launch_group(k, cl.cl_device, mode == Traversal::speculative ? 32 : 0);
   cl.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange((in.size() + group - 1) / group * group),
                                 cl::NDRange(group));
   DeviceTrace out;
