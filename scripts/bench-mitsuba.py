@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Mitsuba 3 (scalar_rgb, or --variant llvm_ad_rgb) on the white-sky workload of ../shared/bench-protocol.md, beside `cohort bench`.
+"""Mitsuba 3 (scalar_rgb, or --variant llvm_ad_rgb) on the white-sky workload of docs/bench-protocol.md, beside `cohort bench`.
 
 The mesh is the world-space triangle soup that `cohort export` writes (binary PLY; the protocol names
 Mitsuba's `obj` shape, the `ply` shape with `face_normals` is the same geometry with flat normals),

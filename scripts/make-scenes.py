@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """Writes the scenes shipped in scenes/ (Python 3 standard library only).
 
-    scripts/make-scenes.py [--shared ../shared/scenes] [--out scenes]
+    scripts/make-scenes.py [--shared DIR] [--out scenes]
 
-The outputs are committed, so the project works without ../shared; rerun this script only to
-change them. The Cornell box needs ../shared/scenes/cornell-box-mitsuba (its geometry is Mitsuba's);
+The outputs are committed, so the project works without the external models (scenes/external.json); rerun this script only to
+change them. The Cornell box needs the external model cornell-box-mitsuba (its geometry is Mitsuba's);
 without it the other scenes are still written.
 """
 
@@ -18,7 +18,7 @@ import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
-# Mitsuba cbox, fragments/bsdfs-rgb.xml and cbox-rgb.xml (see docs and DECISIONS.md).
+# Mitsuba cbox, fragments/bsdfs-rgb.xml and cbox-rgb.xml (docs/decisions.md).
 CBOX_ALBEDO = {
     "white": (0.885809, 0.698859, 0.666422),
     "red": (0.570068, 0.0430135, 0.0443706),

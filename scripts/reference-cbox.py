@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
-"""Mitsuba 3 reference render of the Cornell box (DECISIONS.md: Cohort's cornell-box.gltf must match
+"""Mitsuba 3 reference render of the Cornell box (docs/decisions.md: Cohort's cornell-box.gltf must match
 Mitsuba's render of cbox-rgb.xml at the same resolution, spp and max_depth 6).
 
-Renders ../shared/scenes/cornell-box-mitsuba/cbox-rgb.xml with the scalar_rgb variant in passes of
+Renders the external model cornell-box-mitsuba/cbox-rgb.xml (scenes/external.json) with the scalar_rgb variant in passes of
 --pass-spp samples (each pass its own seed) until --seconds have passed or --max-spp is reached, and
 averages the passes (each is an unbiased estimate, so the mean is too). Writes
 test/reference/cornell-box-mitsuba-rgb.exr (float RGB) and a JSON file with the settings beside it.

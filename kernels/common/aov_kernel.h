@@ -1,4 +1,4 @@
-/* First-hit AOVs (DECISIONS.md, round 2): the glTF base colour (times its texture) as albedo, the
+/* First-hit AOVs (docs/decisions.md): the glTF base colour (times its texture) as albedo, the
  * world-space normal the shading frame uses (flat: the stored geometric normal) and the distance
  * along the camera ray. One work item per pixel traces the camera rays of this launch's samples,
  * the very rays path_start gives the beauty's samples, and adds them to its sums in sample order:

@@ -1,4 +1,4 @@
-/* Pinhole camera; pixel (x, y) with y = 0 at the top, as bench-protocol.md. */
+/* Pinhole camera; pixel (x, y) with y = 0 at the top, as docs/bench-protocol.md. */
 #ifndef COHORT_CAMERA_H
 #define COHORT_CAMERA_H
 

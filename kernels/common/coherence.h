@@ -9,7 +9,7 @@
  * breadth-first node array (all nodes shallower than `levels`), held in local memory. Stops at
  * the first node outside the subtree or at a leaf, leaving the traversal state there for
  * kd_resume. Returns the PTH bits: 2 per level, root level most significant, padded with zeros
- * when the walk ends above `levels` (DECISIONS.md). */
+ * when the walk ends above `levels` (docs/decisions.md). */
 CO_INLINE uint32_t pth_walk(const CO_LOCAL KdNode* subtree, uint32_t subtree_nodes, uint32_t levels, co_vec3 org,
                             co_vec3 dir, co_vec3 inv_dir, uint32_t* node, float* t0, float* t1, KdStackEntry* stack,
                             int* sp) {

@@ -11,7 +11,7 @@
  *
  * The group vote: a warp vote in CUDA, a sub-group `any` where an OpenCL device offers
  * cl_khr_subgroups; otherwise the whole work-group votes through three words of __local memory, one
- * barrier per step, in control flow that every work item of the group follows (DECISIONS.md: never
+ * barrier per step, in control flow that every work item of the group follows (docs/decisions.md: never
  * a barrier in divergent code). */
 #ifndef COHORT_KDTREE_SPECULATIVE_H
 #define COHORT_KDTREE_SPECULATIVE_H

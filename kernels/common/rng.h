@@ -5,7 +5,7 @@
 
 #include "common/port.h"
 
-/* PCG-RXS-M-XS hash, as in bench-protocol.md (Jarzynski & Olano, JCGT 2020). */
+/* PCG-RXS-M-XS hash, as in docs/bench-protocol.md (Jarzynski & Olano, JCGT 2020). */
 CO_INLINE uint32_t pcg_hash(uint32_t v) {
   uint32_t s = v * 747796405u + 2891336453u;
   uint32_t w = ((s >> ((s >> 28u) + 4u)) ^ s) * 277803737u;

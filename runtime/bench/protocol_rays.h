@@ -1,4 +1,4 @@
-// The rays of ../shared/bench-protocol.md, generated on the host. One implementation, used by
+// The rays of docs/bench-protocol.md, generated on the host. One implementation, used by
 // `cohort bench` and by the Embree harness (runtime/peers), so both sides trace the same rays.
 #pragma once
 

@@ -1,5 +1,5 @@
 // `cohort bench` for one scene: the protocol's traversal workloads and white-sky path tracing per
-// method, from each requested view (bench-protocol.md, DECISIONS.md "Figures").
+// method, from each requested view (docs/bench-protocol.md, docs/decisions.md "Figures").
 #pragma once
 
 #include <array>

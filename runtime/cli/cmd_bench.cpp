@@ -1,5 +1,5 @@
 // `cohort bench`: the protocol's traversal workloads and white-sky path tracing per method, as a
-// readable table and a JSON file (bench-protocol.md, DECISIONS.md "Figures").
+// readable table and a JSON file (docs/bench-protocol.md, docs/decisions.md "Figures").
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 

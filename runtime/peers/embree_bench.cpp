@@ -1,4 +1,4 @@
-// Intel Embree 3 on exactly the rays of bench-protocol.md, for the side-by-side figures of
+// Intel Embree 3 on exactly the rays of docs/bench-protocol.md, for the side-by-side figures of
 // scripts/bench. The mesh comes from the project's loaders and the rays from runtime/bench
 // (protocol_rays), the same code `cohort bench` traces; only the traversal differs.
 //

@@ -13,7 +13,7 @@
 // The decision reads the film at a round boundary, which is the same bits whatever devices, ranks
 // or method made it (pass_schedule.h), so the pixels each round renders, and the image, depend on
 // the seed and the settings only, never on timing. A sample's random numbers depend on its pixel
-// and sample index alone (DECISIONS.md), so a pixel's samples are its first n whatever happens to
+// and sample index alone (docs/decisions.md), so a pixel's samples are its first n whatever happens to
 // its neighbours.
 #pragma once
 

@@ -79,7 +79,7 @@ struct Scene {
 // Throws InputError naming the file and the problem.
 Scene load_scene(const std::filesystem::path& path);
 
-// The framing camera of bench-protocol.md: eye = c + (0, 0, diag), looking at c, +Y up, 45 degrees.
+// The framing camera of docs/bench-protocol.md: eye = c + (0, 0, diag), looking at c, +Y up, 45 degrees.
 SceneCamera framing_camera(const Bounds& bounds);
 
 }  // namespace cohort

@@ -1,4 +1,4 @@
-// The protocol's rays (bench-protocol.md) as `cohort bench` and the Embree harness generate them,
+// The protocol's rays (docs/bench-protocol.md) as `cohort bench` and the Embree harness generate them,
 // and the traversal path of `cohort bench` that turns kernel hits into the protocol's triangle ids.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Consistency of sample / eval / pdf, reciprocity, energy conservation and white-furnace albedos
-// (DECISIONS.md: 1 for Lambertian, smooth dielectric and smooth conductor of albedo 1; for rough
+// (docs/decisions.md: 1 for Lambertian, smooth dielectric and smooth conductor of albedo 1; for rough
 // microfacet BSDFs the directional albedo integrated numerically on the host).
 #include <gtest/gtest.h>
 

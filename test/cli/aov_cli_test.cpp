@@ -1,4 +1,4 @@
-// --aov: first-hit albedo, normal and depth as extra EXR channels (DECISIONS.md names), the same
+// --aov: first-hit albedo, normal and depth as extra EXR channels (docs/decisions.md names), the same
 // bits for every method; bad names are exit 2.
 #include <gtest/gtest.h>
 

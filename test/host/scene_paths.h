@@ -1,4 +1,4 @@
-// Where the shipped scenes and ../shared/scenes are. The GPU machine runs test binaries built
+// Where the shipped scenes and the external models (scenes/external.json) are. The GPU machine runs test binaries built
 // elsewhere: $COHORT_SOURCE_DIR and $COHORT_SHARED_SCENES, when set, override the build's paths.
 #pragma once
 

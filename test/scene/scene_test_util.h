@@ -77,7 +77,7 @@ class GltfWriter {
 
 }  // namespace cohort::test
 
-// Skips the calling test when ../shared/scenes is not there.
+// Skips the calling test when the external models (scenes/external.json) are not there.
 #define COHORT_REQUIRE_SHARED()                                                         \
   do {                                                                                  \
     if (!std::filesystem::is_directory(::cohort::test::shared_scenes()))                \

@@ -1,4 +1,4 @@
-// Every model of ../shared/scenes loads with the triangle count of its README.
+// Every external model (scenes/external.json) loads with the triangle count the manifest gives.
 #include <gtest/gtest.h>
 
 #include "runtime/scene/scene.h"

@@ -1,4 +1,4 @@
-// The scenes in scenes/ (written by scripts/make-scenes.py) load as the tests and DECISIONS.md expect.
+// The scenes in scenes/ (written by scripts/make-scenes.py) load as the tests and docs/decisions.md expect.
 #include <map>
 #include <tuple>
 

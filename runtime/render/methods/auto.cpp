@@ -3,7 +3,7 @@
 // a launch's samples join the pass film in sample order, and a pixel's samples do not depend on
 // which other pixels a launch holds), so the probe's launches are part of the image, not thrown
 // away: the probe costs only the difference between the slower methods and the fastest on the
-// samples each probed (DECISIONS.md, round 2: its time counts).
+// samples each probed (docs/decisions.md: its time counts).
 //
 // Two rounds keep that difference small. The screen gives each method a quarter of a wave (the
 // samples per pixel that fill the wavefront pool): enough to tell a method that is far behind,

@@ -1,0 +1,6 @@
+# The scripts' own checks (standard-library Python, seconds each): included from test/CMakeLists.txt.
+find_program(COHORT_PYTHON3 python3)
+if(COHORT_PYTHON3)
+  # The external models' manifest is well formed, and every model present has its checksum.
+  add_test(NAME scripts_external_scenes COMMAND ${COHORT_PYTHON3} ${PROJECT_SOURCE_DIR}/scripts/external-scenes --check)
+endif()
