@@ -4,3 +4,7 @@ if(COHORT_PYTHON3)
   # The external models' manifest is well formed, and every model present has its checksum.
   add_test(NAME scripts_external_scenes COMMAND ${COHORT_PYTHON3} ${PROJECT_SOURCE_DIR}/scripts/external-scenes --check)
 endif()
+if(COHORT_PYTHON3)
+  # docs/results.md is what results/current.json and the raw records give, byte for byte.
+  add_test(NAME scripts_results_page COMMAND ${COHORT_PYTHON3} ${PROJECT_SOURCE_DIR}/scripts/results-page --check)
+endif()
