@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # run-b on the device machine (repo root; gpu-bundle and gpu-scenes carried): would the H200 gain from
-# 64-byte BVH nodes (planes quantised to 8 bits, docs/results.md "Tenth session", not in the tree)?
+# 64-byte BVH nodes (planes quantised to 8 bits, docs/results.md "work of 2026-12-03", not in the tree)?
 # gpu-bundle/bin: cohort (6b585a9's code) and cohort-quant (1855911 with the quantised nodes, an
 # experiment-only build). `cohort bench` Sponza interior 1024x1024 at 64 spp, protocol rays 1024x1024,
 # naive and sc+rg, --tree bvh4, two rounds alternating the binaries, OpenCL then CUDA; then the sc image

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # r10 on the device machine (repo root; gpu-bundle and gpu-scenes carried). gpu-bundle/bin holds
-# cohort-base (1855911, stop 39's main) and cohort (445e935: the BVH walk prefetches the children it
+# cohort-base (1855911, main) and cohort (445e935: the BVH walk prefetches the children it
 # pushes on CPU devices). Usage: run.sh OUT_DIR
 #   1. PoCL on 2 pinned cores of the GPU machine's CPU: render CPU seconds (--stats) of naive, 64x64,
 #      white sky: Sponza interior at 256 spp, the conference at 2048 spp; 3 rounds, binaries in turn.
