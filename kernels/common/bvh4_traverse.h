@@ -27,7 +27,7 @@
  * references appears once per leaf), each with its kept-triangle index in v0.w: a leaf costs one
  * run of consecutive loads instead of a list entry and then a triangle elsewhere. With the
  * near-plane selection below (and 2 MiB pages on CPUs): Sponza interior diffuse rays 1.15-1.2x on
- * PoCL, 1.14-1.18x on the H200 (docs/results.md, "Ninth session"). */
+ * PoCL, 1.14-1.18x on the H200 (2026-12-03, results/raw/nvidia-h200-2026-12-03-79b7d2b). */
 typedef struct Bvh4View {
   const CO_GLOBAL Bvh4Node* nodes;
   const CO_GLOBAL Triangle* leaf_triangles;
@@ -63,7 +63,7 @@ CO_INLINE float bvh4_inverse(float d) {
  * dependent loads, and a node that misses the caches stalls it. Sponza interior on PoCL and Intel's runtime: 7-11 % fewer render
  * CPU seconds, the conference unchanged. Prefetching every child of each node as it is loaded
  * gained more on Sponza (11-15 %) but cost the conference, whose walk stays in the caches, 20 % on
- * PoCL (docs/results.md, "Tenth session"). A no-op where the host does not ask for it
+ * PoCL (2026-12-03, results/raw/nvidia-h200-2026-12-03-1855911). A no-op where the host does not ask for it
  * (co_prefetch, port.h). */
 CO_INLINE void bvh4_prefetch(const Bvh4View* bvh, uint32_t ref) {
   if (bvh4_is_leaf(ref)) {

@@ -40,7 +40,7 @@ struct KdBuildOptions {
   // INT_MAX: exact everywhere, the tree of Wald & Havran's O(N log N) build (slower). 128 rather
   // than 64: the exact nodes of 65-128 references build Sponza x4 and the bunny x16 0.95x as long
   // (an empty cut hands its candidates to the child without a search), SAH within 0.6 % either way
-  // on 13 models (docs/results.md, nineteenth session).
+  // on 13 models (2026-12-04, results/raw/dev-2core-2026-12-04-7ce485a).
   int exact_triangles = 128;
   int bins = 512;
   bool parallel = true;            // build subtrees with TBB

@@ -5,7 +5,7 @@
 // Threads: a TBB task_arena of --threads workers (default 2) runs blocks of 256 rays through
 // rtcIntersect1M (Embree's ray-stream API), marked coherent for primary rays and incoherent for
 // diffuse rays; the BVH is built by an Embree device configured with the same thread count, at
-// --build-quality (Embree's default, medium; high adds spatial splits: the anchor issue 26 sets
+// --build-quality (Embree's default, medium; high adds spatial splits: the anchor the large-scene work set
 // the KD build against).
 #include <embree3/rtcore.h>
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """scripts/bench-large: the tree line of `cohort info` read for every tree it can build (the BVH's
 build seconds add the pass that keeps the triangles, as a render's build_seconds do), a missing
-tree line an error, the CPU lists it pins to, issue 26's target as a ratio to Embree, and, given a
+tree line an error, the CPU lists it pins to, the KD build's target as a ratio to Embree, and, given a
 cohort binary (argv[1]), the figures of real builds of the shipped Cornell box (and Embree's build
 of it when cohort-embree-bench was built beside it). Standard library only."""
 import importlib.machinery

@@ -1,4 +1,4 @@
-// The strict readers of issue 30: gzip read to its end, numbers read whole, glTF versions and
+// The strict readers (docs/input.md): gzip read to its end, numbers read whole, glTF versions and
 // required extensions, node transforms. The CLI's view of the same cases (exit 2, no image) is the
 // malformed-input corpus in test/data/bad-input.
 #include <gtest/gtest.h>

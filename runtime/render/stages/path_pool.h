@@ -24,7 +24,7 @@ struct PathPool {
 
 // The paths a wave holds on this device, before a pass's work items bound it: --wavefront-size, or
 // enough to fill the device. On a GPU 32768 per compute unit, so a large GPU (an H200: 132 units)
-// holds over 4M paths, the wave size at which sorting rays pays (issue 25's gate experiment); on a
+// holds over 4M paths, the wave size at which sorting rays pays (`cohort bench --gate`); on a
 // CPU, whose "compute units" are cores, 32768 per core up to 2M. Never more than a quarter of the
 // device memory and of its largest allocation, counting the state of the most demanding method
 // (pth with its deepest saved stack) for all: the same size for every wavefront method, so their

@@ -20,7 +20,7 @@ SortedTraversal::SortedTraversal(const WavefrontRender& render, RayOrder key)
     throw InputError("hash and pth walk the KD-tree: the scene was uploaded with the 4-wide BVH (--tree bvh4)");
   program_ = cl.build_program(in.cache, "pth", in.scene.build_options);
   const bool pth = key == RayOrder::pth;
-  // --code pth:N means N levels (issue 25): it and --pth-levels must agree when both are given
+  // --code pth:N means N levels (docs/decisions.md): it and --pth-levels must agree when both are given
   const std::uint32_t requested = requested_pth_levels(in.settings.code, in.settings.pth_levels);
   subtree_ = pth ? choose_subtree(cl.info(), in.scene, requested) : SubtreeChoice{};
   layout_ = in.settings.code.empty() ? default_code_layout(pth) : in.settings.code;

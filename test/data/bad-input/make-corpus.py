@@ -301,7 +301,7 @@ def make_gltf():
     g.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 0}
     bad("gltf-corrupt-texture.gltf", g.gltf(), "cannot be decoded")
 
-    # What a loader must not read as some other scene (issue 30).
+    # What a loader must not read as some other scene (docs/input.md).
     for name, version in [("gltf-version-1.gltf", "1.0"), ("gltf-version-3.gltf", "3.0"),
                           ("gltf-version-garbage.gltf", "2.0beta")]:
         g = lit_gltf()
@@ -435,7 +435,7 @@ def make_obj():
         "missing-texture.png", "black")
     odd("obj-two-vertex-faces.obj", QUAD_LIGHT + "f 1 2\nf 3\n", "Degenerated face", "black")
     odd("obj-nan-vertices.obj", QUAD_LIGHT + "v nan nan nan\nv inf 0 0\nf 5 6 1\n", "non-finite", "black")
-    # Numbers are read whole (issue 30): each of these once loaded as some other scene.
+    # Numbers are read whole (docs/input.md): each of these once loaded as some other scene.
     bad("obj-bad-number.obj", QUAD_LIGHT.replace("v 1 1 -0.5", "v 1 1.5abc -0.5"), "line 3: '1.5abc'")
     bad("obj-decimal-comma.obj", QUAD_LIGHT.replace("v 1 -1 -0.5", "v 1,25 -1 -0.5"), "line 2: '1,25'")
     bad("obj-hex-number.obj", QUAD_LIGHT.replace("v -1 1 -0.5", "v 0x10 1 -0.5"), "not a number")
@@ -525,7 +525,7 @@ def make_ply():
     bad("ply-garbage-after-header.ply", ply_header("binary_little_endian", 4, 1).encode() + garbage(6, 20),
         "")
     odd("ply-no-light.ply", ply_ascii(PLY_VERTS, quad), "no light", "black")
-    # Headers that lie (issue 30): each item is one line, and nothing may follow the last one.
+    # Headers that lie (docs/input.md): each item is one line, and nothing may follow the last one.
     bad("ply-number-suffix.ply", ply_ascii(PLY_VERTS, quad).replace("-0.5", "-0.5f", 1), "bad number '-0.5f'")
     bad("ply-extra-values.ply", ply_ascii([v + (7,) for v in PLY_VERTS], quad), "line 10: more values")
     bad("ply-missing-values.ply", ply_ascii([v[:2] for v in PLY_VERTS], quad), "line 10: the line ends")
