@@ -39,7 +39,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.ticker import NullFormatter  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
 from reference_common import ROOT, references, relative_mse, render_cohort  # noqa: E402
 
 SPONZA = os.path.join(ROOT, "..", "shared", "scenes", "crytek-sponza", "sponza.obj.gz")

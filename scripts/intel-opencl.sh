@@ -37,3 +37,6 @@ cohort_intel_opencl() {
 cohort_runtime_device() {
   case "$1" in pocl) echo "portable computing" ;; intel) echo "intel(r) opencl" ;; *) echo "$1" ;; esac
 }
+
+# Run directly (not sourced): print the comment above and exit.
+if [[ "${BASH_SOURCE[0]}" == "$0" ]]; then sed -n '1,/^[^#]/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0; fi

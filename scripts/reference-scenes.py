@@ -12,7 +12,7 @@ of the settings beside it, which test/render/reference_scenes_test.cpp reads.
 Scenes (64 x 64): conductor (rough GGX conductor, F0 = 1, glTF roughness 0.3), rough-dielectric
 (glass of IOR 1.5, roughness 0.3), plastic (smooth plastic over a coloured base), envmap (a
 Lambertian sphere under scenes/reference/sky.exr), punctual (a point and a spot light), and two
-scenes of issue 31's kinds: on-ground (plastic and metal resting on, and 0.03 above, a 400-wide
+scenes of the kinds the scale-free ray offset was checked on: on-ground (plastic and metal resting on, and 0.03 above, a 400-wide
 ground under a constant sky) and nave (an interior lit only by emissive windows).
 Run through scripts/reference, which provides mitsuba and numpy."""
 import argparse
@@ -27,7 +27,7 @@ import tempfile
 import mitsuba as mi
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
 from reference_common import accumulate_passes  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -144,7 +144,7 @@ def room(sphere_material, light=True):
 
 
 def on_ground():
-    """A car's worth of contact (issue 31): a smooth plastic body 0.03 above a ground 400 wide and rough
+    """A car's worth of contact (the scale-free ray offset): a smooth plastic body 0.03 above a ground 400 wide and rough
     metal wheels touching it, under a constant sky. An offset of 1e-4 of the diagonal (0.057) is
     wider than the slot under the body."""
     return [("ground", quad([-200, 0, 200], [400, 0, 0], [0, 0, -400]), diffuse([0.5, 0.5, 0.5])),

@@ -43,3 +43,6 @@ cohort_rusticl() {
   export OCL_ICD_VENDORS="$icd"
   export RUSTICL_ENABLE=llvmpipe
 }
+
+# Run directly (not sourced): print the comment above and exit.
+if [[ "${BASH_SOURCE[0]}" == "$0" ]]; then sed -n '1,/^[^#]/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0; fi

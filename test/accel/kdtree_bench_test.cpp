@@ -1,5 +1,5 @@
 // Build times and tree statistics on the shared models. Disabled in the normal run (it takes a
-// while); scripts/bench-kdtree runs it: test_accel --gtest_also_run_disabled_tests
+// while); scripts/bench-suite kd-build runs it: test_accel --gtest_also_run_disabled_tests
 // --gtest_filter='KdTreeBench.*'.
 #include <fmt/format.h>
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""scripts/bench-peers-rounds.py: each round's ratio divides that round's figures (the faster Cohort
+"""scripts/lib/bench-peers-rounds.py: each round's ratio divides that round's figures (the faster Cohort
 runtime by llvm_ad_rgb), rounds in numeric order, missing figures left out of the median and the
 least, and a directory without rounds an error. Standard library only."""
 import importlib.util
@@ -10,7 +10,7 @@ import sys
 import tempfile
 import unittest
 
-SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "bench-peers-rounds.py")
+SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "lib", "bench-peers-rounds.py")
 spec = importlib.util.spec_from_file_location("bench_peers_rounds", SCRIPT)
 rounds = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(rounds)

@@ -8,3 +8,8 @@ if(COHORT_PYTHON3)
   # docs/results.md is what results/current.json and the raw records give, byte for byte.
   add_test(NAME scripts_results_page COMMAND ${COHORT_PYTHON3} ${PROJECT_SOURCE_DIR}/scripts/results-page --check)
 endif()
+if(COHORT_PYTHON3)
+  # scripts/bench-suite: every suite expands, the GPU suite names its outputs as the records do, a run
+  # alternates binaries in rounds and its summary takes medians of the JSON (a stand-in cohort).
+  add_test(NAME scripts_bench_suite COMMAND ${COHORT_PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/bench_suite_test.py)
+endif()

@@ -1,5 +1,5 @@
 // Benchmark of the device radix sort over tilings, for tuning RadixSort::choose_tiling on a device.
-// Disabled in the normal suite; scripts/bench-sort runs it. Environment (all optional):
+// Disabled in the normal suite; scripts/bench-suite sort runs it. Environment (all optional):
 //   COHORT_DEVICE         device, as `cohort devices` lists it (default: first GPU, else CPU)
 //   COHORT_SORT_TILINGS   "default,GROUPxITEMS[/local],..." where /local stages tiles in local memory
 //                         (the GPU mode) and no suffix writes pairs straight to global memory (the

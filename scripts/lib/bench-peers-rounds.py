@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""Summary of a scripts/bench-peers-rounds directory (issue 28): per scene and view, the faster
+"""Summary of a scripts/bench-peers-rounds directory: per scene and view, the faster
 Cohort runtime against Mitsuba 3 llvm_ad_rgb in every round, per CPU second and per wall second,
 with the median and the least of the rounds. Each ratio divides two figures of one round (the
 same scene, minutes apart). Beside them, the worst pairing: Cohort's slowest round against
 Mitsuba's fastest, a bound that no drift of the machine between rounds can flatter. Prints
 Markdown and writes DIR/rounds.json. Standard library only.
-Usage: scripts/bench-peers-rounds.py DIR"""
+Usage: scripts/lib/bench-peers-rounds.py DIR"""
 import glob
 import json
 import os
@@ -60,7 +60,7 @@ def summarise(out):
 
 def main():
     if len(sys.argv) != 2 or not os.path.isdir(sys.argv[1]):
-        sys.exit("usage: scripts/bench-peers-rounds.py DIR (a scripts/bench-peers-rounds output directory)")
+        sys.exit("usage: scripts/lib/bench-peers-rounds.py DIR (a scripts/bench-peers-rounds output directory)")
     out = sys.argv[1]
     scenes = summarise(out)
     if not scenes:
@@ -92,4 +92,7 @@ def main():
 
 
 if __name__ == "__main__":
+    if len(sys.argv) > 1 and sys.argv[1] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0)
     main()

@@ -19,8 +19,9 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from reference_common import accumulate_passes  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SCENE = os.path.join(os.path.dirname(ROOT), "shared", "scenes", "cornell-box-mitsuba", "cbox-rgb.xml")
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+MODELS = os.environ.get("COHORT_SHARED_SCENES") or os.path.join(os.path.dirname(ROOT), "shared", "scenes")  # scenes/external.json
+SCENE = os.path.join(MODELS, "cornell-box-mitsuba", "cbox-rgb.xml")
 
 
 def main():

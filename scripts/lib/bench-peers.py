@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""The CPU peer a user would pick (issue 28), from a `scripts/bench-runtimes --peers` directory:
+"""The CPU peer a user would pick, from a `scripts/lib/bench-runtimes --peers` directory:
 per scene and view, Cohort's fastest method on PoCL and on Intel's runtime beside Mitsuba 3 scalar_rgb
 and llvm_ad_rgb (white sky, M samples/s medians), the faster runtime's ratio to each, and where the
 distance goes: protocol diffuse rays against Embree's (traversal alone), path-tracing rays/s against
 protocol diffuse rays/s (what shading and the path loop add), and the share of the render's wall time
 the device spent in kernels (the rest is per-pass host work). Prints Markdown and writes DIR/peers.json.
-Standard library only. Usage: scripts/bench-peers.py DIR"""
+Standard library only. Usage: scripts/lib/bench-peers.py DIR"""
 import json
 import os
 import sys
@@ -118,4 +118,7 @@ def main():
 
 
 if __name__ == "__main__":
+    if len(sys.argv) > 1 and sys.argv[1] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0)
     main()

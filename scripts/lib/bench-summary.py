@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Medians and ratios from a scripts/bench output directory, as Markdown tables (standard library
-only, so it runs wherever python3 does). Usage: scripts/bench-summary.py DIR"""
+only, so it runs wherever python3 does). Usage: scripts/lib/bench-summary.py DIR"""
 import os
 import sys
 
@@ -142,4 +142,7 @@ def main():
 
 
 if __name__ == "__main__":
+    if len(sys.argv) > 1 and sys.argv[1] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0)
     main()

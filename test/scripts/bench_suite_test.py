@@ -1,0 +1,92 @@
+#!/usr/bin/env python3
+"""scripts/bench-suite: every suite file expands to commands; the GPU portability suite names its
+outputs as the H200 record of 2026-12-05 has them; a run with a stand-in `cohort` alternates the
+binaries in rounds, records every command, and its summary takes medians of the JSON figures."""
+import importlib.machinery
+import importlib.util
+import json
+import os
+import stat
+import subprocess
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+SCRIPT = ROOT / "scripts" / "bench-suite"
+
+
+def load():
+    loader = importlib.machinery.SourceFileLoader("bench_suite", str(SCRIPT))
+    spec = importlib.util.spec_from_loader("bench_suite", loader)
+    module = importlib.util.module_from_spec(spec)
+    loader.exec_module(module)
+    return module
+
+
+bs = load()
+
+# A stand-in for `cohort bench --json`: primary rays at 100 x the round given in the environment,
+# plus 1 for the baseline binary, so the medians over rounds are known.
+FAKE = """#!/usr/bin/env python3
+import json, os, sys
+args = sys.argv[1:]
+out = args[args.index("--json") + 1]
+base = 1 if os.path.basename(sys.argv[0]).endswith("-base") else 0
+n = len([f for f in os.listdir(os.path.dirname(out)) if f.endswith(".json")])
+doc = {"cohort": {"git_commit": "abc"}, "device": {"name": "stand-in"}, "scenes": [{"name": "s.obj", "views": [
+    {"view": "interior", "primary": {"mrays_per_second": {"median": 100.0 * (n + 1) + base}},
+     "path_tracing": {"naive": {"mrays_per_second": {"median": 7.0}}}}]}]}
+open(out, "w").write(json.dumps(doc))
+"""
+
+
+class BenchSuite(unittest.TestCase):
+    def test_every_suite_expands(self):
+        for path in sorted((ROOT / "scripts" / "suites").glob("*.json")):
+            _, suite = bs.load_suite(str(path))
+            runs = bs.plan(suite, 2, Path("/bin-dir"), Path("/models"), Path("/out"))
+            self.assertTrue(runs, path.name)
+            names = [r["name"] for r in runs]
+            self.assertEqual(len(names), len(set(names)), f"{path.name}: two runs write one file")
+            self.assertTrue(suite.get("about"), path.name)
+
+    def test_portability_suite_names_the_record_files(self):
+        _, suite = bs.load_suite("gpu-portability")
+        runs = bs.plan(suite, 5, Path("/b"), Path("/m"), Path("/out"))
+        planned = sorted(Path(r["output"]).name for r in runs)
+        record = ROOT / "results" / "raw" / "nvidia-h200-2026-12-05-1c5f785"
+        kept = sorted(p.name for p in record.iterdir() if p.name != "README.md")
+        self.assertEqual(planned, kept)
+
+    def test_a_run_alternates_binaries_and_summarises_json(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            tmp = Path(tmp)
+            bindir = tmp / "bin"
+            bindir.mkdir()
+            for name in ("cohort", "cohort-base"):
+                exe = bindir / name
+                exe.write_text(FAKE)
+                exe.chmod(exe.stat().st_mode | stat.S_IEXEC)
+            suite = {"about": "test", "machine": "local", "rounds": 3, "binaries": ["cohort", "cohort-base"],
+                     "steps": [{"name": "trav-{binary}", "kind": "bench", "scene": "scenes/cornell-box.gltf",
+                                "args": ["--view", "interior"]}]}
+            (tmp / "suite.json").write_text(json.dumps(suite))
+            out = tmp / "out"
+            r = subprocess.run([sys.executable, str(SCRIPT), str(tmp / "suite.json"), str(out), "--bin", str(bindir)],
+                               capture_output=True, text=True)
+            self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+            record = json.loads((out / "run.json").read_text())
+            order = [(x["round"], x["binary"]) for x in record["runs"]]
+            self.assertEqual(order, [(1, "cohort"), (1, "cohort-base"), (2, "cohort"), (2, "cohort-base"),
+                                     (3, "cohort"), (3, "cohort-base")])
+            # files written in order: cohort gets n = 0, 2, 4 -> 100, 300, 500; the baseline 201, 401, 601
+            table = bs.summary(out)
+            self.assertIn("| trav-cohort | s.obj | interior | primary | 300 | 100 | 500 | 3 |", table)
+            self.assertIn("| trav-cohort-base | s.obj | interior | primary | 401 | 201 | 601 | 3 |", table)
+            self.assertIn("| trav-cohort | s.obj | interior | naive | 7 | 7 | 7 | 3 |", table)
+
+
+if __name__ == "__main__":
+    unittest.main()
