@@ -36,6 +36,7 @@ int run_info(const std::filesystem::path& path, const std::string& tree) {
   fmt::print("{}\n", describe_tree(p));
   fmt::print("device memory: {}\n", describe(scene_memory(p.tree, p.tables, p.bvh()), p.tree.triangles.size()));
   fmt::print("scene geometry: {:.2f} MiB on the host\n", p.scene.geometry_bytes() / 1048576.0);
+  for (const auto& n : p.scene.notes) fmt::print("note: {}\n", n);
   for (const auto& w : p.scene.warnings) fmt::print("warning: {}\n", w);
   return 0;
 }

@@ -105,14 +105,7 @@ SceneMaterial convert(const tinygltf::Material& m, TextureTable& textures) {
 void convert_materials(const tinygltf::Model& model, const std::string& file, Scene& scene) {
   TextureTable textures(model, file, scene);
   scene.materials.reserve(scene.materials.size() + model.materials.size());
-  for (const tinygltf::Material& m : model.materials) {
-    scene.materials.push_back(convert(m, textures));
-    if (m.pbrMetallicRoughness.baseColorTexture.index >= 0 &&
-        m.pbrMetallicRoughness.baseColorTexture.texCoord != 0)
-      scene.warnings.push_back(
-          fmt::format("{}: material '{}' samples its base colour with TEXCOORD_{}; TEXCOORD_0 is used", file,
-                      m.name, m.pbrMetallicRoughness.baseColorTexture.texCoord));
-  }
+  for (const tinygltf::Material& m : model.materials) scene.materials.push_back(convert(m, textures));
 }
 
 }  // namespace cohort::gltf

@@ -14,6 +14,7 @@
 
 #include "runtime/scene/gltf_materials.h"
 #include "runtime/scene/gltf_nodes.h"
+#include "runtime/scene/gltf_unhonoured.h"
 #include "runtime/scene/library_message.h"
 #include "runtime/scene/loaders.h"
 #include "runtime/util/error.h"
@@ -114,28 +115,14 @@ void check_version(const tinygltf::Asset& asset, const std::string& file) {
         fmt::format("{}: glTF asset.minVersion '{}' is newer than this loader (2.0)", file, asset.minVersion));
 }
 
-bool implemented(const std::string& extension) {
-  static constexpr std::array kImplemented = {
-      std::string_view("KHR_materials_emissive_strength"), std::string_view("KHR_materials_transmission"),
-      std::string_view("KHR_materials_ior"), std::string_view("KHR_mesh_quantization"),
-      std::string_view("KHR_lights_punctual")};
-  return std::find(kImplemented.begin(), kImplemented.end(), extension) != kImplemented.end();
-}
-
 // A required extension changes what the file means, so loading without it would render some other
-// scene: an error. An optional one the file still renders without, as the specification allows,
-// but the image may differ from what the author saw: one warning naming them.
-void check_extensions(const tinygltf::Model& model, const std::string& file, Scene& scene) {
+// scene: an error. Optional ones the file still renders without, as the specification allows; what
+// they and the rest of the file ask for beyond the loader is named by report_unhonoured.
+void check_required_extensions(const tinygltf::Model& model, const std::string& file) {
   for (const std::string& name : model.extensionsRequired)
-    if (!implemented(name))
+    if (!gltf::extension_implemented(name))
       throw InputError(fmt::format("{}: requires glTF extension {}, which this loader does not implement", file,
                                    library_message(name)));
-  std::string ignored;
-  for (const std::string& name : model.extensionsUsed)
-    if (!implemented(name)) ignored += (ignored.empty() ? "" : ", ") + library_message(name);
-  if (!ignored.empty())
-    scene.warnings.push_back(fmt::format("{}: glTF extensions ignored (optional, not implemented): {}", file,
-                                         library_message(ignored)));
 }
 
 tinygltf::Model parse(const std::filesystem::path& path, const std::string& bytes, bool binary,
@@ -162,7 +149,7 @@ tinygltf::Model parse(const std::filesystem::path& path, const std::string& byte
   if (!ok) throw InputError(fmt::format("{}: invalid glTF: {}", file, library_message(err)));
   add_warnings(warn, file, scene);
   check_version(model.asset, file);
-  check_extensions(model, file, scene);
+  check_required_extensions(model, file);
   return model;
 }
 
@@ -174,6 +161,7 @@ Scene load_gltf(const std::filesystem::path& path, const std::string& bytes, boo
   const bool glb = binary || bytes.compare(0, 4, "glTF") == 0;
   const tinygltf::Model model = parse(path, bytes, glb, scene);
   gltf::convert_materials(model, path.string(), scene);
+  gltf::report_unhonoured(model, path.string(), scene);
   gltf::emit_default_scene(model, path.string(), scene);
   return scene;
 }

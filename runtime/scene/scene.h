@@ -67,6 +67,7 @@ struct Scene {
   std::optional<SceneCamera> camera;       // from the file, when it has one
   std::vector<SceneLight> lights;          // punctual lights (glTF KHR_lights_punctual)
   std::vector<std::string> warnings;       // legal but odd input (no light, skipped primitives)
+  std::vector<std::string> notes;          // input left out by design, said once by `info`
 
   std::size_t triangle_count() const { return positions.size() / 3; }
   Bounds bounds() const;

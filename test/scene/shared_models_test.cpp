@@ -1,4 +1,6 @@
 // Every external model (scenes/external.json) loads with the triangle count the manifest gives.
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include "runtime/scene/scene.h"
@@ -76,6 +78,11 @@ TEST(SharedModelDetails, DamagedHelmetMaterialAndTextures) {
   EXPECT_EQ(albedo.height, 2048);
   EXPECT_EQ(albedo.rgba.size(), 2048u * 2048u * 4u);
   EXPECT_EQ(s.uvs.size(), s.positions.size());
+  // what the loader leaves out is named: the normal map warned about, occlusion noted
+  ASSERT_EQ(s.notes.size(), 1u);
+  EXPECT_NE(s.notes[0].find("occlusionTexture"), std::string::npos);
+  EXPECT_TRUE(std::any_of(s.warnings.begin(), s.warnings.end(),
+                          [](const std::string& w) { return w.find("normalTexture") != std::string::npos; }));
 }
 
 TEST(SharedModelDetails, McGuireCornellBoxLightIsEmissiveAndFacesDown) {

@@ -1,0 +1,150 @@
+#include "runtime/scene/gltf_unhonoured.h"
+
+#include <algorithm>
+#include <array>
+#include <functional>
+#include <map>
+#include <set>
+#include <string_view>
+#include <vector>
+
+#include <fmt/format.h>
+#include <tiny_gltf.h>
+
+#include "runtime/scene/library_message.h"
+
+namespace cohort::gltf {
+namespace {
+
+constexpr std::array kImplemented = {
+    std::string_view("KHR_materials_emissive_strength"), std::string_view("KHR_materials_transmission"),
+    std::string_view("KHR_materials_ior"), std::string_view("KHR_mesh_quantization"),
+    std::string_view("KHR_lights_punctual")};
+
+// The texture references of a material that the loader reads (their samplers and coordinate sets
+// matter); references inside unimplemented extensions are covered by the extension's own warning.
+std::vector<const tinygltf::TextureInfo*> honoured_textures(const tinygltf::Material& m) {
+  std::vector<const tinygltf::TextureInfo*> out;
+  for (const tinygltf::TextureInfo* t : {&m.pbrMetallicRoughness.baseColorTexture, &m.emissiveTexture})
+    if (t->index >= 0) out.push_back(t);
+  return out;
+}
+
+const tinygltf::Sampler* sampler_of(const tinygltf::Model& model, const tinygltf::TextureInfo& t) {
+  if (t.index < 0 || static_cast<std::size_t>(t.index) >= model.textures.size()) return nullptr;
+  const int s = model.textures[static_cast<std::size_t>(t.index)].sampler;
+  if (s < 0 || static_cast<std::size_t>(s) >= model.samplers.size()) return nullptr;
+  return &model.samplers[static_cast<std::size_t>(s)];
+}
+
+bool any_texture(const tinygltf::Model& model, const tinygltf::Material& m,
+                 const std::function<bool(const tinygltf::TextureInfo&, const tinygltf::Sampler*)>& test) {
+  const auto refs = honoured_textures(m);
+  return std::any_of(refs.begin(), refs.end(),
+                     [&](const tinygltf::TextureInfo* t) { return test(*t, sampler_of(model, *t)); });
+}
+
+bool nearest_filter(int filter) {
+  return filter == TINYGLTF_TEXTURE_FILTER_NEAREST || filter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
+         filter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR;
+}
+
+// A feature the loader leaves out, and how to tell whether a material asks for it.
+struct Unhonoured {
+  std::string what;  // the feature and what is rendered instead
+  std::function<bool(const tinygltf::Model&, const tinygltf::Material&)> used_by;
+  std::string extension = {};  // the extension this feature is, if one
+};
+
+std::vector<Unhonoured> unhonoured_features() {
+  return {
+      {"metallicRoughnessTexture (metal and roughness use their factors alone)",
+       [](const auto&, const auto& m) { return m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0; }},
+      {"normalTexture (shading uses the geometric normal)",
+       [](const auto&, const auto& m) { return m.normalTexture.index >= 0; }},
+      {"alphaMode MASK (rendered opaque)", [](const auto&, const auto& m) { return m.alphaMode == "MASK"; }},
+      {"alphaMode BLEND (rendered opaque)", [](const auto&, const auto& m) { return m.alphaMode == "BLEND"; }},
+      {"textures read with TEXCOORD_1 or above (TEXCOORD_0 used)",
+       [](const auto& model, const auto& m) {
+         return any_texture(model, m, [](const auto& t, const auto*) { return t.texCoord != 0; });
+       }},
+      {"sampler filter NEAREST (bilinear used)",
+       [](const auto& model, const auto& m) {
+         return any_texture(model, m, [](const auto&, const tinygltf::Sampler* s) {
+           return s && (nearest_filter(s->magFilter) || nearest_filter(s->minFilter));
+         });
+       }},
+      {"sampler wrap CLAMP_TO_EDGE or MIRRORED_REPEAT (REPEAT used)",
+       [](const auto& model, const auto& m) {
+         return any_texture(model, m, [](const auto&, const tinygltf::Sampler* s) {
+           return s && (s->wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT || s->wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT);
+         });
+       }},
+      {"KHR_texture_transform (texture coordinates used untransformed)",
+       [](const auto& model, const auto& m) {
+         return any_texture(model, m, [](const auto& t, const auto*) {
+           return t.extensions.count("KHR_texture_transform") != 0;
+         });
+       },
+       "KHR_texture_transform"},
+  };
+}
+
+// Materials of primitives that carry COLOR_0 (vertex colours multiply the base colour in glTF).
+std::set<int> materials_with_vertex_colours(const tinygltf::Model& model) {
+  std::set<int> out;
+  for (const tinygltf::Mesh& mesh : model.meshes)
+    for (const tinygltf::Primitive& p : mesh.primitives)
+      if (p.attributes.count("COLOR_0")) out.insert(p.material);
+  return out;
+}
+
+std::string materials(std::size_t n) { return fmt::format("{} material{}", n, n == 1 ? "" : "s"); }
+
+}  // namespace
+
+bool extension_implemented(const std::string& name) {
+  return std::find(kImplemented.begin(), kImplemented.end(), name) != kImplemented.end();
+}
+
+void report_unhonoured(const tinygltf::Model& model, const std::string& file, Scene& scene) {
+  auto warn = [&](const std::string& what, std::size_t count) {
+    scene.warnings.push_back(
+        fmt::format("{}: glTF feature not honoured: {}: {}", file, library_message(what), materials(count)));
+  };
+  std::set<std::string> named;  // extensions a warning above names already
+  for (const Unhonoured& feature : unhonoured_features()) {
+    const auto n = std::count_if(model.materials.begin(), model.materials.end(),
+                                 [&](const tinygltf::Material& m) { return feature.used_by(model, m); });
+    if (n == 0) continue;
+    warn(feature.what, static_cast<std::size_t>(n));
+    if (!feature.extension.empty()) named.insert(feature.extension);
+  }
+  const std::set<int> coloured = materials_with_vertex_colours(model);
+  if (!coloured.empty()) warn("COLOR_0 vertex colours (base colour used without them)", coloured.size());
+
+  // Material extensions by name, each with its material count.
+  std::map<std::string, std::size_t> extensions;
+  for (const tinygltf::Material& m : model.materials)
+    for (const auto& [name, value] : m.extensions)
+      if (!extension_implemented(name)) ++extensions[name];
+  for (const auto& [name, count] : extensions) {
+    warn(fmt::format("extension {}", name), count);
+    named.insert(name);
+  }
+  std::string others;
+  for (const std::string& name : model.extensionsUsed)
+    if (!extension_implemented(name) && !named.count(name)) others += (others.empty() ? "" : ", ") + name;
+  if (!others.empty())
+    scene.warnings.push_back(fmt::format("{}: glTF extensions ignored (optional, not implemented): {}", file,
+                                         library_message(others)));
+
+  const auto occluded = std::count_if(model.materials.begin(), model.materials.end(),
+                                      [](const tinygltf::Material& m) { return m.occlusionTexture.index >= 0; });
+  if (occluded > 0)
+    scene.notes.push_back(fmt::format("{}: occlusionTexture of {} not used: a path tracer traces the occlusion "
+                                      "it approximates",
+                                      file, materials(static_cast<std::size_t>(occluded))));
+}
+
+}  // namespace cohort::gltf

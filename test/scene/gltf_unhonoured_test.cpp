@@ -1,0 +1,91 @@
+// What a glTF file asks for beyond the loader is named once per feature, with its material count.
+#include <algorithm>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "runtime/scene/scene.h"
+#include "scene_test_util.h"
+
+namespace cohort {
+namespace {
+
+using nlohmann::json;
+using test::GltfWriter;
+using test::TempDir;
+
+// A triangle per material, each of the given materials; images are 1x1 PPMs.
+GltfWriter triangles_with(const TempDir& dir, const std::vector<json>& materials) {
+  test::write_file(dir / "px.ppm", std::string("P6\n1 1\n255\n") + std::string("\x80\x80\xff", 3));
+  GltfWriter g;
+  g.doc()["images"] = {{{"uri", "px.ppm"}}};
+  g.doc()["textures"] = {{{"source", 0}}};
+  std::vector<int> roots;
+  for (const json& m : materials) {
+    const int pos = g.positions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    roots.push_back(g.node({{"mesh", g.mesh(pos, -1, g.material(m))}}));
+  }
+  g.roots(roots);
+  return g;
+}
+
+std::size_t lines_containing(const std::vector<std::string>& lines, const std::string& what) {
+  return static_cast<std::size_t>(
+      std::count_if(lines.begin(), lines.end(), [&](const std::string& l) { return l.find(what) != std::string::npos; }));
+}
+
+TEST(GltfUnhonoured, EachFeatureIsOneWarningWithItsMaterialCount) {
+  TempDir dir;
+  const json tex = {{"index", 0}};
+  GltfWriter g = triangles_with(
+      dir, {{{"normalTexture", tex}, {"alphaMode", "BLEND"}, {"extensions", {{"KHR_materials_sheen", json::object()}}}},
+            {{"normalTexture", tex}, {"extensions", {{"KHR_materials_sheen", json::object()}}}},
+            {{"alphaMode", "OPAQUE"}, {"occlusionTexture", tex}}});
+  g.doc()["extensionsUsed"] = {"KHR_materials_sheen", "EXT_meshopt_compression"};
+  const Scene s = load_scene(g.write_gltf(dir.path(), "features"));
+  EXPECT_EQ(lines_containing(s.warnings, "not honoured: normalTexture"), 1u);
+  EXPECT_EQ(lines_containing(s.warnings, "normalTexture (shading uses the geometric normal): 2 materials"), 1u);
+  EXPECT_EQ(lines_containing(s.warnings, "alphaMode BLEND (rendered opaque): 1 material"), 1u);
+  EXPECT_EQ(lines_containing(s.warnings, "alphaMode MASK"), 0u);
+  EXPECT_EQ(lines_containing(s.warnings, "extension KHR_materials_sheen: 2 materials"), 1u);
+  // an extension no material carries is still named, once, and the sheen is not named twice
+  EXPECT_EQ(lines_containing(s.warnings, "ignored (optional, not implemented): EXT_meshopt_compression"), 1u);
+  EXPECT_EQ(lines_containing(s.warnings, "KHR_materials_sheen"), 1u);
+  // occlusion is left out by design: a note, not a warning
+  EXPECT_EQ(lines_containing(s.warnings, "occlusion"), 0u);
+  ASSERT_EQ(s.notes.size(), 1u);
+  EXPECT_NE(s.notes[0].find("occlusionTexture of 1 material not used"), std::string::npos) << s.notes[0];
+}
+
+TEST(GltfUnhonoured, ASceneOfHonouredFeaturesWarnsNothing) {
+  TempDir dir;
+  GltfWriter g = triangles_with(
+      dir, {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0.5}}},
+             {"emissiveTexture", {{"index", 0}}},
+             {"emissiveFactor", {1, 1, 1}},
+             {"extensions", {{"KHR_materials_ior", {{"ior", 1.4}}}}}}});
+  g.doc()["extensionsUsed"] = {"KHR_materials_ior"};
+  const Scene s = load_scene(g.write_gltf(dir.path(), "plain"));
+  EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+  EXPECT_TRUE(s.notes.empty());
+}
+
+TEST(GltfUnhonoured, RequiredExtensionsBeyondTheLoaderAreStillRefused) {
+  TempDir dir;
+  GltfWriter g = triangles_with(dir, {{{"extensions", {{"KHR_materials_clearcoat", json::object()}}}}});
+  g.doc()["extensionsUsed"] = g.doc()["extensionsRequired"] = {"KHR_materials_clearcoat"};
+  test::expect_input_error(g.write_gltf(dir.path(), "required"), "KHR_materials_clearcoat");
+}
+
+TEST(GltfUnhonoured, VertexColoursAreCountedByMaterial) {
+  TempDir dir;
+  GltfWriter g = triangles_with(dir, {json::object(), json::object()});
+  const std::vector<glm::vec3> colours(3, glm::vec3(1, 0, 0));
+  const int acc = g.accessor(g.view(colours.data(), colours.size() * sizeof(glm::vec3)), 5126, 3, "VEC3");
+  g.doc()["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = acc;
+  const Scene s = load_scene(g.write_gltf(dir.path(), "colours"));
+  EXPECT_EQ(lines_containing(s.warnings, "COLOR_0 vertex colours (base colour used without them): 1 material"), 1u);
+}
+
+}  // namespace
+}  // namespace cohort
