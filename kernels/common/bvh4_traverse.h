@@ -2,7 +2,7 @@
  * node's four child boxes at once, goes on with the nearest child the ray enters and pushes the
  * others, farthest first. It visits about a quarter of the nodes a KD-tree walk does and tests
  * fewer triangles: 1.5-2.3x the KD-tree's samples per CPU second on PoCL, 1.1-2.1x its rays/s on the
- * H200, 0.9x on one scene (docs/results.md, "A 4-wide BVH").
+ * H200, 0.9x on one scene (2026-12-03, results/raw/pocl-2026-12-03-ee75f6e, nvidia-h200-2026-12-03-ff6bbc9).
  *
  * The hit is the one kd_trace finds, bit for bit: the same watertight test on the same kept
  * triangles, the least (t, triangle index) over every triangle the ray meets, and a box is

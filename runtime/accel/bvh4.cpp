@@ -77,7 +77,7 @@ struct Reference {
 // halved along the longest side until no larger than the average or six times. On the Sponza
 // interior this made renders 1.16x faster on 2 CPU cores for 27 % more references; a threshold of
 // 16 times the average gained 1.07x, and on the other bench scenes every threshold was within the
-// noise (docs/results.md). A ray then opens the leaves near where it meets the triangle
+// noise (results/raw/pocl-2026-12-03-ee75f6e). A ray then opens the leaves near where it meets the triangle
 // rather than every leaf the triangle's whole box overlaps. Several references to one triangle
 // change no hit: the closest hit is the least (t, index) however often a triangle is tested.
 // In fixed chunks of triangles, each with its references; joined in chunk order (Builder), the

@@ -27,10 +27,10 @@ struct KdBuildOptions {
   // of at most this many references only when the chosen plane itself does. With the bonus in the
   // test, cutting off any empty sliver beat a leaf (0.2 (K_T + K_I N) < K_I N), so nearly every
   // branch ran to the depth limit: on Crytek Sponza subdivided once this takes the tree from 11.0M
-  // nodes to 5.8M and its SAH cost from 127.97 to 126.71 (docs/results.md; 8 here: 5.2M nodes, but
+  // nodes to 5.8M and its SAH cost from 127.97 to 126.71 (results/raw/nvidia-h200-2026-12-02-f94839e; 8 here: 5.2M nodes, but
   // the armadillo's SAH 2.4% above the old build's). 0: the chosen plane's plain cost is never
   // required, only that some plane pays.
-  // On the H200 the compact Sponza tree takes 0.74x the bytes and traces 2-5 % slower (docs/results.md):
+  // On the H200 the compact Sponza tree takes 0.74x the bytes and traces 2-5 % slower (results/raw/nvidia-h200-2026-12-03-4b25879):
   // the first step a memory budget takes (kdtree_budget.cpp). On CPUs it traces as fast in 0.6x the
   // nodes, so a render whose devices are all CPUs builds it (tree_options, --tree).
   bool compact = false;

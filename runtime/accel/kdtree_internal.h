@@ -475,7 +475,7 @@ static_assert(kDepthCap < static_cast<int>(kLevels));
 
 // The depth limit actually used: options.max_depth, or 8 + 1.8 log2(N), capped (see kDepthCap). The
 // factor was 1.3 until GPU runs showed the limit binding: on the H100, 1.8 gave 1.8x the diffuse
-// rays/s of the armadillo and the Sponza interior (docs/results.md); 2.0 to 3.0 gained nothing more.
+// rays/s of the armadillo and the Sponza interior (results/raw/pocl-2026-11-23-f393cc7); 2.0 to 3.0 gained nothing more.
 int effective_max_depth(const KdBuildOptions& options, std::size_t triangle_count);
 
 // Breadth-first device layout of the subtree and those it spawned (kdtree_layout.cpp), written by

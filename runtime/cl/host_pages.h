@@ -3,8 +3,9 @@
 // On a CPU device the kernels read the scene straight from host memory, and a ray's walk through
 // the tree touches a new 4 KiB page at nearly every node: the TLB misses (two-level page walks in
 // a virtual machine) cost as much as the cache misses. Transparent huge pages cut that: the
-// 4-wide BVH's diffuse rays on Crytek Sponza ran 1.17-1.22x faster from 2 MiB pages (docs/results.md,
-// "Huge pages"). Linux hands them out only to memory that asks (madvise), so a CPU device's large
+// 4-wide BVH's diffuse rays on Crytek Sponza ran 1.17-1.22x faster from 2 MiB pages (2026-12-03,
+// results/raw/nvidia-h200-2026-12-03-79b7d2b). Linux hands them out only to memory that asks
+// (madvise), so a CPU device's large
 // buffers live in memory allocated here and wrapped with CL_MEM_USE_HOST_PTR.
 #pragma once
 

@@ -40,7 +40,7 @@ std::uint32_t layout_pth_levels(const std::string& layout);
 std::uint32_t requested_pth_levels(const std::string& code, std::uint32_t pth_levels);
 
 // The default layouts, of at most 32 bits (32-bit keys sort in half the time): "pth-32" for pth
-// and "origin-first" for hash, after the gate benchmark (docs/results.md, "Where ordering pays").
+// and "origin-first" for hash, after the gate benchmark (results/raw/nvidia-h200-2026-12-02-053ff97).
 std::string default_code_layout(bool with_pth);
 
 // Per-axis quantiles of triangle centroids: 2^bits - 1 boundaries for each of x, y, z.
