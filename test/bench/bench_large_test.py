@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""scripts/bench-large: the tree line of `cohort info` read for every tree it can build (the BVH's
-build seconds add the pass that keeps the triangles, as a render's build_seconds do), a missing
-tree line an error, the CPU lists it pins to, the KD build's target as a ratio to Embree, and, given a
+"""scripts/bench-large: the tree figures of `cohort bench --json` read for every tree it can build
+(the BVH's build seconds add the pass that keeps the triangles, as a render's build_seconds do), a
+missing tree an error, the CPU lists it pins to, the KD build's target as a ratio to Embree, and, given a
 cohort binary (argv[1]), the figures of real builds of the shipped Cornell box (and Embree's build
 of it when cohort-embree-bench was built beside it). Standard library only."""
 import importlib.machinery
@@ -17,26 +17,30 @@ bench_large = importlib.util.module_from_spec(spec)
 loader.exec_module(bench_large)
 COHORT = Path(sys.argv.pop(1)).resolve() if len(sys.argv) > 1 else None  # ./cohort works too
 
-BVH_LINE = ("4-wide BVH: depth 13, 668798 nodes, 1338419 leaves, 1597397 references to 1111216 triangles, "
-            "1.19 per leaf, SAH cost 12.66, built in 0.874s (triangles kept in 0.119s)")
-KD_LINE = ("kd-tree (compact): depth 44, 5510199 nodes, 2755100 leaves (900000 empty), 3.07 triangles per leaf, "
-           "SAH cost 92.33, built in 3.543s")
+def bench_doc(kind, with_bvh=True):
+    """A `cohort bench --json` file's scene as the build table reads it."""
+    kd = {"kind": kind, "depth": 44, "nodes": 5510199, "sah_cost": 92.33, "build_seconds": 3.543,
+          "bytes": 100000, "dropped_triangles": 2}
+    if with_bvh:
+        kd["bvh4"] = {"depth": 13, "nodes": 668798, "sah_cost": 12.66, "build_seconds": 0.874, "bytes": 50000}
+    return {"scenes": [{"name": "x", "triangles": 1002, "kdtree": kd, "views": []}]}
 
 
-class ParseTree(unittest.TestCase):
+class TreeFigures(unittest.TestCase):
     def test_bvh_build_includes_keeping_the_triangles(self):
-        depth, nodes, sah, build_s = bench_large.parse_tree("scene: x\n" + BVH_LINE + "\n")
-        self.assertEqual((depth, nodes, sah), (13, 668798, 12.66))
-        self.assertAlmostEqual(build_s, 0.874 + 0.119)
+        kept, depth, nodes, sah, build_s, tree_bytes = bench_large.tree_figures_of(bench_doc("bvh4"), "bvh4")
+        self.assertEqual((kept, depth, nodes, sah, tree_bytes), (1000, 13, 668798, 12.66, 50000))
+        self.assertAlmostEqual(build_s, 0.874 + 3.543)
 
     def test_kd_tree(self):
-        self.assertEqual(bench_large.parse_tree(KD_LINE), (44, 5510199, 92.33, 3.543))
-        # binaries before the tree kinds printed "kd-tree:" alone
-        self.assertEqual(bench_large.parse_tree(KD_LINE.replace(" (compact)", "")), (44, 5510199, 92.33, 3.543))
+        self.assertEqual(bench_large.tree_figures_of(bench_doc("compact", with_bvh=False), "compact"),
+                         (1000, 44, 5510199, 92.33, 3.543, 100000))
+        self.assertEqual(bench_large.tree_figures_of(bench_doc("deep", with_bvh=False)),
+                         (1000, 44, 5510199, 92.33, 3.543, 100000))
 
-    def test_no_tree_line_is_an_error(self):
+    def test_no_tree_is_an_error(self):
         with self.assertRaises(SystemExit):
-            bench_large.parse_tree("scene: x\ntriangles: 3\n")
+            bench_large.tree_figures_of({"scenes": [{"name": "x", "triangles": 3, "views": []}]})
 
 
 class EmbreeTarget(unittest.TestCase):
@@ -72,13 +76,13 @@ class EmbreeTarget(unittest.TestCase):
 class RealBuilds(unittest.TestCase):
     def test_every_tree_of_the_cornell_box(self):
         scene = ROOT / "scenes" / "cornell-box.gltf"
-        figures = {tree: bench_large.info_figures(COHORT, scene, tree=tree) for tree in ("", "deep", "compact", "bvh4")}
+        figures = {tree: bench_large.tree_figures(COHORT, scene, tree=tree) for tree in ("", "deep", "compact", "bvh4")}
         for tree, f in figures.items():
             self.assertGreater(f["nodes"], 1, tree)
             self.assertGreater(f["sah"], 0.0, tree)
             self.assertGreaterEqual(f["build_s"], 0.0, tree)
             self.assertEqual(f["triangles"], figures[""]["triangles"], tree)
-        # info's own tree is the deep KD-tree; the compact one has fewer nodes; the BVH is another tree
+        # the default is the deep KD-tree; the compact one has fewer nodes; the BVH is another tree
         self.assertEqual(figures[""]["nodes"], figures["deep"]["nodes"])
         self.assertLessEqual(figures["compact"]["nodes"], figures["deep"]["nodes"])
         self.assertNotEqual(figures["bvh4"]["nodes"], figures["deep"]["nodes"])
@@ -87,8 +91,8 @@ class RealBuilds(unittest.TestCase):
         embree = COHORT.parent / "cohort-embree-bench"
         if not embree.exists():
             self.skipTest("cohort-embree-bench was not built (no Embree 3)")
-        # a build line was found (embree_seconds exits without one); the Cornell box builds in
-        # well under a millisecond, which the bench prints as 0.000 s
+        # a build was found in the JSON (embree_seconds exits without one); the Cornell box builds in
+        # well under a millisecond
         seconds = bench_large.embree_seconds(embree, ROOT / "scenes" / "cornell-box.gltf", "0")
         self.assertGreaterEqual(seconds, 0.0)
         self.assertLess(seconds, 60.0)
