@@ -24,6 +24,7 @@ COHORT_PACKAGES=(
   zlib1g-dev                        # .gz scenes
   libgtest-dev                      # tests
   python3-venv                      # the venv of scripts/reference (Mitsuba, FLIP, matplotlib from PyPI)
+  python3-dev                       # Python's headers: the Python module (nanobind from PyPI)
   openmpi-bin libopenmpi-dev        # mpirun cohort render: several machines (optional at build time)
   oclgrind                          # scripts/test-oclgrind: every kernel on a checking simulator (CI)
 )
@@ -59,13 +60,18 @@ cohort_install_packages() {
 }
 
 # Configures on first use, with COHORT_CMAKE_ARGS (space-separated; CI: -DCOHORT_WERROR=ON) and
-# the arguments given.
+# the arguments given; again when COHORT_PYTHON_EXECUTABLE (the Python the module is built for:
+# scripts/test sets the project venv's) is not the one configured.
 cohort_build() {
   local jobs extra
   jobs="$(nproc 2>/dev/null || echo 2)"
   read -r -a extra <<<"${COHORT_CMAKE_ARGS:-}"
+  [[ -n "${COHORT_PYTHON_EXECUTABLE:-}" ]] && extra+=("-DPython_EXECUTABLE=$COHORT_PYTHON_EXECUTABLE")
   if [[ ! -f "$COHORT_BUILD/CMakeCache.txt" ]]; then
     cmake -S "$COHORT_ROOT" -B "$COHORT_BUILD" -DCMAKE_BUILD_TYPE=Release "${extra[@]}" "$@" >/dev/null
+  elif [[ -n "${COHORT_PYTHON_EXECUTABLE:-}" ]] &&
+       ! grep -qx "Python_EXECUTABLE:[A-Z]*=$COHORT_PYTHON_EXECUTABLE" "$COHORT_BUILD/CMakeCache.txt"; then
+    cmake -S "$COHORT_ROOT" -B "$COHORT_BUILD" "-DPython_EXECUTABLE=$COHORT_PYTHON_EXECUTABLE" >/dev/null
   fi
   cmake --build "$COHORT_BUILD" -j"$jobs"
 }

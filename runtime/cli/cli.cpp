@@ -142,6 +142,19 @@ void add_bench_options(CLI::App& cmd, BenchCommand& b) {
 
 }  // namespace
 
+RenderCommand parse_render_arguments(const std::vector<std::string>& arguments) {
+  CLI::App app{"cohort render", "render"};
+  RenderCommand command;
+  add_render_options(app, command);
+  std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());  // CLI11 takes them last first
+  try {
+    app.parse(reversed);
+  } catch (const CLI::ParseError& e) {
+    throw InputError(e.what());
+  }
+  return command;
+}
+
 int run_cli(int argc, char** argv) {
   CLI::App app{"Cohort: a wavefront path tracer for OpenCL devices", "cohort"};
   app.set_version_flag("--version", "cohort 0.1.0");

@@ -18,7 +18,8 @@ int render_rank(const RenderCommand& command, const RenderTeam& team) {
     follow_render(render, team);
     return 0;
   }
-  RenderOutcome outcome = run_render_passes(render, team, out, interrupt);
+  RenderOutcome outcome =
+      run_render_passes(render, team, out.checkpoint, {.stop_requested = [&] { return interrupt.requested(); }});
   // adaptive sampling: the samples every pixel has (a tile that stopped early has fewer than the film's most)
   const auto aov_start = std::chrono::steady_clock::now();
   outcome.aovs = render_first_hit_aovs(render, outcome.film);

@@ -6,11 +6,13 @@ namespace cohort {
 
 std::optional<AovImages> render_first_hit_aovs(const PreparedRender& render, const FilmState& film) {
   if (!render.plan.aovs.any() && !render.plan.command.denoise) return std::nullopt;
-  const std::unique_ptr<Device> device = render.open_devices(0);
-  const DeviceScene scene = upload_scene(*device, render.scene.tree, render.scene.tables, render.scene.bvh());
-  return render_aovs(*device, render.cache, scene, render.scene.camera, render.plan.settings(),
-                     film.pixel_samples.empty() ? std::vector<std::uint32_t>(film.sums.size(), film.samples)
-                                                : film.pixel_samples);
+  const std::vector<std::uint32_t> samples =
+      film.pixel_samples.empty() ? std::vector<std::uint32_t>(film.sums.size(), film.samples) : film.pixel_samples;
+  std::optional<AovImages> aovs;
+  render.pool->run_on(0, render.scene, [&](const Device& device, const DeviceScene& scene) {
+    aovs = render_aovs(device, render.cache, scene, render.scene.camera, render.plan.settings(), samples);
+  });
+  return aovs;
 }
 
 }  // namespace cohort

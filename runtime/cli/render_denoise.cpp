@@ -14,8 +14,10 @@ namespace {
 
 // Where the pyoidn wheel may be: $COHORT_VENV (scripts/venv.sh), else the venv beside the binary
 // (build/venv, where scripts/setup.sh puts it).
-std::vector<std::filesystem::path> wheel_candidates() {
+std::vector<std::filesystem::path> wheel_candidates(const std::vector<std::filesystem::path>& venvs = {}) {
   std::vector<std::filesystem::path> out;
+  for (const auto& venv : venvs)
+    for (auto& p : Denoiser::venv_candidates(venv)) out.push_back(std::move(p));
   if (const char* venv = std::getenv("COHORT_VENV"); venv && *venv) out = Denoiser::venv_candidates(venv);
   std::error_code ec;
   const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
@@ -26,18 +28,25 @@ std::vector<std::filesystem::path> wheel_candidates() {
 
 }  // namespace
 
+Image denoise_image(const RenderOutcome& outcome, const std::vector<std::filesystem::path>& venvs,
+                    std::string* library) {
+  const Denoiser denoiser = Denoiser::load(wheel_candidates(venvs));
+  if (library) *library = denoiser.library();
+  const AovImages& aovs = *outcome.aovs;
+  return denoiser.denoise(outcome.result.image, &aovs.albedo, &aovs.normal);
+}
+
 int write_denoised(const PreparedRender& render, const RenderOutcome& outcome, const OutputPaths& out) {
   if (!render.plan.command.denoise) return 0;
   try {
     const auto start = std::chrono::steady_clock::now();
-    const Denoiser denoiser = Denoiser::load(wheel_candidates());
-    const AovImages& aovs = *outcome.aovs;
-    const Image denoised = denoiser.denoise(outcome.result.image, &aovs.albedo, &aovs.normal);
+    std::string library;
+    const Image denoised = denoise_image(outcome, {}, &library);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     write_exr(out.denoised_exr, denoised);
     write_png(out.denoised_png, denoised);
     // the cost of a denoised image beside the render's seconds (scripts/adaptive.py charts it)
-    fmt::print("denoised with {} in {:.3f}s (first-hit AOVs {:.3f}s)\nwrote {}\nwrote {}\n", denoiser.library(),
+    fmt::print("denoised with {} in {:.3f}s (first-hit AOVs {:.3f}s)\nwrote {}\nwrote {}\n", library,
                seconds, outcome.aov_seconds, out.denoised_exr.string(), out.denoised_png.string());
     return 0;
   } catch (const DenoiserUnavailable& e) {

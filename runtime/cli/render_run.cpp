@@ -31,26 +31,27 @@ std::uint64_t render_fingerprint(const PreparedRender& render) {
 }
 
 std::unique_ptr<DeviceWorkers> start_workers(const PreparedRender& render, PassSource& passes) {
-  return std::make_unique<DeviceWorkers>(render.devices, render.open_devices, render.cache, render.scene,
-                                         render.plan.settings(), passes);
+  return std::make_unique<DeviceWorkers>(*render.pool, render.cache, render.scene, render.plan.settings(), passes);
 }
 
 }  // namespace
 
-RenderOutcome run_render_passes(const PreparedRender& render, const RenderTeam& team, const OutputPaths& out,
-                                const InterruptGuard& interrupt) {
+RenderOutcome run_render_passes(const PreparedRender& render, const RenderTeam& team,
+                                const std::filesystem::path& checkpoint, const RenderHooks& hooks) {
   const RenderCommand& cmd = render.plan.command;
   const std::uint64_t fingerprint = render_fingerprint(render);
   RenderControl control;
-  if (cmd.resume) control.resume_from = load_checkpoint(out.checkpoint, fingerprint);
-  if (control.resume_from) fmt::print("resuming {} at {} spp\n", out.checkpoint.string(), control.resume_from->samples);
+  if (cmd.resume) control.resume_from = load_checkpoint(checkpoint, fingerprint);
+  if (control.resume_from) fmt::print("resuming {} at {} spp\n", checkpoint.string(), control.resume_from->samples);
   if (cmd.checkpoint || cmd.resume) {
     control.checkpoint_seconds = cmd.checkpoint_seconds;
-    control.checkpoint = [&](const FilmState& film) { save_checkpoint(out.checkpoint, fingerprint, film); };
+    control.checkpoint = [&](const FilmState& film) { save_checkpoint(checkpoint, fingerprint, film); };
   }
-  control.stop_requested = [&] { return interrupt.requested(); };
+  control.stop_requested = hooks.stop_requested;
   ProgressReporter reporter(stderr);
-  PassJob job(render.plan.settings(), [&](const Progress& p) { reporter.update(p); }, control,
+  const ProgressCallback progress =
+      hooks.progress ? hooks.progress : ProgressCallback([&](const Progress& p) { reporter.update(p); });
+  PassJob job(render.plan.settings(), progress, control,
               pass_window(render.devices.size() * team.size(), render.pixels() * sizeof(co_float4)),
               render.devices.size());
   if (team.size() > 1) job.combine_on_host();  // other ranks send partial films
@@ -63,7 +64,7 @@ RenderOutcome run_render_passes(const PreparedRender& render, const RenderTeam& 
   }
   const std::clock_t cpu_end = std::clock();
   RenderOutcome outcome{.film = job.finish()};
-  reporter.finish();
+  if (!hooks.progress) reporter.finish();
   RenderResult& result = outcome.result;
   result = merge_device_results(runs);
   result.image = film_image(outcome.film);

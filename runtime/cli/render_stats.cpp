@@ -46,7 +46,7 @@ nlohmann::json rank_json(int rank, const std::string& host, const PreparedScene&
           {"render_seconds", render_seconds}, {"devices", devices}};
 }
 
-nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& outcome, const OutputPaths& out) {
+nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& outcome, const OutputPaths* out) {
   const RenderCommand& cmd = render.plan.command;
   const PreparedScene& prepared = render.scene;
   const RenderResult& r = outcome.result;
@@ -96,8 +96,11 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
     j["stragglers"] = {{"rays", "extension rays of this device (rank 0's devices under MPI)"},
                        {"per_pass", per_pass}, {"worst", worst}};
   }
-  j["image"] = {{"width", cmd.settings.width}, {"height", cmd.settings.height}, {"spp", r.samples},
-                {"exr", out.exr.string()}, {"png", out.png.string()}};
+  j["image"] = {{"width", cmd.settings.width}, {"height", cmd.settings.height}, {"spp", r.samples}};
+  if (out) {
+    j["image"]["exr"] = out->exr.string();
+    j["image"]["png"] = out->png.string();
+  }
   j["settings"] = {{"max_depth", cmd.settings.max_depth}, {"rr_depth", cmd.settings.rr_depth},
                    {"seed", cmd.settings.seed}, {"nee", cmd.settings.nee}, {"mis", cmd.settings.mis},
                    {"russian_roulette", cmd.settings.russian_roulette}};

@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -40,7 +42,7 @@ RenderPlan parse_render(const RenderCommand& command);
 struct PreparedRender {
   RenderPlan plan;  // settings as the scene set them (--white-sky)
   std::vector<DeviceInfo> devices;
-  DeviceOpener open_devices;
+  std::shared_ptr<DevicePool> pool;  // `devices`, open; several renders of one scene share it
   PreparedScene scene;
   ProgramCache cache;
   std::size_t pixels() const { return std::size_t(plan.settings().width) * plan.settings().height; }
@@ -49,6 +51,28 @@ struct PreparedRender {
 // Opens this rank's devices (`local_rank` picks them), then loads and builds the scene; the rank
 // that `reports` prints the scene's warnings.
 PreparedRender prepare_render(RenderPlan plan, int local_rank, bool reports);
+
+// The devices a plan names (--device, --backend, --memory-limit), open.
+struct OpenedDevices {
+  std::vector<DeviceInfo> devices;
+  std::shared_ptr<DevicePool> pool;
+};
+OpenedDevices open_render_devices(const RenderPlan& plan, int local_rank);
+
+// The scene's trees as the plan asks for them (--tree, --tree-budget, --memory-limit, the method):
+// `build` makes a PreparedScene with a tree choice (prepare_scene from the file, or from a scene
+// loaded already).
+PreparedScene build_render_trees(const RenderPlan& plan, const std::vector<DeviceInfo>& devices,
+                                 const std::function<PreparedScene(const TreeChoice&)>& build);
+
+// What the plan changes on a built scene: --env FILE, --white-sky (which also sets the plan's
+// workload settings), --camera-bounds and --fov.
+void apply_render_options(PreparedScene& scene, RenderPlan& plan);
+// The camera --camera-bounds and --fov make of the scene's `camera`.
+SceneCamera plan_camera(SceneCamera camera, const Bounds& bounds, const RenderCommand& cmd);
+
+// Prints the scene's load warnings (rank 0, once per scene).
+void report_scene_warnings(const PreparedScene& scene, const std::filesystem::path& path);
 
 // What rank 0 has once every pass is in.
 struct RenderOutcome {
@@ -60,10 +84,16 @@ struct RenderOutcome {
   double aov_seconds = 0;         // wall time of the AOV render (after the passes, outside render_seconds)
 };
 
+// How a caller follows and stops a render.
+struct RenderHooks {
+  std::function<bool()> stop_requested;  // asked after every pass: stops the render early
+  ProgressCallback progress;             // null: a progress line on the terminal
+};
+
 // Rank 0: renders the image on its devices and, through `team`, the other ranks; saves and resumes
-// checkpoints at out.checkpoint.
-RenderOutcome run_render_passes(const PreparedRender& render, const RenderTeam& team, const OutputPaths& out,
-                                const InterruptGuard& interrupt);
+// checkpoints at `checkpoint` (with --checkpoint or --resume).
+RenderOutcome run_render_passes(const PreparedRender& render, const RenderTeam& team,
+                                const std::filesystem::path& checkpoint, const RenderHooks& hooks);
 
 // Rank 0, after the passes: the AOVs of the image's samples on this rank's first device, when
 // --aov or --denoise asks for them.
@@ -77,13 +107,19 @@ void follow_render(const PreparedRender& render, const RenderTeam& team);
 int write_render(const PreparedRender& render, const RenderOutcome& outcome, const OutputPaths& out,
                  const InterruptGuard& interrupt);
 
+// The beauty denoised by Open Image Denoise, guided by the AOVs (outcome.aovs); the library is
+// looked for in the system, $COHORT_OIDN_LIBRARY, $COHORT_VENV, the venv beside the binary and
+// `venvs`. Throws DenoiserUnavailable; names the library it used in `library`.
+Image denoise_image(const RenderOutcome& outcome, const std::vector<std::filesystem::path>& venvs = {},
+                    std::string* library = nullptr);
+
 // --denoise: writes out.denoised_exr and .png; 0, or 2 with a message when Open Image Denoise
 // cannot be loaded or run (the beauty is written by then).
 int write_denoised(const PreparedRender& render, const RenderOutcome& outcome, const OutputPaths& out);
 
-// The JSON figures of the --stats file.
+// The JSON figures of the --stats file; `out` names the image files (none: not written).
 nlohmann::json rank_json(int rank, const std::string& host, const PreparedScene& prepared,
                          const std::vector<DeviceRun>& runs);
-nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& outcome, const OutputPaths& out);
+nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& outcome, const OutputPaths* out);
 
 }  // namespace cohort

@@ -100,4 +100,6 @@ std::unique_ptr<RenderTeam> join_render_team() {
   return std::make_unique<SoloTeam>();
 }
 
+std::unique_ptr<RenderTeam> solo_render_team() { return std::make_unique<SoloTeam>(); }
+
 }  // namespace cohort

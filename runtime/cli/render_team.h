@@ -41,5 +41,7 @@ class RenderTeam {
 
 // MPI when an MPI launcher started this process with more than one rank, else a team of one.
 std::unique_ptr<RenderTeam> join_render_team();
+// A team of this process alone, whatever launched it (the Python module).
+std::unique_ptr<RenderTeam> solo_render_team();
 
 }  // namespace cohort

@@ -102,7 +102,7 @@ int write_render(const PreparedRender& render, const RenderOutcome& outcome, con
   fmt::print("wrote {}\nwrote {}\n", out.exr.string(), out.png.string());
   if (cmd.checkpoint || cmd.resume) fmt::print("wrote {}\n", out.checkpoint.string());
   if (!cmd.stats_file.empty()) {
-    write_file_atomically(cmd.stats_file, stats_json(render, outcome, out).dump(2) + "\n");
+    write_file_atomically(cmd.stats_file, stats_json(render, outcome, &out).dump(2) + "\n");
     fmt::print("wrote {}\n", cmd.stats_file);
   }
   if (const int code = write_denoised(render, outcome, out)) return code;

@@ -105,8 +105,9 @@ Denoiser Denoiser::load(const std::vector<std::filesystem::path>& extra_candidat
     return Denoiser(std::move(api));
   }
   throw DenoiserUnavailable(
-      "Open Image Denoise was not found (install it, set COHORT_OIDN_LIBRARY, or run scripts/setup.sh, which puts "
-      "the pyoidn wheel's copy in the project's virtual environment); tried:" +
+      "Open Image Denoise was not found (set COHORT_OIDN_LIBRARY to a libOpenImageDenoise.so.2, run scripts/render "
+      "or scripts/test, which install the pyoidn wheel from PyPI into build/venv, or `pip install pyoidn` into the "
+      "Python environment that imports cohort); tried:" +
       tried);
 }
 

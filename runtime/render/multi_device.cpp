@@ -8,44 +8,144 @@
 
 namespace cohort {
 
-DeviceWorkers::DeviceWorkers(const std::vector<DeviceInfo>& devices, const DeviceOpener& open,
-                             const ProgramCache& cache, const PreparedScene& scene, const RenderSettings& settings,
-                             PassSource& passes)
-    : runs_(devices.size()) {
+// A device's thread: opens the device, then runs one task at a time until the pool stops.
+struct DevicePool::Worker {
+  std::mutex mutex;
+  std::condition_variable wake, done;
+  std::function<void()> task;  // set by the pool, cleared by the thread when it has run
+  bool stopping = false;
+  std::exception_ptr failure;  // the last task's (or the opening's)
+  std::unique_ptr<Device> device;
+  std::optional<DeviceScene> uploaded;
+  const PreparedScene* uploaded_scene = nullptr;
+  std::thread thread;
+
+  Worker(const DeviceOpener& open, std::size_t index) {
+    task = [this, open, index] { device = open(index); };
+    thread = std::thread([this] { loop(); });
+  }
+
+  void loop() {
+    std::unique_lock lock(mutex);
+    for (;;) {
+      wake.wait(lock, [&] { return stopping || task; });
+      if (!task) return;
+      lock.unlock();
+      std::exception_ptr error;
+      try {
+        task();
+      } catch (...) {
+        error = std::current_exception();
+      }
+      lock.lock();
+      failure = error;
+      task = nullptr;
+      done.notify_all();
+    }
+  }
+
+  void post(std::function<void()> next) {
+    const std::lock_guard lock(mutex);
+    task = std::move(next);
+    wake.notify_all();
+  }
+
+  // Waits for the task posted last; returns its failure.
+  std::exception_ptr wait() {
+    std::unique_lock lock(mutex);
+    done.wait(lock, [&] { return !task; });
+    return failure;
+  }
+
+  // The scene on the device: uploaded unless it is the one uploaded last.
+  const DeviceScene& scene_for(const PreparedScene& scene) {
+    if (uploaded_scene != &scene) {
+      uploaded.reset();  // the old scene's buffers go first
+      uploaded_scene = nullptr;
+      uploaded.emplace(upload_scene(*device, scene.tree, scene.tables, scene.bvh()));
+      uploaded_scene = &scene;
+    }
+    return *uploaded;
+  }
+
+  ~Worker() {
+    {
+      const std::lock_guard lock(mutex);
+      stopping = true;
+      wake.notify_all();
+    }
+    thread.join();
+  }
+};
+
+DevicePool::DevicePool(const std::vector<DeviceInfo>& devices, const DeviceOpener& open) : runs_(devices.size()) {
   for (std::size_t i = 0; i < devices.size(); ++i) {
     runs_[i].device = devices[i];
-    threads_.emplace_back([this, i, open, &cache, &scene, settings, &passes] {
+    workers_.push_back(std::make_unique<Worker>(open, i));
+  }
+  std::exception_ptr first;
+  for (auto& w : workers_)
+    if (auto failure = w->wait(); failure && !first) first = failure;
+  if (first) std::rethrow_exception(first);
+}
+
+DevicePool::~DevicePool() = default;
+
+void DevicePool::start(const ProgramCache& cache, const PreparedScene& scene, const RenderSettings& settings,
+                       PassSource& passes) {
+  for (std::size_t i = 0; i < workers_.size(); ++i) {
+    Worker& w = *workers_[i];
+    DeviceRun& run = runs_[i];
+    run.result = {};
+    run.upload_seconds = 0;
+    w.post([&w, &run, &cache, &scene, settings, &passes] {
       try {
-        DeviceRun& run = runs_[i];
         const auto t0 = std::chrono::steady_clock::now();
-        const std::unique_ptr<Device> opened = open(i);
-        const Device& cl = *opened;
-        const DeviceScene device_scene = upload_scene(cl, scene.tree, scene.tables, scene.bvh());
+        const DeviceScene& device_scene = w.scene_for(scene);
         run.upload_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         RenderControl control;
         control.passes = &passes;
-        run.result = render(cl, cache, device_scene, scene.camera, settings, {}, control);
+        run.result = render(*w.device, cache, device_scene, scene.camera, settings, {}, control);
       } catch (...) {
-        {
-          const std::lock_guard lock(failure_mutex_);
-          if (!failure_) failure_ = std::current_exception();
-        }
-        passes.abort();
+        passes.abort();  // the other devices stop taking passes
+        throw;
       }
     });
   }
 }
 
+std::vector<DeviceRun> DevicePool::join() {
+  std::exception_ptr first;
+  for (auto& w : workers_)
+    if (auto failure = w->wait(); failure && !first) first = failure;
+  if (first) std::rethrow_exception(first);
+  return runs_;
+}
+
+void DevicePool::run_on(std::size_t index, const PreparedScene& scene,
+                        const std::function<void(const Device&, const DeviceScene&)>& task) {
+  Worker& w = *workers_.at(index);
+  w.post([&w, &scene, &task] { task(*w.device, w.scene_for(scene)); });
+  if (auto failure = w.wait()) std::rethrow_exception(failure);
+}
+
+DeviceWorkers::DeviceWorkers(DevicePool& pool, const ProgramCache& cache, const PreparedScene& scene,
+                             const RenderSettings& settings, PassSource& passes)
+    : pool_(pool) {
+  pool_.start(cache, scene, settings, passes);
+}
+
 DeviceWorkers::~DeviceWorkers() {
-  for (auto& t : threads_)
-    if (t.joinable()) t.join();
+  if (joined_) return;
+  try {
+    pool_.join();
+  } catch (...) {  // unwinding already: the failure that matters is the one in flight
+  }
 }
 
 std::vector<DeviceRun> DeviceWorkers::join() {
-  for (auto& t : threads_)
-    if (t.joinable()) t.join();
-  if (failure_) std::rethrow_exception(failure_);
-  return runs_;
+  joined_ = true;
+  return pool_.join();
 }
 
 RenderResult merge_device_results(const std::vector<DeviceRun>& runs) {

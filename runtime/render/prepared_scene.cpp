@@ -52,10 +52,17 @@ std::string describe_tree(const PreparedScene& p) {
 }
 
 PreparedScene prepare_scene(const std::filesystem::path& path, const TreeChoice& choice) {
-  PreparedScene p;
   const auto t0 = std::chrono::steady_clock::now();
-  p.scene = load_scene(path);
-  p.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  Scene scene = load_scene(path);
+  const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  PreparedScene p = prepare_loaded_scene(path, std::move(scene), choice);
+  p.load_seconds = load_seconds;
+  return p;
+}
+
+PreparedScene prepare_loaded_scene(const std::filesystem::path& path, Scene scene, const TreeChoice& choice) {
+  PreparedScene p;
+  p.scene = std::move(scene);
   KdBuildOptions one_leaf = choice.kd;
   one_leaf.leaf_triangles = INT_MAX;  // with the BVH the KD-tree only keeps the triangles
   p.tree = build_kdtree(p.scene.positions, choice.bvh4 ? one_leaf : choice.kd);

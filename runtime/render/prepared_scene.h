@@ -60,6 +60,8 @@ inline TreeChoice tree_options(const std::string& choice, const DeviceInfo& devi
 const std::vector<std::string>& tree_choices();
 
 PreparedScene prepare_scene(const std::filesystem::path& path, const TreeChoice& choice);
+// The same from a scene loaded already (`path` names it in errors); load_seconds stays 0.
+PreparedScene prepare_loaded_scene(const std::filesystem::path& path, Scene scene, const TreeChoice& choice);
 inline PreparedScene prepare_scene(const std::filesystem::path& path, const KdBuildOptions& options = {}) {
   return prepare_scene(path, TreeChoice{options, false});
 }

@@ -10,6 +10,10 @@ void apply_white_sky(PreparedScene& p, RenderSettings& settings) {
   std::fill(p.scene.material_ids.begin(), p.scene.material_ids.end(), 0u);
   p.tables = make_scene_tables(p.scene, p.tree);
   p.camera = framing_camera(p.scene.bounds());
+  apply_white_sky_settings(settings);
+}
+
+void apply_white_sky_settings(RenderSettings& settings) {
   settings.environment = glm::vec3(1.f);
   settings.max_depth = 5;
   settings.russian_roulette = false;

@@ -12,6 +12,8 @@ namespace cohort {
 // White sky: one two-sided Lambertian of albedo 0.5 on every triangle, flat normals, a constant
 // environment of radiance 1, the protocol camera, at most 5 segments, no Russian roulette.
 void apply_white_sky(PreparedScene& scene, RenderSettings& settings);
+// Its settings alone (the sky, 5 segments, no Russian roulette), for a scene made white already.
+void apply_white_sky_settings(RenderSettings& settings);
 
 // A camera at fractions of the scene bounds: eye = lo + f_eye * (hi - lo), looking at
 // lo + f_target * (hi - lo), +Y up (the protocol's interior view).

@@ -1,0 +1,71 @@
+// A scene loaded once and rendered many times: what the Python module drives. The devices stay open
+// with the scene uploaded and their programs built, the file is read once, and each tree (the BVH,
+// or the KD-tree pth and hash walk) is built once; each render's options are `cohort render`'s,
+// parsed and checked the same way, so a render here equals the CLI's with the same options bit
+// for bit.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "runtime/cli/render_steps.h"
+
+namespace cohort {
+
+// One render of a session.
+struct SessionRender {
+  Image image;                    // mean radiance per pixel, linear RGB
+  std::optional<AovImages> aovs;  // with --aov or --denoise
+  std::optional<Image> denoised;  // with --denoise
+  nlohmann::json stats;           // what --stats writes, with "session": what this render set up
+  bool interrupted = false;       // stopped by the hooks before its samples
+};
+
+class RenderSession {
+ public:
+  // `base`: the scene, and the options every render of it shares (--device, --backend, --tree,
+  // --tree-budget, --memory-limit, --no-cache). Opens the devices and loads the file; the tree is
+  // built by the first render that needs it.
+  explicit RenderSession(RenderCommand base);
+  RenderSession(const RenderSession&) = delete;
+  RenderSession& operator=(const RenderSession&) = delete;
+
+  // Renders the session's scene with `command`'s other options (its shared ones must equal the
+  // base's: InputError otherwise); `camera`, when given, replaces the scene's camera (before
+  // --camera-bounds and --fov). `denoise_venvs`: where else the pyoidn wheel may be.
+  SessionRender render(const RenderCommand& command, const std::optional<SceneCamera>& camera,
+                       const RenderHooks& hooks, const std::vector<std::filesystem::path>& denoise_venvs = {});
+
+  // What `cohort info` prints, as JSON: triangles, bounds, materials, lights, camera, the tree and
+  // its device bytes (the tree of --method auto).
+  nlohmann::json info();
+
+  const std::vector<DeviceInfo>& devices() const { return devices_; }
+
+ private:
+  // The scene as a render needs it: its tree (the KD-tree or not), the white sky, an environment map.
+  using VariantKey = std::tuple<bool, bool, std::string>;
+  static VariantKey variant_key(const RenderPlan& plan);
+  // The variant of `plan`, made (and its tree built: `built`) on first use; sets the plan's
+  // settings of the white sky.
+  PreparedRender& variant(RenderPlan& plan, bool& built);
+
+  RenderCommand base_;
+  std::vector<DeviceInfo> devices_;
+  std::shared_ptr<DevicePool> pool_;
+  ProgramCache cache_;
+  Scene loaded_;
+  double load_seconds_ = 0;
+  std::map<bool, PreparedScene> trees_;  // by whether the KD-tree is needed
+  std::map<VariantKey, std::unique_ptr<PreparedRender>> variants_;
+  std::map<VariantKey, SceneCamera> variant_cameras_;  // each variant's camera before the render's
+  std::uint32_t renders_ = 0;
+};
+
+}  // namespace cohort
