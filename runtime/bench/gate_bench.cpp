@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <numeric>
+#include <optional>
 #include <random>
 
+#include "kernels/common/bvh4_path.h"
 #include "kernels/common/coherence.h"
 #include "runtime/bench/protocol_rays.h"
 #include "runtime/accel/host_traversal.h"
@@ -18,14 +20,19 @@ co_vec3 org_of(const RayIn& r) { return v3(r.origin.x, r.origin.y, r.origin.z); 
 co_vec3 dir_of(const RayIn& r) { return v3(r.dir.x, r.dir.y, r.dir.z); }
 
 // Keys of a --code layout (uniform origin grid: the host has no centroid quantiles here); the
-// paper's PTH bits come from the same walk the kernel takes, over the whole node array. `end_t`:
-// each ray's distance estimate for an end part (one per ray), or the kernel's estimate when empty:
-// the previous segment's length `previous_t` (bounce 2 on), else where the ray leaves the box.
-std::vector<std::uint64_t> layout_keys(const std::string& layout, const KdTree& tree, std::span<const RayIn> rays,
-                                       unsigned bounce, std::span<const float> previous_t,
+// paper's PTH bits come from the same walk the kernel takes, over the whole node array: the
+// KD-tree's (pth_walk), or with a BVH the child each level's walk enters first (bvh4_path_bits).
+// `end_t`: each ray's distance estimate for an end part (one per ray), or the kernel's estimate
+// when empty: the previous segment's length `previous_t` (bounce 2 on), else where the ray leaves
+// the box.
+std::vector<std::uint64_t> layout_keys(const std::string& layout, const PreparedScene& scene,
+                                       std::span<const RayIn> rays, unsigned bounce, std::span<const float> previous_t,
                                        std::span<const float> end_t = {}) {
+  const KdTree& tree = scene.tree;
   const CodeParams c = parse_code_layout(layout, 10, tree.bounds);
   const KdTreeView view = host_view(tree);
+  std::optional<Bvh4View> bvh;
+  if (scene.bvh4) bvh = host_view(*scene.bvh4);
   std::vector<std::uint64_t> keys(rays.size());
   for (std::size_t i = 0; i < rays.size(); ++i) {
     const co_vec3 o = org_of(rays[i]), d = dir_of(rays[i]);
@@ -34,7 +41,9 @@ std::vector<std::uint64_t> layout_keys(const std::string& layout, const KdTree& 
     float t0 = 0, t1 = 0;
     const bool inside = kd_begin(&view, o, inv, 0.f, INFINITY, &t0, &t1);
     const float end = !end_t.empty() ? end_t[i] : estimated_end(bounce, bounce > 1 ? previous_t[i] : 0.f, t1);
-    if (c.pth_levels && inside) {
+    if (c.pth_levels && inside && bvh) {
+      bits = bvh4_path_bits(&*bvh, o, d, c.pth_levels);
+    } else if (c.pth_levels && inside) {
       KdStackEntry stack[KD_MAX_DEPTH];
       int sp = 0;
       std::uint32_t node = 0;
@@ -94,7 +103,7 @@ double sort_ms(const Device& cl, RadixSort& sort64, RadixSort& sort32, const std
 std::vector<GateBounce> gate_bench(const Device& cl, const ProgramCache& cache, const PreparedScene& scene,
                                    const SceneCamera& camera, const GateOptions& options) {
   const KdTree& tree = scene.tree;
-  TraceBench tracer(cl, cache, tree);
+  TraceBench tracer(cl, cache, tree, scene.bvh());
   std::vector<RayIn> rays = protocol_primary_rays(camera, options.res);
   const float diag = scene.scene.bounds().diagonal();
   std::vector<GateBounce> out;
@@ -115,7 +124,7 @@ std::vector<GateBounce> gate_bench(const Device& cl, const ProgramCache& cache, 
     };
     std::vector<Keyed> keyed;
     auto keys = [&](const char* layout, std::span<const float> end_t = {}) {
-      return layout_keys(layout, tree, rays, bounce, previous_t, end_t);
+      return layout_keys(layout, scene, rays, bounce, previous_t, end_t);
     };
     keyed.push_back({"origin-first", keys("origin-uniform:8,dir:4"), 32});
     keyed.push_back({"direction-first", keys("dir:4,origin-uniform:8"), 32});

@@ -112,16 +112,17 @@ int run_gate(const BenchCommand& cmd, const std::vector<BenchView>& views, const
   options.bounces = cmd.bounces;
   options.reps = cmd.reps;
   nlohmann::json all = nlohmann::json::array();
-  // the gate walks the KD-tree itself (pth's keys)
-  const KdBuildOptions tree = tree_options(cmd.tree, device.info(), true).kd;
+  // the tree the renderer traces (--tree auto: the BVH), or a KD-tree; the PTH keys walk its top
+  const TreeChoice tree = tree_options(cmd.tree, device.info());
   for (const auto& path : cmd.scenes) {
     PreparedScene prepared = prepare_scene(path, tree);
     for (const BenchView& view : views) {
       const SceneCamera camera = view_camera(prepared.scene.bounds(), view);
       const auto bounces = gate_bench(device, cache, prepared, camera, options);
-      fmt::print("\n{} [{} view], {} triangles, {}x{} primary rays: trace Mrays/s median (best), x generation "
+      fmt::print("\n{} [{} view], {} triangles, {}, {}x{} primary rays: trace Mrays/s median (best), x generation "
                  "order, device sort ms\n",
-                 path.string(), view.name, prepared.scene.triangle_count(), options.res, options.res);
+                 path.string(), view.name, prepared.scene.triangle_count(), prepared.tree_kind(), options.res,
+                 options.res);
       for (const GateBounce& b : bounces) {
         const double base = b.orders.front().rays_per_second.median();
         const double base_ms = b.rays / base * 1e3;
@@ -137,7 +138,8 @@ int run_gate(const BenchCommand& cmd, const std::vector<BenchView>& views, const
                             {"sort_ms", o.sort_ms}, {"speedup", o.rays_per_second.median() / base},
                             {"net_speedup", base_ms / (ms + o.sort_ms)}};
         }
-        all.push_back({{"scene", path.string()}, {"view", view.name}, {"res", options.res}, {"bounce", b.bounce},
+        all.push_back({{"scene", path.string()}, {"view", view.name}, {"tree", prepared.tree_kind()},
+                       {"res", options.res}, {"bounce", b.bounce},
                        {"rays", b.rays}, {"hits_agree", b.hits_agree}, {"orders", orders}});
       }
     }

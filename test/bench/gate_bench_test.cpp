@@ -9,8 +9,13 @@
 
 using namespace cohort;
 
-TEST(GateBench, EveryOrderFindsTheSameHitsAndHasASortCost) {
-  const PreparedScene scene = prepare_scene(std::filesystem::path(COHORT_SOURCE_DIR) / "scenes/cornell-box.gltf");
+class GateBench : public ::testing::TestWithParam<const char*> {};
+
+// On the KD-tree (the paper's PTH bits) and on the BVH the renderer traces (its first-path bits).
+TEST_P(GateBench, EveryOrderFindsTheSameHitsAndHasASortCost) {
+  const PreparedScene scene =
+      prepare_scene(std::filesystem::path(COHORT_SOURCE_DIR) / "scenes/cornell-box.gltf", tree_options(GetParam()));
+  ASSERT_STREQ(scene.tree_kind(), GetParam());
   const auto device = open_device(Backend::opencl, "");
   const ProgramCache cache(ProgramCache::default_directory());
   GateOptions options;
@@ -38,3 +43,5 @@ TEST(GateBench, EveryOrderFindsTheSameHitsAndHasASortCost) {
     }
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Trees, GateBench, ::testing::Values("deep", "bvh4"));
