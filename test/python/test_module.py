@@ -176,3 +176,18 @@ def test_ctrl_c_stops_between_passes_and_the_scene_stays_usable(scene):
     timer.cancel()
     r = scene.render(spp=2, res=(16, 16), method="naive")
     assert r.image.shape == (16, 16, 3) and r.image.max() > 0
+
+
+def test_denoise_gives_a_denoised_image_beside_the_beauty(scene):
+    try:
+        import pyoidn  # noqa: F401  (its bundled library is what the renderer loads)
+    except ImportError:
+        if os.environ.get("COHORT_REQUIRE_OIDN"):
+            raise
+        pytest.skip("pyoidn is not installed in this environment")
+    r = scene.render(spp=4, res=(32, 32), method="naive", seed=2, denoise=True)
+    assert r.denoised is not None and r.denoised.shape == r.image.shape
+    assert np.isfinite(r.denoised).all()
+    assert not np.array_equal(r.denoised, r.image)
+    # smoother: neighbouring pixels differ less than in the 4-spp beauty
+    assert np.abs(np.diff(r.denoised, axis=1)).mean() < np.abs(np.diff(r.image, axis=1)).mean()
