@@ -31,7 +31,7 @@ CO_KERNEL render_aov(CO_PARAMS(RENDER_AOV_PARAMS)) {
     if (hit.triangle == HIT_NONE) continue;
     const CO_GLOBAL Material* m = &s.materials[s.triangle_material[hit.triangle]];
     co_vec3 base_color =
-        v3_mul(v3_from4(m->base_color), material_texture(&s, m->base_color_texture, hit.triangle, hit.u, hit.v));
+        surface_params(&s, m, hit.triangle, hit.u, hit.v).base_color;
     co_vec3 n = v3_normalize(triangle_cross(&s.triangles[hit.triangle]));
     albedo = film_add(albedo, base_color);
     albedo.w = albedo.w + hit.t; /* the camera ray's direction is a unit vector: t is the distance */

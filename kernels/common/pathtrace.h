@@ -322,9 +322,8 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
   Rng bsdf_rng = rng_make(p->seed, pixel, sample, segment, RNG_BSDF);
   float u_select = rng_next(&bsdf_rng), u_lobe = rng_next(&bsdf_rng);
   float u1 = rng_next(&bsdf_rng), u2 = rng_next(&bsdf_rng);
-  co_vec3 base_color =
-      v3_mul(v3_from4(m->base_color), material_texture(s, m->base_color_texture, hit.triangle, hit.u, hit.v));
-  Bsdf b = bsdf_from_material(m, base_color, u_select);
+  SurfaceParams sp = surface_params(s, m, hit.triangle, hit.u, hit.v);
+  Bsdf b = bsdf_from_gltf(sp.base_color, sp.metallic, sp.roughness, m->transmission, m->ior, u_select);
   ShadingFrame frame = frame_from_normal(n_geo);
   co_vec3 wi = frame_to_local(&frame, v3_neg(st->dir));
 

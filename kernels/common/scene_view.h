@@ -1,6 +1,7 @@
 /* Device view of a loaded scene: the KD-tree, per-triangle materials, the emitter table, the
  * textures (texture coordinates per triangle, descriptors, texels; read only when the program is
- * built with COHORT_FEATURE_TEXTURES, and one-element placeholders otherwise), the environment map
+ * built with COHORT_FEATURE_TEXTURES, and one-element placeholders otherwise), vertex colours
+ * (COHORT_FEATURE_VERTEX_COLORS), the environment map
  * (COHORT_FEATURE_ENVMAP) and the punctual lights (COHORT_FEATURE_PUNCTUAL), placeholders
  * likewise. */
 #ifndef COHORT_SCENE_VIEW_H
@@ -20,7 +21,8 @@ typedef struct SceneView {
   const CO_GLOBAL EmitterEntry* emitters;      /* emissive triangles, cdf by power */
   const CO_GLOBAL TriangleUv* triangle_uvs;   /* per kept triangle */
   const CO_GLOBAL TextureDesc* textures;
-  const CO_GLOBAL uint32_t* texels;           /* RGBA8, sRGB-encoded */
+  const CO_GLOBAL uint32_t* texels;           /* RGBA8 */
+  const CO_GLOBAL TriangleColor* triangle_colors; /* per kept triangle */
   EnvironmentView env;
   const CO_GLOBAL PunctualLight* punctual_lights;
   uint32_t emitter_count;
@@ -35,6 +37,7 @@ CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNod
                                     const CO_GLOBAL uint32_t* triangle_material, const CO_GLOBAL Material* materials,
                                     const CO_GLOBAL EmitterEntry* emitters, const CO_GLOBAL TriangleUv* triangle_uvs,
                                     const CO_GLOBAL TextureDesc* textures, const CO_GLOBAL uint32_t* texels,
+                                    const CO_GLOBAL TriangleColor* triangle_colors,
                                     const CO_GLOBAL co_float4* env_texels, const CO_GLOBAL float* env_tables,
                                     const CO_GLOBAL PunctualLight* punctual_lights) {
   SceneView s;
@@ -46,6 +49,7 @@ CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNod
   s.triangle_uvs = triangle_uvs;
   s.textures = textures;
   s.texels = texels;
+  s.triangle_colors = triangle_colors;
   s.env.texels = env_texels;
   s.env.tables = env_tables;
   s.env.width = p->env_width;
@@ -61,7 +65,7 @@ CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNod
 }
 #define SCENE_VIEW(p)                                                                                \
   make_scene_view(&(p), nodes, leaf_triangles, triangles, triangle_material, materials, emitters, triangle_uvs, \
-                  textures, texels, env_texels, env_tables, punctual_lights)
+                  textures, texels, triangle_colors, env_texels, env_tables, punctual_lights)
 
 CO_INLINE float luminance(co_vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
@@ -87,23 +91,66 @@ CO_INLINE co_vec3 emitted_radiance(const CO_GLOBAL Material* m, co_vec3 n_geo, c
   return le;
 }
 
-/* Texture `index` at barycentric weights (b1, b2) of `triangle`, or 1 where the material has no
+/* Texture `index` at barycentric weights (b1, b2) of `triangle`, read with coordinate set 1
+ * (TEXCOORD_1) where the material's `uv1_flag` is set, else set 0; 1 where the material has no
  * texture. Without COHORT_FEATURE_TEXTURES every texture is absent and no lookup is compiled. */
-CO_INLINE co_vec3 material_texture(const SceneView* s, int32_t index, uint32_t triangle, float b1, float b2) {
+CO_INLINE co_vec3 material_texture(const SceneView* s, const CO_GLOBAL Material* m, int32_t index, uint32_t uv1_flag,
+                                   uint32_t triangle, float b1, float b2) {
 #ifdef COHORT_FEATURE_TEXTURES
   if (index >= 0) {
     float u, v;
+#ifdef COHORT_FEATURE_TEXCOORD1
+    triangle_uv_at(s->triangle_uvs, 2u * triangle + ((m->flags & uv1_flag) ? 1u : 0u), b1, b2, &u, &v);
+#else
+    (void)m;
+    (void)uv1_flag;
     triangle_uv_at(s->triangle_uvs, triangle, b1, b2, &u, &v);
+#endif
     return texture_sample(s->textures, s->texels, index, u, v);
   }
 #else
   (void)s;
+  (void)m;
   (void)index;
+  (void)uv1_flag;
   (void)triangle;
   (void)b1;
   (void)b2;
 #endif
   return v3_splat(1.0f);
+}
+
+/* The glTF metallic-roughness parameters at a surface point: factors times textures (base colour
+ * also times COLOR_0), what bsdf_from_gltf takes. */
+typedef struct SurfaceParams {
+  co_vec3 base_color;
+  float metallic;
+  float roughness;
+} SurfaceParams;
+
+CO_INLINE SurfaceParams surface_params(const SceneView* s, const CO_GLOBAL Material* m, uint32_t triangle, float b1,
+                                       float b2) {
+  SurfaceParams p;
+  p.base_color = v3_mul(v3_from4(m->base_color),
+                        material_texture(s, m, m->base_color_texture, MAT_UV1_BASE_COLOR, triangle, b1, b2));
+#ifdef COHORT_FEATURE_VERTEX_COLORS
+  {
+    TriangleColor c = s->triangle_colors[triangle];
+    float b0 = 1.0f - b1 - b2;
+    co_vec3 vc = v3_add(v3_add(v3_scale(v3_from4(c.c0), b0), v3_scale(v3_from4(c.c1), b1)), v3_scale(v3_from4(c.c2), b2));
+    p.base_color = v3_mul(p.base_color, vc);
+  }
+#endif
+  p.metallic = m->metallic;
+  p.roughness = m->roughness;
+#ifdef COHORT_FEATURE_TEXTURES
+  if (m->metallic_roughness_texture >= 0) {
+    co_vec3 mr = material_texture(s, m, m->metallic_roughness_texture, MAT_UV1_METALLIC_ROUGHNESS, triangle, b1, b2);
+    p.metallic = p.metallic * mr.z;
+    p.roughness = p.roughness * mr.y;
+  }
+#endif
+  return p;
 }
 
 /* emitted_radiance times the emission texture at (b1, b2). The emitter table (host) and the
@@ -116,7 +163,7 @@ CO_INLINE co_vec3 emitted_radiance_at(const SceneView* s, const CO_GLOBAL Materi
   co_vec3 le = emitted_radiance(m, n_geo, to_viewer);
 #ifdef COHORT_FEATURE_TEXTURES
   if (m->emission_texture >= 0 && v3_max_component(le) > 0.0f)
-    le = v3_mul(le, material_texture(s, m->emission_texture, triangle, b1, b2));
+    le = v3_mul(le, material_texture(s, m, m->emission_texture, MAT_UV1_EMISSION, triangle, b1, b2));
 #else
   (void)s;
   (void)triangle;

@@ -1,5 +1,6 @@
-/* Texture lookups: bilinear filtering of RGBA8 sRGB-encoded texels, decoded to linear before
- * filtering, with repeat wrapping (glTF's default sampler). Plain C for OpenCL C 1.2 and host C++.
+/* Texture lookups with glTF's samplers: nearest or bilinear filtering of RGBA8 texels, decoded to
+ * linear before filtering (sRGB colour or linear data), wrapped by repeat, clamp to edge or
+ * mirrored repeat per axis. Plain C for OpenCL C 1.2 and host C++.
  *
  * Texel centres lie at ((i + 0.5) / width, (j + 0.5) / height); (0, 0) is the top-left corner of
  * the first row. The sRGB decode is a table (IEC 61966-2-1, computed in double precision and
@@ -59,8 +60,13 @@ CO_CONSTANT_DATA float co_srgb_to_linear[256] = {
     0.973445296f, 0.982250571f, 0.991102099f, 1.0f,
 };
 
-CO_INLINE co_vec3 texel_linear(const CO_GLOBAL uint32_t* texels, uint32_t index) {
+/* One texel's channels in linear terms: colour textures (base colour, emission) are sRGB-encoded,
+ * data textures (metallic-roughness, normals) are stored linearly, so they divide by 255. */
+CO_INLINE co_vec3 texel_linear(const CO_GLOBAL uint32_t* texels, uint32_t index, uint32_t sampler) {
   uint32_t t = texels[index];
+  if (sampler & TEX_DATA)
+    return v3((float)(t & 255u) * (1.0f / 255.0f), (float)((t >> 8) & 255u) * (1.0f / 255.0f),
+              (float)((t >> 16) & 255u) * (1.0f / 255.0f));
   return v3(co_srgb_to_linear[t & 255u], co_srgb_to_linear[(t >> 8) & 255u], co_srgb_to_linear[(t >> 16) & 255u]);
 }
 
@@ -71,27 +77,49 @@ CO_INLINE float texture_wrap(float u) {
   return f < 1.0f ? f : 0.0f; /* u - floor(u) rounds to 1 for tiny negative u */
 }
 
-/* Linear RGB of texture `index` at (u, v), bilinearly filtered. */
+/* Coordinate in [0, 1] for a wrap mode: repeat as above, clamp to the edge, or mirrored repeat
+ * (odd periods run backwards). Clamp and mirror then clamp their texel indices to the edge, which
+ * is what OpenGL's and Mitsuba's integer wrapping gives for the same coordinate. */
+CO_INLINE float texture_wrap_mode(float u, uint32_t mode) {
+  if (mode == TEX_WRAP_REPEAT) return texture_wrap(u);
+  if (!(u > -1e7f && u < 1e7f)) return 0.0f;
+  if (mode == TEX_WRAP_CLAMP) return fmin(fmax(u, 0.0f), 1.0f);
+  float f = u - 2.0f * floor(0.5f * u); /* [0, 2] */
+  return f <= 1.0f ? f : fmax(2.0f - f, 0.0f);
+}
+
+/* Texel index in [0, n) for a position i in texels (rounded down) that may lie one beyond either end. */
+CO_INLINE uint32_t texel_index(int32_t i, uint32_t n, uint32_t mode) {
+  if (mode == TEX_WRAP_REPEAT) return i < 0 ? n - 1u : ((uint32_t)i >= n ? (uint32_t)i - n : (uint32_t)i);
+  return i < 0 ? 0u : ((uint32_t)i >= n ? n - 1u : (uint32_t)i);
+}
+
+/* Linear RGB of texture `index` at (u, v) with its sampler: nearest texel or bilinear filtering,
+ * each axis wrapped by its own mode. */
 CO_INLINE co_vec3 texture_sample(const CO_GLOBAL TextureDesc* descs, const CO_GLOBAL uint32_t* texels, int32_t index,
                                  float u, float v) {
   TextureDesc d = descs[index];
-  float x = texture_wrap(u) * (float)d.width - 0.5f;
-  float y = texture_wrap(v) * (float)d.height - 0.5f;
+  uint32_t wrap_s = tex_wrap_s(d.sampler), wrap_t = tex_wrap_t(d.sampler);
+  float x = texture_wrap_mode(u, wrap_s) * (float)d.width;
+  float y = texture_wrap_mode(v, wrap_t) * (float)d.height;
+  if (d.sampler & TEX_NEAREST) {
+    /* x in [0, width]: width itself (u = 1 when clamped or mirrored, or rounding) is the last column */
+    uint32_t ix = co_umin((uint32_t)x, d.width - 1u), iy = co_umin((uint32_t)y, d.height - 1u);
+    return texel_linear(texels, d.offset + iy * d.width + ix, d.sampler);
+  }
+  x = x - 0.5f;
+  y = y - 0.5f;
   float fx = floor(x), fy = floor(y);
   float tx = x - fx, ty = y - fy;
-  /* fx in [-1, width - 1]: the left neighbour of the first column is the last one */
+  /* fx in [-1, width]: the neighbours beyond the edges wrap, or clamp to the edge */
   int32_t ix = (int32_t)fx, iy = (int32_t)fy;
-  uint32_t x0 = ix < 0 ? d.width - 1u : (uint32_t)ix;
-  uint32_t y0 = iy < 0 ? d.height - 1u : (uint32_t)iy;
-  uint32_t x1 = x0 + 1u >= d.width ? 0u : x0 + 1u;
-  uint32_t y1 = y0 + 1u >= d.height ? 0u : y0 + 1u;
-  if (x0 >= d.width) x0 = d.width - 1u; /* float rounding at the last column */
-  if (y0 >= d.height) y0 = d.height - 1u;
+  uint32_t x0 = texel_index(ix, d.width, wrap_s), x1 = texel_index(ix + 1, d.width, wrap_s);
+  uint32_t y0 = texel_index(iy, d.height, wrap_t), y1 = texel_index(iy + 1, d.height, wrap_t);
   uint32_t row0 = d.offset + y0 * d.width, row1 = d.offset + y1 * d.width;
-  co_vec3 a = v3_add(v3_scale(texel_linear(texels, row0 + x0), 1.0f - tx),
-                     v3_scale(texel_linear(texels, row0 + x1), tx));
-  co_vec3 b = v3_add(v3_scale(texel_linear(texels, row1 + x0), 1.0f - tx),
-                     v3_scale(texel_linear(texels, row1 + x1), tx));
+  co_vec3 a = v3_add(v3_scale(texel_linear(texels, row0 + x0, d.sampler), 1.0f - tx),
+                     v3_scale(texel_linear(texels, row0 + x1, d.sampler), tx));
+  co_vec3 b = v3_add(v3_scale(texel_linear(texels, row1 + x0, d.sampler), 1.0f - tx),
+                     v3_scale(texel_linear(texels, row1 + x1, d.sampler), tx));
   return v3_add(v3_scale(a, 1.0f - ty), v3_scale(b, ty));
 }
 

@@ -57,10 +57,14 @@ typedef struct Triangle {
 CO_STATIC_ASSERT(sizeof(Triangle) == 48, "Triangle must stay 48 bytes");
 
 /* ---- Materials ------------------------------------------------------------------------------
- * The glTF metallic-roughness parameters, mapped to a BSDF by bsdf_from_material (bsdf.h), and
+ * The glTF metallic-roughness parameters, mapped to a BSDF by bsdf_from_gltf (bsdf.h), and
  * emission as a one-sided (or two-sided) area light. Texture indices refer to the TextureDesc
- * table; the host sets them to -1 when the scene has no texture coordinates. */
+ * table; the host sets them to -1 when the scene has no texture coordinates. A MAT_UV1_* flag
+ * makes that texture read the triangle's second coordinate set (glTF TEXCOORD_1). */
 #define MAT_TWO_SIDED_EMISSION 1u
+#define MAT_UV1_BASE_COLOR 2u
+#define MAT_UV1_METALLIC_ROUGHNESS 4u
+#define MAT_UV1_EMISSION 8u
 typedef struct Material {
   co_float4 base_color;  /* rgb; a = alpha */
   co_float4 emission;    /* rgb radiance (factor x strength); a unused */
@@ -71,26 +75,47 @@ typedef struct Material {
   int32_t base_color_texture; /* -1: none; multiplies base_color */
   uint32_t flags;
   int32_t emission_texture;   /* -1: none; multiplies emission */
-  uint32_t pad1;
+  int32_t metallic_roughness_texture; /* -1: none; B multiplies metallic, G roughness (linear data) */
 } Material;
 CO_STATIC_ASSERT(sizeof(Material) == 64, "Material must stay 64 bytes");
 
 /* ---- Textures ---------------------------------------------------------------------------------
- * Every texture's texels live in one buffer of RGBA8 words (r in the low byte, sRGB-encoded as
- * glTF stores them, rows from the top: texture coordinate v = 0 is the first row); a descriptor
- * per texture says where. Texture coordinates are stored per kept triangle, 3 vertices. */
+ * Every texture's texels live in one buffer of RGBA8 words (r in the low byte, as glTF stores
+ * them, rows from the top: texture coordinate v = 0 is the first row); a descriptor per texture
+ * says where and how it is sampled (glTF's sampler, and whether the texels are sRGB colour or
+ * linear data). Texture coordinates are stored per kept triangle, 3 vertices; with
+ * COHORT_FEATURE_TEXCOORD1 two sets per triangle, TEXCOORD_0's then TEXCOORD_1's. */
+#define TEX_NEAREST 1u     /* nearest texel; else bilinear */
+#define TEX_DATA 2u        /* linear data (metallic-roughness, normals); else sRGB-encoded colour */
+#define TEX_WRAP_REPEAT 0u /* wrap modes, two bits each: along u in bits 2-3, along v in bits 4-5 */
+#define TEX_WRAP_CLAMP 1u
+#define TEX_WRAP_MIRROR 2u
 typedef struct TextureDesc {
   uint32_t offset; /* first texel in the texel buffer */
   uint32_t width;
   uint32_t height;
-  uint32_t pad0;
+  uint32_t sampler; /* TEX_* flags and wrap modes */
 } TextureDesc;
 CO_STATIC_ASSERT(sizeof(TextureDesc) == 16, "TextureDesc must stay 16 bytes");
+
+CO_INLINE uint32_t tex_wrap_s(uint32_t sampler) { return (sampler >> 2) & 3u; }
+CO_INLINE uint32_t tex_wrap_t(uint32_t sampler) { return (sampler >> 4) & 3u; }
+CO_INLINE uint32_t tex_sampler(uint32_t flags, uint32_t wrap_s, uint32_t wrap_t) {
+  return flags | (wrap_s << 2) | (wrap_t << 4);
+}
 
 typedef struct TriangleUv {
   float u0, v0, u1, v1, u2, v2;
 } TriangleUv;
 CO_STATIC_ASSERT(sizeof(TriangleUv) == 24, "TriangleUv must stay 24 bytes");
+
+/* glTF COLOR_0 at a kept triangle's 3 vertices, linear RGBA (COHORT_FEATURE_VERTEX_COLORS) */
+typedef struct TriangleColor {
+  co_float4 c0;
+  co_float4 c1;
+  co_float4 c2;
+} TriangleColor;
+CO_STATIC_ASSERT(sizeof(TriangleColor) == 48, "TriangleColor must stay 48 bytes");
 
 /* ---- Emissive triangles, sampled by power --------------------------------------------------- */
 typedef struct EmitterEntry {

@@ -8,6 +8,22 @@
 #include "runtime/util/error.h"
 
 namespace cohort {
+namespace {
+
+const char* wrap_name(TextureWrap w) {
+  return w == TextureWrap::clamp_to_edge ? "clamp" : (w == TextureWrap::mirrored_repeat ? "mirror" : "repeat");
+}
+
+// "NAME WxH, sRGB, bilinear, wrap repeat/repeat: base colour of 'M'; emission of 'N'"
+std::string describe(const Texture& t) {
+  std::string uses;
+  for (const std::string& u : t.uses) uses += (uses.empty() ? "" : "; ") + u;
+  return fmt::format("{} {}x{}, {}, {}, wrap {}/{}: {}", t.name, t.width, t.height, t.srgb ? "sRGB" : "linear",
+                     t.sampler.nearest ? "nearest" : "bilinear", wrap_name(t.sampler.wrap_s),
+                     wrap_name(t.sampler.wrap_t), uses.empty() ? "unused" : uses);
+}
+
+}  // namespace
 
 int run_info(const std::filesystem::path& path, const std::string& tree) {
   const PreparedScene p = prepare_scene(path, tree_options(tree));
@@ -19,11 +35,13 @@ int run_info(const std::filesystem::path& path, const std::string& tree) {
   fmt::print("materials: {}\n", p.scene.materials.size());
   for (std::size_t i = 0; i < p.scene.materials.size(); ++i) {
     const auto& m = p.scene.materials[i];
-    fmt::print("  [{}] {}: base colour ({:.3g}, {:.3g}, {:.3g}), emission ({:.3g}, {:.3g}, {:.3g}){}\n", i,
-               m.name.empty() ? "(unnamed)" : m.name, m.base_color.x, m.base_color.y, m.base_color.z, m.emission.x,
-               m.emission.y, m.emission.z, m.base_color_texture >= 0 ? ", textured" : "");
+    fmt::print("  [{}] {}: base colour ({:.3g}, {:.3g}, {:.3g}), metallic {:.3g}, roughness {:.3g}, emission ({:.3g}, "
+               "{:.3g}, {:.3g}){}\n",
+               i, m.name.empty() ? "(unnamed)" : m.name, m.base_color.x, m.base_color.y, m.base_color.z, m.metallic,
+               m.roughness, m.emission.x, m.emission.y, m.emission.z, m.base_color_texture >= 0 ? ", textured" : "");
   }
   fmt::print("textures: {}\n", p.scene.textures.size());
+  for (std::size_t i = 0; i < p.scene.textures.size(); ++i) fmt::print("  [{}] {}\n", i, describe(p.scene.textures[i]));
   std::size_t spots = 0;
   for (const auto& l : p.scene.lights) spots += l.type == SceneLight::Type::spot;
   fmt::print("lights: {} emissive triangles, total power {:.4g}; {} point, {} spot (KHR_lights_punctual)\n",

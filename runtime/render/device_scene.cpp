@@ -55,13 +55,19 @@ Material to_device_material(const SceneMaterial& m) {
   d.ior = m.ior;
   d.base_color_texture = m.base_color_texture;
   d.flags = m.double_sided ? MAT_TWO_SIDED_EMISSION : 0u;
+  if (m.base_color_texcoord == 1) d.flags |= MAT_UV1_BASE_COLOR;
+  if (m.metallic_roughness_texcoord == 1) d.flags |= MAT_UV1_METALLIC_ROUGHNESS;
+  if (m.emission_texcoord == 1) d.flags |= MAT_UV1_EMISSION;
   d.emission_texture = m.emission_texture;
+  d.metallic_roughness_texture = m.metallic_roughness_texture;
   return d;
 }
 
 std::vector<std::string> SceneFeatures::names() const {
   std::vector<std::string> out;
   if (textures) out.push_back("textures");
+  if (texcoord1) out.push_back("texcoord1");
+  if (vertex_colors) out.push_back("vertex_colors");
   if (conductor) out.push_back("conductor");
   if (dielectric) out.push_back("dielectric");
   if (plastic) out.push_back("plastic");
@@ -84,16 +90,18 @@ std::string SceneFeatures::build_options() const {
 // kernel can select is left out. With u_select in [0, 1): a conductor whenever metallic > 0; the
 // remapped u lies in [0, 1], reaching 1 only through rounding when 0 < metallic < 1, so a
 // dielectric is possible whenever transmission > 0 and the opaque base unless transmission > 1,
-// or transmission = 1 with metallic = 0 (NaN transmission: always the base).
+// or transmission = 1 with metallic = 0 (NaN transmission: always the base). A metallic-roughness
+// texture scales both factors by [0, 1]: any metallic and roughness from 0 to the factors.
 SceneFeatures material_features(const Material& m) {
   SceneFeatures f;
+  const bool mr_texture = m.metallic_roughness_texture >= 0;
   const float met = std::fmin(std::fmax(m.metallic, 0.f), 1.f);
   const float r = std::fmin(std::fmax(m.roughness, 0.f), 1.f);
   f.conductor = met > 0.f;
-  if (met < 1.f) {
+  if (met < 1.f || mr_texture) {
     f.dielectric = m.transmission > 0.f;
     const bool opaque = !(m.transmission >= 1.f) || (m.transmission == 1.f && met > 0.f);
-    f.plastic = opaque && r < 1.f;
+    f.plastic = opaque && (r < 1.f || mr_texture);
   }
   return f;
 }
@@ -108,7 +116,21 @@ bool texture_usable(const Scene& scene, int index) {
          std::size_t(t.width) * std::size_t(t.height) < std::numeric_limits<std::uint32_t>::max();
 }
 
+std::uint32_t wrap_bits(TextureWrap w) {
+  return w == TextureWrap::clamp_to_edge ? TEX_WRAP_CLAMP : (w == TextureWrap::mirrored_repeat ? TEX_WRAP_MIRROR : TEX_WRAP_REPEAT);
+}
+
+std::uint32_t sampler_bits(const Texture& t) {
+  return tex_sampler((t.sampler.nearest ? TEX_NEAREST : 0u) | (t.srgb ? 0u : TEX_DATA), wrap_bits(t.sampler.wrap_s),
+                     wrap_bits(t.sampler.wrap_t));
+}
+
+bool has_set(const Scene& scene, int set) {
+  return (set == 1 ? scene.uvs1 : scene.uvs).size() == 3 * scene.triangle_count();
+}
+
 // Uploads only the textures that used materials refer to, renumbered; the others stay on the host.
+// A texture whose coordinate set the scene lacks is left out (the loader has warned).
 void add_textures(const Scene& scene, const KdTree& tree, const std::vector<bool>& used, SceneTables& t) {
   std::vector<int> new_index(scene.textures.size(), -1);
   auto remap = [&](std::int32_t& index) {
@@ -126,29 +148,57 @@ void add_textures(const Scene& scene, const KdTree& tree, const std::vector<bool
       }
       n = static_cast<int>(t.textures.size());
       t.textures.push_back(TextureDesc{static_cast<std::uint32_t>(t.texels.size()), std::uint32_t(tex.width),
-                                       std::uint32_t(tex.height), 0u});
+                                       std::uint32_t(tex.height), sampler_bits(tex)});
       const std::size_t first = t.texels.size();
       t.texels.resize(first + texels);
       std::memcpy(t.texels.data() + first, tex.rgba.data(), texels * 4);  // little-endian: r in the low byte
     }
     index = n;
   };
-  const bool has_uvs = scene.uvs.size() == 3 * scene.triangle_count();
+  bool set1 = false;  // some uploaded texture reads TEXCOORD_1
+  auto slot = [&](std::int32_t& index, bool used_material, int set) {
+    if (!used_material || !has_set(scene, set)) {
+      index = -1;
+      return;
+    }
+    remap(index);
+    set1 |= index >= 0 && set == 1;
+  };
   for (std::size_t i = 0; i < t.materials.size(); ++i) {
     Material& m = t.materials[i];
-    if (!has_uvs || !used[i]) {
-      m.base_color_texture = m.emission_texture = -1;
-      continue;
-    }
-    remap(m.base_color_texture);
-    remap(m.emission_texture);
+    const SceneMaterial& sm = scene.materials[i];
+    slot(m.base_color_texture, used[i], sm.base_color_texcoord);
+    slot(m.emission_texture, used[i], sm.emission_texcoord);
+    slot(m.metallic_roughness_texture, used[i], sm.metallic_roughness_texcoord);
   }
   if (t.textures.empty()) return;
   t.features.textures = true;
-  t.triangle_uvs.reserve(tree.source_index.size());
-  for (std::uint32_t src : tree.source_index) {
-    const glm::vec2* uv = &scene.uvs[3 * std::size_t(src)];
+  t.features.texcoord1 = set1;
+  auto push = [&](const std::vector<glm::vec2>& uvs, std::uint32_t src) {
+    if (uvs.empty()) {
+      t.triangle_uvs.push_back(TriangleUv{});
+      return;
+    }
+    const glm::vec2* uv = &uvs[3 * std::size_t(src)];
     t.triangle_uvs.push_back(TriangleUv{uv[0].x, uv[0].y, uv[1].x, uv[1].y, uv[2].x, uv[2].y});
+  };
+  // one set per triangle, or both interleaved (COHORT_FEATURE_TEXCOORD1: set s of triangle i at 2i + s)
+  t.triangle_uvs.reserve(tree.source_index.size() * (set1 ? 2 : 1));
+  for (std::uint32_t src : tree.source_index) {
+    push(scene.uvs, src);
+    if (set1) push(scene.uvs1, src);
+  }
+}
+
+// COLOR_0 per kept triangle, when the scene has vertex colours.
+void add_vertex_colors(const Scene& scene, const KdTree& tree, SceneTables& t) {
+  if (scene.colors.size() != 3 * scene.triangle_count()) return;
+  t.features.vertex_colors = true;
+  auto c4 = [](const glm::vec4& c) { return co_float4{c.x, c.y, c.z, c.w}; };
+  t.triangle_colors.reserve(tree.source_index.size());
+  for (std::uint32_t src : tree.source_index) {
+    const glm::vec4* c = &scene.colors[3 * std::size_t(src)];
+    t.triangle_colors.push_back(TriangleColor{c4(c[0]), c4(c[1]), c4(c[2])});
   }
 }
 
@@ -161,6 +211,8 @@ SceneTables make_scene_tables(const Scene& scene, const KdTree& tree) {
   for (std::uint32_t src : tree.source_index) t.triangle_material.push_back(scene.material_ids.at(src));
   std::vector<bool> used(t.materials.size(), false);
   for (std::uint32_t id : t.triangle_material) used.at(id) = true;
+  add_textures(scene, tree, used, t);  // first: a texture left out selects no more families
+  add_vertex_colors(scene, tree, t);
   for (std::size_t i = 0; i < t.materials.size(); ++i) {
     if (!used[i]) continue;
     const SceneFeatures f = material_features(t.materials[i]);
@@ -168,7 +220,6 @@ SceneTables make_scene_tables(const Scene& scene, const KdTree& tree) {
     t.features.dielectric |= f.dielectric;
     t.features.plastic |= f.plastic;
   }
-  add_textures(scene, tree, used, t);
   t.emitters = build_emitter_table(tree, t.materials, t.triangle_material);
   t.punctual = make_punctual_table(scene.lights);
   t.features.punctual = !t.punctual.lights.empty();
@@ -213,6 +264,7 @@ SceneBuffers DeviceScene::kernel_buffers() const {
   b.triangle_uvs = triangle_uvs;
   b.textures = textures;
   b.texels = texels;
+  b.triangle_colors = triangle_colors;
   b.env_texels = env_texels;
   b.env_tables = env_tables;
   b.punctual_lights = punctual_lights;
@@ -252,6 +304,7 @@ DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables
   d.triangle_uvs = upload("texture coordinates", tables.triangle_uvs);
   d.textures = upload("texture descriptors", tables.textures);
   d.texels = upload("texels", tables.texels);
+  d.triangle_colors = upload("vertex colours", tables.triangle_colors);
   d.punctual_lights = upload("punctual lights", tables.punctual.lights);
   d.punctual_count = static_cast<std::uint32_t>(tables.punctual.lights.size());
   if (tables.environment) {

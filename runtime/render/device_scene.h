@@ -31,6 +31,8 @@ std::size_t bytes_of(const std::vector<T, Allocator>& v) {
 // built with the same options, so the methods still agree bit for bit.
 struct SceneFeatures {
   bool textures = false;
+  bool texcoord1 = false;      // some texture reads a second coordinate set (glTF TEXCOORD_1)
+  bool vertex_colors = false;  // glTF COLOR_0 multiplies the base colour
   bool conductor = false;
   bool dielectric = false;
   bool plastic = false;
@@ -54,7 +56,8 @@ struct SceneTables {
   // (otherwise empty, and every material's texture index is -1)
   std::vector<TriangleUv> triangle_uvs;  // per kept triangle
   std::vector<TextureDesc> textures;     // the textures used, renumbered in order of first use
-  std::vector<std::uint32_t> texels;     // RGBA8 words, r in the low byte, sRGB-encoded
+  std::vector<std::uint32_t> texels;     // RGBA8 words, r in the low byte
+  std::vector<TriangleColor> triangle_colors;  // per kept triangle, only with features.vertex_colors
   PunctualTable punctual;                // point and spot lights
   std::optional<EnvironmentMap> environment;
   SceneFeatures features;                // of the materials the kept triangles use, and the lights
@@ -76,6 +79,7 @@ LightPick light_pick(const SceneTables& tables, float radius);
 struct DeviceScene {
   DeviceBuffer nodes, leaf_triangles, triangles, triangle_material, materials, emitters;
   DeviceBuffer triangle_uvs, textures, texels;  // one-element placeholders without textures
+  DeviceBuffer triangle_colors;                 // a one-element placeholder without vertex colours
   DeviceBuffer env_texels, env_tables, punctual_lights;  // placeholders without those lights
   SceneFeatures features;
   std::string build_options;  // features.build_options() (and the BVH's): every rendering program gets them

@@ -186,6 +186,14 @@ std::vector<glm::vec2> read_vec2(const tinygltf::Model& model, int accessor, con
   return read_elements<2, glm::vec2>(model, accessor, where);
 }
 
+std::vector<glm::vec4> read_rgba(const tinygltf::Model& model, int accessor, const std::string& where) {
+  if (components_of(accessor_at(model, accessor, where).type) == 4)
+    return read_elements<4, glm::vec4>(model, accessor, where);
+  std::vector<glm::vec4> out;
+  for (const glm::vec3& c : read_elements<3, glm::vec3>(model, accessor, where)) out.emplace_back(c, 1.f);
+  return out;
+}
+
 std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int index, const std::string& where) {
   const auto& a = accessor_at(model, index, where);
   const int ct = a.componentType;

@@ -2,6 +2,7 @@
 
 #include <map>
 #include <optional>
+#include <tuple>
 
 #include <fmt/format.h>
 #include <tiny_gltf.h>
@@ -26,29 +27,80 @@ glm::vec3 vec3_or(const std::vector<double>& v, glm::vec3 fallback) {
   return v.size() >= 3 ? glm::vec3(v[0], v[1], v[2]) : fallback;
 }
 
-// Decodes the images of base-colour and emissive textures once each, however many materials share them.
+TextureWrap wrap_mode(int gltf_wrap) {
+  if (gltf_wrap == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return TextureWrap::clamp_to_edge;
+  if (gltf_wrap == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return TextureWrap::mirrored_repeat;
+  return TextureWrap::repeat;
+}
+
+// Without mip-maps a texture has one level, so a mip-map filter is its within-level filter
+// (NEAREST_MIPMAP_* as NEAREST, LINEAR_MIPMAP_* as LINEAR). There is one filter per texture, not
+// one for magnification and one for minification: magFilter decides, minFilter where it is absent.
+bool nearest_filter(const tinygltf::Sampler& s) {
+  const int filter = s.magFilter >= 0 ? s.magFilter : s.minFilter;
+  return filter == TINYGLTF_TEXTURE_FILTER_NEAREST || filter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
+         filter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR;
+}
+
+// Decodes each image once, however many materials and samplers share it, and keeps one scene
+// texture per image, sampler and encoding (sRGB colour or linear data).
 class TextureTable {
  public:
   TextureTable(const tinygltf::Model& model, const std::string& file, Scene& scene)
       : model_(model), file_(file), scene_(scene) {}
 
-  int index_of(int gltf_texture) {
+  // The scene texture for glTF texture `gltf_texture`, or -1; `use` says what it drives.
+  int index_of(int gltf_texture, bool srgb, const std::string& use) {
     if (gltf_texture < 0) return -1;
     if (static_cast<std::size_t>(gltf_texture) >= model_.textures.size()) {
       warn(fmt::format("texture {} does not exist", gltf_texture));
       return -1;
     }
-    const int image = model_.textures[static_cast<std::size_t>(gltf_texture)].source;
+    const tinygltf::Texture& texture = model_.textures[static_cast<std::size_t>(gltf_texture)];
+    const int image = texture.source;
     if (image < 0 || static_cast<std::size_t>(image) >= model_.images.size()) {
       warn(fmt::format("texture {} has no image this loader can read", gltf_texture));
       return -1;
     }
-    const auto [it, inserted] = by_image_.try_emplace(image, -1);
-    if (inserted) it->second = decode(image);
+    const TextureSampler sampler = sampler_of(texture);
+    const auto key = std::tuple{image, sampler.nearest, sampler.wrap_s, sampler.wrap_t, srgb};
+    const auto [it, inserted] = by_key_.try_emplace(key, -1);
+    if (inserted) it->second = add(image, sampler, srgb);
+    if (it->second >= 0) scene_.textures[static_cast<std::size_t>(it->second)].uses.push_back(use);
     return it->second;
   }
 
  private:
+  TextureSampler sampler_of(const tinygltf::Texture& texture) {
+    if (texture.sampler < 0) return {};  // glTF: repeat, and filtering up to the renderer (bilinear)
+    if (static_cast<std::size_t>(texture.sampler) >= model_.samplers.size()) {
+      warn(fmt::format("sampler {} does not exist; the default sampler is used", texture.sampler));
+      return {};
+    }
+    const tinygltf::Sampler& s = model_.samplers[static_cast<std::size_t>(texture.sampler)];
+    return {.nearest = nearest_filter(s), .wrap_s = wrap_mode(s.wrapS), .wrap_t = wrap_mode(s.wrapT)};
+  }
+
+  int add(int image, const TextureSampler& sampler, bool srgb) {
+    const auto [decoded, first] = decoded_.try_emplace(image, -1);
+    if (first) {
+      decoded->second = decode(image);
+      if (decoded->second < 0) return -1;
+      Texture& t = scene_.textures[static_cast<std::size_t>(decoded->second)];
+      t.sampler = sampler;
+      t.srgb = srgb;
+      return decoded->second;
+    }
+    if (decoded->second < 0) return -1;
+    // the same image under another sampler or encoding: a texture of its own with the same texels
+    Texture copy = scene_.textures[static_cast<std::size_t>(decoded->second)];
+    copy.sampler = sampler;
+    copy.srgb = srgb;
+    copy.uses.clear();
+    scene_.textures.push_back(std::move(copy));
+    return static_cast<int>(scene_.textures.size() - 1);
+  }
+
   int decode(int index) {
     const tinygltf::Image& image = model_.images[static_cast<std::size_t>(index)];
     // A data URI would quote the whole image in messages.
@@ -78,8 +130,12 @@ class TextureTable {
   const tinygltf::Model& model_;
   const std::string& file_;
   Scene& scene_;
-  std::map<int, int> by_image_;
+  std::map<int, int> decoded_;  // image -> the scene texture its texels were decoded into, or -1
+  std::map<std::tuple<int, bool, TextureWrap, TextureWrap, bool>, int> by_key_;
 };
+
+// TEXCOORD_0 and _1 are read; a higher set is named by report_unhonoured, and set 0 stands in.
+int texcoord_set(const tinygltf::TextureInfo& t) { return t.texCoord == 1 ? 1 : 0; }
 
 SceneMaterial convert(const tinygltf::Material& m, TextureTable& textures) {
   const auto& pbr = m.pbrMetallicRoughness;
@@ -95,8 +151,14 @@ SceneMaterial convert(const tinygltf::Material& m, TextureTable& textures) {
   out.transmission = extension_number(m, "KHR_materials_transmission", "transmissionFactor", 0.f);
   out.ior = extension_number(m, "KHR_materials_ior", "ior", 1.5f);
   out.double_sided = m.doubleSided;
-  out.base_color_texture = textures.index_of(pbr.baseColorTexture.index);
-  out.emission_texture = textures.index_of(m.emissiveTexture.index);
+  const std::string of = fmt::format(" of '{}'", m.name);
+  out.base_color_texture = textures.index_of(pbr.baseColorTexture.index, true, "base colour" + of);
+  out.base_color_texcoord = texcoord_set(pbr.baseColorTexture);
+  out.emission_texture = textures.index_of(m.emissiveTexture.index, true, "emission" + of);
+  out.emission_texcoord = texcoord_set(m.emissiveTexture);
+  out.metallic_roughness_texture = textures.index_of(pbr.metallicRoughnessTexture.index, false,
+                                                     "metallic (B) and roughness (G)" + of);
+  out.metallic_roughness_texcoord = texcoord_set(pbr.metallicRoughnessTexture);
   return out;
 }
 

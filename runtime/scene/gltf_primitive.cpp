@@ -45,18 +45,37 @@ int accessor_of(const tinygltf::Primitive& p, const char* attribute) {
 struct Vertices {
   std::vector<glm::vec3> positions;  // world space
   std::vector<glm::vec2> uvs;        // TEXCOORD_0, or empty
+  std::vector<glm::vec2> uvs1;       // TEXCOORD_1, or empty
+  std::vector<glm::vec4> colors;     // COLOR_0 (linear RGBA), or empty
 };
+
+// An optional attribute, which must have one element per position.
+template <typename T, typename Read>
+std::vector<T> read_attribute(const tinygltf::Model& model, const tinygltf::Primitive& p, const char* name,
+                              std::size_t positions, const std::string& where, Read read) {
+  const int accessor = accessor_of(p, name);
+  if (accessor < 0) return {};
+  std::vector<T> values = read(model, accessor, where);
+  if (values.size() != positions)
+    throw InputError(
+        fmt::format("{}: {} has {} elements but POSITION has {}", where, name, values.size(), positions));
+  return values;
+}
 
 Vertices read_vertices(const tinygltf::Model& model, const tinygltf::Primitive& p, const glm::dmat4& world,
                        const std::string& where) {
   Vertices v{.positions = to_world(read_vec3(model, accessor_of(p, "POSITION"), where), world)};
-  const int uv_accessor = accessor_of(p, "TEXCOORD_0");
-  if (uv_accessor < 0) return v;
-  v.uvs = read_vec2(model, uv_accessor, where);
-  if (v.uvs.size() != v.positions.size())
-    throw InputError(fmt::format("{}: TEXCOORD_0 has {} elements but POSITION has {}", where, v.uvs.size(),
-                                 v.positions.size()));
+  const std::size_t n = v.positions.size();
+  v.uvs = read_attribute<glm::vec2>(model, p, "TEXCOORD_0", n, where, read_vec2);
+  v.uvs1 = read_attribute<glm::vec2>(model, p, "TEXCOORD_1", n, where, read_vec2);
+  v.colors = read_attribute<glm::vec4>(model, p, "COLOR_0", n, where, read_rgba);
   return v;
+}
+
+template <typename T>
+std::optional<std::array<T, 3>> corners(const std::vector<T>& values, const Triple& v) {
+  if (values.empty()) return std::nullopt;
+  return std::array{values[v[0]], values[v[1]], values[v[2]]};
 }
 
 std::vector<std::uint32_t> vertex_indices(const tinygltf::Model& model, const tinygltf::Primitive& p,
@@ -115,13 +134,12 @@ void PrimitiveEmitter::emit_primitive(const tinygltf::Primitive& p, const std::s
   if (scene_.triangle_count() + n > kMaxTriangles)
     throw InputError(fmt::format("{}: the scene expands to more than {} triangles", where, kMaxTriangles));
   builder_.reserve(n);
-  const auto& [positions, uvs] = vertices;
+  const auto& positions = vertices.positions;
   for (std::size_t t = 0; t < n; ++t) {
     Triple v = triangle(mode, idx, t);
     if (flip) std::swap(v[1], v[2]);
-    std::optional<std::array<glm::vec2, 3>> uv;
-    if (!uvs.empty()) uv = std::array{uvs[v[0]], uvs[v[1]], uvs[v[2]]};
-    builder_.add({positions[v[0]], positions[v[1]], positions[v[2]]}, material, uv);
+    builder_.add({positions[v[0]], positions[v[1]], positions[v[2]]}, material, corners(vertices.uvs, v),
+                 corners(vertices.uvs1, v), corners(vertices.colors, v));
   }
 }
 

@@ -1,4 +1,4 @@
-// One glTF mesh instance to world-space triangles: topology, indices, TEXCOORD_0, winding.
+// One glTF mesh instance to world-space triangles: topology, indices, TEXCOORD_0/1, COLOR_0, winding.
 #pragma once
 
 #include <map>

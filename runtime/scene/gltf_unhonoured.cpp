@@ -25,7 +25,8 @@ constexpr std::array kImplemented = {
 // matter); references inside unimplemented extensions are covered by the extension's own warning.
 std::vector<const tinygltf::TextureInfo*> honoured_textures(const tinygltf::Material& m) {
   std::vector<const tinygltf::TextureInfo*> out;
-  for (const tinygltf::TextureInfo* t : {&m.pbrMetallicRoughness.baseColorTexture, &m.emissiveTexture})
+  for (const tinygltf::TextureInfo* t : {&m.pbrMetallicRoughness.baseColorTexture,
+                                         &m.pbrMetallicRoughness.metallicRoughnessTexture, &m.emissiveTexture})
     if (t->index >= 0) out.push_back(t);
   return out;
 }
@@ -44,11 +45,6 @@ bool any_texture(const tinygltf::Model& model, const tinygltf::Material& m,
                      [&](const tinygltf::TextureInfo* t) { return test(*t, sampler_of(model, *t)); });
 }
 
-bool nearest_filter(int filter) {
-  return filter == TINYGLTF_TEXTURE_FILTER_NEAREST || filter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
-         filter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR;
-}
-
 // A feature the loader leaves out, and how to tell whether a material asks for it.
 struct Unhonoured {
   std::string what;  // the feature and what is rendered instead
@@ -58,27 +54,13 @@ struct Unhonoured {
 
 std::vector<Unhonoured> unhonoured_features() {
   return {
-      {"metallicRoughnessTexture (metal and roughness use their factors alone)",
-       [](const auto&, const auto& m) { return m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0; }},
       {"normalTexture (shading uses the geometric normal)",
        [](const auto&, const auto& m) { return m.normalTexture.index >= 0; }},
       {"alphaMode MASK (rendered opaque)", [](const auto&, const auto& m) { return m.alphaMode == "MASK"; }},
       {"alphaMode BLEND (rendered opaque)", [](const auto&, const auto& m) { return m.alphaMode == "BLEND"; }},
-      {"textures read with TEXCOORD_1 or above (TEXCOORD_0 used)",
+      {"textures read with TEXCOORD_2 or above (TEXCOORD_0 used)",
        [](const auto& model, const auto& m) {
-         return any_texture(model, m, [](const auto& t, const auto*) { return t.texCoord != 0; });
-       }},
-      {"sampler filter NEAREST (bilinear used)",
-       [](const auto& model, const auto& m) {
-         return any_texture(model, m, [](const auto&, const tinygltf::Sampler* s) {
-           return s && (nearest_filter(s->magFilter) || nearest_filter(s->minFilter));
-         });
-       }},
-      {"sampler wrap CLAMP_TO_EDGE or MIRRORED_REPEAT (REPEAT used)",
-       [](const auto& model, const auto& m) {
-         return any_texture(model, m, [](const auto&, const tinygltf::Sampler* s) {
-           return s && (s->wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT || s->wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT);
-         });
+         return any_texture(model, m, [](const auto& t, const auto*) { return t.texCoord > 1; });
        }},
       {"KHR_texture_transform (texture coordinates used untransformed)",
        [](const auto& model, const auto& m) {
@@ -88,15 +70,6 @@ std::vector<Unhonoured> unhonoured_features() {
        },
        "KHR_texture_transform"},
   };
-}
-
-// Materials of primitives that carry COLOR_0 (vertex colours multiply the base colour in glTF).
-std::set<int> materials_with_vertex_colours(const tinygltf::Model& model) {
-  std::set<int> out;
-  for (const tinygltf::Mesh& mesh : model.meshes)
-    for (const tinygltf::Primitive& p : mesh.primitives)
-      if (p.attributes.count("COLOR_0")) out.insert(p.material);
-  return out;
 }
 
 std::string materials(std::size_t n) { return fmt::format("{} material{}", n, n == 1 ? "" : "s"); }
@@ -120,8 +93,6 @@ void report_unhonoured(const tinygltf::Model& model, const std::string& file, Sc
     warn(feature.what, static_cast<std::size_t>(n));
     if (!feature.extension.empty()) named.insert(feature.extension);
   }
-  const std::set<int> coloured = materials_with_vertex_colours(model);
-  if (!coloured.empty()) warn("COLOR_0 vertex colours (base colour used without them)", coloured.size());
 
   // Material extensions by name, each with its material count.
   std::map<std::string, std::size_t> extensions;
@@ -145,6 +116,22 @@ void report_unhonoured(const tinygltf::Model& model, const std::string& file, Sc
     scene.notes.push_back(fmt::format("{}: occlusionTexture of {} not used: a path tracer traces the occlusion "
                                       "it approximates",
                                       file, materials(static_cast<std::size_t>(occluded))));
+}
+
+void report_missing_coordinates(const std::string& file, Scene& scene) {
+  const auto count = [&](const std::vector<glm::vec2>& uvs, int set) {
+    if (uvs.size() == 3 * scene.triangle_count()) return std::size_t{0};
+    return static_cast<std::size_t>(std::count_if(scene.materials.begin(), scene.materials.end(), [&](const SceneMaterial& m) {
+      return (m.base_color_texture >= 0 && m.base_color_texcoord == set) ||
+             (m.emission_texture >= 0 && m.emission_texcoord == set) ||
+             (m.metallic_roughness_texture >= 0 && m.metallic_roughness_texcoord == set);
+    }));
+  };
+  for (int set : {0, 1})
+    if (const std::size_t n = count(set == 0 ? scene.uvs : scene.uvs1, set))
+      scene.warnings.push_back(fmt::format("{}: textures read with TEXCOORD_{}, which no primitive has, are "
+                                           "ignored: {}",
+                                           file, set, materials(n)));
 }
 
 }  // namespace cohort::gltf

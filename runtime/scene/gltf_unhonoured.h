@@ -17,6 +17,9 @@ namespace cohort::gltf {
 // material carries (and that the loader does not implement) are named in one warning of their own.
 void report_unhonoured(const tinygltf::Model& model, const std::string& file, Scene& scene);
 
+// After the geometry is in: names the textures of materials whose coordinate set no primitive has.
+void report_missing_coordinates(const std::string& file, Scene& scene);
+
 // Whether the loader implements a glTF extension (so extensionsRequired may name it).
 bool extension_implemented(const std::string& name);
 

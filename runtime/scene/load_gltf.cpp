@@ -163,6 +163,7 @@ Scene load_gltf(const std::filesystem::path& path, const std::string& bytes, boo
   gltf::convert_materials(model, path.string(), scene);
   gltf::report_unhonoured(model, path.string(), scene);
   gltf::emit_default_scene(model, path.string(), scene);
+  gltf::report_missing_coordinates(path.string(), scene);
   return scene;
 }
 

@@ -21,10 +21,12 @@ class TextureFiles {
  public:
   TextureFiles(const std::filesystem::path& obj_path, Scene& scene) : obj_path_(obj_path), scene_(scene) {}
 
-  int index_of(const std::string& name) {
+  // `use` says what the texture drives, for `info`.
+  int index_of(const std::string& name, const std::string& use) {
     if (name.empty()) return -1;
     const auto [it, inserted] = by_name_.try_emplace(name, -1);
     if (inserted) it->second = load(name);
+    if (it->second >= 0) scene_.textures[static_cast<std::size_t>(it->second)].uses.push_back(use);
     return it->second;
   }
 
@@ -67,7 +69,7 @@ SceneMaterial convert(const tinyobj::material_t& m, TextureFiles& textures) {
   out.base_color = glm::vec3(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
   out.emission = glm::max(glm::vec3(m.emission[0], m.emission[1], m.emission[2]), glm::vec3(0.f));
   out.alpha = std::clamp(static_cast<float>(m.dissolve), 0.f, 1.f);
-  out.base_color_texture = textures.index_of(m.diffuse_texname);
+  out.base_color_texture = textures.index_of(m.diffuse_texname, fmt::format("base colour of '{}'", m.name));
   return out;
 }
 

@@ -99,7 +99,7 @@ std::size_t Scene::emissive_triangle_count() const {
 
 std::size_t Scene::geometry_bytes() const {
   std::size_t bytes = triangle_count() * (kTriangleBytes + kMaterialIdBytes);
-  bytes += uvs.size() * sizeof(glm::vec2);
+  bytes += (uvs.size() + uvs1.size()) * sizeof(glm::vec2) + colors.size() * sizeof(glm::vec4);
   bytes += materials.size() * kMaterialBytes;
   for (const Texture& t : textures) bytes += t.rgba.size();
   return bytes;

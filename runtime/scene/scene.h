@@ -26,16 +26,35 @@ struct SceneMaterial {
   float ior = 1.5f;          // KHR_materials_ior
   int base_color_texture = -1;  // index into Scene::textures
   int emission_texture = -1;    // index into Scene::textures (sRGB-encoded); multiplies emission
+  int metallic_roughness_texture = -1;  // linear data: B multiplies metallic, G roughness
+  // the coordinate set (0: Scene::uvs, 1: Scene::uvs1) each texture reads
+  int base_color_texcoord = 0;
+  int emission_texcoord = 0;
+  int metallic_roughness_texcoord = 0;
   bool double_sided = false;    // glTF doubleSided; emission leaves both faces when set
   bool is_emissive() const { return emission.x > 0.f || emission.y > 0.f || emission.z > 0.f; }
 };
 
-// 8-bit RGBA texels as stored in the file (glTF base colour is sRGB-encoded).
+enum class TextureWrap : std::uint8_t { repeat, clamp_to_edge, mirrored_repeat };
+
+// glTF's sampler; mip-map filters count as their nearest non-mip equivalent (docs/input.md).
+struct TextureSampler {
+  bool nearest = false;  // nearest texel; else bilinear
+  TextureWrap wrap_s = TextureWrap::repeat;
+  TextureWrap wrap_t = TextureWrap::repeat;
+  bool operator==(const TextureSampler&) const = default;
+};
+
+// 8-bit RGBA texels as stored in the file, sampled as the file says: sRGB-encoded colour (base
+// colour, emission) or linear data (metallic-roughness).
 struct Texture {
   std::string name;
   int width = 0;
   int height = 0;
   std::vector<std::uint8_t> rgba;
+  TextureSampler sampler;
+  bool srgb = true;
+  std::vector<std::string> uses;  // what it drives, for `info` ("base colour of 'Body'")
 };
 
 struct SceneCamera {
@@ -61,6 +80,8 @@ struct Scene {
   std::filesystem::path source;
   std::vector<glm::vec3> positions;        // 3 per triangle, world space, counter-clockwise front
   std::vector<glm::vec2> uvs;              // empty, or 3 per triangle; (0,0) is the top-left texel
+  std::vector<glm::vec2> uvs1;             // a second set (glTF TEXCOORD_1): empty, or 3 per triangle
+  std::vector<glm::vec4> colors;           // vertex colours (glTF COLOR_0): empty, or 3 per triangle
   std::vector<std::uint32_t> material_ids; // 1 per triangle, index into materials
   std::vector<SceneMaterial> materials;    // never empty once loaded
   std::vector<Texture> textures;

@@ -15,6 +15,18 @@ void reserve_more(std::vector<T>& v, std::size_t extra) {
   if (needed > v.capacity()) v.reserve(std::max(needed, 2 * v.capacity()));
 }
 
+// Appends a triangle's values of an optional per-vertex attribute: the first triangle that has
+// them back-fills `fill` for the earlier ones, and later triangles without them get `fill`.
+template <typename T>
+void append_attribute(std::vector<T>& values, std::size_t corners_before, const std::optional<std::array<T, 3>>& v,
+                      const T& fill) {
+  if (v && values.empty()) values.assign(corners_before, fill);
+  if (v)
+    values.insert(values.end(), v->begin(), v->end());
+  else if (!values.empty())
+    values.insert(values.end(), 3, fill);
+}
+
 }  // namespace
 
 void SceneBuilder::reserve(std::size_t triangles) {
@@ -24,13 +36,19 @@ void SceneBuilder::reserve(std::size_t triangles) {
 
 void SceneBuilder::add(const std::array<glm::vec3, 3>& p, std::uint32_t material,
                        const std::optional<std::array<glm::vec2, 3>>& uv) {
-  if (uv && scene_.uvs.empty()) scene_.uvs.assign(scene_.positions.size(), glm::vec2(0.f));
+  add(p, material, uv, std::nullopt, std::nullopt);
+}
+
+void SceneBuilder::add(const std::array<glm::vec3, 3>& p, std::uint32_t material,
+                       const std::optional<std::array<glm::vec2, 3>>& uv,
+                       const std::optional<std::array<glm::vec2, 3>>& uv1,
+                       const std::optional<std::array<glm::vec4, 3>>& color) {
+  const std::size_t corners = scene_.positions.size();
   scene_.positions.insert(scene_.positions.end(), p.begin(), p.end());
   scene_.material_ids.push_back(material);
-  if (uv)
-    scene_.uvs.insert(scene_.uvs.end(), uv->begin(), uv->end());
-  else if (!scene_.uvs.empty())
-    scene_.uvs.insert(scene_.uvs.end(), 3, glm::vec2(0.f));
+  append_attribute(scene_.uvs, corners, uv, glm::vec2(0.f));
+  append_attribute(scene_.uvs1, corners, uv1, glm::vec2(0.f));
+  append_attribute(scene_.colors, corners, color, glm::vec4(1.f));
 }
 
 std::uint32_t SceneBuilder::default_material() {

@@ -20,6 +20,11 @@ class SceneBuilder {
   // ones, and triangles without uvs get zeros once any have them.
   void add(const std::array<glm::vec3, 3>& p, std::uint32_t material,
            const std::optional<std::array<glm::vec2, 3>>& uv = std::nullopt);
+  // The same for glTF's further vertex attributes: a second coordinate set and vertex colours
+  // (triangles without colours get white once any have them).
+  void add(const std::array<glm::vec3, 3>& p, std::uint32_t material,
+           const std::optional<std::array<glm::vec2, 3>>& uv, const std::optional<std::array<glm::vec2, 3>>& uv1,
+           const std::optional<std::array<glm::vec4, 3>>& color);
   // The index of the shared "default" material, appended on first use.
   std::uint32_t default_material();
 

@@ -31,6 +31,14 @@ TEST(GltfMaterialCli, InfoNamesOcclusionOnceAndWarnsPerUnhonouredFeature) {
   EXPECT_EQ(count(r.output, "note: "), 1u) << r.output;
   EXPECT_EQ(count(r.output, "warning: "), count(r.output, "glTF feature not honoured")) << r.output;
   EXPECT_EQ(count(r.output, "normalTexture"), 1u) << r.output;
+  // every decoded texture with what it drives
+  EXPECT_EQ(count(r.output, "Default_albedo.jpg 2048x2048, sRGB, bilinear, wrap repeat/repeat: base colour of "
+                            "'Material_MR'"), 1u) << r.output;
+  EXPECT_EQ(count(r.output, "Default_metalRoughness.jpg 2048x2048, linear, bilinear, wrap repeat/repeat: metallic (B) "
+                            "and roughness (G) of 'Material_MR'"), 1u) << r.output;
+  EXPECT_EQ(count(r.output, "Default_emissive.jpg 2048x2048, sRGB, bilinear, wrap repeat/repeat: emission of "
+                            "'Material_MR'"), 1u) << r.output;
+  EXPECT_EQ(count(r.output, "metallicRoughnessTexture"), 0u) << r.output;  // honoured: no warning
 }
 
 TEST(GltfMaterialCli, RenderWarnsOnceForEachUnhonouredFeature) {

@@ -22,22 +22,6 @@ using namespace cohort::test;
 
 namespace {
 
-// One texture of w x h texels from a function of (x, y) to RGBA.
-template <class F>
-int add_texture(Scene& s, int w, int h, F texel) {
-  Texture t;
-  t.name = "generated";
-  t.width = w;
-  t.height = h;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const std::array<std::uint8_t, 4> c = texel(x, y);
-      t.rgba.insert(t.rgba.end(), c.begin(), c.end());
-    }
-  s.textures.push_back(std::move(t));
-  return static_cast<int>(s.textures.size() - 1);
-}
-
 struct Rendered {
   PreparedScene prepared;
   RenderResult result;
@@ -405,7 +389,8 @@ TEST(Texture, EmissionTextureMultipliesEmission) {
   }
 }
 
-// The damaged helmet renders with its albedo (and emission) texture, the same with every method.
+// The damaged helmet renders with its albedo, metallic-roughness and emission textures, the same with
+// every method.
 TEST(Texture, DamagedHelmetRendersWithItsTextures) {
   const std::filesystem::path model =
       std::filesystem::path(COHORT_SHARED_SCENES) / "damaged-helmet-gltf/DamagedHelmet.gltf";
@@ -428,7 +413,7 @@ TEST(Texture, DamagedHelmetRendersWithItsTextures) {
   EXPECT_EQ(0, std::memcmp(textured.image.rgb.data(), pth.image.rgb.data(), pth.image.rgb.size() * sizeof(float)));
 
   // without its textures the same model renders differently
-  for (auto& m : p.scene.materials) m.base_color_texture = m.emission_texture = -1;
+  for (auto& m : p.scene.materials) m.base_color_texture = m.emission_texture = m.metallic_roughness_texture = -1;
   p.tables = make_scene_tables(p.scene, p.tree);
   EXPECT_FALSE(p.tables.features.textures);
   const DeviceScene plain_scene = upload_scene(cl, p.tree, p.tables);

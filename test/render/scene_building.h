@@ -19,6 +19,26 @@ inline void add_triangle(Scene& s, glm::vec3 a, glm::vec3 b, glm::vec3 c, std::u
   s.positions.insert(s.positions.end(), {a, b, c});
   s.material_ids.push_back(material);
   if (!s.uvs.empty()) s.uvs.insert(s.uvs.end(), 3, glm::vec2(0.f));
+  if (!s.uvs1.empty()) s.uvs1.insert(s.uvs1.end(), 3, glm::vec2(0.f));
+  if (!s.colors.empty()) s.colors.insert(s.colors.end(), 3, glm::vec4(1.f));
+}
+
+// One texture of w x h texels from a function of (x, y) to RGBA; `srgb` false: linear data.
+template <class F>
+int add_texture(Scene& s, int w, int h, F texel, TextureSampler sampler = {}, bool srgb = true) {
+  Texture t;
+  t.name = "generated";
+  t.width = w;
+  t.height = h;
+  t.sampler = sampler;
+  t.srgb = srgb;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::array<std::uint8_t, 4> c = texel(x, y);
+      t.rgba.insert(t.rgba.end(), c.begin(), c.end());
+    }
+  s.textures.push_back(std::move(t));
+  return static_cast<int>(s.textures.size() - 1);
 }
 
 // A quad o, o + u, o + u + v, o + v (front side: u x v) with texture coordinates (0,0)..(1,1).

@@ -21,9 +21,13 @@ GltfWriter triangles_with(const TempDir& dir, const std::vector<json>& materials
   g.doc()["images"] = {{{"uri", "px.ppm"}}};
   g.doc()["textures"] = {{{"source", 0}}};
   std::vector<int> roots;
+  const std::vector<glm::vec2> uv = {{0, 0}, {1, 0}, {0, 1}};
   for (const json& m : materials) {
     const int pos = g.positions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
-    roots.push_back(g.node({{"mesh", g.mesh(pos, -1, g.material(m))}}));
+    const int mesh = g.mesh(pos, -1, g.material(m));
+    g.doc()["meshes"][mesh]["primitives"][0]["attributes"]["TEXCOORD_0"] =
+        g.accessor(g.view(uv.data(), uv.size() * sizeof(glm::vec2)), 5126, uv.size(), "VEC2");
+    roots.push_back(g.node({{"mesh", mesh}}));
   }
   g.roots(roots);
   return g;
@@ -66,7 +70,7 @@ TEST(GltfUnhonoured, ASceneOfHonouredFeaturesWarnsNothing) {
              {"extensions", {{"KHR_materials_ior", {{"ior", 1.4}}}}}}});
   g.doc()["extensionsUsed"] = {"KHR_materials_ior"};
   const Scene s = load_scene(g.write_gltf(dir.path(), "plain"));
-  EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+  EXPECT_EQ(lines_containing(s.warnings, ""), lines_containing(s.warnings, "no light")) << s.warnings.front();
   EXPECT_TRUE(s.notes.empty());
 }
 
@@ -77,14 +81,16 @@ TEST(GltfUnhonoured, RequiredExtensionsBeyondTheLoaderAreStillRefused) {
   test::expect_input_error(g.write_gltf(dir.path(), "required"), "KHR_materials_clearcoat");
 }
 
-TEST(GltfUnhonoured, VertexColoursAreCountedByMaterial) {
+TEST(GltfUnhonoured, HigherCoordinateSetsAreCountedByMaterial) {
   TempDir dir;
-  GltfWriter g = triangles_with(dir, {json::object(), json::object()});
-  const std::vector<glm::vec3> colours(3, glm::vec3(1, 0, 0));
-  const int acc = g.accessor(g.view(colours.data(), colours.size() * sizeof(glm::vec3)), 5126, 3, "VEC3");
-  g.doc()["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = acc;
-  const Scene s = load_scene(g.write_gltf(dir.path(), "colours"));
-  EXPECT_EQ(lines_containing(s.warnings, "COLOR_0 vertex colours (base colour used without them): 1 material"), 1u);
+  const json set2 = {{"index", 0}, {"texCoord", 2}};
+  GltfWriter g = triangles_with(dir, {{{"emissiveTexture", set2}, {"emissiveFactor", {1, 1, 1}}},
+                                      {{"pbrMetallicRoughness", {{"baseColorTexture", set2}}}},
+                                      {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}, {"texCoord", 1}}}}}}});
+  const Scene s = load_scene(g.write_gltf(dir.path(), "sets"));
+  EXPECT_EQ(lines_containing(s.warnings, "TEXCOORD_2 or above (TEXCOORD_0 used): 2 materials"), 1u);
+  // TEXCOORD_1 is read, but these triangles have none
+  EXPECT_EQ(lines_containing(s.warnings, "TEXCOORD_1, which no primitive has, are ignored: 1 material"), 1u);
 }
 
 }  // namespace

@@ -72,7 +72,9 @@ TEST(SharedModelDetails, DamagedHelmetMaterialAndTextures) {
   EXPECT_EQ(m.emission, glm::vec3(1.f));
   ASSERT_GE(m.base_color_texture, 0);
   ASSERT_GE(m.emission_texture, 0);
-  EXPECT_EQ(s.textures.size(), 2u);  // only the base colour and emissive images are decoded
+  ASSERT_GE(m.metallic_roughness_texture, 0);
+  EXPECT_EQ(s.textures.size(), 3u);  // base colour, metallic-roughness and emission; not the normal or occlusion map
+  EXPECT_FALSE(s.textures[static_cast<std::size_t>(m.metallic_roughness_texture)].srgb);
   const Texture& albedo = s.textures[static_cast<std::size_t>(m.base_color_texture)];
   EXPECT_EQ(albedo.width, 2048);
   EXPECT_EQ(albedo.height, 2048);

@@ -1,0 +1,139 @@
+// glTF material inputs beyond the factors: samplers, the metallic-roughness texture, TEXCOORD_1 and
+// COLOR_0 as the loader reads them.
+#include <algorithm>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "runtime/scene/scene.h"
+#include "scene_test_util.h"
+
+namespace cohort {
+namespace {
+
+using nlohmann::json;
+using test::GltfWriter;
+using test::TempDir;
+
+const std::vector<glm::vec3> kTriangle = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+
+// The warnings but the one about a scene without lights, joined.
+std::string material_warnings(const Scene& s) {
+  std::string out;
+  for (const std::string& w : s.warnings)
+    if (w.find("no light") == std::string::npos) out += w + "\n";
+  return out;
+}
+
+// One triangle with `material`; one 1x1 PPM image behind every texture of `textures`.
+GltfWriter textured_triangle(const TempDir& dir, const json& material, const json& textures, const json& samplers) {
+  test::write_file(dir / "px.ppm", std::string("P6\n1 1\n255\n") + std::string("\x10\x80\xf0", 3));
+  GltfWriter g;
+  g.doc()["images"] = {{{"uri", "px.ppm"}}};
+  g.doc()["textures"] = textures;
+  if (!samplers.is_null()) g.doc()["samplers"] = samplers;
+  const int pos = g.positions(kTriangle);
+  g.roots({g.node({{"mesh", g.mesh(pos, -1, g.material(material))}})});
+  const std::vector<glm::vec2> uv = {{0, 0}, {1, 0}, {0, 1}};
+  const int acc = g.accessor(g.view(uv.data(), uv.size() * sizeof(glm::vec2)), 5126, uv.size(), "VEC2");
+  g.doc()["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = acc;
+  return g;
+}
+
+TEST(GltfSamplers, FiltersAndWrapModesAreRead) {
+  TempDir dir;
+  // NEAREST_MIPMAP_LINEAR (9986) is nearest within the one level there is; magFilter decides over minFilter
+  const json samplers = {{{"magFilter", 9728}, {"wrapS", 33071}, {"wrapT", 33648}},
+                         {{"minFilter", 9986}},
+                         {{"magFilter", 9729}, {"minFilter", 9728}},
+                         json::object()};
+  const json textures = {{{"source", 0}, {"sampler", 0}}, {{"source", 0}, {"sampler", 1}},
+                         {{"source", 0}, {"sampler", 2}}, {{"source", 0}, {"sampler", 3}}};
+  GltfWriter g = textured_triangle(dir, {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}, textures,
+                                   samplers);
+  for (int t = 1; t < 4; ++t)  // one material per further texture
+    g.material({{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", t}}}}}});
+  const Scene s = load_scene(g.write_gltf(dir.path(), "samplers"));
+  ASSERT_EQ(s.textures.size(), 3u);  // one image, three distinct samplers: three textures with the same texels
+  auto sampler_of = [&](std::size_t material) {
+    return s.textures[static_cast<std::size_t>(s.materials[material].base_color_texture)].sampler;
+  };
+  EXPECT_EQ(sampler_of(0), (TextureSampler{.nearest = true, .wrap_s = TextureWrap::clamp_to_edge,
+                                           .wrap_t = TextureWrap::mirrored_repeat}));
+  EXPECT_EQ(sampler_of(1), (TextureSampler{.nearest = true}));
+  EXPECT_EQ(sampler_of(2), TextureSampler{});
+  EXPECT_EQ(s.materials[3].base_color_texture, s.materials[2].base_color_texture);  // LINEAR is the default
+  for (const Texture& t : s.textures) EXPECT_EQ(t.rgba, s.textures[0].rgba);
+  EXPECT_EQ(material_warnings(s), "");
+}
+
+TEST(GltfMaterialTextures, MetallicRoughnessIsLinearDataAndSharedImagesKeepTheirEncoding) {
+  TempDir dir;
+  const json material = {{"pbrMetallicRoughness",
+                          {{"baseColorTexture", {{"index", 0}}}, {"metallicRoughnessTexture", {{"index", 0}}}}},
+                         {"name", "both"}};
+  const Scene s = load_scene(textured_triangle(dir, material, {{{"source", 0}}}, nullptr).write_gltf(dir.path(), "mr"));
+  const SceneMaterial& m = s.materials[0];
+  ASSERT_GE(m.base_color_texture, 0);
+  ASSERT_GE(m.metallic_roughness_texture, 0);
+  ASSERT_NE(m.base_color_texture, m.metallic_roughness_texture);  // the same image, sRGB once and linear once
+  const Texture& colour = s.textures[static_cast<std::size_t>(m.base_color_texture)];
+  const Texture& data = s.textures[static_cast<std::size_t>(m.metallic_roughness_texture)];
+  EXPECT_TRUE(colour.srgb);
+  EXPECT_FALSE(data.srgb);
+  EXPECT_EQ(colour.uses, std::vector<std::string>{"base colour of 'both'"});
+  EXPECT_EQ(data.uses, std::vector<std::string>{"metallic (B) and roughness (G) of 'both'"});
+  EXPECT_EQ(material_warnings(s), "");
+}
+
+TEST(GltfVertexAttributes, SecondCoordinateSetAndVertexColoursAreRead) {
+  TempDir dir;
+  const json material = {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}, {"texCoord", 1}}}}}};
+  GltfWriter g = textured_triangle(dir, material, {{{"source", 0}}}, nullptr);
+  const std::vector<glm::vec2> uv1 = {{0.5f, 0.25f}, {0.75f, 0}, {0, 1}};
+  const int uv1_acc = g.accessor(g.view(uv1.data(), uv1.size() * sizeof(glm::vec2)), 5126, 3, "VEC2");
+  const std::uint8_t rgba[12] = {255, 0, 0, 255, 0, 255, 0, 128, 0, 0, 255, 0};  // normalized unsigned bytes
+  const int colour_acc = g.accessor(g.view(rgba, sizeof rgba), 5121, 3, "VEC4");
+  g.doc()["accessors"][colour_acc]["normalized"] = true;
+  auto& attributes = g.doc()["meshes"][0]["primitives"][0]["attributes"];
+  attributes["TEXCOORD_1"] = uv1_acc;
+  attributes["COLOR_0"] = colour_acc;
+  // a second mesh without either: its triangle gets zeros and white
+  const int pos = g.positions(kTriangle);
+  g.doc()["nodes"].push_back({{"mesh", g.mesh(pos)}});
+  g.doc()["scenes"][0]["nodes"].push_back(1);
+  const Scene s = load_scene(g.write_gltf(dir.path(), "attributes"));
+  ASSERT_EQ(s.triangle_count(), 2u);
+  EXPECT_EQ(s.materials[0].base_color_texcoord, 1);
+  ASSERT_EQ(s.uvs1.size(), 6u);
+  EXPECT_EQ(s.uvs1[0], glm::vec2(0.5f, 0.25f));
+  EXPECT_EQ(s.uvs1[5], glm::vec2(0.f));
+  ASSERT_EQ(s.colors.size(), 6u);
+  EXPECT_EQ(s.colors[0], glm::vec4(1, 0, 0, 1));
+  EXPECT_NEAR(s.colors[1].w, 128 / 255.f, 1e-7f);
+  EXPECT_EQ(s.colors[4], glm::vec4(1.f));
+  EXPECT_EQ(material_warnings(s), "");
+
+  // RGB colours (VEC3) get an alpha of 1; a count that differs from POSITION's is an error
+  GltfWriter rgb = textured_triangle(dir, json::object(), {{{"source", 0}}}, nullptr);
+  const std::vector<glm::vec3> c3 = {{0.1f, 0.2f, 0.3f}, {1, 1, 1}, {0, 0, 0}};
+  rgb.doc()["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] =
+      rgb.accessor(rgb.view(c3.data(), c3.size() * sizeof(glm::vec3)), 5126, 3, "VEC3");
+  EXPECT_EQ(load_scene(rgb.write_gltf(dir.path(), "rgb")).colors[0], glm::vec4(0.1f, 0.2f, 0.3f, 1.f));
+  rgb.doc()["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] =
+      rgb.accessor(rgb.view(c3.data(), 2 * sizeof(glm::vec3)), 5126, 2, "VEC3");
+  test::expect_input_error(rgb.write_gltf(dir.path(), "short"), "COLOR_0 has 2 elements but POSITION has 3");
+}
+
+TEST(GltfVertexAttributes, ATextureOnACoordinateSetNoPrimitiveHasIsNamed) {
+  TempDir dir;
+  const json material = {{"pbrMetallicRoughness", {{"metallicRoughnessTexture", {{"index", 0}, {"texCoord", 1}}}}}};
+  const Scene s =
+      load_scene(textured_triangle(dir, material, {{{"source", 0}}}, nullptr).write_gltf(dir.path(), "noset"));
+  EXPECT_TRUE(std::any_of(s.warnings.begin(), s.warnings.end(), [](const std::string& w) {
+    return w.find("textures read with TEXCOORD_1, which no primitive has, are ignored: 1 material") != std::string::npos;
+  })) << (s.warnings.empty() ? "no warning" : s.warnings.front());
+}
+
+}  // namespace
+}  // namespace cohort
