@@ -13,3 +13,7 @@ if(COHORT_PYTHON3)
   # alternates binaries in rounds and its summary takes medians of the JSON (a stand-in cohort).
   add_test(NAME scripts_bench_suite COMMAND ${COHORT_PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/bench_suite_test.py)
 endif()
+if(COHORT_PYTHON3)
+  # The bench's table makers (scripts/lib/bench-peers.py, bench-summary.py) on committed records.
+  add_test(NAME scripts_bench_tables COMMAND ${COHORT_PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/bench_tables_test.py)
+endif()
