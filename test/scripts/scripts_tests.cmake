@@ -3,17 +3,11 @@ find_program(COHORT_PYTHON3 python3)
 if(COHORT_PYTHON3)
   # The external models' manifest is well formed, and every model present has its checksum.
   add_test(NAME scripts_external_scenes COMMAND ${COHORT_PYTHON3} ${PROJECT_SOURCE_DIR}/scripts/external-scenes --check)
-endif()
-if(COHORT_PYTHON3)
   # docs/results.md is what results/current.json and the raw records give, byte for byte.
   add_test(NAME scripts_results_page COMMAND ${COHORT_PYTHON3} ${PROJECT_SOURCE_DIR}/scripts/results-page --check)
-endif()
-if(COHORT_PYTHON3)
   # scripts/bench-suite: every suite expands, the GPU suite names its outputs as the records do, a run
   # alternates binaries in rounds and its summary takes medians of the JSON (a stand-in cohort).
   add_test(NAME scripts_bench_suite COMMAND ${COHORT_PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/bench_suite_test.py)
-endif()
-if(COHORT_PYTHON3)
   # The bench's table makers (scripts/lib/bench-peers.py, bench-summary.py) on committed records.
   add_test(NAME scripts_bench_tables COMMAND ${COHORT_PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/bench_tables_test.py)
 endif()
