@@ -22,14 +22,9 @@ nlohmann::json method_json(const MethodFigures& m) {
                       {"kernel_seconds", m.kernel_seconds},
                       {"pass_seconds", {{"median", m.pass_seconds_median}, {"max", m.pass_seconds_max}}},
                       {"max_nodes_per_ray", m.max_nodes_per_ray}};
-  if (m.wavefront_size) j["wavefront_size"] = m.wavefront_size;
+  if (m.wavefront.slots) j["wavefront_size"] = m.wavefront.slots;
   if (!m.auto_pick.empty()) j["auto_pick"] = m.auto_pick;
-  if (!m.code_layout.empty())
-    j["coherence"] = {{"code", m.code_layout},
-                      {"key_bits", m.code_key_bits},
-                      {"sort_from_bounce", m.sort_from_bounce},
-                      {"sort_payload", m.sort_payload},
-                      {"pth_levels", m.pth_levels}};
+  if (m.coherence) j["coherence"] = coherence_json(*m.coherence);
   return j;
 }
 
@@ -52,6 +47,12 @@ nlohmann::json rate_json(const RateFigure& f, double scale) {
   nlohmann::json runs = nlohmann::json::array();
   for (double r : f.runs) runs.push_back(r * scale);
   return {{"median", f.median() * scale}, {"best", f.best() * scale}, {"runs", runs}};
+}
+
+nlohmann::json coherence_json(const CoherenceFigures& c) {
+  return {{"code", c.code_layout},         {"key_bits", c.key_bits},           {"sort_from_bounce", c.sort_from_bounce},
+          {"pth_levels", c.pth_levels},    {"subtree_nodes", c.subtree_nodes}, {"speculative", c.speculative},
+          {"sort_payload", c.sort_payload}};
 }
 
 nlohmann::json bvh4_json(const Bvh4Stats& b) {

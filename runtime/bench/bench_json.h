@@ -14,6 +14,9 @@ namespace cohort {
 nlohmann::json rate_json(const RateFigure& f, double scale = 1e-6);  // {median, best, runs} in millions
 // The scenes and their views; accel_key names the acceleration structure ("kdtree", "bvh").
 nlohmann::json bvh4_json(const Bvh4Stats& b);  // nodes, leaves, depth, ... as --stats and the bench JSON write them
+// How hash or pth sorted, as --stats and the bench JSON write it: code, key_bits, sort_from_bounce,
+// pth_levels, subtree_nodes, speculative, sort_payload.
+nlohmann::json coherence_json(const CoherenceFigures& c);
 nlohmann::json scenes_json(const std::vector<SceneFigures>& scenes, const std::string& accel_key = "kdtree");
 nlohmann::json bench_json(const Device& device, const BenchOptions& options,
                           const std::vector<SceneFigures>& scenes);

@@ -72,13 +72,9 @@ MethodFigures bench_method(const Device& cl, const ProgramCache& cache, const De
   const RenderResult& m = runs[order[order.size() / 2]];
   f.rays = m.rays;
   f.simd_efficiency = m.simd_efficiency;
-  f.code_layout = m.code_layout;
-  f.pth_levels = m.pth_levels;
-  f.code_key_bits = m.code_key_bits;
-  f.sort_from_bounce = m.sort_from_bounce;
+  f.wavefront = m.wavefront;
+  f.coherence = m.coherence;
   f.auto_pick = m.auto_choice.method;
-  f.wavefront_size = m.wavefront_size;
-  f.sort_payload = m.sort_payload;
   f.kernel_seconds = m.kernel_seconds;
   f.breakdown = time_breakdown(m.kernel_seconds);
   f.render_seconds = m.render_seconds;

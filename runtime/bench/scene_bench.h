@@ -17,6 +17,7 @@
 #include "runtime/backend/device.h"
 #include "runtime/backend/program_cache.h"
 #include "runtime/render/render_settings.h"
+#include "runtime/render/renderer.h"
 #include "runtime/scene/scene.h"
 
 namespace cohort {
@@ -56,12 +57,9 @@ struct MethodFigures {
   RateFigure samples_per_cpu_second;
   std::uint64_t rays = 0;         // per render
   double simd_efficiency = 0;     // wavefront methods: traversal, mean over max steps per 32 rays
-  std::string code_layout;        // hash and pth
-  std::uint32_t pth_levels = 0;
-  std::uint32_t code_key_bits = 0, sort_from_bounce = 0;
-  std::string auto_pick;          // auto: the method its probe chose
-  std::size_t wavefront_size = 0;    // path slots (wavefront methods)
-  std::string sort_payload;          // hash and pth
+  WavefrontFigures wavefront;                 // wavefront methods
+  std::optional<CoherenceFigures> coherence;  // hash and pth
+  std::string auto_pick;                      // auto: the method its probe chose
   // device seconds per stage (time_breakdown) and per kernel, of the repetition with the median rate
   std::map<std::string, double> breakdown;
   std::map<std::string, double> kernel_seconds;

@@ -149,14 +149,10 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
   for (const auto& [name, seconds] : r.kernel_seconds)
     kernels[name] = {{"seconds", seconds}, {"rays_per_second", seconds > 0 ? double(r.rays) / seconds : 0.0}};
   j["kernels"] = kernels;
-  if (r.wavefront_size) {
-    j["wavefront"] = {{"slots", r.wavefront_size}, {"bytes_per_path", r.path_state_bytes},
+  if (r.wavefront.slots) {
+    j["wavefront"] = {{"slots", r.wavefront.slots}, {"bytes_per_path", r.wavefront.path_state_bytes},
                       {"simd_efficiency", r.simd_efficiency}};
-    if (!r.code_layout.empty())
-      j["coherence"] = {{"code", r.code_layout},           {"key_bits", r.code_key_bits},
-                        {"sort_from_bounce", r.sort_from_bounce}, {"pth_levels", r.pth_levels},
-                        {"subtree_nodes", r.pth_subtree_nodes}, {"speculative", r.speculative},
-                        {"sort_payload", r.sort_payload}};
+    if (r.coherence) j["coherence"] = coherence_json(*r.coherence);
     nlohmann::json bounces = nlohmann::json::array();
     for (const auto& it : r.iterations)
       bounces.push_back({{"live_paths", it.live_paths}, {"extension_rays", it.live_paths},

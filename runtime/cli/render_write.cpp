@@ -43,15 +43,13 @@ void print_details(const PreparedRender& render, const RenderOutcome& outcome) {
                f.max_pixel_samples, f.tiles_stopped, f.tiles, kAdaptiveTile, kAdaptiveTile, f.tiles_converged);
   }
   for (const auto& [name, seconds] : result.kernel_seconds) fmt::print("kernel {}: {:.3f}s\n", name, seconds);
-  if (result.wavefront_size)
-    fmt::print("wavefront: {} path slots x {} bytes = {:.1f} MiB, {} bounces, SIMD efficiency {:.3f}\n",
-               result.wavefront_size, result.path_state_bytes,
-               result.wavefront_size * result.path_state_bytes / 1048576.0, result.iterations.size(),
+  if (const WavefrontFigures& w = result.wavefront; w.slots)
+    fmt::print("wavefront: {} path slots x {} bytes = {:.1f} MiB, {} bounces, SIMD efficiency {:.3f}\n", w.slots,
+               w.path_state_bytes, w.slots * w.path_state_bytes / 1048576.0, result.iterations.size(),
                result.simd_efficiency);
-  if (!result.code_layout.empty())
+  if (const auto& c = result.coherence)
     fmt::print("coherence code: {} ({} bits), sorted from bounce {}; PTH subtree {} levels, {} nodes\n",
-               result.code_layout, result.code_key_bits, result.sort_from_bounce, result.pth_levels,
-               result.pth_subtree_nodes);
+               c->code_layout, c->key_bits, c->sort_from_bounce, c->pth_levels, c->subtree_nodes);
   if (!result.auto_choice.method.empty()) {
     auto rates = [](const std::map<std::string, double>& by_method) {
       std::string text;

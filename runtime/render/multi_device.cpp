@@ -152,16 +152,9 @@ RenderResult merge_device_results(const std::vector<DeviceRun>& runs) {
   RenderResult merged;
   if (runs.empty()) return merged;
   const RenderResult& first = runs.front().result;
-  merged.wavefront_size = first.wavefront_size;
-  merged.path_state_bytes = first.path_state_bytes;
-  merged.code_layout = first.code_layout;
-  merged.code_key_bits = first.code_key_bits;
-  merged.sort_from_bounce = first.sort_from_bounce;
+  merged.wavefront = first.wavefront;
+  merged.coherence = first.coherence;
   merged.auto_choice = first.auto_choice;
-  merged.pth_levels = first.pth_levels;
-  merged.pth_subtree_nodes = first.pth_subtree_nodes;
-  merged.speculative = first.speculative;
-  merged.sort_payload = first.sort_payload;
   merged.compile_from_cache = true;
   std::uint64_t groups = 0;
   double efficiency = 0;

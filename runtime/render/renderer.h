@@ -60,6 +60,23 @@ struct AutoChoice {
   std::map<std::string, double> final_rays_per_second;  // the final round: those near the screen's best
 };
 
+// A wavefront method's pool of path slots.
+struct WavefrontFigures {
+  std::size_t slots = 0;             // path slots in the pool; 0: not a wavefront method
+  std::size_t path_state_bytes = 0;  // device bytes per path slot (a sorting method's sort state included)
+};
+
+// How hash and pth ordered their rays: the coherence code, the PTH walk, the resumed traversal.
+struct CoherenceFigures {
+  std::string code_layout;             // the coherence code used
+  std::uint32_t key_bits = 0;          // its width (sorted as 32-bit keys up to 32)
+  std::uint32_t sort_from_bounce = 0;  // the first bounce they sort
+  std::uint32_t pth_levels = 0;        // pth: subtree levels in local memory
+  std::uint32_t subtree_nodes = 0;
+  bool speculative = false;            // resumed with speculative traversal
+  std::string sort_payload;            // "gather" or "indirect" (--sort-payload)
+};
+
 struct RenderResult {
   Image image;                 // mean radiance per pixel
   std::uint32_t samples = 0;   // per pixel
@@ -74,17 +91,10 @@ struct RenderResult {
   bool compile_from_cache = false;
   std::map<std::string, double> kernel_seconds;  // device time per kernel name
   std::vector<IterationStats> iterations;        // wavefront methods only
-  std::size_t wavefront_size = 0;                // path slots in the pool (wavefront methods)
-  std::size_t path_state_bytes = 0;              // device bytes per path slot
+  WavefrontFigures wavefront;                    // wavefront methods
   double simd_efficiency = 0;                    // traversal: mean over max steps per 32 rays
-  std::string code_layout;                       // hash and pth: the coherence code used
-  std::uint32_t code_key_bits = 0;               // its width (sorted as 32-bit keys up to 32)
-  std::uint32_t sort_from_bounce = 0;            // hash and pth: the first bounce they sort
-  AutoChoice auto_choice;                 // --method auto: the probe and its pick
-  std::uint32_t pth_levels = 0;                  // pth: subtree levels in local memory
-  std::uint32_t pth_subtree_nodes = 0;
-  bool speculative = false;                      // hash/pth: resumed with speculative traversal
-  std::string sort_payload;                      // hash/pth: "gather" or "indirect" (--sort-payload)
+  std::optional<CoherenceFigures> coherence;     // hash and pth
+  AutoChoice auto_choice;                        // --method auto: the probe and its pick
   bool interrupted = false;                      // stopped by stop_requested before the sample count
   std::uint32_t resumed_samples = 0;             // samples taken over from a checkpoint
   std::uint32_t passes = 0;                      // sample passes this device rendered

@@ -83,7 +83,7 @@ TEST_P(MethodAgreement, CornellBoxBitForBit) {
   const RenderResult other = render_scene(path, s);
   expect_bitwise_equal(reference, other, GetParam().method);
   if (GetParam().wavefront_size) {
-    EXPECT_EQ(other.wavefront_size, GetParam().wavefront_size);
+    EXPECT_EQ(other.wavefront.slots, GetParam().wavefront_size);
   }
   EXPECT_FALSE(other.iterations.empty());
 }
@@ -149,11 +149,12 @@ TEST(Methods, PthWithOtherCodeLayoutsAndSubtreeDepthsStillBitForBit) {
     s.sort_payload = c.levels >= 12 ? "gather" : "indirect";
     const RenderResult r = render_scene(path, s);
     expect_bitwise_equal(reference, r, c.code);
-    EXPECT_EQ(r.code_layout, c.code);
-    EXPECT_GT(r.pth_levels, 0u) << c.code;
-    EXPECT_LE(r.pth_levels, c.levels) << c.code;
+    ASSERT_TRUE(r.coherence) << c.code;
+    EXPECT_EQ(r.coherence->code_layout, c.code);
+    EXPECT_GT(r.coherence->pth_levels, 0u) << c.code;
+    EXPECT_LE(r.coherence->pth_levels, c.levels) << c.code;
     if (c.levels <= 4) {  // the box's tree is deeper than 4
-      EXPECT_EQ(r.pth_levels, c.levels) << c.code;
+      EXPECT_EQ(r.coherence->pth_levels, c.levels) << c.code;
     }
   }
   // --pth-levels alone sets the default layout's pth width; with a --code that agrees it is fine
@@ -162,10 +163,13 @@ TEST(Methods, PthWithOtherCodeLayoutsAndSubtreeDepthsStillBitForBit) {
     s.pth_levels = levels;
     const RenderResult r = render_scene(path, s);
     expect_bitwise_equal(reference, r, "--pth-levels");
-    EXPECT_EQ(r.pth_levels, levels);
+    ASSERT_TRUE(r.coherence);
+    EXPECT_EQ(r.coherence->pth_levels, levels);
   }
   s.code = "pth:3,dir:8";
-  EXPECT_EQ(render_scene(path, s).pth_levels, 3u);
+  const RenderResult from_code = render_scene(path, s);
+  ASSERT_TRUE(from_code.coherence);
+  EXPECT_EQ(from_code.coherence->pth_levels, 3u);
 }
 
 TEST(Methods, CodeAndPthLevelsThatDisagreeAreAnInputError) {
@@ -204,7 +208,8 @@ TEST(Methods, KeyWidthFollowsTheLayoutAndImagesStayBitForBit) {
     s.code = c.code;
     const RenderResult r = render_scene(path, s);
     expect_bitwise_equal(reference, r, c.code);
-    EXPECT_EQ(r.code_key_bits, c.key_bits) << c.code;
+    ASSERT_TRUE(r.coherence) << c.code;
+    EXPECT_EQ(r.coherence->key_bits, c.key_bits) << c.code;
   }
   // the defaults fit 32 bits
   s.code.clear();
@@ -212,8 +217,9 @@ TEST(Methods, KeyWidthFollowsTheLayoutAndImagesStayBitForBit) {
     s.method = method;
     const RenderResult r = render_scene(path, s);
     expect_bitwise_equal(reference, r, method);
-    EXPECT_EQ(r.code_layout, default_code_layout(s.method == "pth"));
-    EXPECT_LE(r.code_key_bits, 32u) << method;
+    ASSERT_TRUE(r.coherence) << method;
+    EXPECT_EQ(r.coherence->code_layout, default_code_layout(s.method == "pth"));
+    EXPECT_LE(r.coherence->key_bits, 32u) << method;
   }
 }
 
@@ -248,7 +254,8 @@ TEST(Methods, SortFromBounceKeepsImagesBitForBit) {
       const RenderResult r = render_scene(path, s);
       const std::string what = fmt::format("{} from bounce {}", method, from);
       expect_bitwise_equal(reference, r, what.c_str());
-      EXPECT_EQ(r.sort_from_bounce, from);
+      ASSERT_TRUE(r.coherence) << what;
+      EXPECT_EQ(r.coherence->sort_from_bounce, from);
       // the walk's launches carry the method's name; extend's "extend"
       const bool walked = r.kernel_seconds.count(method) != 0, extended = r.kernel_seconds.count("extend") != 0;
       EXPECT_EQ(walked, from <= r.iterations.size()) << what;
@@ -322,7 +329,7 @@ TEST(Methods, AutoRendersTheNaiveImageWithTheFastestProbedMethod) {
   EXPECT_GE(r.render_seconds, a.probe_seconds);
   // the pick's own figures: a wavefront pick reports the shared pool
   if (find_method(a.method).wavefront) {
-    EXPECT_EQ(r.wavefront_size, std::size_t(s.wavefront_size));
+    EXPECT_EQ(r.wavefront.slots, std::size_t(s.wavefront_size));
     EXPECT_FALSE(r.iterations.empty());
   }
 }

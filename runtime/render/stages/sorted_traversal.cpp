@@ -139,16 +139,16 @@ void SortedTraversal::resume(WavefrontPass& p) {
 void SortedTraversal::report(RenderResult& result) const {
   result.compile_seconds += program_.seconds;
   result.compile_from_cache = result.compile_from_cache && program_.from_cache;
-  result.path_state_bytes += SORT_SLOT_BYTES + sizeof(SavedStackEntry) * code_.pth_levels;
+  result.wavefront.path_state_bytes += SORT_SLOT_BYTES + sizeof(SavedStackEntry) * code_.pth_levels;
   if (gather_)
-    result.path_state_bytes += SORT_GATHER_SLOT_BYTES + sizeof(SavedStackEntry) * code_.pth_levels;
-  result.sort_payload = gather_ ? "gather" : "indirect";
-  result.code_layout = layout_;
-  result.code_key_bits = code_.key_bits;
-  result.sort_from_bounce = sort_from_bounce_;
-  result.pth_levels = code_.pth_levels;
-  result.pth_subtree_nodes = subtree_.nodes;
-  result.speculative = speculative_;
+    result.wavefront.path_state_bytes += SORT_GATHER_SLOT_BYTES + sizeof(SavedStackEntry) * code_.pth_levels;
+  result.coherence = CoherenceFigures{.code_layout = layout_,
+                                      .key_bits = code_.key_bits,
+                                      .sort_from_bounce = sort_from_bounce_,
+                                      .pth_levels = code_.pth_levels,
+                                      .subtree_nodes = subtree_.nodes,
+                                      .speculative = speculative_,
+                                      .sort_payload = gather_ ? "gather" : "indirect"};
 }
 
 }  // namespace cohort

@@ -145,8 +145,7 @@ void WavefrontRender::report(RenderResult& result) const {
   }
   result.simd_efficiency = groups ? efficiency / double(groups) : 0;
   result.iterations = iterations_;
-  result.wavefront_size = memory_->pool.slots;
-  result.path_state_bytes = WAVEFRONT_SLOT_BYTES;
+  result.wavefront = {.slots = memory_->pool.slots, .path_state_bytes = WAVEFRONT_SLOT_BYTES};
   if (report_) report_(result);
 }
 
