@@ -1,5 +1,5 @@
-// The compiled part of the `cohort` Python package (python/cohort/__init__.py wraps it): a session
-// per loaded scene (runtime/cli/render_session.h), renders run with the GIL released, images
+// The compiled part of the `cohort` Python package (python/cohort/__init__.py wraps it): a LoadedScene
+// per scene (runtime/cli/loaded_scene.h), renders run with the GIL released, images
 // handed to NumPy without a copy, and Ctrl-C turned into a stop between passes.
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
@@ -17,7 +17,7 @@
 #include "runtime/backend/device_support.h"
 #include "runtime/backend/open_device.h"
 #include "runtime/cli/cli.h"
-#include "runtime/cli/render_session.h"
+#include "runtime/cli/loaded_scene.h"
 #include "runtime/image/denoiser.h"
 #include "runtime/util/error.h"
 
@@ -76,17 +76,17 @@ std::string devices_json() {
   return out.dump();
 }
 
-// A session whose render runs on its own thread while the calling thread, holding the GIL only for
+// A loaded scene whose render runs on its own thread while the calling thread, holding the GIL only for
 // moments, forwards progress to Python and watches for Ctrl-C.
-class PySession {
+class PyScene {
  public:
-  explicit PySession(const std::vector<std::string>& arguments) : session_(parse_render_arguments(arguments)) {}
-  PySession(const PySession&) = delete;
-  PySession& operator=(const PySession&) = delete;
+  explicit PyScene(const std::vector<std::string>& arguments) : scene_(parse_render_arguments(arguments)) {}
+  PyScene(const PyScene&) = delete;
+  PyScene& operator=(const PyScene&) = delete;
 
   std::string info() {
     nb::gil_scoped_release release;
-    return session_.info().dump();
+    return scene_.info().dump();
   }
 
   nb::dict render(const std::vector<std::string>& arguments, std::optional<std::array<float, 10>> camera,
@@ -107,7 +107,7 @@ class PySession {
                               const std::lock_guard lock(mutex);
                               latest = p;
                             }};
-    SessionRender result;
+    SceneRender result;
     std::exception_ptr failure;
     std::optional<nb::python_error> python_failure;  // Ctrl-C, or what `progress` raised
     const std::vector<std::filesystem::path> venv_paths(venvs.begin(), venvs.end());
@@ -115,7 +115,7 @@ class PySession {
       nb::gil_scoped_release release;
       std::thread worker([&] {
         try {
-          result = session_.render(command, scene_camera, hooks, venv_paths);
+          result = scene_.render(command, scene_camera, hooks, venv_paths);
         } catch (...) {
           failure = std::current_exception();
         }
@@ -172,7 +172,7 @@ class PySession {
   }
 
  private:
-  RenderSession session_;
+  LoadedScene scene_;
 };
 
 }  // namespace
@@ -190,9 +190,9 @@ NB_MODULE(_cohort, m) {
         const cohort::Image header = cohort::read_exr(path);
         return cohort::owned_array(std::move(values), {std::size_t(header.height), std::size_t(header.width)});
       }, "path"_a, "channel"_a, "One float channel of an OpenEXR file (an AOV: albedo.R, N.X, depth.Z) as (H, W)");
-  nb::class_<cohort::PySession>(m, "Session")
+  nb::class_<cohort::PyScene>(m, "LoadedScene")
       .def(nb::init<const std::vector<std::string>&>(), "arguments"_a)
-      .def("info", &cohort::PySession::info)
-      .def("render", &cohort::PySession::render, "arguments"_a, "camera"_a.none(), "progress"_a.none(),
+      .def("info", &cohort::PyScene::info)
+      .def("render", &cohort::PyScene::render, "arguments"_a, "camera"_a.none(), "progress"_a.none(),
            "venvs"_a);
 }

@@ -77,7 +77,7 @@ class Scene:
         if not cache:
             base.append("--no-cache")
         self._base = base
-        self._session = _cohort.Session(base)
+        self._loaded = _cohort.LoadedScene(base)
         self._info = None
 
     @property
@@ -85,7 +85,7 @@ class Scene:
         """What `cohort info` prints, as a dict: triangles, bounds, materials, lights, camera, the
         tree and the device bytes."""
         if self._info is None:
-            self._info = json.loads(self._session.info())
+            self._info = json.loads(self._loaded.info())
         return self._info
 
     def render(self, spp=None, res=None, method="auto", seed=None, max_depth=None, camera=None, white_sky=False,
@@ -150,6 +150,6 @@ class Scene:
                 raise InputError(f"camera: expected a dict with eye, target (3 numbers each), up, fov: {e}") from None
             if len(cam) != 10:
                 raise InputError("camera: eye, target and up take 3 numbers each")
-        out = _cohort.Session.render(self._session, args, cam, progress, [sys.prefix])
+        out = _cohort.LoadedScene.render(self._loaded, args, cam, progress, [sys.prefix])
         aovs = {name: out["aovs"][name] for name in aov} if out["aovs"] else {}
         return Render(out["image"], aovs, out["denoised"], json.loads(out["stats"]))

@@ -106,11 +106,11 @@ def test_a_camera_given_as_eye_and_target_is_the_scenes_own_when_equal(scene):
 def test_a_second_render_loads_builds_and_compiles_nothing():
     s = cohort.Scene(CBOX)
     first = s.render(spp=2, res=(16, 16), method="naive", seed=1)
-    assert first.stats["session"]["loaded_scene"] and first.stats["session"]["built_tree"]
+    assert first.stats["setup"]["loaded_scene"] and first.stats["setup"]["built_tree"]
     for seed in range(2, 5):
         again = s.render(spp=2, res=(24, 16), method="naive", seed=seed)
-        session = again.stats["session"]
-        assert not session["loaded_scene"] and not session["built_tree"] and not session["compiled"], session
+        setup = again.stats["setup"]
+        assert not setup["loaded_scene"] and not setup["built_tree"] and not setup["compiled"], setup
         assert again.stats["timings"]["load_seconds"] == 0 and again.stats["timings"]["build_seconds"] == 0
         assert again.stats["timings"]["compile_seconds"] == 0
         assert all(d["upload_seconds"] < 0.05 for d in again.stats["devices"])

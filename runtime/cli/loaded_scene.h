@@ -18,28 +18,28 @@
 
 namespace cohort {
 
-// One render of a session.
-struct SessionRender {
+// One render of a loaded scene.
+struct SceneRender {
   Image image;                    // mean radiance per pixel, linear RGB
   std::optional<AovImages> aovs;  // with --aov or --denoise
   std::optional<Image> denoised;  // with --denoise
-  nlohmann::json stats;           // what --stats writes, with "session": what this render set up
+  nlohmann::json stats;           // what --stats writes, with "setup": what this render set up
   bool interrupted = false;       // stopped by the hooks before its samples
 };
 
-class RenderSession {
+class LoadedScene {
  public:
   // `base`: the scene, and the options every render of it shares (--device, --backend, --tree,
   // --tree-budget, --memory-limit, --no-cache). Opens the devices and loads the file; the tree is
   // built by the first render that needs it.
-  explicit RenderSession(RenderCommand base);
-  RenderSession(const RenderSession&) = delete;
-  RenderSession& operator=(const RenderSession&) = delete;
+  explicit LoadedScene(RenderCommand base);
+  LoadedScene(const LoadedScene&) = delete;
+  LoadedScene& operator=(const LoadedScene&) = delete;
 
-  // Renders the session's scene with `command`'s other options (its shared ones must equal the
+  // Renders the scene with `command`'s other options (its shared ones must equal the
   // base's: InputError otherwise); `camera`, when given, replaces the scene's camera (before
   // --camera-bounds and --fov). `denoise_venvs`: where else the pyoidn wheel may be.
-  SessionRender render(const RenderCommand& command, const std::optional<SceneCamera>& camera,
+  SceneRender render(const RenderCommand& command, const std::optional<SceneCamera>& camera,
                        const RenderHooks& hooks, const std::vector<std::filesystem::path>& denoise_venvs = {});
 
   // What `cohort info` prints, as JSON: triangles, bounds, materials, lights, camera, the tree and

@@ -1,4 +1,4 @@
-#include "runtime/cli/render_session.h"
+#include "runtime/cli/loaded_scene.h"
 
 #include <fmt/format.h>
 
@@ -16,7 +16,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// The options a session fixes when it opens: a render may not change them.
+// The options a loaded scene fixes: a render may not change them.
 void check_shared_options(const RenderCommand& base, const RenderCommand& c) {
   const auto differs = [](const char* option) {
     throw InputError(fmt::format("{} is the scene's, set when it was loaded: load the scene again to change it", option));
@@ -28,17 +28,17 @@ void check_shared_options(const RenderCommand& base, const RenderCommand& c) {
   if (c.tree_budget_mib != base.tree_budget_mib) differs("--tree-budget");
   if (c.memory_limit_mib != base.memory_limit_mib) differs("--memory-limit");
   if (c.no_cache != base.no_cache) differs("--no-cache");
-  if (c.checkpoint || c.resume) throw InputError("--checkpoint and --resume are the command line's, not a session's");
+  if (c.checkpoint || c.resume) throw InputError("--checkpoint and --resume are the command line's, not a loaded scene's");
 }
 
 }  // namespace
 
-RenderSession::VariantKey RenderSession::variant_key(const RenderPlan& plan) {
+LoadedScene::VariantKey LoadedScene::variant_key(const RenderPlan& plan) {
   return {find_method(plan.settings().method).sorts, plan.command.white_sky,
           plan.environment_map ? plan.command.environment : std::string()};
 }
 
-RenderSession::RenderSession(RenderCommand base)
+LoadedScene::LoadedScene(RenderCommand base)
     : base_(std::move(base)), cache_(base_.no_cache ? std::nullopt : std::optional(ProgramCache::default_directory())) {
   const RenderPlan plan = parse_render(base_);
   OpenedDevices opened = open_render_devices(plan, 0);
@@ -49,7 +49,7 @@ RenderSession::RenderSession(RenderCommand base)
   load_seconds_ = seconds_since(t0);
 }
 
-PreparedRender& RenderSession::variant(RenderPlan& plan, bool& built) {
+PreparedRender& LoadedScene::variant(RenderPlan& plan, bool& built) {
   const RenderCommand& cmd = plan.command;
   const VariantKey key = variant_key(plan);
   const bool needs_kd = std::get<0>(key);
@@ -81,7 +81,7 @@ PreparedRender& RenderSession::variant(RenderPlan& plan, bool& built) {
   return *variants_.emplace(key, std::move(render)).first->second;
 }
 
-SessionRender RenderSession::render(const RenderCommand& command, const std::optional<SceneCamera>& camera,
+SceneRender LoadedScene::render(const RenderCommand& command, const std::optional<SceneCamera>& camera,
                                     const RenderHooks& hooks, const std::vector<std::filesystem::path>& denoise_venvs) {
   check_shared_options(base_, command);
   RenderPlan plan = parse_render(command);
@@ -97,11 +97,11 @@ SessionRender RenderSession::render(const RenderCommand& command, const std::opt
   outcome.aovs = render_first_hit_aovs(render, outcome.film);
   outcome.aov_seconds = seconds_since(aov_start);
 
-  SessionRender out;
+  SceneRender out;
   out.interrupted = outcome.result.interrupted;
   if (command.denoise) out.denoised = denoise_image(outcome, denoise_venvs);
   out.stats = stats_json(render, outcome, nullptr);
-  // what this render set up: the file is read by the session once, a tree built once
+  // what this render set up: the file is read once per scene, a tree built once
   const bool first = renders_++ == 0;
   const double load = first ? load_seconds_ : 0.0;
   const double build = built ? render.scene.build_seconds() : 0.0;
@@ -111,14 +111,14 @@ SessionRender RenderSession::render(const RenderCommand& command, const std::opt
     rank["load_seconds"] = load;
     rank["build_seconds"] = build;
   }
-  out.stats["session"] = {{"render", renders_}, {"loaded_scene", first}, {"built_tree", built},
+  out.stats["setup"] = {{"render", renders_}, {"loaded_scene", first}, {"built_tree", built},
                           {"compiled", !outcome.result.compile_from_cache || outcome.result.compile_seconds > 0}};
   out.image = std::move(outcome.result.image);
   out.aovs = std::move(outcome.aovs);
   return out;
 }
 
-nlohmann::json RenderSession::info() {
+nlohmann::json LoadedScene::info() {
   RenderPlan plan = parse_render(base_);
   bool built = false;
   const PreparedScene& p = variant(plan, built).scene;
