@@ -33,6 +33,9 @@ CO_KERNEL render_aov(CO_PARAMS(RENDER_AOV_PARAMS)) {
     co_vec3 base_color =
         surface_params(&s, m, hit.triangle, hit.u, hit.v).base_color;
     co_vec3 n = v3_normalize(triangle_cross(&s.triangles[hit.triangle]));
+#ifdef COHORT_FEATURE_NORMAL_MAP
+    n = mapped_normal(&s, m, hit.triangle, hit.u, hit.v, n);
+#endif
     albedo = film_add(albedo, base_color);
     albedo.w = albedo.w + hit.t; /* the camera ray's direction is a unit vector: t is the distance */
     normal = film_add(normal, n);

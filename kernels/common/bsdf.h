@@ -46,13 +46,16 @@
 
 /* ---- Shading frame --------------------------------------------------------------------------- */
 
+/* n is the shading normal; ng the geometric one, which decides the side a direction leaves from
+ * (ray offsets, docs/bsdf.md "Normal maps"); they are the same without a normal map. */
 typedef struct ShadingFrame {
-  co_vec3 t, b, n;
+  co_vec3 t, b, n, ng;
 } ShadingFrame;
 
 CO_INLINE ShadingFrame frame_from_normal(co_vec3 n) {
   ShadingFrame f;
   f.n = n;
+  f.ng = n;
   onb_from_normal(n, &f.t, &f.b);
   return f;
 }

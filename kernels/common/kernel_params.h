@@ -50,7 +50,7 @@
   P(IN, KdNode, nodes) P(IN, uint32_t, leaf_triangles) P(IN, Triangle, triangles)                            \
   P(IN, uint32_t, triangle_material) P(IN, Material, materials) P(IN, EmitterEntry, emitters)                \
   P(IN, TriangleUv, triangle_uvs) P(IN, TextureDesc, textures) P(IN, uint32_t, texels)                       \
-  P(IN, TriangleColor, triangle_colors) P(IN, co_float4, env_texels) P(IN, float, env_tables)               \
+  P(IN, TriangleColor, triangle_colors) P(IN, TriangleFrame, triangle_frames) P(IN, co_float4, env_texels) P(IN, float, env_tables)               \
   P(IN, PunctualLight, punctual_lights)
 
 /* What every rendering kernel takes: the render's parameters and the scene. */

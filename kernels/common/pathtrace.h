@@ -100,14 +100,16 @@ CO_INLINE ShadowRay nee_triangle(const SceneView* s, const RenderParams* p, floa
    * no longer sum to 1: the furnace lost ~0.05% of the direct light. The shadow ray stops short of
    * the light by the error bound of ray_offset.h, so neither the receiver's nor the light's own
    * triangle can occlude the sample. */
-  float side = v3_dot(v3_sub(pl, pos), frame->n);
+  float side = v3_dot(v3_sub(pl, pos), frame->ng);
   if (!(side > 0.0f) && !(side < 0.0f)) return sr; /* in the plane, or NaN */
-  co_vec3 origin = offset_origin(pos, frame->n, offset, side > 0.0f);
+  co_vec3 origin = offset_origin(pos, frame->ng, offset, side > 0.0f);
   co_vec3 wl;
   float dist, dist2;
   if (!direction_to(origin, pl, 0.0f, &wl, &dist, &dist2)) return sr;
   co_vec3 wl_local = frame_to_local(frame, wl);
-  if (!(wl_local.z * side > 0.0f)) return sr; /* a light within the offset of the tangent plane */
+  /* a light within the offset of the tangent plane, or (normal maps) on the other side of the
+   * shading normal than of the surface */
+  if (!(wl_local.z * side > 0.0f)) return sr;
   float cos_light = fabs(v3_dot(nl, wl));
   float tmax = shadow_tmax(dist, fmax(light_magnitude, v3_max_abs(origin)), triangle_edge_error(p0, p1, p2, cross_l),
                            cos_light);
@@ -136,9 +138,16 @@ CO_INLINE ShadowRay nee_triangle(const SceneView* s, const RenderParams* p, floa
 /* The shadow ray's origin for a light in the unit direction wl: `pos` offset along the normal to
  * the side wl leaves from (the side path_shade offsets a BSDF sample in that direction to). Returns
  * 0 when wl lies in the tangent plane. */
-CO_INLINE int nee_origin(co_vec3 pos, float offset, const ShadingFrame* frame, co_vec3 wl_local, co_vec3* origin) {
+CO_INLINE int nee_origin(co_vec3 pos, float offset, const ShadingFrame* frame, co_vec3 wl, co_vec3 wl_local,
+                         co_vec3* origin) {
   if (!(wl_local.z > 0.0f) && !(wl_local.z < 0.0f)) return 0;
-  *origin = offset_origin(pos, frame->n, offset, wl_local.z > 0.0f);
+#ifdef COHORT_FEATURE_NORMAL_MAP
+  /* the shading normal must not send a shadow ray through the surface (docs/bsdf.md) */
+  if (!(v3_dot(wl, frame->ng) * wl_local.z > 0.0f)) return 0;
+#else
+  (void)wl;
+#endif
+  *origin = offset_origin(pos, frame->ng, offset, wl_local.z > 0.0f);
   return 1;
 }
 
@@ -155,7 +164,7 @@ CO_INLINE ShadowRay nee_environment(const SceneView* s, const RenderParams* p, f
   if (!(pdf_env > 0.0f)) return sr;
   co_vec3 wl_local = frame_to_local(frame, wl);
   co_vec3 origin;
-  if (!nee_origin(pos, offset, frame, wl_local, &origin)) return sr;
+  if (!nee_origin(pos, offset, frame, wl, wl_local, &origin)) return sr;
   co_vec3 f = bsdf_eval(b, wi, wl_local);
   if (!(v3_max_component(f) > 0.0f)) return sr;
   co_vec3 le = env_eval(&s->env, wl);
@@ -189,7 +198,7 @@ CO_INLINE ShadowRay nee_punctual(const SceneView* s, float pdf_pick, float u_pic
   if (!direction_to(pos, pl, 0.0f, &wl, &dist, &dist2)) return sr;
   co_vec3 wl_local = frame_to_local(frame, wl);
   co_vec3 origin;
-  if (!nee_origin(pos, offset, frame, wl_local, &origin)) return sr;
+  if (!nee_origin(pos, offset, frame, wl, wl_local, &origin)) return sr;
   float tmax = shadow_tmax(v3_length(v3_sub(pl, origin)), fmax(v3_max_abs(pl), v3_max_abs(origin)), 0.0f, 1.0f);
   if (!(tmax > 0.0f)) return sr;
   co_vec3 f = bsdf_eval(b, wi, wl_local);
@@ -325,6 +334,17 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
   SurfaceParams sp = surface_params(s, m, hit.triangle, hit.u, hit.v);
   Bsdf b = bsdf_from_gltf(sp.base_color, sp.metallic, sp.roughness, m->transmission, m->ior, u_select);
   ShadingFrame frame = frame_from_normal(n_geo);
+#ifdef COHORT_FEATURE_NORMAL_MAP
+  {
+    /* a mapped normal that puts the incoming direction on the other side than the surface does
+     * is dropped for the flat one (docs/bsdf.md, "Normal maps") */
+    co_vec3 ns = mapped_normal(s, m, hit.triangle, hit.u, hit.v, n_geo);
+    if (v3_dot(ns, st->dir) * v3_dot(n_geo, st->dir) > 0.0f) {
+      frame = frame_from_normal(ns);
+      frame.ng = n_geo;
+    }
+  }
+#endif
   co_vec3 wi = frame_to_local(&frame, v3_neg(st->dir));
 
   ShadowRay shadow = none;
@@ -348,6 +368,14 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
     st->status = PATH_TERMINATED;
     return shadow;
   }
+#ifdef COHORT_FEATURE_NORMAL_MAP
+  /* a direction on one side of the shading normal and the other of the surface is absorbed: no
+   * ray goes through the surface it was meant to leave from, and no energy is made */
+  if (!(v3_dot(frame_to_world(&frame, bs.wo), n_geo) * bs.wo.z > 0.0f)) {
+    st->status = PATH_TERMINATED;
+    return shadow;
+  }
+#endif
   st->throughput = next_throughput;
   st->prev_bsdf_pdf = (bs.flags & BSDF_DELTA) ? 0.0f : bs.pdf; /* 0: the next emitter hit is not MIS-weighted */
   /* offset to the side the new direction leaves from, not the side of the incoming ray; the MIS

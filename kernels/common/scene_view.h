@@ -23,6 +23,7 @@ typedef struct SceneView {
   const CO_GLOBAL TextureDesc* textures;
   const CO_GLOBAL uint32_t* texels;           /* RGBA8 */
   const CO_GLOBAL TriangleColor* triangle_colors; /* per kept triangle */
+  const CO_GLOBAL TriangleFrame* triangle_frames; /* per kept triangle */
   EnvironmentView env;
   const CO_GLOBAL PunctualLight* punctual_lights;
   uint32_t emitter_count;
@@ -38,6 +39,7 @@ CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNod
                                     const CO_GLOBAL EmitterEntry* emitters, const CO_GLOBAL TriangleUv* triangle_uvs,
                                     const CO_GLOBAL TextureDesc* textures, const CO_GLOBAL uint32_t* texels,
                                     const CO_GLOBAL TriangleColor* triangle_colors,
+                                    const CO_GLOBAL TriangleFrame* triangle_frames,
                                     const CO_GLOBAL co_float4* env_texels, const CO_GLOBAL float* env_tables,
                                     const CO_GLOBAL PunctualLight* punctual_lights) {
   SceneView s;
@@ -50,6 +52,7 @@ CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNod
   s.textures = textures;
   s.texels = texels;
   s.triangle_colors = triangle_colors;
+  s.triangle_frames = triangle_frames;
   s.env.texels = env_texels;
   s.env.tables = env_tables;
   s.env.width = p->env_width;
@@ -65,7 +68,7 @@ CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNod
 }
 #define SCENE_VIEW(p)                                                                                \
   make_scene_view(&(p), nodes, leaf_triangles, triangles, triangle_material, materials, emitters, triangle_uvs, \
-                  textures, texels, triangle_colors, env_texels, env_tables, punctual_lights)
+                  textures, texels, triangle_colors, triangle_frames, env_texels, env_tables, punctual_lights)
 
 CO_INLINE float luminance(co_vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
@@ -152,6 +155,34 @@ CO_INLINE SurfaceParams surface_params(const SceneView* s, const CO_GLOBAL Mater
 #endif
   return p;
 }
+
+#ifdef COHORT_FEATURE_NORMAL_MAP
+/* The normal a normal-mapped material shades with at (b1, b2): the map's texel as a tangent-space
+ * vector ((c * 2 - 1) with x and y times the material's scale) in the frame of the interpolated
+ * vertex normal and tangent (glTF's rule: bitangent = cross(n, t) * w). n_geo where the material
+ * has no map, or where the frame or the result is degenerate. */
+CO_INLINE co_vec3 mapped_normal(const SceneView* s, const CO_GLOBAL Material* m, uint32_t triangle, float b1, float b2,
+                                co_vec3 n_geo) {
+  if (m->normal_texture < 0) return n_geo;
+  TriangleFrame f = s->triangle_frames[triangle];
+  float b0 = 1.0f - b1 - b2;
+  co_vec3 n = v3_add(v3_add(v3_scale(v3_from4(f.n0), b0), v3_scale(v3_from4(f.n1), b1)), v3_scale(v3_from4(f.n2), b2));
+  co_vec3 t = v3_add(v3_add(v3_scale(v3_from4(f.t0), b0), v3_scale(v3_from4(f.t1), b1)), v3_scale(v3_from4(f.t2), b2));
+  float n_len = v3_length(n);
+  n = n_len > 0.0f ? v3_scale(n, 1.0f / n_len) : n_geo; /* no vertex normals: the flat one */
+  t = v3_sub(t, v3_scale(n, v3_dot(n, t)));             /* orthogonal to the interpolated normal */
+  float t_len = v3_length(t);
+  if (!(t_len > 0.0f)) return n_geo;
+  t = v3_scale(t, 1.0f / t_len);
+  co_vec3 b = v3_scale(v3_cross(n, t), f.t0.w < 0.0f ? -1.0f : 1.0f);
+  co_vec3 c = material_texture(s, m, m->normal_texture, MAT_UV1_NORMAL, triangle, b1, b2);
+  float x = (2.0f * c.x - 1.0f) * m->normal_scale, y = (2.0f * c.y - 1.0f) * m->normal_scale, z = 2.0f * c.z - 1.0f;
+  co_vec3 ns = v3_add(v3_add(v3_scale(t, x), v3_scale(b, y)), v3_scale(n, z));
+  float len = v3_length(ns);
+  if (!(len > 0.0f) || !v3_is_finite(ns)) return n_geo;
+  return v3_scale(ns, 1.0f / len);
+}
+#endif
 
 /* emitted_radiance times the emission texture at (b1, b2). The emitter table (host) and the
  * light pdf below use the untextured emission factor: NEE picks a textured emitter with a

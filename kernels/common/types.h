@@ -65,6 +65,7 @@ CO_STATIC_ASSERT(sizeof(Triangle) == 48, "Triangle must stay 48 bytes");
 #define MAT_UV1_BASE_COLOR 2u
 #define MAT_UV1_METALLIC_ROUGHNESS 4u
 #define MAT_UV1_EMISSION 8u
+#define MAT_UV1_NORMAL 16u
 typedef struct Material {
   co_float4 base_color;  /* rgb; a = alpha */
   co_float4 emission;    /* rgb radiance (factor x strength); a unused */
@@ -76,8 +77,11 @@ typedef struct Material {
   uint32_t flags;
   int32_t emission_texture;   /* -1: none; multiplies emission */
   int32_t metallic_roughness_texture; /* -1: none; B multiplies metallic, G roughness (linear data) */
+  int32_t normal_texture;             /* -1: none; tangent-space normal map (COHORT_FEATURE_NORMAL_MAP) */
+  float normal_scale;                 /* scales the map's x and y */
+  uint32_t pad0, pad1;
 } Material;
-CO_STATIC_ASSERT(sizeof(Material) == 64, "Material must stay 64 bytes");
+CO_STATIC_ASSERT(sizeof(Material) == 80, "Material must stay 80 bytes");
 
 /* ---- Textures ---------------------------------------------------------------------------------
  * Every texture's texels live in one buffer of RGBA8 words (r in the low byte, as glTF stores
@@ -116,6 +120,15 @@ typedef struct TriangleColor {
   co_float4 c2;
 } TriangleColor;
 CO_STATIC_ASSERT(sizeof(TriangleColor) == 48, "TriangleColor must stay 48 bytes");
+
+/* The tangent frames of a kept triangle's 3 vertices, for normal maps (COHORT_FEATURE_NORMAL_MAP):
+ * unit vertex normals n (w unused; zero where the file has none: the geometric normal stands in)
+ * and unit tangents t with the bitangent's sign in w (glTF TANGENT: b = cross(n, t) * w). */
+typedef struct TriangleFrame {
+  co_float4 n0, n1, n2;
+  co_float4 t0, t1, t2;
+} TriangleFrame;
+CO_STATIC_ASSERT(sizeof(TriangleFrame) == 96, "TriangleFrame must stay 96 bytes");
 
 /* ---- Emissive triangles, sampled by power --------------------------------------------------- */
 typedef struct EmitterEntry {

@@ -58,6 +58,9 @@ Material to_device_material(const SceneMaterial& m) {
   if (m.base_color_texcoord == 1) d.flags |= MAT_UV1_BASE_COLOR;
   if (m.metallic_roughness_texcoord == 1) d.flags |= MAT_UV1_METALLIC_ROUGHNESS;
   if (m.emission_texcoord == 1) d.flags |= MAT_UV1_EMISSION;
+  if (m.normal_texcoord == 1) d.flags |= MAT_UV1_NORMAL;
+  d.normal_texture = m.normal_texture;
+  d.normal_scale = m.normal_scale;
   d.emission_texture = m.emission_texture;
   d.metallic_roughness_texture = m.metallic_roughness_texture;
   return d;
@@ -68,6 +71,7 @@ std::vector<std::string> SceneFeatures::names() const {
   if (textures) out.push_back("textures");
   if (texcoord1) out.push_back("texcoord1");
   if (vertex_colors) out.push_back("vertex_colors");
+  if (normal_map) out.push_back("normal_map");
   if (conductor) out.push_back("conductor");
   if (dielectric) out.push_back("dielectric");
   if (plastic) out.push_back("plastic");
@@ -170,6 +174,8 @@ void add_textures(const Scene& scene, const KdTree& tree, const std::vector<bool
     slot(m.base_color_texture, used[i], sm.base_color_texcoord);
     slot(m.emission_texture, used[i], sm.emission_texcoord);
     slot(m.metallic_roughness_texture, used[i], sm.metallic_roughness_texcoord);
+    slot(m.normal_texture, used[i], sm.normal_texcoord);
+    t.features.normal_map |= m.normal_texture >= 0;
   }
   if (t.textures.empty()) return;
   t.features.textures = true;
@@ -187,6 +193,31 @@ void add_textures(const Scene& scene, const KdTree& tree, const std::vector<bool
   for (std::uint32_t src : tree.source_index) {
     push(scene.uvs, src);
     if (set1) push(scene.uvs1, src);
+  }
+}
+
+// Vertex normals and tangents per kept triangle, when a used material has a normal map; zeros where
+// the scene has none (the kernel then shades with the geometric normal, or without the map).
+void add_frames(const Scene& scene, const KdTree& tree, SceneTables& t) {
+  if (!t.features.normal_map) return;
+  const bool normals = scene.normals.size() == 3 * scene.triangle_count();
+  const bool tangents = scene.tangents.size() == 3 * scene.triangle_count();
+  t.triangle_frames.reserve(tree.source_index.size());
+  for (std::uint32_t src : tree.source_index) {
+    TriangleFrame f{};
+    co_float4* n[3] = {&f.n0, &f.n1, &f.n2};
+    co_float4* tg[3] = {&f.t0, &f.t1, &f.t2};
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (normals) {
+        const glm::vec3& v = scene.normals[3 * std::size_t(src) + k];
+        *n[k] = co_float4{v.x, v.y, v.z, 0.f};
+      }
+      if (tangents) {
+        const glm::vec4& v = scene.tangents[3 * std::size_t(src) + k];
+        *tg[k] = co_float4{v.x, v.y, v.z, v.w};
+      }
+    }
+    t.triangle_frames.push_back(f);
   }
 }
 
@@ -213,6 +244,7 @@ SceneTables make_scene_tables(const Scene& scene, const KdTree& tree) {
   for (std::uint32_t id : t.triangle_material) used.at(id) = true;
   add_textures(scene, tree, used, t);  // first: a texture left out selects no more families
   add_vertex_colors(scene, tree, t);
+  add_frames(scene, tree, t);
   for (std::size_t i = 0; i < t.materials.size(); ++i) {
     if (!used[i]) continue;
     const SceneFeatures f = material_features(t.materials[i]);
@@ -265,6 +297,7 @@ SceneBuffers DeviceScene::kernel_buffers() const {
   b.textures = textures;
   b.texels = texels;
   b.triangle_colors = triangle_colors;
+  b.triangle_frames = triangle_frames;
   b.env_texels = env_texels;
   b.env_tables = env_tables;
   b.punctual_lights = punctual_lights;
@@ -305,6 +338,7 @@ DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables
   d.textures = upload("texture descriptors", tables.textures);
   d.texels = upload("texels", tables.texels);
   d.triangle_colors = upload("vertex colours", tables.triangle_colors);
+  d.triangle_frames = upload("tangent frames", tables.triangle_frames);
   d.punctual_lights = upload("punctual lights", tables.punctual.lights);
   d.punctual_count = static_cast<std::uint32_t>(tables.punctual.lights.size());
   if (tables.environment) {

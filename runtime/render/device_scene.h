@@ -33,6 +33,7 @@ struct SceneFeatures {
   bool textures = false;
   bool texcoord1 = false;      // some texture reads a second coordinate set (glTF TEXCOORD_1)
   bool vertex_colors = false;  // glTF COLOR_0 multiplies the base colour
+  bool normal_map = false;     // some used material has a tangent-space normal map
   bool conductor = false;
   bool dielectric = false;
   bool plastic = false;
@@ -58,6 +59,7 @@ struct SceneTables {
   std::vector<TextureDesc> textures;     // the textures used, renumbered in order of first use
   std::vector<std::uint32_t> texels;     // RGBA8 words, r in the low byte
   std::vector<TriangleColor> triangle_colors;  // per kept triangle, only with features.vertex_colors
+  std::vector<TriangleFrame> triangle_frames;  // per kept triangle, only with features.normal_map
   PunctualTable punctual;                // point and spot lights
   std::optional<EnvironmentMap> environment;
   SceneFeatures features;                // of the materials the kept triangles use, and the lights
@@ -80,6 +82,7 @@ struct DeviceScene {
   DeviceBuffer nodes, leaf_triangles, triangles, triangle_material, materials, emitters;
   DeviceBuffer triangle_uvs, textures, texels;  // one-element placeholders without textures
   DeviceBuffer triangle_colors;                 // a one-element placeholder without vertex colours
+  DeviceBuffer triangle_frames;                 // a one-element placeholder without normal maps
   DeviceBuffer env_texels, env_tables, punctual_lights;  // placeholders without those lights
   SceneFeatures features;
   std::string build_options;  // features.build_options() (and the BVH's): every rendering program gets them

@@ -135,7 +135,7 @@ class TextureTable {
 };
 
 // TEXCOORD_0 and _1 are read; a higher set is named by report_unhonoured, and set 0 stands in.
-int texcoord_set(const tinygltf::TextureInfo& t) { return t.texCoord == 1 ? 1 : 0; }
+int texcoord_set(int tex_coord) { return tex_coord == 1 ? 1 : 0; }
 
 SceneMaterial convert(const tinygltf::Material& m, TextureTable& textures) {
   const auto& pbr = m.pbrMetallicRoughness;
@@ -153,12 +153,16 @@ SceneMaterial convert(const tinygltf::Material& m, TextureTable& textures) {
   out.double_sided = m.doubleSided;
   const std::string of = fmt::format(" of '{}'", m.name);
   out.base_color_texture = textures.index_of(pbr.baseColorTexture.index, true, "base colour" + of);
-  out.base_color_texcoord = texcoord_set(pbr.baseColorTexture);
+  out.base_color_texcoord = texcoord_set(pbr.baseColorTexture.texCoord);
   out.emission_texture = textures.index_of(m.emissiveTexture.index, true, "emission" + of);
-  out.emission_texcoord = texcoord_set(m.emissiveTexture);
+  out.emission_texcoord = texcoord_set(m.emissiveTexture.texCoord);
   out.metallic_roughness_texture = textures.index_of(pbr.metallicRoughnessTexture.index, false,
                                                      "metallic (B) and roughness (G)" + of);
-  out.metallic_roughness_texcoord = texcoord_set(pbr.metallicRoughnessTexture);
+  out.metallic_roughness_texcoord = texcoord_set(pbr.metallicRoughnessTexture.texCoord);
+  out.normal_scale = static_cast<float>(m.normalTexture.scale);
+  out.normal_texture =
+      textures.index_of(m.normalTexture.index, false, fmt::format("normals (scale {:.3g}){}", out.normal_scale, of));
+  out.normal_texcoord = texcoord_set(m.normalTexture.texCoord);
   return out;
 }
 

@@ -9,6 +9,7 @@
 #include <tiny_gltf.h>
 
 #include "runtime/scene/gltf_accessor.h"
+#include "runtime/scene/tangents.h"
 #include "runtime/util/error.h"
 
 namespace cohort::gltf {
@@ -47,7 +48,19 @@ struct Vertices {
   std::vector<glm::vec2> uvs;        // TEXCOORD_0, or empty
   std::vector<glm::vec2> uvs1;       // TEXCOORD_1, or empty
   std::vector<glm::vec4> colors;     // COLOR_0 (linear RGBA), or empty
+  std::vector<glm::vec3> normals;    // NORMAL, world space, unit, or empty
+  std::vector<glm::vec4> tangents;   // TANGENT, world space, or generated for a normal map, or empty
 };
+
+// Normals go through the inverse transpose; tangents are directions of the surface, so through the
+// matrix itself, and a mirroring transform flips the bitangent's sign with the cross product.
+void normals_to_world(Vertices& v, const glm::dmat4& world) {
+  const glm::dmat3 m(world), normal_matrix = glm::transpose(glm::inverse(m));
+  const double handedness = glm::determinant(m) < 0.0 ? -1.0 : 1.0;
+  auto unit = [](glm::dvec3 d) { return glm::length(d) > 0.0 ? glm::vec3(glm::normalize(d)) : glm::vec3(0.f); };
+  for (glm::vec3& n : v.normals) n = unit(normal_matrix * glm::dvec3(n));
+  for (glm::vec4& t : v.tangents) t = glm::vec4(unit(m * glm::dvec3(t)), t.w < 0.f ? -handedness : handedness);
+}
 
 // An optional attribute, which must have one element per position.
 template <typename T, typename Read>
@@ -69,6 +82,9 @@ Vertices read_vertices(const tinygltf::Model& model, const tinygltf::Primitive& 
   v.uvs = read_attribute<glm::vec2>(model, p, "TEXCOORD_0", n, where, read_vec2);
   v.uvs1 = read_attribute<glm::vec2>(model, p, "TEXCOORD_1", n, where, read_vec2);
   v.colors = read_attribute<glm::vec4>(model, p, "COLOR_0", n, where, read_rgba);
+  v.normals = read_attribute<glm::vec3>(model, p, "NORMAL", n, where, read_vec3);
+  v.tangents = read_attribute<glm::vec4>(model, p, "TANGENT", n, where, read_rgba);
+  normals_to_world(v, world);
   return v;
 }
 
@@ -91,6 +107,17 @@ std::vector<std::uint32_t> vertex_indices(const tinygltf::Model& model, const ti
       throw InputError(fmt::format("{}: index {} at position {} is out of range ({} vertices)", where, idx[k],
                                    k, vertices));
   return idx;
+}
+
+// A normal-mapped material on a primitive without TANGENT: tangents from its normals and the
+// coordinates the map reads (scene/tangents.h), as the glTF specification asks.
+void add_generated_tangents(Vertices& v, const Scene& scene, std::uint32_t material, const std::vector<Triple>& triangles) {
+  if (!v.tangents.empty() || material >= scene.materials.size()) return;
+  const SceneMaterial& m = scene.materials[material];
+  if (m.normal_texture < 0) return;
+  const std::vector<glm::vec2>& uvs = m.normal_texcoord == 1 ? v.uvs1 : v.uvs;
+  if (uvs.empty()) return;
+  v.tangents = generate_tangents(v.positions, v.normals, uvs, triangles);
 }
 
 }  // namespace
@@ -123,7 +150,7 @@ void PrimitiveEmitter::emit_primitive(const tinygltf::Primitive& p, const std::s
   if (mode > TINYGLTF_MODE_TRIANGLE_FAN)
     throw InputError(fmt::format("{}: mode {} is not a glTF primitive mode (0-6)", where, mode));
   if (skipped(p, mode)) return;
-  const Vertices vertices = read_vertices(model_, p, world, where);
+  Vertices vertices = read_vertices(model_, p, world, where);
   const std::vector<std::uint32_t> idx = vertex_indices(model_, p, vertices.positions.size(), where);
   if (mode == TINYGLTF_MODE_TRIANGLES && idx.size() % 3 != 0)
     ++skipped_["triangle primitives whose index count is not a multiple of 3 (extra indices ignored)"];
@@ -134,13 +161,20 @@ void PrimitiveEmitter::emit_primitive(const tinygltf::Primitive& p, const std::s
   if (scene_.triangle_count() + n > kMaxTriangles)
     throw InputError(fmt::format("{}: the scene expands to more than {} triangles", where, kMaxTriangles));
   builder_.reserve(n);
-  const auto& positions = vertices.positions;
+  std::vector<Triple> triangles(n);
   for (std::size_t t = 0; t < n; ++t) {
-    Triple v = triangle(mode, idx, t);
-    if (flip) std::swap(v[1], v[2]);
-    builder_.add({positions[v[0]], positions[v[1]], positions[v[2]]}, material, corners(vertices.uvs, v),
-                 corners(vertices.uvs1, v), corners(vertices.colors, v));
+    triangles[t] = triangle(mode, idx, t);
+    if (flip) std::swap(triangles[t][1], triangles[t][2]);
   }
+  add_generated_tangents(vertices, scene_, material, triangles);
+  const auto& positions = vertices.positions;
+  for (const Triple& v : triangles)
+    builder_.add({positions[v[0]], positions[v[1]], positions[v[2]]}, material,
+                 {.uv = corners(vertices.uvs, v),
+                  .uv1 = corners(vertices.uvs1, v),
+                  .color = corners(vertices.colors, v),
+                  .normal = corners(vertices.normals, v),
+                  .tangent = corners(vertices.tangents, v)});
 }
 
 std::uint32_t PrimitiveEmitter::material_id(int material, const std::string& where) {

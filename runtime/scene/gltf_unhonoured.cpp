@@ -21,28 +21,28 @@ constexpr std::array kImplemented = {
     std::string_view("KHR_materials_ior"), std::string_view("KHR_mesh_quantization"),
     std::string_view("KHR_lights_punctual")};
 
+// A texture reference of a material (glTF's textureInfo and its normal and occlusion variants).
+struct TextureRef {
+  int index;
+  int tex_coord;
+  const tinygltf::ExtensionMap* extensions;
+};
+
 // The texture references of a material that the loader reads (their samplers and coordinate sets
 // matter); references inside unimplemented extensions are covered by the extension's own warning.
-std::vector<const tinygltf::TextureInfo*> honoured_textures(const tinygltf::Material& m) {
-  std::vector<const tinygltf::TextureInfo*> out;
+std::vector<TextureRef> honoured_textures(const tinygltf::Material& m) {
+  std::vector<TextureRef> out;
   for (const tinygltf::TextureInfo* t : {&m.pbrMetallicRoughness.baseColorTexture,
                                          &m.pbrMetallicRoughness.metallicRoughnessTexture, &m.emissiveTexture})
-    if (t->index >= 0) out.push_back(t);
+    if (t->index >= 0) out.push_back({t->index, t->texCoord, &t->extensions});
+  if (m.normalTexture.index >= 0)
+    out.push_back({m.normalTexture.index, m.normalTexture.texCoord, &m.normalTexture.extensions});
   return out;
 }
 
-const tinygltf::Sampler* sampler_of(const tinygltf::Model& model, const tinygltf::TextureInfo& t) {
-  if (t.index < 0 || static_cast<std::size_t>(t.index) >= model.textures.size()) return nullptr;
-  const int s = model.textures[static_cast<std::size_t>(t.index)].sampler;
-  if (s < 0 || static_cast<std::size_t>(s) >= model.samplers.size()) return nullptr;
-  return &model.samplers[static_cast<std::size_t>(s)];
-}
-
-bool any_texture(const tinygltf::Model& model, const tinygltf::Material& m,
-                 const std::function<bool(const tinygltf::TextureInfo&, const tinygltf::Sampler*)>& test) {
+bool any_texture(const tinygltf::Material& m, const std::function<bool(const TextureRef&)>& test) {
   const auto refs = honoured_textures(m);
-  return std::any_of(refs.begin(), refs.end(),
-                     [&](const tinygltf::TextureInfo* t) { return test(*t, sampler_of(model, *t)); });
+  return std::any_of(refs.begin(), refs.end(), test);
 }
 
 // A feature the loader leaves out, and how to tell whether a material asks for it.
@@ -54,19 +54,13 @@ struct Unhonoured {
 
 std::vector<Unhonoured> unhonoured_features() {
   return {
-      {"normalTexture (shading uses the geometric normal)",
-       [](const auto&, const auto& m) { return m.normalTexture.index >= 0; }},
       {"alphaMode MASK (rendered opaque)", [](const auto&, const auto& m) { return m.alphaMode == "MASK"; }},
       {"alphaMode BLEND (rendered opaque)", [](const auto&, const auto& m) { return m.alphaMode == "BLEND"; }},
       {"textures read with TEXCOORD_2 or above (TEXCOORD_0 used)",
-       [](const auto& model, const auto& m) {
-         return any_texture(model, m, [](const auto& t, const auto*) { return t.texCoord > 1; });
-       }},
+       [](const auto&, const auto& m) { return any_texture(m, [](const TextureRef& t) { return t.tex_coord > 1; }); }},
       {"KHR_texture_transform (texture coordinates used untransformed)",
-       [](const auto& model, const auto& m) {
-         return any_texture(model, m, [](const auto& t, const auto*) {
-           return t.extensions.count("KHR_texture_transform") != 0;
-         });
+       [](const auto&, const auto& m) {
+         return any_texture(m, [](const TextureRef& t) { return t.extensions->count("KHR_texture_transform") != 0; });
        },
        "KHR_texture_transform"},
   };
@@ -124,7 +118,8 @@ void report_missing_coordinates(const std::string& file, Scene& scene) {
     return static_cast<std::size_t>(std::count_if(scene.materials.begin(), scene.materials.end(), [&](const SceneMaterial& m) {
       return (m.base_color_texture >= 0 && m.base_color_texcoord == set) ||
              (m.emission_texture >= 0 && m.emission_texcoord == set) ||
-             (m.metallic_roughness_texture >= 0 && m.metallic_roughness_texcoord == set);
+             (m.metallic_roughness_texture >= 0 && m.metallic_roughness_texcoord == set) ||
+             (m.normal_texture >= 0 && m.normal_texcoord == set);
     }));
   };
   for (int set : {0, 1})

@@ -18,7 +18,7 @@ namespace {
 // Device layout sizes (see geometry_bytes()): a triangle is three float4 vertices.
 constexpr std::size_t kTriangleBytes = 48;
 constexpr std::size_t kMaterialIdBytes = 4;
-constexpr std::size_t kMaterialBytes = 64;
+constexpr std::size_t kMaterialBytes = 80;
 
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(),
@@ -99,7 +99,8 @@ std::size_t Scene::emissive_triangle_count() const {
 
 std::size_t Scene::geometry_bytes() const {
   std::size_t bytes = triangle_count() * (kTriangleBytes + kMaterialIdBytes);
-  bytes += (uvs.size() + uvs1.size()) * sizeof(glm::vec2) + colors.size() * sizeof(glm::vec4);
+  bytes += (uvs.size() + uvs1.size()) * sizeof(glm::vec2) + (colors.size() + tangents.size()) * sizeof(glm::vec4);
+  bytes += normals.size() * sizeof(glm::vec3);
   bytes += materials.size() * kMaterialBytes;
   for (const Texture& t : textures) bytes += t.rgba.size();
   return bytes;

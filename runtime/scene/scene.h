@@ -27,10 +27,13 @@ struct SceneMaterial {
   int base_color_texture = -1;  // index into Scene::textures
   int emission_texture = -1;    // index into Scene::textures (sRGB-encoded); multiplies emission
   int metallic_roughness_texture = -1;  // linear data: B multiplies metallic, G roughness
+  int normal_texture = -1;              // linear data: a tangent-space normal map
+  float normal_scale = 1.f;             // scales the map's x and y (glTF normalTexture.scale)
   // the coordinate set (0: Scene::uvs, 1: Scene::uvs1) each texture reads
   int base_color_texcoord = 0;
   int emission_texcoord = 0;
   int metallic_roughness_texcoord = 0;
+  int normal_texcoord = 0;
   bool double_sided = false;    // glTF doubleSided; emission leaves both faces when set
   bool is_emissive() const { return emission.x > 0.f || emission.y > 0.f || emission.z > 0.f; }
 };
@@ -82,6 +85,8 @@ struct Scene {
   std::vector<glm::vec2> uvs;              // empty, or 3 per triangle; (0,0) is the top-left texel
   std::vector<glm::vec2> uvs1;             // a second set (glTF TEXCOORD_1): empty, or 3 per triangle
   std::vector<glm::vec4> colors;           // vertex colours (glTF COLOR_0): empty, or 3 per triangle
+  std::vector<glm::vec3> normals;          // unit vertex normals, world space: empty, or 3 per triangle (0: none)
+  std::vector<glm::vec4> tangents;         // unit tangents, w = +-1 (glTF TANGENT): empty, or 3 per triangle
   std::vector<std::uint32_t> material_ids; // 1 per triangle, index into materials
   std::vector<SceneMaterial> materials;    // never empty once loaded
   std::vector<Texture> textures;

@@ -36,19 +36,18 @@ void SceneBuilder::reserve(std::size_t triangles) {
 
 void SceneBuilder::add(const std::array<glm::vec3, 3>& p, std::uint32_t material,
                        const std::optional<std::array<glm::vec2, 3>>& uv) {
-  add(p, material, uv, std::nullopt, std::nullopt);
+  add(p, material, Attributes{.uv = uv});
 }
 
-void SceneBuilder::add(const std::array<glm::vec3, 3>& p, std::uint32_t material,
-                       const std::optional<std::array<glm::vec2, 3>>& uv,
-                       const std::optional<std::array<glm::vec2, 3>>& uv1,
-                       const std::optional<std::array<glm::vec4, 3>>& color) {
+void SceneBuilder::add(const std::array<glm::vec3, 3>& p, std::uint32_t material, const Attributes& a) {
   const std::size_t corners = scene_.positions.size();
   scene_.positions.insert(scene_.positions.end(), p.begin(), p.end());
   scene_.material_ids.push_back(material);
-  append_attribute(scene_.uvs, corners, uv, glm::vec2(0.f));
-  append_attribute(scene_.uvs1, corners, uv1, glm::vec2(0.f));
-  append_attribute(scene_.colors, corners, color, glm::vec4(1.f));
+  append_attribute(scene_.uvs, corners, a.uv, glm::vec2(0.f));
+  append_attribute(scene_.uvs1, corners, a.uv1, glm::vec2(0.f));
+  append_attribute(scene_.colors, corners, a.color, glm::vec4(1.f));
+  append_attribute(scene_.normals, corners, a.normal, glm::vec3(0.f));
+  append_attribute(scene_.tangents, corners, a.tangent, glm::vec4(0.f));
 }
 
 std::uint32_t SceneBuilder::default_material() {

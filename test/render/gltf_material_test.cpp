@@ -233,12 +233,19 @@ Scene feature_room() {
     return std::array<std::uint8_t, 4>{std::uint8_t(80 * x + 40), 150, std::uint8_t(100 * y + 20), 255};
   });
   floor.base_color_texcoord = 1;
+  floor.normal_texture = add_texture(
+      s, 2, 2,
+      [](int x, int y) { return std::array<std::uint8_t, 4>{std::uint8_t(90 + 80 * x), std::uint8_t(100 + 60 * y), 230, 255}; },
+      TextureSampler{}, false);
+  floor.normal_scale = 1.5f;
   s.materials = {white, light, floor};
   const glm::vec3 x(1, 0, 0), y(0, 1, 0), z(0, 0, 1), o(0.f);
   add_quad(s, o, z, x, 2, true);  // floor
   for (std::size_t i = 0; i < 6; ++i) s.uvs[i] = 2.5f * s.uvs[i] - 0.7f;  // beyond [0, 1]: wrap modes at work
   s.uvs1.assign(s.positions.size(), glm::vec2(0.f));
   for (std::size_t i = 0; i < 6; ++i) s.uvs1[i] = glm::vec2(s.uvs[i].y, 1.3f * s.uvs[i].x);
+  s.normals.assign(6, glm::vec3(0, 1, 0));  // the floor's u runs along +z
+  s.tangents.assign(6, glm::vec4(0, 0, 1, 1));
   add_quad(s, o + y, x, z, 0);  // ceiling and walls
   add_quad(s, o, y, z, 0);
   add_quad(s, o + x, z, y, 0);
@@ -275,8 +282,8 @@ TEST(GltfMaterial, EveryMethodAndTreeGivesTheSameBits) {
   for (const Tree& t : trees) {
     PreparedScene p = prepare_loaded_scene("feature-room", room, t.choice);
     p.camera = camera;
-    const SceneFeatures expected{.textures = true, .texcoord1 = true, .vertex_colors = true, .conductor = true,
-                                 .plastic = true};
+    const SceneFeatures expected{.textures = true, .texcoord1 = true, .vertex_colors = true, .normal_map = true,
+                                 .conductor = true, .plastic = true};
     EXPECT_EQ(p.tables.features, expected) << t.name;
     const DeviceScene scene = upload_scene(cl, p.tree, p.tables, p.bvh());
     for (const auto& m : methods()) {
@@ -298,3 +305,168 @@ TEST(GltfMaterial, EveryMethodAndTreeGivesTheSameBits) {
 }
 
 }  // namespace
+
+// ---- Normal maps ---------------------------------------------------------------------------------
+
+namespace {
+
+// A normal map of one texel: the tangent-space normal (x, y, z) in [-1, 1], encoded as glTF stores it.
+int add_normal_map(Scene& s, glm::vec3 n) {
+  const glm::vec3 c = glm::round((0.5f * glm::normalize(n) + 0.5f) * 255.f);
+  return add_texture(
+      s, 1, 1, [c](int, int) { return std::array<std::uint8_t, 4>{std::uint8_t(c.x), std::uint8_t(c.y), std::uint8_t(c.z), 255}; },
+      TextureSampler{}, false);
+}
+
+// A white Lambertian quad in the plane z = 0 facing +z, tangent +x, bitangent +y (w = 1), with the
+// normal map `n`; an emitter strip at +x or -x (`light_x`) facing the quad, or below it (`below`).
+Scene tilted_quad(glm::vec3 n, float light_x, bool below = false, float w = 1.f) {
+  Scene s;
+  SceneMaterial white;
+  white.base_color = glm::vec3(0.8f);
+  white.normal_texture = add_normal_map(s, n);
+  SceneMaterial light;
+  light.base_color = glm::vec3(0.f);
+  light.emission = glm::vec3(5.f);
+  light.double_sided = true;
+  s.materials = {white, light};
+  add_quad(s, {-1, -1, 0}, {2, 0, 0}, {0, 2, 0}, 0, true);
+  s.normals.assign(s.positions.size(), glm::vec3(0, 0, 1));
+  s.tangents.assign(s.positions.size(), glm::vec4(1, 0, 0, w));
+  if (below)
+    add_quad(s, {-1, -1, -0.5f}, {2, 0, 0}, {0, 2, 0}, 1);  // faces +z, towards the quad's back
+  else
+    add_quad(s, {light_x, -1, 0.05f}, {0, 2, 0}, {0, 0, 1}, 1);
+  return s;
+}
+
+double mean(const RenderResult& r) {
+  double sum = 0;
+  for (float v : r.image.rgb) sum += v;
+  return sum / r.image.rgb.size();
+}
+
+RenderSettings dark_sky(std::uint32_t spp = 16) {
+  RenderSettings rs;
+  rs.width = rs.height = 8;
+  rs.spp = spp;
+  rs.max_depth = 3;
+  return rs;
+}
+
+}  // namespace
+
+TEST(NormalMap, TheMapTiltsShadingTowardsTangentAndBitangent) {
+  const SceneCamera camera{{0.f, 0.f, 3.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 30.f};
+  const PreparedScene towards = prepare(tilted_quad({0.6f, 0, 1}, 1.2f), camera);
+  ASSERT_TRUE(towards.tables.features.normal_map);
+  EXPECT_NE(towards.tables.features.build_options().find("-DCOHORT_FEATURE_NORMAL_MAP"), std::string::npos);
+  const double lit = mean(render_prepared(towards, dark_sky()));
+  const double away = mean(render_prepared(prepare(tilted_quad({-0.6f, 0, 1}, 1.2f), camera), dark_sky()));
+  Scene plain_scene = tilted_quad({0, 0, 1}, 1.2f);
+  plain_scene.materials[0].normal_texture = -1;
+  const double plain = mean(render_prepared(prepare(plain_scene, camera), dark_sky()));
+  EXPECT_GT(lit, 1.3 * plain) << "a normal tilted towards the light (the tangent, +x) catches more of it";
+  EXPECT_LT(away, 0.77 * plain);
+  // the bitangent is cross(n, t) * w: +y with w = 1, -y with w = -1
+  const Scene up_light = [] {
+    Scene s = tilted_quad({0, 0.6f, 1}, 0.f);
+    for (std::size_t i = 6; i < 12; ++i) s.positions[i] = glm::vec3(s.positions[i].y, 1.2f, s.positions[i].z);
+    return s;
+  }();
+  Scene mirrored = up_light;
+  for (glm::vec4& t : mirrored.tangents) t.w = -1.f;
+  const double y_up = mean(render_prepared(prepare(up_light, camera), dark_sky()));
+  const double y_down = mean(render_prepared(prepare(mirrored, camera), dark_sky()));
+  EXPECT_GT(y_up, 1.3 * y_down);
+}
+
+// The shading normal never sends a ray through the surface: a quad whose map tilts the normal almost
+// into its plane, lit only from behind, stays black from the front; lit from the front, it is not.
+TEST(NormalMap, NoLightLeaksThroughTheSurface) {
+  const SceneCamera camera{{0.f, 0.f, 3.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 30.f};
+  for (const glm::vec3 n : {glm::vec3(1, 0, 0.05f), glm::vec3(0, -1, 0.1f), glm::vec3(0.7f, 0.7f, 0.02f)}) {
+    const RenderResult behind = render_prepared(prepare(tilted_quad(n, 0.f, true), camera), dark_sky(32));
+    EXPECT_EQ(mean(behind), 0.0) << "light leaked through a quad mapped to (" << n.x << ", " << n.y << ", " << n.z << ")";
+    const RenderResult front = render_prepared(prepare(tilted_quad(n, 1.2f), camera), dark_sky(32));
+    EXPECT_GT(mean(front), 0.0);
+  }
+}
+
+// No energy is made: a white Lambertian sphere with a bumpy normal map in the white furnace returns
+// at most the sky's radiance (directions the map would send into the surface are absorbed).
+TEST(NormalMap, AWhiteFurnaceStaysAtOrBelowOne) {
+  Scene s;
+  SceneMaterial white;
+  white.base_color = glm::vec3(1.f);
+  white.normal_texture = add_texture(
+      s, 4, 4,
+      [](int x, int y) {
+        return std::array<std::uint8_t, 4>{std::uint8_t(60 * x + 30), std::uint8_t(70 * y + 20), 200, 255};
+      },
+      TextureSampler{.nearest = true}, false);
+  s.materials = {white};
+  add_sphere(s, glm::vec3(0.f), 1.f, 0, 3);
+  s.uvs.resize(s.positions.size());
+  s.normals.resize(s.positions.size());
+  s.tangents.resize(s.positions.size());
+  for (std::size_t i = 0; i < s.positions.size(); ++i) {
+    const glm::vec3 p = s.positions[i];
+    s.uvs[i] = glm::vec2(2.f * p.x + 0.3f, 2.f * p.y + 0.1f);
+    s.normals[i] = glm::normalize(p);
+    const glm::vec3 t = glm::cross(glm::vec3(0, 1, 0), p);
+    s.tangents[i] = glm::length(t) > 1e-3f ? glm::vec4(glm::normalize(t), 1.f) : glm::vec4(1, 0, 0, 1);
+  }
+  const PreparedScene p = prepare(s, SceneCamera{{0.f, 0.f, 3.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 30.f});
+  RenderSettings rs;
+  rs.width = rs.height = 16;
+  rs.spp = 64;
+  rs.environment = glm::vec3(1.f);
+  const RenderResult r = render_prepared(p, rs);
+  const PixelStats all = channel_stats(r.image, 1);
+  EXPECT_LT(all.mean, 1.0 + 5 * all.standard_error) << "energy made";
+  EXPECT_GT(all.mean, 0.8) << "far more absorbed than a bumpy map explains";
+}
+
+// Against closed forms, for one constant tilted normal n_s at angle theta from the surface's normal.
+// Under a white sky (two segments) a white-ish Lambertian returns albedo times the share of its cosine
+// lobe about n_s that lies above the surface, (1 + cos theta) / 2: the absorbed rest is rule (2) of
+// docs/bsdf.md. Lit by a point light alone, it returns albedo / pi * I * max(0, n_s . l) / r^2.
+TEST(NormalMap, AConstantTiltMatchesClosedForms) {
+  const glm::vec3 tilt = glm::normalize(glm::vec3(0.5f, 0.3f, 1.f));
+  Scene s = tilted_quad(tilt, 0.f);
+  s.positions.resize(6);  // the quad alone
+  s.material_ids.resize(2);
+  s.uvs.resize(6);
+  s.normals.resize(6);
+  s.tangents.resize(6);
+  s.materials[0].base_color = glm::vec3(0.5f);
+  // the texel the map stores, decoded as the kernel decodes it
+  const glm::vec3 c = glm::round((0.5f * tilt + 0.5f) * 255.f) / 255.f * 2.f - 1.f;
+  const glm::vec3 ns = glm::normalize(c);
+  const SceneCamera camera{{0.f, 0.f, 5.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 2.f};
+
+  RenderSettings sky;
+  sky.width = sky.height = 8;
+  sky.spp = 4096;
+  sky.environment = glm::vec3(1.f);
+  sky.max_depth = 2;
+  const RenderResult r = render_prepared(prepare(s, camera), sky);
+  const PixelStats stats = channel_stats(r.image, 0);
+  const double expected = 0.5 * (1.0 + ns.z) / 2.0;
+  EXPECT_NEAR(stats.mean, expected, 5 * stats.standard_error + 1e-4) << "flat would be 0.5";
+
+  SceneLight point;
+  point.position = glm::vec3(1.f, 2.f, 3.f);
+  point.intensity = glm::vec3(10.f);
+  s.lights = {point};
+  RenderSettings lit;
+  lit.width = lit.height = 4;
+  lit.spp = 16;
+  lit.max_depth = 2;
+  const RenderResult direct = render_prepared(prepare(s, camera), lit);
+  const glm::vec3 l = point.position;
+  const double analytic = 0.5 / M_PI * 10.0 * glm::dot(ns, glm::normalize(l)) / glm::dot(l, l);
+  EXPECT_NEAR(channel_stats(direct.image, 0).mean, analytic, 2e-3 * analytic) << "flat: "
+      << 0.5 / M_PI * 10.0 * glm::normalize(l).z / glm::dot(l, l);
+}

@@ -413,7 +413,8 @@ TEST(Texture, DamagedHelmetRendersWithItsTextures) {
   EXPECT_EQ(0, std::memcmp(textured.image.rgb.data(), pth.image.rgb.data(), pth.image.rgb.size() * sizeof(float)));
 
   // without its textures the same model renders differently
-  for (auto& m : p.scene.materials) m.base_color_texture = m.emission_texture = m.metallic_roughness_texture = -1;
+  for (auto& m : p.scene.materials)
+    m.base_color_texture = m.emission_texture = m.metallic_roughness_texture = m.normal_texture = -1;
   p.tables = make_scene_tables(p.scene, p.tree);
   EXPECT_FALSE(p.tables.features.textures);
   const DeviceScene plain_scene = upload_scene(cl, p.tree, p.tables);

@@ -21,6 +21,8 @@ inline void add_triangle(Scene& s, glm::vec3 a, glm::vec3 b, glm::vec3 c, std::u
   if (!s.uvs.empty()) s.uvs.insert(s.uvs.end(), 3, glm::vec2(0.f));
   if (!s.uvs1.empty()) s.uvs1.insert(s.uvs1.end(), 3, glm::vec2(0.f));
   if (!s.colors.empty()) s.colors.insert(s.colors.end(), 3, glm::vec4(1.f));
+  if (!s.normals.empty()) s.normals.insert(s.normals.end(), 3, glm::vec3(0.f));
+  if (!s.tangents.empty()) s.tangents.insert(s.tangents.end(), 3, glm::vec4(0.f));
 }
 
 // One texture of w x h texels from a function of (x, y) to RGBA; `srgb` false: linear data.

@@ -41,14 +41,19 @@ std::size_t lines_containing(const std::vector<std::string>& lines, const std::s
 TEST(GltfUnhonoured, EachFeatureIsOneWarningWithItsMaterialCount) {
   TempDir dir;
   const json tex = {{"index", 0}};
-  GltfWriter g = triangles_with(
-      dir, {{{"normalTexture", tex}, {"alphaMode", "BLEND"}, {"extensions", {{"KHR_materials_sheen", json::object()}}}},
-            {{"normalTexture", tex}, {"extensions", {{"KHR_materials_sheen", json::object()}}}},
-            {{"alphaMode", "OPAQUE"}, {"occlusionTexture", tex}}});
-  g.doc()["extensionsUsed"] = {"KHR_materials_sheen", "EXT_meshopt_compression"};
+  const json transformed = {
+      {"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"scale", {2, 2}}}}}}}}};
+  GltfWriter g = triangles_with(dir, {{{"pbrMetallicRoughness", transformed},
+                                       {"alphaMode", "BLEND"},
+                                       {"extensions", {{"KHR_materials_sheen", json::object()}}}},
+                                      {{"pbrMetallicRoughness", transformed},
+                                       {"extensions", {{"KHR_materials_sheen", json::object()}}}},
+                                      {{"alphaMode", "OPAQUE"}, {"occlusionTexture", tex}}});
+  g.doc()["extensionsUsed"] = {"KHR_materials_sheen", "EXT_meshopt_compression", "KHR_texture_transform"};
   const Scene s = load_scene(g.write_gltf(dir.path(), "features"));
-  EXPECT_EQ(lines_containing(s.warnings, "not honoured: normalTexture"), 1u);
-  EXPECT_EQ(lines_containing(s.warnings, "normalTexture (shading uses the geometric normal): 2 materials"), 1u);
+  EXPECT_EQ(lines_containing(s.warnings, "KHR_texture_transform"), 1u);
+  EXPECT_EQ(lines_containing(s.warnings, "KHR_texture_transform (texture coordinates used untransformed): 2 materials"),
+            1u);
   EXPECT_EQ(lines_containing(s.warnings, "alphaMode BLEND (rendered opaque): 1 material"), 1u);
   EXPECT_EQ(lines_containing(s.warnings, "alphaMode MASK"), 0u);
   EXPECT_EQ(lines_containing(s.warnings, "extension KHR_materials_sheen: 2 materials"), 1u);

@@ -25,10 +25,10 @@ TEST(Scene, EmissiveTriangleCount) { EXPECT_EQ(two_triangles().emissive_triangle
 
 TEST(Scene, GeometryBytes) {
   Scene s = two_triangles();
-  EXPECT_EQ(s.geometry_bytes(), 2 * (48 + 4) + 2 * 64u);
+  EXPECT_EQ(s.geometry_bytes(), 2 * (48 + 4) + 2 * 80u);
   s.uvs.assign(6, glm::vec2(0));
   s.textures.push_back(Texture{.width = 2, .height = 2, .rgba = std::vector<std::uint8_t>(16)});
-  EXPECT_EQ(s.geometry_bytes(), 2 * (48 + 4) + 2 * 64u + 6 * 8u + 16u);
+  EXPECT_EQ(s.geometry_bytes(), 2 * (48 + 4) + 2 * 80u + 6 * 8u + 16u);
 }
 
 TEST(Scene, FramingCameraFollowsTheBenchProtocol) {
