@@ -1,0 +1,340 @@
+#!/usr/bin/env python3
+"""Small scenes, one per glTF material feature, and their Mitsuba 3 reference renders (docs/bsdf.md,
+"Reference scenes of the glTF material").
+
+The sibling of scripts/reference-scenes.py (same room, camera, light, film and passes; its geometry and
+glTF camera helpers are reused): each scene goes to scenes/reference/NAME.gltf with its textures as
+PNG data URIs, and the same triangles, with texture coordinates, to Mitsuba 3 (scalar_rgb) with the
+matching plugins. Texels reach Mitsuba already decoded to linear floats (raw bitmaps), as Cohort
+decodes them (sRGB for colour, byte / 255 for data), so the filters and wrap modes compare alone.
+
+  textured-mr    a panel whose metallic-roughness texture (NEAREST) makes a checker of rough metal
+                 (B = 255, G = 77: roughness 0.302) and a coloured Lambertian (B = 0, G = 255); Mitsuba:
+                 blendbsdf with the blue channel as weight between diffuse and roughconductor
+  sampler-wrap   three panels with coordinates from -0.75 to 1.75 and one 4x4 texture: NEAREST with
+                 CLAMP_TO_EDGE, LINEAR with MIRRORED_REPEAT, LINEAR with REPEAT (Mitsuba's bitmap
+                 filter_type and wrap_mode)
+  (normal maps: Mitsuba 3.9's normalmap plugin was checked with bump_map() below and loses about 2 %
+  more light than the analytic expectation under a uniform sky, which Cohort meets within 0.1 %;
+  test/render/gltf_material_test.cpp checks normal maps against analytic values instead)
+
+Run through scripts/reference --materials, which provides mitsuba and numpy."""
+import argparse
+import base64
+import importlib.util
+import json
+import math
+import os
+import platform
+import struct
+import sys
+import tempfile
+import zlib
+
+import mitsuba as mi
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "lib"))
+from reference_common import accumulate_passes  # noqa: E402
+
+_spec = importlib.util.spec_from_file_location("reference_scenes", os.path.join(HERE, "reference-scenes.py"))
+rs = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(rs)
+
+NEAREST, LINEAR = 9728, 9729
+REPEAT, CLAMP, MIRROR = 10497, 33071, 33648
+MI_WRAP = {REPEAT: "repeat", CLAMP: "clamp", MIRROR: "mirror"}
+
+
+# ---- textures ---------------------------------------------------------------------------------
+
+def srgb_to_linear(byte):
+    c = np.asarray(byte, dtype=np.float64) / 255.0
+    return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+
+
+def png(rgba):
+    """RGBA8 PNG bytes of an (h, w, 4) uint8 array."""
+    h, w, _ = rgba.shape
+    raw = b"".join(b"\x00" + rgba[y].tobytes() for y in range(h))
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xffffffff)
+
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+
+
+def checker_mr(n=4):
+    """Base colour and metallic-roughness texels of a checker: rough white metal and a coloured base."""
+    base = np.zeros((n, n, 4), dtype=np.uint8)
+    mr = np.zeros((n, n, 4), dtype=np.uint8)
+    colours = [(220, 90, 40), (60, 170, 90), (70, 90, 210), (200, 200, 60)]
+    for y in range(n):
+        for x in range(n):
+            metal = (x + y) % 2 == 0
+            base[y, x] = (255, 255, 255, 255) if metal else (*colours[(x + 2 * y) % 4], 255)
+            mr[y, x] = (0, 77, 255, 255) if metal else (0, 255, 0, 255)
+    return base, mr
+
+
+def wrap_texture():
+    """4x4 texels, every one different, so that any misplaced texel shows."""
+    t = np.zeros((4, 4, 4), dtype=np.uint8)
+    for y in range(4):
+        for x in range(4):
+            t[y, x] = (40 + 60 * x, 30 + 70 * y, 230 - 50 * x - 10 * y, 255)
+    return t
+
+
+def bump_map(n=16):
+    """A tangent-space normal map of bumps tilting the normal by up to about 20 degrees."""
+    t = np.zeros((n, n, 4), dtype=np.uint8)
+    for y in range(n):
+        for x in range(n):
+            dx = 0.35 * math.sin(2 * math.pi * (x + 0.5) / n * 2)
+            dy = 0.35 * math.cos(2 * math.pi * (y + 0.5) / n * 3)
+            v = np.array([dx, dy, 1.0])
+            v /= np.linalg.norm(v)
+            t[y, x, :3] = np.round((v * 0.5 + 0.5) * 255)
+            t[y, x, 3] = 255
+    return t
+
+
+# ---- scenes: shapes carry (name, (points, faces, uvs), material) ---------------------------------
+
+def panel(o, u, v, uv0=(0.0, 0.0), uv1=(1.0, 1.0)):
+    """A quad o, o+u, o+u+v, o+v with u along the texture's u and v up the image (glTF v decreasing)."""
+    p, f = rs.quad(o, u, v)
+    (a, b), (c, d) = uv0, uv1
+    uv = np.array([[a, d], [c, d], [c, b], [a, b]], dtype=np.float64)
+    return p, f, uv
+
+
+def textured_diffuse(texels, sampler):
+    return {"kind": "textured_diffuse", "texels": texels, "sampler": sampler}
+
+
+def room_with(panels, light=True):
+    shapes = [("ground", (*rs.quad([-4, 0, 4], [8, 0, 0], [0, 0, -8]), None), rs.diffuse([0.5, 0.5, 0.5])),
+              ("wall", (*rs.quad([-4, 0, -3], [8, 0, 0], [0, 5, 0]), None), rs.diffuse([0.2, 0.4, 0.7]))]
+    shapes += panels
+    if light:
+        shapes.append(("light", (*rs.quad([-0.75, 3.5, -0.75], [1.5, 0, 0], [0, 0, 1.5]), None), rs.emitter([8.0, 8.0, 8.0])))
+    return shapes
+
+
+def scene_list():
+    base, mr = checker_mr()
+    wrap = wrap_texture()
+    return {
+        "textured-mr": {"environment": [0.1, 0.1, 0.1], "shapes": room_with([
+            ("panel", panel([-1.2, 0.2, 0.0], [2.4, 0, 0], [0, 2.0, -0.6]),
+             {"kind": "textured_mr", "base": base, "mr": mr, "sampler": {"magFilter": NEAREST, "minFilter": NEAREST}})])},
+        "sampler-wrap": {"environment": [0.1, 0.1, 0.1], "shapes": room_with([
+            ("clamp", panel([-2.1, 0.3, 0.0], [1.3, 0, 0], [0, 1.3, -0.3], (-0.75, -0.75), (1.75, 1.75)),
+             textured_diffuse(wrap, {"magFilter": NEAREST, "minFilter": NEAREST, "wrapS": CLAMP, "wrapT": CLAMP})),
+            ("mirror", panel([-0.65, 0.3, 0.0], [1.3, 0, 0], [0, 1.3, -0.3], (-0.75, -0.75), (1.75, 1.75)),
+             textured_diffuse(wrap, {"magFilter": LINEAR, "minFilter": LINEAR, "wrapS": MIRROR, "wrapT": MIRROR})),
+            ("repeat", panel([0.8, 0.3, 0.0], [1.3, 0, 0], [0, 1.3, -0.3], (-0.75, -0.75), (1.75, 1.75)),
+             textured_diffuse(wrap, {"magFilter": LINEAR, "minFilter": LINEAR}))])},
+    }
+
+
+# ---- glTF for Cohort --------------------------------------------------------------------------
+
+def write_gltf(path, desc):
+    blob = bytearray()
+    doc = {"asset": {"version": "2.0", "generator": "scripts/reference-materials.py"}, "buffers": [],
+           "bufferViews": [], "accessors": [], "meshes": [], "materials": [], "nodes": [], "images": [],
+           "samplers": [], "textures": [], "scenes": [{"nodes": []}], "scene": 0,
+           "extensionsUsed": ["KHR_materials_emissive_strength"]}
+
+    def add_view(data, target=None):
+        while len(blob) % 4:
+            blob.append(0)
+        view = {"buffer": 0, "byteOffset": len(blob), "byteLength": len(data)}
+        if target:
+            view["target"] = target
+        doc["bufferViews"].append(view)
+        blob.extend(data)
+        return len(doc["bufferViews"]) - 1
+
+    def add_accessor(array, kind, target=34962):
+        a = np.ascontiguousarray(array, dtype=np.float32)
+        acc = {"bufferView": add_view(a.tobytes(), target), "componentType": 5126, "count": len(a), "type": kind}
+        if kind == "VEC3":
+            acc["min"], acc["max"] = a.min(axis=0).tolist(), a.max(axis=0).tolist()
+        doc["accessors"].append(acc)
+        return len(doc["accessors"]) - 1
+
+    def add_texture(texels, sampler):
+        doc["images"].append({"uri": "data:image/png;base64," + base64.b64encode(png(texels)).decode()})
+        doc["samplers"].append(sampler)
+        doc["textures"].append({"source": len(doc["images"]) - 1, "sampler": len(doc["samplers"]) - 1})
+        return {"index": len(doc["textures"]) - 1}
+
+    for name, (p, f, uv), mat in desc["shapes"]:
+        attributes = {"POSITION": add_accessor(p, "VEC3")}
+        if uv is not None:
+            attributes["TEXCOORD_0"] = add_accessor(uv, "VEC2")
+        kind = mat.get("kind")
+        if kind == "textured_mr":
+            m = {"pbrMetallicRoughness": {"baseColorTexture": add_texture(mat["base"], mat["sampler"]),
+                                          "metallicRoughnessTexture": add_texture(mat["mr"], mat["sampler"]),
+                                          "metallicFactor": 1.0, "roughnessFactor": 1.0}}
+        elif kind == "textured_diffuse":
+            m = {"pbrMetallicRoughness": {"baseColorTexture": add_texture(mat["texels"], mat["sampler"]),
+                                          "metallicFactor": 0.0, "roughnessFactor": 1.0}}
+        elif kind == "normal_map":
+            m = {"pbrMetallicRoughness": {"baseColorFactor": mat["albedo"] + [1.0], "metallicFactor": 0.0,
+                                          "roughnessFactor": 1.0},
+                 "normalTexture": dict(add_texture(mat["normals"], mat["sampler"]), scale=1.0)}
+            # the panel's frame: normal u x v, tangent along u (the texture's u), bitangent up the image
+            e1, e2 = p[1] - p[0], p[3] - p[0]
+            n = np.cross(e1, e2)
+            n /= np.linalg.norm(n)
+            t = e1 / np.linalg.norm(e1)
+            attributes["NORMAL"] = add_accessor(np.tile(n, (len(p), 1)), "VEC3")
+            attributes["TANGENT"] = add_accessor(np.tile(np.append(t, 1.0), (len(p), 1)), "VEC4")
+        else:
+            m = {"pbrMetallicRoughness": mat["gltf"]}
+        m["name"] = name
+        if "emission" in mat:
+            peak = max(mat["emission"])
+            m["emissiveFactor"] = [c / peak for c in mat["emission"]]
+            m["extensions"] = {"KHR_materials_emissive_strength": {"emissiveStrength": peak}}
+        doc["materials"].append(m)
+        iv = add_view(f.astype(np.uint32).tobytes(), 34963)
+        doc["accessors"].append({"bufferView": iv, "componentType": 5125, "count": int(f.size), "type": "SCALAR"})
+        doc["meshes"].append({"name": name, "primitives": [{"attributes": attributes,
+                                                            "indices": len(doc["accessors"]) - 1,
+                                                            "material": len(doc["materials"]) - 1}]})
+        doc["nodes"].append({"name": name, "mesh": len(doc["meshes"]) - 1})
+    camera = rs.CAMERA
+    eye, target, up = (np.array(camera[k], dtype=np.float64) for k in ("eye", "target", "up"))
+    back = eye - target
+    back /= np.linalg.norm(back)
+    right = np.cross(up, back)
+    right /= np.linalg.norm(right)
+    doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": math.radians(camera["fov"]),
+                                                               "aspectRatio": 1.0, "znear": 0.01}}]
+    doc["nodes"].append({"name": "camera", "camera": 0,
+                         "matrix": rs.column_major(right, np.cross(back, right), back, eye)})
+    doc["scenes"][0]["nodes"] = list(range(len(doc["nodes"])))
+    doc["buffers"].append({"byteLength": len(blob),
+                           "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()})
+    with open(path, "w") as out:
+        json.dump(doc, out, indent=1)
+        out.write("\n")
+
+
+# ---- Mitsuba ----------------------------------------------------------------------------------
+
+def write_ply(path, p, f, uv):
+    with open(path, "w") as out:
+        out.write(f"ply\nformat ascii 1.0\nelement vertex {len(p)}\nproperty float x\nproperty float y\n"
+                  "property float z\n" + ("property float u\nproperty float v\n" if uv is not None else "") +
+                  f"element face {len(f)}\nproperty list uchar int vertex_indices\nend_header\n")
+        for i, v in enumerate(p.astype(np.float32)):
+            extra = f" {float(uv[i][0]):.9g} {float(uv[i][1]):.9g}" if uv is not None else ""
+            out.write(f"{float(v[0]):.9g} {float(v[1]):.9g} {float(v[2]):.9g}{extra}\n")
+        for t in f:
+            out.write(f"3 {t[0]} {t[1]} {t[2]}\n")
+
+
+def bitmap(values, sampler):
+    """A raw (already linear) bitmap texture with the glTF sampler's filter and wrap mode (one for
+    both axes: Mitsuba's bitmap has one wrap_mode)."""
+    filt = "nearest" if sampler.get("magFilter") == NEAREST else "bilinear"
+    wrap = MI_WRAP[sampler.get("wrapS", REPEAT)]
+    assert wrap == MI_WRAP[sampler.get("wrapT", REPEAT)]
+    channels = values.shape[2] if values.ndim == 3 else 1
+    fmt = mi.Bitmap.PixelFormat.RGB if channels == 3 else mi.Bitmap.PixelFormat.Y
+    return {"type": "bitmap", "bitmap": mi.Bitmap(np.ascontiguousarray(values, dtype=np.float32), pixel_format=fmt),
+            "raw": True, "filter_type": filt, "wrap_mode": wrap}
+
+
+def mitsuba_bsdf(mat):
+    kind = mat.get("kind")
+    if kind == "textured_mr":
+        colour = srgb_to_linear(mat["base"][:, :, :3])
+        metal = mat["mr"][:, :, 2:3] / 255.0
+        rough = 77 / 255.0
+        return {"type": "twosided", "bsdf": {
+            "type": "blendbsdf", "weight": bitmap(metal, mat["sampler"]),
+            "a": {"type": "diffuse", "reflectance": bitmap(colour, mat["sampler"])},
+            "b": {"type": "roughconductor", "material": "none", "distribution": "ggx", "alpha": rough ** 2,
+                  "sample_visible": True}}}
+    if kind == "textured_diffuse":
+        return {"type": "twosided", "bsdf": {"type": "diffuse",
+                                             "reflectance": bitmap(srgb_to_linear(mat["texels"][:, :, :3]), mat["sampler"])}}
+    if kind == "normal_map":
+        return {"type": "normalmap", "normalmap": bitmap(mat["normals"][:, :, :3] / 255.0, mat["sampler"]),
+                "bsdf": {"type": "twosided", "bsdf": {"type": "diffuse", "reflectance": rs.rgb_value(mat["albedo"])}}}
+    return mat["mitsuba"]
+
+
+def mitsuba_scene(desc, tmp):
+    camera = rs.CAMERA
+    scene = {"type": "scene", "integrator": {"type": "path", "max_depth": rs.MAX_DEPTH},
+             "sensor": {"type": "perspective", "fov": camera["fov"], "fov_axis": "y", "near_clip": 0.01,
+                        "to_world": rs.look_at(camera["eye"], camera["target"], camera["up"]),
+                        "sampler": {"type": "independent"},
+                        "film": {"type": "hdrfilm", "width": rs.RES, "height": rs.RES, "pixel_format": "rgb",
+                                 "rfilter": {"type": "box"}}},
+             "environment": {"type": "constant", "radiance": rs.rgb_value(desc["environment"])}}
+    for name, (p, f, uv), mat in desc["shapes"]:
+        path = os.path.join(tmp, name + ".ply")
+        write_ply(path, p, f, uv)
+        shape = {"type": "ply", "filename": path, "face_normals": True, "bsdf": mitsuba_bsdf(mat)}
+        if "emission" in mat:
+            shape["emitter"] = {"type": "area", "radiance": rs.rgb_value(mat["emission"])}
+        scene[name] = shape
+    return mi.load_dict(scene)
+
+
+def render(name, desc, args):
+    with tempfile.TemporaryDirectory() as tmp:
+        scene = mitsuba_scene(desc, tmp)
+        mean, spp, passes, elapsed = accumulate_passes(
+            lambda seed: np.array(mi.render(scene, spp=args.pass_spp, seed=seed), dtype=np.float64),
+            args.pass_spp, args.max_spp, args.seconds)
+    mean = mean.astype(np.float32)
+    out = os.path.join(rs.REFERENCES, f"reference-{name}.exr")
+    mi.Bitmap(mean, pixel_format=mi.Bitmap.PixelFormat.RGB).write(out)
+    meta = {"scene": f"scenes/reference/{name}.gltf", "mitsuba_version": mi.__version__, "variant": "scalar_rgb",
+            "integrator": "path", "max_depth": rs.MAX_DEPTH, "resolution": [rs.RES, rs.RES], "spp": spp,
+            "passes": passes, "seeds": f"0..{passes - 1} (one per pass of {args.pass_spp} spp)",
+            "sampler": "independent", "reconstruction_filter": "box", "render_seconds": round(elapsed, 1),
+            "machine": f"{platform.machine()}, {os.cpu_count()} logical CPUs",
+            "mean_rgb": [float(v) for v in mean.reshape(-1, 3).mean(axis=0)],
+            "environment": desc["environment"], "written_by": "scripts/reference-materials.py"}
+    with open(os.path.splitext(out)[0] + ".json", "w") as f:
+        json.dump(meta, f, indent=2)
+        f.write("\n")
+    print(f"{out}: {rs.RES}x{rs.RES}, {spp} spp in {passes} passes, {elapsed:.1f} s, mean rgb {meta['mean_rgb']}")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--seconds", type=float, default=60.0, help="render time per scene (default 60)")
+    ap.add_argument("--pass-spp", type=int, default=64)
+    ap.add_argument("--max-spp", type=int, default=1 << 16)
+    ap.add_argument("--only", nargs="*", help="scene names (default: all)")
+    ap.add_argument("--scenes-only", action="store_true", help="write the glTF files, render nothing")
+    args = ap.parse_args()
+    mi.set_variant("scalar_rgb")
+    os.makedirs(rs.SCENES, exist_ok=True)
+    os.makedirs(rs.REFERENCES, exist_ok=True)
+    for name, desc in scene_list().items():
+        if args.only and name not in args.only:
+            continue
+        write_gltf(os.path.join(rs.SCENES, f"{name}.gltf"), desc)
+        if not args.scenes_only:
+            render(name, desc, args)
+
+
+if __name__ == "__main__":
+    main()
