@@ -101,7 +101,7 @@ nlohmann::json bench_json(const Device& d, const BenchOptions& o, const std::vec
                    {"methods", o.methods}, {"code", o.code}, {"pth_levels", o.pth_levels},
                    {"sort_from_bounce", o.sort_from_bounce},
                    {"sort_payload", o.sort_payload},
-                   {"workload", "white sky (bench-protocol.md)"}, {"max_depth", 5}};
+                   {"workload", "white sky (docs/bench-protocol.md)"}, {"max_depth", 5}};
   j["scenes"] = scenes_json(scenes);
   return j;
 }

@@ -113,7 +113,7 @@ TraceFigures trace(RTCScene scene, std::span<const RayIn> rays, unsigned reps, u
 std::string mrays(const RateFigure& f) { return fmt::format("{:.2f} ({:.2f})", f.median() * 1e-6, f.best() * 1e-6); }
 
 int run(int argc, char** argv) {
-  CLI::App app{"Embree 3 on the rays of bench-protocol.md (beside `cohort bench`)", "cohort-embree-bench"};
+  CLI::App app{"Embree 3 on the rays of docs/bench-protocol.md (beside `cohort bench`)", "cohort-embree-bench"};
   std::vector<std::filesystem::path> scenes;
   std::string views = "exterior", json, build_quality = "medium";
   unsigned trace_res = 1024, reps = 3, threads = 2;

@@ -23,7 +23,7 @@ struct PreparedScene {
   KdTree tree;                // with a BVH: one leaf, for the kept triangles and their indices
   std::optional<Bvh4> bvh4;   // what the kernels trace with --tree bvh4 (tree_options)
   SceneTables tables;
-  SceneCamera camera;  // the file's camera, else the framing camera of bench-protocol.md
+  SceneCamera camera;  // the file's camera, else the framing camera of docs/bench-protocol.md
   double load_seconds = 0;
 
   const Bvh4* bvh() const { return bvh4 ? &*bvh4 : nullptr; }

@@ -1,4 +1,4 @@
-// Presets that make a scene render the same way in every renderer (bench-protocol.md).
+// Presets that make a scene render the same way in every renderer (docs/bench-protocol.md).
 #pragma once
 
 #include <array>

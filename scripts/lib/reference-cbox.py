@@ -43,7 +43,7 @@ def main():
     os.makedirs(os.path.dirname(args.out), exist_ok=True)
     mi.Bitmap(mean, pixel_format=mi.Bitmap.PixelFormat.RGB).write(args.out)
     settings = {
-        "scene": os.path.relpath(SCENE, ROOT),
+        "scene": "external model " + os.path.relpath(SCENE, MODELS),  # scenes/external.json
         "mitsuba_version": mi.__version__,
         "variant": "scalar_rgb",
         "integrator": "path",

@@ -189,12 +189,12 @@ TEST(PthKernel, TreeShallowerThanTheSubtree) {
 }
 
 TEST(PthKernel, BunnyResumeEqualsFullTraversal) {
-  if (!fs::exists(shared("bunny"))) GTEST_SKIP() << "../shared/scenes is missing";
+  if (!fs::exists(shared("bunny"))) GTEST_SKIP() << "the external models (scenes/external.json) are missing";
   check(shared("bunny/bun_zipper_res2.ply"), 10);
 }
 
 TEST(PthKernel, SponzaDeepSubtree) {
-  if (!fs::exists(shared("dabrovic-sponza"))) GTEST_SKIP() << "../shared/scenes is missing";
+  if (!fs::exists(shared("dabrovic-sponza"))) GTEST_SKIP() << "the external models (scenes/external.json) are missing";
   check(shared("dabrovic-sponza/sponza.obj.gz"), 14);
 }
 
@@ -231,6 +231,6 @@ TEST(StragglerKernel, ShippedCornellBox) {
 
 TEST(StragglerKernel, SharedBunny) {
   const fs::path bunny = fs::path(COHORT_SHARED_SCENES) / "bunny/bun_zipper_res2.ply";
-  if (!fs::exists(bunny)) GTEST_SKIP() << "../shared/scenes is missing";
+  if (!fs::exists(bunny)) GTEST_SKIP() << "the external models (scenes/external.json) are missing";
   expect_no_stragglers_on_device(bunny, 60'000);
 }

@@ -144,7 +144,7 @@ TEST(TraceKernel, Bvh4GivesTheKdTreesHitsOnTheCornellBox) {
 }
 
 TEST(TraceKernel, Bvh4GivesTheKdTreesHitsOnTheBunny) {
-  if (!fs::exists(shared("bunny"))) GTEST_SKIP() << "../shared/scenes is missing";
+  if (!fs::exists(shared("bunny"))) GTEST_SKIP() << "the external models (scenes/external.json) are missing";
   check_bvh_against_kd(shared("bunny/bun_zipper_res2.ply"));
 }
 
@@ -153,11 +153,11 @@ TEST(TraceKernel, CornellBoxMatchesBruteForce) {
 }
 
 TEST(TraceKernel, BunnyMatchesBruteForce) {
-  if (!fs::exists(shared("bunny"))) GTEST_SKIP() << "../shared/scenes is missing";
+  if (!fs::exists(shared("bunny"))) GTEST_SKIP() << "the external models (scenes/external.json) are missing";
   check_scene(shared("bunny/bun_zipper_res2.ply"), 100000);
 }
 
 TEST(TraceKernel, CornellSphereMatchesBruteForce) {
-  if (!fs::exists(shared("cornell-box-mcguire"))) GTEST_SKIP() << "../shared/scenes is missing";
+  if (!fs::exists(shared("cornell-box-mcguire"))) GTEST_SKIP() << "the external models (scenes/external.json) are missing";
   check_scene(shared("cornell-box-mcguire/CornellBox-Sphere.obj"), 100000);
 }

@@ -193,7 +193,7 @@ std::pair<double, double> adaptive_and_uniform(const std::string& view, double t
 // on the Sponza view (seeds 2-4); 0.64-1.07x before, 0.61-0.92x now on the box (seeds 2-5).
 TEST(Adaptive, BeatsUniformAtAnEqualSampleBudgetOnTheSponzaInterior) {
   const fs::path sponza = fs::path(COHORT_SHARED_SCENES) / "crytek-sponza" / "sponza.obj.gz";
-  if (!fs::exists(sponza)) GTEST_SKIP() << sponza << " is absent (../shared holds the real models)";
+  if (!fs::exists(sponza)) GTEST_SKIP() << sponza << " is absent (an external model: scenes/external.json)";
   // the benchmark protocol's interior view: galleries, columns and floor, no sky in the frame
   const auto [adaptive, uniform] = adaptive_and_uniform(
       "render " + sponza.string() + " --white-sky --camera-bounds 0.25,0.2,0.5,0.75,0.35,0.5 --fov 60 --res 32x24 ",

@@ -90,7 +90,7 @@ TEST_P(MethodAgreement, CornellBoxBitForBit) {
 
 TEST_P(MethodAgreement, SharedModelUnderWhiteSkyBitForBit) {
   const std::filesystem::path model = std::filesystem::path(COHORT_SHARED_SCENES) / "bunny/bun_zipper_res3.ply";
-  if (!std::filesystem::exists(model)) GTEST_SKIP() << "../shared/scenes is missing";
+  if (!std::filesystem::exists(model)) GTEST_SKIP() << "the external models (scenes/external.json) are missing";
   if (device_cannot_sort(GetParam().method)) GTEST_SKIP() << "this device runs no sorting method";
   PreparedScene prepared = prepare_scene(model);
   RenderSettings s;
