@@ -46,16 +46,27 @@
 
 /* ---- Shading frame --------------------------------------------------------------------------- */
 
-/* n is the shading normal; ng the geometric one, which decides the side a direction leaves from
- * (ray offsets, docs/bsdf.md "Normal maps"); they are the same without a normal map. */
+/* n is the shading normal. With normal maps (COHORT_FEATURE_NORMAL_MAP) ng is the geometric one,
+ * which decides the side a direction leaves from (ray offsets, docs/bsdf.md "Normal maps");
+ * without them the two are the same, and a program keeps one (frame_geometric_normal). */
 typedef struct ShadingFrame {
-  co_vec3 t, b, n, ng;
+  co_vec3 t, b, n;
+#ifdef COHORT_FEATURE_NORMAL_MAP
+  co_vec3 ng;
+#endif
 } ShadingFrame;
+#ifdef COHORT_FEATURE_NORMAL_MAP
+#define frame_geometric_normal(f) ((f)->ng)
+#else
+#define frame_geometric_normal(f) ((f)->n)
+#endif
 
 CO_INLINE ShadingFrame frame_from_normal(co_vec3 n) {
   ShadingFrame f;
   f.n = n;
+#ifdef COHORT_FEATURE_NORMAL_MAP
   f.ng = n;
+#endif
   onb_from_normal(n, &f.t, &f.b);
   return f;
 }

@@ -100,9 +100,9 @@ CO_INLINE ShadowRay nee_triangle(const SceneView* s, const RenderParams* p, floa
    * no longer sum to 1: the furnace lost ~0.05% of the direct light. The shadow ray stops short of
    * the light by the error bound of ray_offset.h, so neither the receiver's nor the light's own
    * triangle can occlude the sample. */
-  float side = v3_dot(v3_sub(pl, pos), frame->ng);
+  float side = v3_dot(v3_sub(pl, pos), frame_geometric_normal(frame));
   if (!(side > 0.0f) && !(side < 0.0f)) return sr; /* in the plane, or NaN */
-  co_vec3 origin = offset_origin(pos, frame->ng, offset, side > 0.0f);
+  co_vec3 origin = offset_origin(pos, frame_geometric_normal(frame), offset, side > 0.0f);
   co_vec3 wl;
   float dist, dist2;
   if (!direction_to(origin, pl, 0.0f, &wl, &dist, &dist2)) return sr;
@@ -143,11 +143,11 @@ CO_INLINE int nee_origin(co_vec3 pos, float offset, const ShadingFrame* frame, c
   if (!(wl_local.z > 0.0f) && !(wl_local.z < 0.0f)) return 0;
 #ifdef COHORT_FEATURE_NORMAL_MAP
   /* the shading normal must not send a shadow ray through the surface (docs/bsdf.md) */
-  if (!(v3_dot(wl, frame->ng) * wl_local.z > 0.0f)) return 0;
+  if (!(v3_dot(wl, frame_geometric_normal(frame)) * wl_local.z > 0.0f)) return 0;
 #else
   (void)wl;
 #endif
-  *origin = offset_origin(pos, frame->ng, offset, wl_local.z > 0.0f);
+  *origin = offset_origin(pos, frame_geometric_normal(frame), offset, wl_local.z > 0.0f);
   return 1;
 }
 

@@ -22,8 +22,12 @@ typedef struct SceneView {
   const CO_GLOBAL TriangleUv* triangle_uvs;   /* per kept triangle */
   const CO_GLOBAL TextureDesc* textures;
   const CO_GLOBAL uint32_t* texels;           /* RGBA8 */
+#ifdef COHORT_FEATURE_VERTEX_COLORS
   const CO_GLOBAL TriangleColor* triangle_colors; /* per kept triangle */
+#endif
+#ifdef COHORT_FEATURE_NORMAL_MAP
   const CO_GLOBAL TriangleFrame* triangle_frames; /* per kept triangle */
+#endif
   EnvironmentView env;
   const CO_GLOBAL PunctualLight* punctual_lights;
   uint32_t emitter_count;
@@ -51,8 +55,17 @@ CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNod
   s.triangle_uvs = triangle_uvs;
   s.textures = textures;
   s.texels = texels;
+  /* a scene without vertex colours or normal maps keeps no pointer to them */
+#ifdef COHORT_FEATURE_VERTEX_COLORS
   s.triangle_colors = triangle_colors;
+#else
+  (void)triangle_colors;
+#endif
+#ifdef COHORT_FEATURE_NORMAL_MAP
   s.triangle_frames = triangle_frames;
+#else
+  (void)triangle_frames;
+#endif
   s.env.texels = env_texels;
   s.env.tables = env_tables;
   s.env.width = p->env_width;

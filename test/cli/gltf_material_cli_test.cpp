@@ -57,7 +57,7 @@ TEST(GltfMaterialCli, InfoAndRenderWarnOnceForEachUnhonouredFeature) {
       "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
       "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0})";
   }
-  for (const std::string command :
+  for (const std::string& command :
        {"info " + scene.string(), "render " + scene.string() + " --res 8x8 --spp 1 -o " + (dir.path / "u.exr").string()}) {
     const CommandResult r = run(command);
     ASSERT_EQ(r.code, 0) << r.output;
