@@ -69,7 +69,9 @@ SceneCamera plan_camera(SceneCamera camera, const Bounds& bounds, const RenderCo
 }
 
 void report_scene_warnings(const PreparedScene& prepared, const std::filesystem::path& path) {
-  for (const auto& w : prepared.scene.warnings) fmt::print(stderr, "warning: {}: {}\n", path.string(), w);
+  // the loaders name the file in most of their warnings already
+  for (const auto& w : prepared.scene.warnings)
+    fmt::print(stderr, "warning: {}{}\n", w.starts_with(path.string()) ? "" : path.string() + ": ", w);
   if (prepared.tree.stats.dropped_triangles)
     fmt::print(stderr, "warning: {}: dropped {} degenerate or non-finite triangles\n", path.string(),
                prepared.tree.stats.dropped_triangles);
