@@ -150,6 +150,6 @@ class Scene:
                 raise InputError(f"camera: expected a dict with eye, target (3 numbers each), up, fov: {e}") from None
             if len(cam) != 10:
                 raise InputError("camera: eye, target and up take 3 numbers each")
-        out = _cohort.LoadedScene.render(self._loaded, args, cam, progress, [sys.prefix])
+        out = self._loaded.render(args, cam, progress, [sys.prefix])
         aovs = {name: out["aovs"][name] for name in aov} if out["aovs"] else {}
         return Render(out["image"], aovs, out["denoised"], json.loads(out["stats"]))

@@ -1,7 +1,5 @@
 // `cohort render`: each rank of the team parses, prepares and renders; rank 0 gathers the image
 // and writes the outputs (render_steps.h).
-#include <chrono>
-
 #include "runtime/cli/render_steps.h"
 #include "runtime/render/adaptive.h"
 
@@ -21,9 +19,7 @@ int render_rank(const RenderCommand& command, const RenderTeam& team) {
   RenderOutcome outcome =
       run_render_passes(render, team, out.checkpoint, {.stop_requested = [&] { return interrupt.requested(); }});
   // adaptive sampling: the samples every pixel has (a tile that stopped early has fewer than the film's most)
-  const auto aov_start = std::chrono::steady_clock::now();
-  outcome.aovs = render_first_hit_aovs(render, outcome.film);
-  outcome.aov_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - aov_start).count();
+  render_first_hit_aovs(render, outcome);
   return write_render(render, outcome, out, interrupt);
 }
 

@@ -12,10 +12,6 @@
 namespace cohort {
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 // The options a loaded scene fixes: a render may not change them.
 void check_shared_options(const RenderCommand& base, const RenderCommand& c) {
   const auto differs = [](const char* option) {
@@ -33,11 +29,6 @@ void check_shared_options(const RenderCommand& base, const RenderCommand& c) {
 
 }  // namespace
 
-LoadedScene::VariantKey LoadedScene::variant_key(const RenderPlan& plan) {
-  return {find_method(plan.settings().method).sorts, plan.command.white_sky,
-          plan.environment_map ? plan.command.environment : std::string()};
-}
-
 LoadedScene::LoadedScene(RenderCommand base)
     : base_(std::move(base)), cache_(base_.no_cache ? std::nullopt : std::optional(ProgramCache::default_directory())) {
   const RenderPlan plan = parse_render(base_);
@@ -46,18 +37,15 @@ LoadedScene::LoadedScene(RenderCommand base)
   pool_ = std::move(opened.pool);
   const auto t0 = std::chrono::steady_clock::now();
   loaded_ = load_scene(base_.scene);
-  load_seconds_ = seconds_since(t0);
+  load_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-PreparedRender& LoadedScene::variant(RenderPlan& plan, bool& built) {
-  const RenderCommand& cmd = plan.command;
-  const VariantKey key = variant_key(plan);
-  const bool needs_kd = std::get<0>(key);
+LoadedScene::Variant& LoadedScene::variant(const RenderPlan& plan, bool& built) {
+  const bool needs_kd = find_method(plan.settings().method).sorts;
+  const VariantKey key{needs_kd, plan.command.white_sky,
+                       plan.environment_map ? plan.command.environment : std::string()};
   built = false;
-  if (auto it = variants_.find(key); it != variants_.end()) {
-    if (cmd.white_sky) apply_white_sky_settings(plan.command.settings);
-    return *it->second;
-  }
+  if (auto it = variants_.find(key); it != variants_.end()) return it->second;
   auto tree = trees_.find(needs_kd);
   if (tree == trees_.end()) {
     PreparedScene prepared = build_render_trees(plan, devices_, [&](const TreeChoice& choice) {
@@ -68,34 +56,28 @@ PreparedRender& LoadedScene::variant(RenderPlan& plan, bool& built) {
     built = true;
   }
   PreparedScene scene = tree->second;
-  RenderCommand without_camera = cmd;  // the render's camera is set per render
-  without_camera.camera_bounds.clear();
-  without_camera.fov = 0;
-  RenderPlan scene_plan = plan;
-  scene_plan.command = without_camera;
-  apply_render_options(scene, scene_plan);
-  plan.command.settings = scene_plan.command.settings;  // the white sky's workload
-  variant_cameras_[key] = scene.camera;
-  auto render = std::make_unique<PreparedRender>(
-      PreparedRender{.plan = plan, .devices = devices_, .pool = pool_, .scene = std::move(scene), .cache = cache_});
-  return *variants_.emplace(key, std::move(render)).first->second;
+  RenderPlan scene_plan = plan;  // its settings are each render's own
+  apply_scene_options(scene, scene_plan);
+  const SceneCamera camera = scene.camera;
+  auto render = std::make_unique<PreparedRender>(PreparedRender{
+      .plan = std::move(scene_plan), .devices = devices_, .pool = pool_, .scene = std::move(scene), .cache = cache_});
+  return variants_.emplace(key, Variant{std::move(render), camera}).first->second;
 }
 
 SceneRender LoadedScene::render(const RenderCommand& command, const std::optional<SceneCamera>& camera,
-                                    const RenderHooks& hooks, const std::vector<std::filesystem::path>& denoise_venvs) {
+                                const RenderHooks& hooks, const std::vector<std::filesystem::path>& denoise_venvs) {
   check_shared_options(base_, command);
   RenderPlan plan = parse_render(command);
+  if (command.white_sky) apply_white_sky_settings(plan.command.settings);
   bool built = false;
-  PreparedRender& render = variant(plan, built);
+  Variant& v = variant(plan, built);
+  PreparedRender& render = *v.render;
   render.plan = plan;
-  render.scene.camera =
-      plan_camera(camera ? *camera : variant_cameras_.at(variant_key(plan)), render.scene.scene.bounds(), command);
+  render.scene.camera = plan_camera(camera ? *camera : v.camera, render.scene.scene.bounds(), command);
 
   const auto team = solo_render_team();
   RenderOutcome outcome = run_render_passes(render, *team, {}, hooks);
-  const auto aov_start = std::chrono::steady_clock::now();
-  outcome.aovs = render_first_hit_aovs(render, outcome.film);
-  outcome.aov_seconds = seconds_since(aov_start);
+  render_first_hit_aovs(render, outcome);
 
   SceneRender out;
   out.interrupted = outcome.result.interrupted;
@@ -119,9 +101,8 @@ SceneRender LoadedScene::render(const RenderCommand& command, const std::optiona
 }
 
 nlohmann::json LoadedScene::info() {
-  RenderPlan plan = parse_render(base_);
   bool built = false;
-  const PreparedScene& p = variant(plan, built).scene;
+  const PreparedScene& p = variant(parse_render(base_), built).render->scene;
   const Bounds b = p.scene.bounds();
   nlohmann::json materials = nlohmann::json::array();
   for (const auto& m : p.scene.materials)

@@ -49,12 +49,15 @@ class LoadedScene {
   const std::vector<DeviceInfo>& devices() const { return devices_; }
 
  private:
-  // The scene as a render needs it: its tree (the KD-tree or not), the white sky, an environment map.
+  // The scene as a render needs it: its tree (the KD-tree or not), the white sky, an environment
+  // map; `camera` is its own, before each render's.
   using VariantKey = std::tuple<bool, bool, std::string>;
-  static VariantKey variant_key(const RenderPlan& plan);
-  // The variant of `plan`, made (and its tree built: `built`) on first use; sets the plan's
-  // settings of the white sky.
-  PreparedRender& variant(RenderPlan& plan, bool& built);
+  struct Variant {
+    std::unique_ptr<PreparedRender> render;  // at a fixed address: the pool knows its scene by it
+    SceneCamera camera;
+  };
+  // The variant of `plan`, made (and its tree built: `built`) on first use.
+  Variant& variant(const RenderPlan& plan, bool& built);
 
   RenderCommand base_;
   std::vector<DeviceInfo> devices_;
@@ -63,8 +66,7 @@ class LoadedScene {
   Scene loaded_;
   double load_seconds_ = 0;
   std::map<bool, PreparedScene> trees_;  // by whether the KD-tree is needed
-  std::map<VariantKey, std::unique_ptr<PreparedRender>> variants_;
-  std::map<VariantKey, SceneCamera> variant_cameras_;  // each variant's camera before the render's
+  std::map<VariantKey, Variant> variants_;
   std::uint32_t renders_ = 0;
 };
 

@@ -54,11 +54,14 @@ PreparedScene build_render_trees(const RenderPlan& plan, const std::vector<Devic
   return prepared;
 }
 
+void apply_scene_options(PreparedScene& prepared, RenderPlan& plan) {
+  if (plan.environment_map) set_environment_map(prepared.tables, load_environment_map(plan.command.environment));
+  if (plan.command.white_sky) apply_white_sky(prepared, plan.command.settings);
+}
+
 void apply_render_options(PreparedScene& prepared, RenderPlan& plan) {
-  const RenderCommand& cmd = plan.command;
-  if (plan.environment_map) set_environment_map(prepared.tables, load_environment_map(cmd.environment));
-  if (cmd.white_sky) apply_white_sky(prepared, plan.command.settings);
-  prepared.camera = plan_camera(prepared.camera, prepared.scene.bounds(), cmd);
+  apply_scene_options(prepared, plan);
+  prepared.camera = plan_camera(prepared.camera, prepared.scene.bounds(), plan.command);
 }
 
 SceneCamera plan_camera(SceneCamera camera, const Bounds& bounds, const RenderCommand& cmd) {

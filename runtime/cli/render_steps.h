@@ -68,6 +68,8 @@ PreparedScene build_render_trees(const RenderPlan& plan, const std::vector<Devic
 // What the plan changes on a built scene: --env FILE, --white-sky (which also sets the plan's
 // workload settings), --camera-bounds and --fov.
 void apply_render_options(PreparedScene& scene, RenderPlan& plan);
+// The same without the camera options (a scene several cameras render).
+void apply_scene_options(PreparedScene& scene, RenderPlan& plan);
 // The camera --camera-bounds and --fov make of the scene's `camera`.
 SceneCamera plan_camera(SceneCamera camera, const Bounds& bounds, const RenderCommand& cmd);
 
@@ -96,8 +98,8 @@ RenderOutcome run_render_passes(const PreparedRender& render, const RenderTeam& 
                                 const std::filesystem::path& checkpoint, const RenderHooks& hooks);
 
 // Rank 0, after the passes: the AOVs of the image's samples on this rank's first device, when
-// --aov or --denoise asks for them.
-std::optional<AovImages> render_first_hit_aovs(const PreparedRender& render, const FilmState& film);
+// --aov or --denoise asks for them, into outcome.aovs and outcome.aov_seconds.
+void render_first_hit_aovs(const PreparedRender& render, RenderOutcome& outcome);
 
 // Any other rank: renders the passes rank 0 assigns and sends it this rank's figures.
 void follow_render(const PreparedRender& render, const RenderTeam& team);

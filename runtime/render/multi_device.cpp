@@ -83,6 +83,10 @@ DevicePool::DevicePool(const std::vector<DeviceInfo>& devices, const DeviceOpene
     runs_[i].device = devices[i];
     workers_.push_back(std::make_unique<Worker>(open, i));
   }
+  wait_all();
+}
+
+void DevicePool::wait_all() {
   std::exception_ptr first;
   for (auto& w : workers_)
     if (auto failure = w->wait(); failure && !first) first = failure;
@@ -115,10 +119,7 @@ void DevicePool::start(const ProgramCache& cache, const PreparedScene& scene, co
 }
 
 std::vector<DeviceRun> DevicePool::join() {
-  std::exception_ptr first;
-  for (auto& w : workers_)
-    if (auto failure = w->wait(); failure && !first) first = failure;
-  if (first) std::rethrow_exception(first);
+  wait_all();
   return runs_;
 }
 

@@ -56,6 +56,7 @@ class DevicePool {
 
  private:
   struct Worker;
+  void wait_all();  // for every worker's task; rethrows the first failure
   std::vector<std::unique_ptr<Worker>> workers_;
   std::vector<DeviceRun> runs_;
 };
