@@ -88,85 +88,107 @@ CO_INLINE void bvh4_prefetch(const Bvh4View* bvh, uint32_t ref) {
     }                                                               \
   } while (0)
 
-/* Closest hit (any_hit = 0) or any hit (any_hit = 1) in (tmin, tmax), as kd_trace_steps. `steps`,
- * when not null, receives the number of nodes and leaves visited. */
-CO_INLINE HitOut bvh4_trace_steps(const Bvh4View* bvh, co_vec3 org, co_vec3 dir, float tmin, float tmax,
-                                  int any_hit, uint32_t* steps) {
-  HitOut hit;
-  hit.t = tmax; hit.u = 0.0f; hit.v = 0.0f; hit.triangle = HIT_NONE;
-  WatertightRay wr = watertight_ray(org, dir);
-  co_float4 ox = co_f4_splat(org.x), oy = co_f4_splat(org.y), oz = co_f4_splat(org.z);
-  co_float4 ix = co_f4_splat(bvh4_inverse(dir.x)), iy = co_f4_splat(bvh4_inverse(dir.y)),
-            iz = co_f4_splat(bvh4_inverse(dir.z));
-  /* The plane a ray enters a slab through, by its direction's sign: lo ahead of hi for a positive
-   * component. With a finite inverse and lo <= hi, (lo - o) * i and (hi - o) * i round in the same
-   * order as the planes, so this picks exactly what a min and a max of the two would; an unused
-   * lane (lo = hi = +infinity) gives equal values either way. */
-  int near_x = dir.x < 0.0f ? 1 : 0, near_y = dir.y < 0.0f ? 3 : 2, near_z = dir.z < 0.0f ? 5 : 4;
+/* What a walk keeps of its ray: the watertight set-up, the origin and inverse direction splatted
+ * over four lanes, and the plane each slab is entered through, by the direction's sign: lo ahead of
+ * hi for a positive component. With a finite inverse and lo <= hi, (lo - o) * i and (hi - o) * i
+ * round in the same order as the planes, so this picks exactly what a min and a max of the two
+ * would; an unused lane (lo = hi = +infinity) gives equal values either way. */
+typedef struct Bvh4Ray {
+  WatertightRay wr;
+  co_float4 ox, oy, oz, ix, iy, iz;
+  int near_x, near_y, near_z;
+} Bvh4Ray;
+
+CO_INLINE Bvh4Ray bvh4_ray(co_vec3 org, co_vec3 dir) {
+  Bvh4Ray r;
+  r.wr = watertight_ray(org, dir);
+  r.ox = co_f4_splat(org.x); r.oy = co_f4_splat(org.y); r.oz = co_f4_splat(org.z);
+  r.ix = co_f4_splat(bvh4_inverse(dir.x)); r.iy = co_f4_splat(bvh4_inverse(dir.y));
+  r.iz = co_f4_splat(bvh4_inverse(dir.z));
+  r.near_x = dir.x < 0.0f ? 1 : 0; r.near_y = dir.y < 0.0f ? 3 : 2; r.near_z = dir.z < 0.0f ? 5 : 4;
+  return r;
+}
+
+/* The four child boxes of a node (`planes`: its lo_x, hi_x, lo_y, hi_y, lo_z, hi_z, in global or
+ * local memory) against ray `r`: `enter` gets each box's entry distance (at least `enter_min`, a
+ * float4) and `mask` the lanes entered before `limit`. Strict: an unused lane's box at +infinity
+ * gives enter = leave = +infinity. A macro so that the walk over the top levels in local memory and
+ * the traversal in global memory make the same decisions from the same operations. */
+#define BVH4_ENTER(planes, r, enter_min, limit, enter, mask)                                                   \
+  do {                                                                                                        \
+    (enter) = co_f4_max(co_f4_max(co_f4_mul(co_f4_sub((planes)[(r)->near_x], (r)->ox), (r)->ix),               \
+                                  co_f4_mul(co_f4_sub((planes)[(r)->near_y], (r)->oy), (r)->iy)),              \
+                        co_f4_max(co_f4_mul(co_f4_sub((planes)[(r)->near_z], (r)->oz), (r)->iz), (enter_min))); \
+    co_float4 leave_ = co_f4_min(co_f4_min(co_f4_mul(co_f4_sub((planes)[(r)->near_x ^ 1], (r)->ox), (r)->ix),  \
+                                           co_f4_mul(co_f4_sub((planes)[(r)->near_y ^ 1], (r)->oy), (r)->iy)), \
+                                 co_f4_min(co_f4_mul(co_f4_sub((planes)[(r)->near_z ^ 1], (r)->oz), (r)->iz),  \
+                                           co_f4_splat(limit)));                                               \
+    (mask) = co_f4_less((enter), co_f4_scale(leave_, 1.0000004f));                                            \
+  } while (0)
+
+/* One step down from a node whose lanes `mask` (not 0) the ray enters at `enter`: goes on with the
+ * nearest child (*ref, *ref_t) and pushes the others, farthest first. */
+CO_INLINE void bvh4_descend(const Bvh4View* bvh, uint32_t mask, co_float4 enter, co_uint4 c, uint32_t* ref,
+                            float* ref_t, uint32_t* stack_ref, float* stack_t, int* sp) {
+  /* one or two lanes entered (most steps): no sorting network, and one branch on the count
+   * instead of five data-dependent ones */
+  uint32_t rest = mask & (mask - 1u);
+  if (rest == 0u) {
+    *ref = mask == 1u ? c.x : mask == 2u ? c.y : mask == 4u ? c.z : c.w;
+    *ref_t = mask == 1u ? enter.x : mask == 2u ? enter.y : mask == 4u ? enter.z : enter.w;
+    return;
+  }
+  if ((rest & (rest - 1u)) == 0u) {
+    uint32_t a = mask & ~rest; /* the lower lane's bit */
+    float ta = a == 1u ? enter.x : a == 2u ? enter.y : enter.z;
+    uint32_t ra = a == 1u ? c.x : a == 2u ? c.y : c.z;
+    float tb = rest == 2u ? enter.y : rest == 4u ? enter.z : enter.w;
+    uint32_t rb = rest == 2u ? c.y : rest == 4u ? c.z : c.w;
+    BVH4_ORDER(ta, ra, tb, rb);
+    bvh4_prefetch(bvh, rb);
+    stack_ref[*sp] = rb; stack_t[*sp] = tb; ++*sp;
+    *ref = ra; *ref_t = ta;
+    return;
+  }
+  /* three or four: a sorting network on (entry, child), the lanes not entered at +infinity so
+   * that they sort last; no indexed private arrays (registers) */
+  float t0 = (mask & 1u) ? enter.x : INFINITY, t1 = (mask & 2u) ? enter.y : INFINITY;
+  float t2 = (mask & 4u) ? enter.z : INFINITY, t3 = (mask & 8u) ? enter.w : INFINITY;
+  uint32_t r0 = c.x, r1 = c.y, r2 = c.z, r3 = c.w;
+  BVH4_ORDER(t0, r0, t1, r1);
+  BVH4_ORDER(t2, r2, t3, r3);
+  BVH4_ORDER(t0, r0, t2, r2);
+  BVH4_ORDER(t1, r1, t3, r3);
+  BVH4_ORDER(t1, r1, t2, r2);
+  bvh4_prefetch(bvh, r1);
+  bvh4_prefetch(bvh, r2);
+  if (mask == 15u) { bvh4_prefetch(bvh, r3); stack_ref[*sp] = r3; stack_t[*sp] = t3; ++*sp; }
+  stack_ref[*sp] = r2; stack_t[*sp] = t2; ++*sp;
+  stack_ref[*sp] = r1; stack_t[*sp] = t1; ++*sp;
+  *ref = r0; *ref_t = t0;
+}
+
+/* Continues a closest-hit (any_hit = 0) or any-hit (any_hit = 1) traversal at node or leaf `ref`,
+ * entered at `ref_t`, with `sp` entries on the stack, into `hit` (its t the current limit).
+ * `visited`, when not null, receives the number of nodes and leaves visited. */
+CO_INLINE void bvh4_continue(const Bvh4View* bvh, const Bvh4Ray* r, float tmin, int any_hit, HitOut* hit, uint32_t ref,
+                             float ref_t, uint32_t* stack_ref, float* stack_t, int sp, uint32_t* visited) {
   co_float4 enter_min = co_f4_splat(tmin);
-  uint32_t stack_ref[BVH4_STACK];
-  float stack_t[BVH4_STACK];
-  int sp = 0;
-  uint32_t ref = 0u; /* the root */
-  float ref_t = tmin;
-  uint32_t visited = 0u;
+  uint32_t count = 0u;
   for (;;) {
-    if (!kd_beyond_hit(hit.t, ref_t)) {
-      ++visited;
+    if (!kd_beyond_hit(hit->t, ref_t)) {
+      ++count;
       if (bvh4_is_leaf(ref)) {
-        if (bvh4_intersect_leaf(&bvh->leaf_triangles[bvh4_leaf_first(ref)], bvh4_leaf_count(ref), &wr, tmin, &hit,
+        if (bvh4_intersect_leaf(&bvh->leaf_triangles[bvh4_leaf_first(ref)], bvh4_leaf_count(ref), &r->wr, tmin, hit,
                                 any_hit))
           break;
       } else {
         const CO_GLOBAL Bvh4Node* n = &bvh->nodes[ref];
-        const CO_GLOBAL co_float4* planes = &n->lo_x; /* lo_x, hi_x, lo_y, hi_y, lo_z, hi_z */
-        co_float4 enter = co_f4_max(co_f4_max(co_f4_mul(co_f4_sub(planes[near_x], ox), ix),
-                                              co_f4_mul(co_f4_sub(planes[near_y], oy), iy)),
-                                    co_f4_max(co_f4_mul(co_f4_sub(planes[near_z], oz), iz), enter_min));
-        co_float4 leave = co_f4_min(co_f4_min(co_f4_mul(co_f4_sub(planes[near_x ^ 1], ox), ix),
-                                              co_f4_mul(co_f4_sub(planes[near_y ^ 1], oy), iy)),
-                                    co_f4_min(co_f4_mul(co_f4_sub(planes[near_z ^ 1], oz), iz),
-                                              co_f4_splat(hit.t * KD_TERMINATION_SLACK)));
-        /* strict: an unused lane's box at +infinity gives enter = leave = +infinity */
-        uint32_t mask = co_f4_less(enter, co_f4_scale(leave, 1.0000004f));
+        co_float4 enter;
+        uint32_t mask;
+        BVH4_ENTER(&n->lo_x, r, enter_min, hit->t * KD_TERMINATION_SLACK, enter, mask);
         if (mask != 0u) {
-          co_uint4 c = n->child;
-          /* one or two lanes entered (most steps): no sorting network, and one branch on the
-           * count instead of five data-dependent ones */
-          uint32_t rest = mask & (mask - 1u);
-          if (rest == 0u) {
-            ref = mask == 1u ? c.x : mask == 2u ? c.y : mask == 4u ? c.z : c.w;
-            ref_t = mask == 1u ? enter.x : mask == 2u ? enter.y : mask == 4u ? enter.z : enter.w;
-            continue;
-          }
-          if ((rest & (rest - 1u)) == 0u) {
-            uint32_t a = mask & ~rest; /* the lower lane's bit */
-            float ta = a == 1u ? enter.x : a == 2u ? enter.y : enter.z;
-            uint32_t ra = a == 1u ? c.x : a == 2u ? c.y : c.z;
-            float tb = rest == 2u ? enter.y : rest == 4u ? enter.z : enter.w;
-            uint32_t rb = rest == 2u ? c.y : rest == 4u ? c.z : c.w;
-            BVH4_ORDER(ta, ra, tb, rb);
-            bvh4_prefetch(bvh, rb);
-            stack_ref[sp] = rb; stack_t[sp] = tb; ++sp;
-            ref = ra; ref_t = ta;
-            continue;
-          }
-          /* three or four: a sorting network on (entry, child), the lanes not entered at
-           * +infinity so that they sort last; no indexed private arrays (registers) */
-          float t0 = (mask & 1u) ? enter.x : INFINITY, t1 = (mask & 2u) ? enter.y : INFINITY;
-          float t2 = (mask & 4u) ? enter.z : INFINITY, t3 = (mask & 8u) ? enter.w : INFINITY;
-          uint32_t r0 = c.x, r1 = c.y, r2 = c.z, r3 = c.w;
-          BVH4_ORDER(t0, r0, t1, r1);
-          BVH4_ORDER(t2, r2, t3, r3);
-          BVH4_ORDER(t0, r0, t2, r2);
-          BVH4_ORDER(t1, r1, t3, r3);
-          BVH4_ORDER(t1, r1, t2, r2);
-          bvh4_prefetch(bvh, r1);
-          bvh4_prefetch(bvh, r2);
-          if (mask == 15u) { bvh4_prefetch(bvh, r3); stack_ref[sp] = r3; stack_t[sp] = t3; ++sp; }
-          stack_ref[sp] = r2; stack_t[sp] = t2; ++sp;
-          stack_ref[sp] = r1; stack_t[sp] = t1; ++sp;
-          ref = r0; ref_t = t0;
+          bvh4_descend(bvh, mask, enter, n->child, &ref, &ref_t, stack_ref, stack_t, &sp);
           continue;
         }
       }
@@ -175,7 +197,20 @@ CO_INLINE HitOut bvh4_trace_steps(const Bvh4View* bvh, co_vec3 org, co_vec3 dir,
     --sp;
     ref = stack_ref[sp]; ref_t = stack_t[sp];
   }
-  if (steps) *steps = visited;
+  if (visited) *visited = count;
+}
+
+/* Closest hit (any_hit = 0) or any hit (any_hit = 1) in (tmin, tmax), as kd_trace_steps: the whole
+ * traversal from the root. `steps`, when not null, receives the number of nodes and leaves
+ * visited. */
+CO_INLINE HitOut bvh4_trace_steps(const Bvh4View* bvh, co_vec3 org, co_vec3 dir, float tmin, float tmax,
+                                  int any_hit, uint32_t* steps) {
+  HitOut hit;
+  hit.t = tmax; hit.u = 0.0f; hit.v = 0.0f; hit.triangle = HIT_NONE;
+  Bvh4Ray r = bvh4_ray(org, dir);
+  uint32_t stack_ref[BVH4_STACK];
+  float stack_t[BVH4_STACK];
+  bvh4_continue(bvh, &r, tmin, any_hit, &hit, 0u /* the root */, tmin, stack_ref, stack_t, 0, steps);
   return hit;
 }
 

@@ -129,9 +129,16 @@
   P(IO, TraversalState, traversal) P(IO, SavedStackEntry, traversal_stack) P(VALUE, uint32_t, stack_stride)  \
   P(IO, HitOut, hits) P(IN, uint32_t, counters)
 
-#define PTH_WALK_AND_CODE_PARAMS(P, G) G(PthWalk, walk, PTH_WALK_PARAMS) P(LOCAL, KdNode, subtree) P(IO, uint64_t, keys)
+/* the top of the tree the walk keeps in local memory: the 4-wide BVH's nodes or the KD-tree's (the
+ * host's argument is a byte count either way) */
+#if defined(COHORT_ACCEL_BVH4)
+#define PTH_TOP_NODE Bvh4Node
+#else
+#define PTH_TOP_NODE KdNode
+#endif
+#define PTH_WALK_AND_CODE_PARAMS(P, G) G(PthWalk, walk, PTH_WALK_PARAMS) P(LOCAL, PTH_TOP_NODE, subtree) P(IO, uint64_t, keys)
 #define PTH_WALK_AND_CODE32_PARAMS(P, G)                                                                      \
-  G(PthWalk, walk, PTH_WALK_PARAMS) P(LOCAL, KdNode, subtree) P(IO, uint32_t, keys)
+  G(PthWalk, walk, PTH_WALK_PARAMS) P(LOCAL, PTH_TOP_NODE, subtree) P(IO, uint32_t, keys)
 
 /* pth_gather (--sort-payload gather): ray and saved state of sorted item i to position i */
 #define PTH_GATHER_PARAMS(P, G)                                                                               \

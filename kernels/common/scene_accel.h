@@ -4,11 +4,11 @@
 #include "common/kdtree_traverse.h"
 
 /* What the rendering and ray-tracing kernels trace with: the KD-tree, or with COHORT_ACCEL_BVH4
- * (the host's --tree bvh4, what --tree auto builds unless the method walks the KD-tree) the 4-wide
+ * (the host's --tree bvh4, what --tree auto builds unless a KD-tree is asked for) the 4-wide
  * BVH, which travels in the same buffers. Both give
  * every ray the same hit, so the choice changes speed, never the image. scene_trace_steps has
- * kd_trace_steps' signature. The pth and hash kernels walk the KD-tree itself and are never built
- * with the BVH. */
+ * kd_trace_steps' signature. The pth and hash kernels (pth_kernels.h) walk the top of either tree
+ * and resume on it. */
 #if defined(COHORT_ACCEL_BVH4)
 #include "common/bvh4_traverse.h"
 typedef Bvh4View SceneAccel;

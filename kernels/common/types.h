@@ -35,6 +35,9 @@ CO_INLINE uint32_t kd_leaf_first(KdNode n) { return n.word1; }
 #define BVH4_EMPTY 0xffffffffu
 #define BVH4_LEAF_MAX 16u
 #define BVH4_LEAF_FIRST_MAX ((1u << 27) - 1u)
+/* The levels the builder lays out breadth first at the front of the node array (1,365 nodes at
+ * most, 171 KiB): more than any device's local memory holds for the PTH walk. */
+#define BVH4_TOP_LEVELS 6u
 typedef struct Bvh4Node {
   co_float4 lo_x, hi_x, lo_y, hi_y, lo_z, hi_z;
   co_uint4 child;

@@ -536,6 +536,40 @@ struct Collapser {
   }
 };
 
+// The top BVH4_TOP_LEVELS levels moved to the front of the node array in breadth-first order (the
+// rest keeps its depth-first order behind them), so that any number of top levels is a prefix: the
+// part the PTH walk copies to local memory (kernels/common/bvh4_path.h). Returns the first node of
+// each of those depths, then the count of nodes above the deepest (as KD-tree level starts).
+std::vector<std::uint32_t> lay_out_top_breadth_first(std::vector<Bvh4Node>& nodes) {
+  const auto count = static_cast<std::uint32_t>(nodes.size());
+  std::vector<std::uint32_t> order{0};  // the top nodes, breadth first
+  std::vector<std::uint32_t> starts{0};
+  for (std::uint32_t depth = 1, begin = 0; depth < BVH4_TOP_LEVELS && begin < order.size(); ++depth) {
+    const auto end = static_cast<std::uint32_t>(order.size());
+    for (std::uint32_t k = begin; k < end; ++k)
+      for (const std::uint32_t c : {nodes[order[k]].child.x, nodes[order[k]].child.y, nodes[order[k]].child.z,
+                                    nodes[order[k]].child.w})
+        if (!bvh4_is_leaf(c)) order.push_back(c);
+    starts.push_back(end);
+    begin = end;
+  }
+  if (starts.back() != order.size()) starts.push_back(static_cast<std::uint32_t>(order.size()));
+  std::vector<std::uint32_t> moved_to(count, count);
+  for (std::uint32_t k = 0; k < order.size(); ++k) moved_to[order[k]] = k;
+  std::uint32_t next = static_cast<std::uint32_t>(order.size());
+  for (std::uint32_t i = 0; i < count; ++i)
+    if (moved_to[i] == count) moved_to[i] = next++;
+  std::vector<Bvh4Node> laid_out(count);
+  for (std::uint32_t i = 0; i < count; ++i) {
+    Bvh4Node n = nodes[i];
+    for (std::uint32_t* c : {&n.child.x, &n.child.y, &n.child.z, &n.child.w})
+      if (!bvh4_is_leaf(*c)) *c = moved_to[*c];
+    laid_out[moved_to[i]] = n;
+  }
+  nodes = std::move(laid_out);
+  return starts;
+}
+
 }  // namespace
 
 Bvh4 build_bvh4(std::span<const Triangle> triangles) {
@@ -559,6 +593,7 @@ Bvh4 build_bvh4(std::span<const Triangle> triangles) {
   for (int a = 0; a < 3; ++a) largest = std::max({largest, std::fabs(root.lo[a]), std::fabs(root.hi[a])});
   Collapser collapser{builder, std::ldexp(std::max(largest, 1e-20f), -20)};
   const Collapser::Sums sums = collapser.collapse(bvh.nodes);
+  bvh.top_level_starts = lay_out_top_breadth_first(bvh.nodes);
   bvh.leaf_vertices.resize(builder.size);
   parallel_chunks(builder.size, [&](std::size_t i) {
     const std::uint32_t tri = builder.triangle[builder.refs[i]];

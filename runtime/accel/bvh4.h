@@ -1,5 +1,5 @@
 // A 4-wide BVH over the KD-tree's kept triangles, in the device layout of kernels/common/types.h
-// (Bvh4Node): what renders trace with unless the method walks the KD-tree (--tree bvh4, and auto;
+// (Bvh4Node): what renders trace with unless a KD-tree is asked for (--tree bvh4, and auto;
 // kernels/common/bvh4_traverse.h). Its leaves hold the same kept triangles as the KD-tree's, so
 // every ray gets the same hit from either.
 #pragma once
@@ -25,7 +25,12 @@ struct Bvh4Stats {
 };
 
 struct Bvh4 {
-  std::vector<Bvh4Node> nodes;               // node 0 is the root; each node before its children
+  // Node 0 is the root; each node before its children. The top BVH4_TOP_LEVELS levels come first,
+  // breadth first, the rest depth first (each subtree contiguous).
+  std::vector<Bvh4Node> nodes;
+  // top_level_starts[d]: the first node at depth d (the root's is 0) of the breadth-first top; the
+  // last entry counts the top's nodes, so the nodes above depth d are a prefix of starts[d] nodes.
+  std::vector<std::uint32_t> top_level_starts;
   // The leaves' entries (a leaf reference names its first entry and count): each a copy of a kept
   // triangle, with that triangle's index in v0.w (kernels/common/bvh4_traverse.h).
   std::vector<Triangle> leaf_vertices;

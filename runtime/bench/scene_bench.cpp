@@ -91,10 +91,7 @@ SceneFigures bench_scene(const Device& cl, const ProgramCache& cache, const std:
   const auto log = [&](const std::string& s) {
     if (log_line) log_line(s);
   };
-  // pth and hash walk the KD-tree: the BVH only when no method asked for does
-  const bool needs_kd = std::any_of(options.methods.begin(), options.methods.end(),
-                                    [](const std::string& m) { return find_method(m).sorts; });
-  PreparedScene prepared = prepare_scene(path, tree_options(options.tree, cl.info(), needs_kd));
+  PreparedScene prepared = prepare_scene(path, tree_options(options.tree, cl.info()));
   RenderSettings settings;
   apply_white_sky(prepared, settings);
   settings.width = settings.height = options.res;

@@ -133,14 +133,17 @@ std::vector<float> origin_boundaries(const DeviceScene& scene, std::uint32_t bit
 SubtreeChoice choose_subtree(const DeviceInfo& device, const DeviceScene& scene, std::uint32_t requested) {
   SubtreeChoice c;
   const auto& starts = scene.level_starts;  // starts[d] = first node of depth d; back() = node count
+  const std::size_t node_bytes = scene.bvh4 ? sizeof(Bvh4Node) : sizeof(KdNode);
   const std::uint32_t tree_levels = static_cast<std::uint32_t>(starts.size() - 1);
   c.levels = std::min<std::uint32_t>(requested ? requested : 10, tree_levels);
-  if (requested == 0) {
+  // the BVH's levels are 4-wide (a layout's pth:10 names binary levels): it walks as many of the
+  // requested levels as the budget holds
+  if (requested == 0 || scene.bvh4) {
     const std::size_t budget = device_support(device).local_budget;
-    while (c.levels > 0 && starts[c.levels] * sizeof(KdNode) > budget) --c.levels;
+    while (c.levels > 0 && starts[c.levels] * node_bytes > budget) --c.levels;
   }
   c.nodes = starts[c.levels];
-  c.local_bytes = std::size_t(c.nodes) * sizeof(KdNode);
+  c.local_bytes = std::size_t(c.nodes) * node_bytes;
   if (c.local_bytes > device.local_memory)
     throw InputError(fmt::format("--pth-levels {}: the subtree needs {} bytes of local memory; {} has {}", requested,
                                  c.local_bytes, device.name, device.local_memory));

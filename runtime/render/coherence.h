@@ -54,7 +54,9 @@ struct SubtreeChoice {
 
 // requested = 0: the paper's 10 levels, fewer when the tree is shallower or when the subtree would
 // not fit the device's local budget (device_support: half a scratchpad, room for 2 work-groups per
-// compute unit; all of a CPU runtime's cached local memory, 32 KiB on rusticl's llvmpipe).
+// compute unit; all of a CPU runtime's cached local memory, 32 KiB on rusticl's llvmpipe). The
+// levels are the tree's: the KD-tree's binary ones, or the 4-wide BVH's (its breadth-first top,
+// BVH4_TOP_LEVELS at most, 128-byte nodes), where a request is also cut to the budget.
 SubtreeChoice choose_subtree(const DeviceInfo& device, const DeviceScene& scene, std::uint32_t requested);
 
 }  // namespace cohort

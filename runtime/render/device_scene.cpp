@@ -361,7 +361,7 @@ DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables
   d.emitter_count = static_cast<std::uint32_t>(tables.emitters.entries.size());
   d.emitter_power_total = tables.emitters.total_power;
   d.bounds = tree.bounds;
-  d.level_starts = level_starts(tree);
+  d.level_starts = bvh ? bvh->top_level_starts : level_starts(tree);
   d.centroid_samples = centroid_samples(tree);
   return d;
 }

@@ -86,7 +86,7 @@ struct DeviceScene {
   DeviceBuffer env_texels, env_tables, punctual_lights;  // placeholders without those lights
   SceneFeatures features;
   std::string build_options;  // features.build_options() (and the BVH's): every rendering program gets them
-  bool bvh4 = false;          // nodes and leaf lists are a 4-wide BVH's: no method that walks the KD-tree
+  bool bvh4 = false;          // nodes and leaf lists are a 4-wide BVH's (programs built with COHORT_ACCEL_BVH4)
   std::uint32_t emitter_count = 0;
   float emitter_power_total = 0;
   std::uint32_t env_width = 0, env_height = 0;  // 0 x 0 without an environment map
@@ -95,7 +95,8 @@ struct DeviceScene {
   Bounds bounds;
   std::size_t bytes = 0;
   // host-side facts the PTH method sizes itself from
-  std::vector<std::uint32_t> level_starts;  // first node of each depth, then the node count
+  // first node of each depth, then the node count: the KD-tree's, or the BVH's breadth-first top
+  std::vector<std::uint32_t> level_starts;
   std::array<std::vector<float>, 3> centroid_samples;  // sorted triangle centroids per axis (subsampled)
 
   // The scene's kernel arguments (SCENE_BUFFERS in kernels/common/kernel_params.h).

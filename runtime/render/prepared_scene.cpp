@@ -27,7 +27,7 @@ TreeChoice tree_options(const std::string& choice, std::span<const DeviceInfo> d
     options.bvh4 = !needs_kd;
   } else if (choice == "bvh4") {
     if (needs_kd)
-      throw InputError("--tree bvh4: pth, hash and --tree-budget need the KD-tree; choose another method or tree");
+      throw InputError("--tree bvh4: --tree-budget sizes the KD-tree; give --tree auto, deep or compact with it");
     options.bvh4 = true;
   } else if (choice != "deep") {
     throw InputError(

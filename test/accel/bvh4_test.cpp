@@ -20,7 +20,7 @@
 namespace cohort::test {
 namespace {
 
-// Walks the tree: each node reached once, each lane's box inside its parent's, leaves within
+// Walks the tree: each node reached once and where the layout puts it, each lane's box inside its parent's, leaves within
 // BVH4_LEAF_MAX and their boxes overlapping their triangles (a large triangle is split into parts,
 // each in its own leaf with the box of its part), unused lanes empty; every kept triangle in some
 // leaf, and in no more than the 64 parts a triangle is split into at most.
@@ -28,7 +28,9 @@ std::vector<std::string> structure_errors(const Bvh4& bvh, const KdTree& tree) {
   std::vector<std::string> errors;
   std::vector<int> seen_node(bvh.nodes.size(), 0), seen_triangle(tree.triangles.size(), 0);
   int deepest = 0;
-  std::uint32_t next_in_order = 0;
+  // the top levels breadth first (each depth a range of top_level_starts), the rest depth first
+  const auto& starts = bvh.top_level_starts;
+  std::uint32_t next_in_order = starts.empty() ? 0 : starts.back();
   std::size_t leaves = 0;
   const auto overlaps = [](const Triangle& t, const float lo[3], const float hi[3]) {
     for (int a = 0; a < 3; ++a) {
@@ -43,8 +45,14 @@ std::vector<std::string> structure_errors(const Bvh4& bvh, const KdTree& tree) {
       errors.push_back(fmt::format("node {} reached twice or out of range", index));
       return;
     }
-    // depth-first order: each node before its children, a lane's subtree after the lanes before it
-    if (index != next_in_order++) errors.push_back(fmt::format("node {} where a depth-first walk has {}", index, next_in_order - 1));
+    // below the top, depth-first order: each node before its children, a lane's subtree after the
+    // lanes before it
+    if (std::size_t(depth) < starts.size()) {
+      if (index < starts[depth - 1] || index >= starts[depth])
+        errors.push_back(fmt::format("node {} at depth {} outside the top's range for it", index, depth));
+    } else if (index != next_in_order++) {
+      errors.push_back(fmt::format("node {} where a depth-first walk has {}", index, next_in_order - 1));
+    }
     deepest = std::max(deepest, depth);
     const Bvh4Node& n = bvh.nodes[index];
     if (n.reserved.x || n.reserved.y || n.reserved.z || n.reserved.w) errors.push_back("reserved words not zero");

@@ -156,21 +156,28 @@ TEST(Cli, EveryTreeRendersTheSameImage) {
   EXPECT_TRUE(images[0] == images[1]) << "deep and compact trees rendered different images";
   EXPECT_TRUE(images[0] == images[2]) << "auto's tree rendered a different image";
   EXPECT_TRUE(images[0] == images[3]) << "the 4-wide BVH rendered a different image";
-  // pth and hash walk the KD-tree: with the BVH asked for, an error before rendering; with auto, the KD-tree
+  // pth and hash walk the top of whichever tree is built: the BVH by default, the KD-tree when asked
   for (const char* method : {"pth", "hash"}) {
-    const CommandResult r = run("render " + scene("cornell-box.gltf") + " --res 8x8 --spp 1 --method " + method +
-                                " --tree bvh4 -o " + (dir.path / "x").string());
-    EXPECT_EQ(r.code, 2) << r.output;
-    EXPECT_NE(r.output.find("KD-tree"), std::string::npos) << r.output;
-    EXPECT_FALSE(fs::exists(dir.path / "x.exr"));
-    const auto pth_out = dir.path / method;
-    const CommandResult with_auto = run("render " + scene("cornell-box.gltf") + " --res 40x32 --spp 8 --method " +
-                                        method + " -o " + pth_out.string() + " --stats " + (dir.path / "s.json").string());
-    ASSERT_EQ(with_auto.code, 0) << with_auto.output;
-    EXPECT_NE(nlohmann::json::parse(std::ifstream(dir.path / "s.json"))["kdtree"]["kind"], "bvh4") << method;
-    std::ifstream exr(pth_out.string() + ".exr", std::ios::binary);
-    EXPECT_TRUE(images[0] == std::string(std::istreambuf_iterator<char>(exr), {})) << method << " rendered another image";
+    for (const char* tree : {"auto", "deep"}) {
+      const auto out = dir.path / (std::string(method) + "-" + tree);
+      const CommandResult r = run("render " + scene("cornell-box.gltf") + " --res 40x32 --spp 8 --method " + method +
+                                  " --tree " + tree + " -o " + out.string() + " --stats " + (dir.path / "s.json").string());
+      ASSERT_EQ(r.code, 0) << r.output;
+      EXPECT_EQ(nlohmann::json::parse(std::ifstream(dir.path / "s.json"))["kdtree"]["kind"] == "bvh4",
+                std::string(tree) == "auto")
+          << method << " on " << tree;
+      std::ifstream exr(out.string() + ".exr", std::ios::binary);
+      EXPECT_TRUE(images[0] == std::string(std::istreambuf_iterator<char>(exr), {}))
+          << method << " on " << tree << " rendered another image";
+    }
   }
+  // speculation is the KD-tree walk's: with the BVH, an error before rendering
+  const CommandResult speculative = run("render " + scene("cornell-box.gltf") +
+                                        " --res 8x8 --spp 1 --method pth --speculative --tree bvh4 -o " +
+                                        (dir.path / "x").string());
+  EXPECT_EQ(speculative.code, 2) << speculative.output;
+  EXPECT_NE(speculative.output.find("KD-tree"), std::string::npos) << speculative.output;
+  EXPECT_FALSE(fs::exists(dir.path / "x.exr"));
   EXPECT_EQ(run("render " + scene("cornell-box.gltf") + " --tree sparse -o " + (dir.path / "x").string()).code, 2);
 }
 

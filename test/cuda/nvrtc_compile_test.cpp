@@ -41,7 +41,7 @@ TEST(NvrtcCompile, RenderingProgramsWithEveryFeatureSet) {
 // The 4-wide BVH (--tree bvh4) is written once too: every program that traces through it compiles
 // for CUDA, with and without the material features.
 TEST(NvrtcCompile, ProgramsTracingTheBvh4) {
-  for (const char* name : {"naive", "wavefront", "trace", "aov"}) compile(name, "-DCOHORT_ACCEL_BVH4");
+  for (const char* name : {"naive", "wavefront", "trace", "aov", "pth"}) compile(name, "-DCOHORT_ACCEL_BVH4");
   compile("naive", std::string(kAllFeatures) + " -DCOHORT_ACCEL_BVH4");
 }
 

@@ -444,8 +444,7 @@ TEST(Methods, VoxelTerrainIsTheSameOnEveryTreeAndMethod) {
     const RenderResult reference = render(cl, cache, scenes[0], prepared[0].camera, s);
     for (std::size_t t = 0; t < scenes.size(); ++t) {
       for (const char* method : {"naive", "sc+rg", "hash", "pth"}) {
-        const bool walks_kd = std::string(method) == "hash" || std::string(method) == "pth";
-        if (walks_kd && (t == 2 || device_cannot_sort(method))) continue;  // hash and pth walk the KD-tree
+        if (device_cannot_sort(method)) continue;
         s.method = method;
         const RenderResult other = render(cl, cache, scenes[t], prepared[t].camera, s);
         expect_bitwise_equal(reference, other, fmt::format("seed {}, {} on {}", seed, method, trees[t].name).c_str());

@@ -102,7 +102,6 @@ class AutoMethod final : public PassLauncher {
     pool_slots_ = memory->pool.slots;
     for (const Method& m : methods()) {
       if (m.set_up == auto_method) continue;
-      if (m.sorts && in.scene.bvh4) continue;  // hash and pth walk the KD-tree
       if (m.sorts && !device_support(in.device.info()).sorts) continue;  // the device cannot sort
       auto c = std::make_unique<Candidate>();
       c->method = &m;

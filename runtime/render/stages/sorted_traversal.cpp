@@ -16,8 +16,8 @@ SortedTraversal::SortedTraversal(const WavefrontRender& render, RayOrder key)
   const MethodInputs& in = render.inputs();
   const Device& cl = in.device;
   const std::uint32_t slots = render.pool().slots;
-  if (in.scene.bvh4)
-    throw InputError("hash and pth walk the KD-tree: the scene was uploaded with the 4-wide BVH (--tree bvh4)");
+  if (speculative_ && in.scene.bvh4)
+    throw InputError("--speculative is the KD-tree's resume: give --tree deep or compact with it");
   program_ = cl.build_program(in.cache, "pth", in.scene.build_options);
   const bool pth = key == RayOrder::pth;
   // --code pth:N means N levels (docs/decisions.md): it and --pth-levels must agree when both are given
@@ -27,6 +27,9 @@ SortedTraversal::SortedTraversal(const WavefrontRender& render, RayOrder key)
   code_ = parse_code_layout(layout_, subtree_.levels, in.scene.bounds);
   if (!pth) code_.pth_levels = 0;  // the hash sort never walks the subtree
   if (code_.pth_levels > PTH_MAX_LEVELS) code_.pth_levels = PTH_MAX_LEVELS;
+  // the walk pushes at most one cell per KD-tree level, three children per BVH level
+  stack_entries_ = (in.scene.bvh4 ? 3 : 1) * code_.pth_levels;
+  const std::size_t stack_bytes = std::size_t(slots) * sizeof(SavedStackEntry) * std::max<std::uint32_t>(stack_entries_, 1);
   code_params_ = cl.allocate("code parameters", sizeof(code_), &code_, Access::read_only);
   const auto bounds = origin_boundaries(in.scene, code_.origin_bits);
   origin_bounds_ = cl.allocate("origin grid", bounds.size() * sizeof(float), bounds.data(), Access::read_only);
@@ -34,14 +37,12 @@ SortedTraversal::SortedTraversal(const WavefrontRender& render, RayOrder key)
   keys_ = cl.allocate("coherence codes", std::size_t(slots) * (width == SortKey::bits32 ? 4 : 8));
   values_ = cl.allocate("sorted slots", std::size_t(slots) * sizeof(std::uint32_t));
   traversal_ = cl.allocate("traversal states", std::size_t(slots) * sizeof(TraversalState));
-  traversal_stack_ = cl.allocate("traversal stacks", std::size_t(slots) * sizeof(SavedStackEntry) *
-                                                         std::max<std::uint32_t>(code_.pth_levels, 1));
+  traversal_stack_ = cl.allocate("traversal stacks", stack_bytes);
   if (gather_) {
-    const std::uint32_t levels = std::max<std::uint32_t>(code_.pth_levels, 1);
     sorted_org_ = cl.allocate("sorted ray origins", std::size_t(slots) * sizeof(co_float4));
     sorted_dir_ = cl.allocate("sorted ray directions", std::size_t(slots) * sizeof(co_float4));
     sorted_traversal_ = cl.allocate("sorted traversal states", std::size_t(slots) * sizeof(TraversalState));
-    sorted_stack_ = cl.allocate("sorted traversal stacks", std::size_t(slots) * sizeof(SavedStackEntry) * levels);
+    sorted_stack_ = cl.allocate("sorted traversal stacks", stack_bytes);
     gather_kernel_ = program_.kernel("pth_gather");
   }
   sort_.emplace(cl, in.cache, slots, width);
@@ -78,7 +79,7 @@ void SortedTraversal::walk(WavefrontPass& p) {
   // the two walk kernels differ only in the width of their keys
   auto bind = [&](auto args) {
     args.walk = w;
-    args.subtree = LocalMemory{std::max<std::size_t>(subtree_.local_bytes, sizeof(KdNode))};
+    args.subtree = LocalMemory{std::max<std::size_t>(subtree_.local_bytes, sizeof(Bvh4Node))};
     args.keys = keys_;
     args.bind(walk_);
   };
@@ -139,9 +140,8 @@ void SortedTraversal::resume(WavefrontPass& p) {
 void SortedTraversal::report(RenderResult& result) const {
   result.compile_seconds += program_.seconds;
   result.compile_from_cache = result.compile_from_cache && program_.from_cache;
-  result.wavefront.path_state_bytes += SORT_SLOT_BYTES + sizeof(SavedStackEntry) * code_.pth_levels;
-  if (gather_)
-    result.wavefront.path_state_bytes += SORT_GATHER_SLOT_BYTES + sizeof(SavedStackEntry) * code_.pth_levels;
+  result.wavefront.path_state_bytes += SORT_SLOT_BYTES + sizeof(SavedStackEntry) * stack_entries_;
+  if (gather_) result.wavefront.path_state_bytes += SORT_GATHER_SLOT_BYTES + sizeof(SavedStackEntry) * stack_entries_;
   result.coherence = CoherenceFigures{.code_layout = layout_,
                                       .key_bits = code_.key_bits,
                                       .sort_from_bounce = sort_from_bounce_,

@@ -1,5 +1,6 @@
 // The stages that replace `extend` when rays are sorted before traversal (kernels/common/
-// pth_kernels.h): walk (the top KD-tree levels in local memory, then the coherence code), sort (the
+// pth_kernels.h): walk (the top levels of the tree the scene was uploaded with, the 4-wide BVH or
+// the KD-tree, in local memory, then the coherence code), sort (the
 // device radix sort of (code, slot) pairs) and resume (each traversal continues, in sorted order,
 // from the state the walk saved). With the hash key the walk covers no levels: the hash sort of
 // Garanzha & Loop. Layouts of at most 32 bits are sorted as 32-bit keys (half the sort's traffic).
@@ -40,6 +41,7 @@ class SortedTraversal {
   bool speculative_;
   bool gather_;  // --sort-payload gather
   std::uint32_t sort_from_bounce_;
+  std::uint32_t stack_entries_ = 1;  // saved stack entries per slot
   DeviceProgram program_;
   CodeParams code_{};
   SubtreeChoice subtree_;
