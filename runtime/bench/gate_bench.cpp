@@ -21,7 +21,8 @@ co_vec3 dir_of(const RayIn& r) { return v3(r.dir.x, r.dir.y, r.dir.z); }
 
 // Keys of a --code layout (uniform origin grid: the host has no centroid quantiles here); the
 // paper's PTH bits come from the same walk the kernel takes, over the whole node array: the
-// KD-tree's (pth_walk), or with a BVH the child each level's walk enters first (bvh4_path_bits).
+// KD-tree's (pth_walk), or with a BVH the lanes bvh4_walk goes on with (bvh4_path_bits): the keys
+// the pth pipeline sorts by on that tree.
 // `end_t`: each ray's distance estimate for an end part (one per ray), or the kernel's estimate
 // when empty: the previous segment's length `previous_t` (bounce 2 on), else where the ray leaves
 // the box.
