@@ -12,7 +12,7 @@
 namespace cohort {
 namespace {
 
-// Where the pyoidn wheel may be: $COHORT_VENV (scripts/venv.sh), else the venv beside the binary
+// Where the pyoidn wheel may be: $COHORT_VENV (scripts/lib/venv.sh), else the venv beside the binary
 // (build/venv, where scripts/setup.sh puts it).
 std::vector<std::filesystem::path> wheel_candidates(const std::vector<std::filesystem::path>& venvs = {}) {
   std::vector<std::filesystem::path> out;

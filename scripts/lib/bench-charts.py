@@ -8,7 +8,7 @@
   bench-large-scenes.png     path-tracing rays/s per method against triangle count (--large of scripts/bench)
 The reference of the error chart is a long Cohort `naive` render; its agreement with Mitsuba 3's
 render at the same spp is printed and written in the chart (relative RMSE and mean ratio).
-Usage (in the venv of scripts/venv.sh): bench-charts.py DIR [--out docs]"""
+Usage (in the venv of scripts/lib/venv.sh): bench-charts.py DIR [--out docs]"""
 import argparse
 import glob
 import json

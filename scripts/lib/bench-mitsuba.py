@@ -11,7 +11,7 @@ fast CPU variant a user would pick (Dr.Jit's LLVM JIT, vectorised over samples):
 (Debian libllvm19, found through DRJIT_LIBLLVM_PATH, which scripts/bench sets); its first render
 includes the JIT compile, so it is rendered once untimed first.
 
-Run inside the venv of scripts/venv.sh (scripts/bench does):
+Run inside the venv of scripts/lib/venv.sh (scripts/bench does):
   python bench-mitsuba.py --ply MESH.ply --camera-json COHORT.json [--view exterior] [--res 512]
                           [--spp 4] [--reps 3] [--ladder 1,2,4,8] [--variant scalar_rgb|llvm_ad_rgb]
                           --out DIR --name NAME [--json OUT.json]"""

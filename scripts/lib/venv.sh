@@ -3,7 +3,7 @@
 # them, installing what is missing; MODULE:PACKAGE where the import name differs from PyPI's
 # (flip_evaluator:flip-evaluator). Returns 1 with a message when it cannot (no python3 or no
 # network), so callers can skip their Python part.
-COHORT_VENV="${COHORT_VENV:-$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/build/venv}"
+COHORT_VENV="${COHORT_VENV:-$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)/build/venv}"
 
 cohort_venv() {
   if ! command -v python3 >/dev/null; then
