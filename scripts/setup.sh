@@ -1,6 +1,9 @@
 # Sourced by scripts/render and scripts/test: installs missing Debian packages (only when missing)
 # and configures + builds the Release build in build/. Idempotent: a second run installs nothing
-# and rebuilds only what changed.
+# and rebuilds only what changed. Functions: cohort_install_packages, cohort_build (-j the cores;
+# `source scripts/setup.sh && cohort_build` rebuilds by hand), cohort_missing_packages. Run
+# directly (bash scripts/setup.sh --help), it prints this and exits.
+if [[ "${BASH_SOURCE[0]}" == "$0" ]]; then sed -n '1,/^[^#]/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0; fi
 set -euo pipefail
 
 COHORT_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

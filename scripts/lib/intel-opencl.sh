@@ -1,6 +1,7 @@
 # Sourced by the scripts that run Cohort on Intel's CPU OpenCL runtime (scripts/test-vendors,
-# scripts/bench --runtimes): cohort_intel_opencl installs it from PyPI (`intel-opencl-rt` and the
-# compiler runtime it loads, `intel-cmplr-lib-rt`; no root needed) into a venv under
+# scripts/bench runtimes, scripts/bench-suite's "opencl": "intel" steps): cohort_intel_opencl
+# installs it from PyPI (`intel-opencl-rt` and the compiler runtime it loads, `intel-cmplr-lib-rt`;
+# no root needed) into a venv under
 # ${XDG_CACHE_HOME:-~/.cache}/cohort/intel-opencl-rt, and exports, for the commands that follow:
 #   OCL_ICD_VENDORS  a folder of the project's own ICD files: the system's (/etc/OpenCL/vendors:
 #                    PoCL, GPU drivers) and Intel's, so both runtimes are listed side by side

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""scripts/bench-large: the tree figures of `cohort bench --json` read for every tree it can build
+"""scripts/bench large (scripts/lib/bench-large.py): the tree figures of `cohort bench --json` read for every tree it can build
 (the BVH's build seconds add the pass that keeps the triangles, as a render's build_seconds do), a
 missing tree an error, the CPU lists it pins to, the KD build's target as a ratio to Embree, and, given a
 cohort binary (argv[1]), the figures of real builds of the shipped Cornell box (and Embree's build
@@ -11,7 +11,7 @@ import unittest
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent.parent
-loader = importlib.machinery.SourceFileLoader("bench_large", str(ROOT / "scripts" / "bench-large"))
+loader = importlib.machinery.SourceFileLoader("bench_large", str(ROOT / "scripts" / "lib" / "bench-large.py"))
 spec = importlib.util.spec_from_loader("bench_large", loader)
 bench_large = importlib.util.module_from_spec(spec)
 loader.exec_module(bench_large)

@@ -10,4 +10,10 @@ if(COHORT_PYTHON3)
   add_test(NAME scripts_bench_suite COMMAND ${COHORT_PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/bench_suite_test.py)
   # The bench's table makers (scripts/lib/bench-peers.py, bench-summary.py) on committed records.
   add_test(NAME scripts_bench_tables COMMAND ${COHORT_PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/bench_tables_test.py)
+  # The peer comparison of scripts/bench-suite and the suite cpu-peers: groups alternate Cohort and
+  # Mitsuba per model within a round, ratios divide figures of one round (stand-in programs).
+  add_test(NAME scripts_cpu_peers COMMAND ${COHORT_PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/cpu_peers_test.py)
+  # scripts/ holds what a user or CI runs: each entry answers --help, the README's table names each,
+  # and every scripts/... path the README and docs name exists.
+  add_test(NAME scripts_layout COMMAND ${COHORT_PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/scripts_layout_test.py)
 endif()

@@ -5,9 +5,10 @@ Renders each scene with the default KD-tree and with --tree-budget set to fracti
 tree's bytes (nodes, leaf lists, triangles), so the depth limit drops until the tree fits; reads
 path-tracing rays/s (the render loop's), device bytes per triangle, depth and nodes from --stats.
 White sky (docs/bench-protocol.md), --method naive, medians over --reps renders. Writes OUT/tree-budget.json,
-prints a markdown table and draws OUT/tree-budget.png (matplotlib from the venv of scripts/lib/venv.sh).
+prints a markdown table and draws OUT/tree-budget.png (matplotlib: `scripts/bench tree-budget` runs this
+with the venv of scripts/lib/venv.sh when it can make one).
 
-Usage: scripts/bench-tree-budget [--scenes sponza-interior,bunny] [--fractions 1,0.8,...] [--res 128]
+Usage: scripts/bench tree-budget [--scenes sponza-interior,bunny] [--fractions 1,0.8,...] [--res 128]
                                  [--spp 8] [--reps 3] [--device D] [--cohort build/cohort] [--out DIR]
 """
 import argparse
@@ -18,7 +19,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 SHARED = Path(os.environ.get("COHORT_SHARED_SCENES", ROOT.parent / "shared" / "scenes"))
 INTERIOR = ["--camera-bounds", "0.25,0.2,0.5,0.75,0.35,0.5", "--fov", "60"]
 SCENES = {
@@ -74,8 +75,8 @@ def chart(results, path, label):
     try:
         import matplotlib
     except ImportError:
-        print("no matplotlib: run with the venv's python (source scripts/lib/venv.sh; cohort_venv matplotlib; "
-              "$COHORT_VENV/bin/python scripts/bench-tree-budget ...), or pass --json-only", file=sys.stderr)
+        print(f"no matplotlib in {sys.executable}: the chart is skipped (scripts/bench tree-budget runs the "
+              "venv of scripts/lib/venv.sh when it can make one; --json-only skips the chart)", file=sys.stderr)
         return False
 
     matplotlib.use("Agg")
@@ -100,7 +101,8 @@ def chart(results, path, label):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = argparse.ArgumentParser(prog="scripts/bench tree-budget", description=__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--scenes", default="sponza-interior,bunny")
     p.add_argument("--fractions", default="1,0.8,0.65,0.5,0.42,0.37")
     p.add_argument("--res", type=int, default=128)

@@ -10,7 +10,7 @@ Devices: without --gpu, PoCL CPU devices (POCL_DEVICES="pthread pthread ...") of
 each added device brings cores; with --gpu NAME, the devices whose name matches NAME (one per rank
 under MPI: --device rank:NAME).
 
-Usage: scripts/bench-scaling [--scene cornell-box|sponza-interior|PATH] [--scene-file PATH] [--res 256] [--spp 64]
+Usage: scripts/bench scaling [--scene cornell-box|sponza-interior|PATH] [--scene-file PATH] [--res 256] [--spp 64]
                              [--method pth] [--pass-spp N] [--reps 3] [--devices 1,2] [--ranks 1,2] [--gpu NAME]
                              [--mpirun mpirun] [--json OUT.json] [--keep DIR]"""
 import argparse
@@ -24,7 +24,7 @@ import sys
 import tempfile
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SHARED = os.environ.get("COHORT_SHARED_SCENES", os.path.join(os.path.dirname(ROOT), "shared", "scenes"))
 SCENES = {
     "cornell-box": (os.path.join(ROOT, "scenes", "cornell-box.gltf"), ["--max-depth", "6"]),
@@ -85,14 +85,14 @@ def run_config(args, scene, extra, devices, ranks, workdir, reference, device_sp
         done = subprocess.run(cmd, env=env, capture_output=True, text=True)
         walls.append(time.monotonic() - t0)
         if done.returncode != 0:
-            sys.exit(f"bench-scaling: {' '.join(cmd)} failed ({done.returncode}):\n{done.stdout}{done.stderr}")
+            sys.exit(f"scripts/bench scaling: {' '.join(cmd)} failed ({done.returncode}):\n{done.stdout}{done.stderr}")
         with open(stats) as f:
             s = json.load(f)
         found = len(s["devices"])
         if device_spec:
             devices = found
         elif found != devices * ranks:
-            sys.exit(f"bench-scaling: asked for {devices} devices x {ranks} ranks, the render used {found}")
+            sys.exit(f"scripts/bench scaling: asked for {devices} devices x {ranks} ranks, the render used {found}")
         renders.append(s["timings"]["render_seconds"])
         rays.append(s["rays_per_second"])
         with open(out + ".exr", "rb") as f:
@@ -113,7 +113,8 @@ def run_config(args, scene, extra, devices, ranks, workdir, reference, device_sp
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(prog="scripts/bench scaling", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--scene", default="cornell-box")
     ap.add_argument("--scene-file", default="", help="the preset's scene read from this file instead")
     ap.add_argument("--res", type=int, default=256)
@@ -137,11 +138,11 @@ def main():
     scene, extra = SCENES.get(args.scene, (args.scene, []))
     scene = args.scene_file or scene
     if not os.path.exists(scene):
-        sys.exit(f"bench-scaling: {scene} not found")
+        sys.exit(f"scripts/bench scaling: {scene} not found")
     devices = [int(d) for d in args.devices.split(",") if d]
     ranks = [int(r) for r in args.ranks.split(",") if r and int(r) > 1]
     if ranks and not shutil.which(shlex.split(args.mpirun)[0]):
-        print(f"bench-scaling: {args.mpirun} not found, ranks skipped (apt-get install openmpi-bin)", file=sys.stderr)
+        print(f"scripts/bench scaling: {args.mpirun} not found, ranks skipped (apt-get install openmpi-bin)", file=sys.stderr)
         ranks = []
     if not args.threads_per_device:
         args.threads_per_device = max(1, (os.cpu_count() or 1) // max(devices + ranks))
@@ -179,7 +180,7 @@ def main():
             json.dump({"scene": args.scene, "res": args.res, "spp": args.spp, "method": args.method,
                        "gpu": args.gpu, "rows": rows}, f, indent=2)
     if any(row["image"].startswith("DIFFERS") for row in rows):
-        sys.exit("bench-scaling: an image differs from the one-worker image")
+        sys.exit("scripts/bench scaling: an image differs from the one-worker image")
 
 
 if __name__ == "__main__":

@@ -19,13 +19,13 @@ time, device memory and time to first pixel from --stats; OUT/large-scenes.json 
 of results/raw/nvidia-h200-2026-12-02-2f72453/gpu-large-scenes.json.
 
 Examples:
-  scripts/bench-large                                  # 1M scenes and Sponza x16 (4.5M), build only
-  scripts/bench-large --sizes 1m --baseline OLD/cohort # before/after the build change
-  scripts/bench-large --sizes 1m --cpus 0,1            # the build on 2 cores of a bigger machine
-  scripts/bench-large --sizes 1m --cpus 0,1 --tree compact --embree build/cohort-embree-bench
-  scripts/bench-large --sizes 1m --tree bvh4           # the 4-wide BVH a default render builds
-  scripts/bench-large --sizes 4m,18m,31m --render --device NVIDIA --methods naive,sc+rg,pth
-  scripts/bench-large --sizes 31m --render --backend cuda
+  scripts/bench large                                  # 1M scenes and Sponza x16 (4.5M), build only
+  scripts/bench large --sizes 1m --baseline OLD/cohort # before/after the build change
+  scripts/bench large --sizes 1m --cpus 0,1            # the build on 2 cores of a bigger machine
+  scripts/bench large --sizes 1m --cpus 0,1 --tree compact --embree build/cohort-embree-bench
+  scripts/bench large --sizes 1m --tree bvh4           # the 4-wide BVH a default render builds
+  scripts/bench large --sizes 4m,18m,31m --render --device NVIDIA --methods naive,sc+rg,pth
+  scripts/bench large --sizes 31m --render --backend cuda
 """
 import argparse
 import json
@@ -38,7 +38,7 @@ import tempfile
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 INTERIOR = ["--camera-bounds", "0.25,0.2,0.5,0.75,0.35,0.5", "--fov", "60"]
 SPONZA = "crytek-sponza/sponza.obj.gz"
 # name: (shared model, subdivision levels, copies along z)
@@ -81,7 +81,7 @@ def tree_figures_of(doc, tree=""):
     one-leaf KD-tree), as a render's build_seconds do."""
     scenes = doc.get("scenes") or []
     if not scenes or not scenes[0].get("kdtree"):
-        sys.exit("bench-large: no tree in cohort bench's JSON")
+        sys.exit("scripts/bench large: no tree in cohort bench's JSON")
     scene = scenes[0]
     kd = scene["kdtree"]
     kept = scene["triangles"] - kd.get("dropped_triangles", 0)
@@ -137,7 +137,7 @@ def embree_seconds(embree, scene, cpus=""):
         doc = json.loads(out.read_text())
     seconds = ((doc.get("scenes") or [{}])[0].get("bvh") or {}).get("build_seconds")
     if seconds is None:
-        sys.exit("bench-large: no BVH build in cohort-embree-bench's JSON")
+        sys.exit("scripts/bench large: no BVH build in cohort-embree-bench's JSON")
     return float(seconds)
 
 
@@ -225,7 +225,8 @@ def render_table(args, scenes):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = argparse.ArgumentParser(prog="scripts/bench large", description=__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--cohort", type=Path, default=ROOT / "build" / "cohort")
     p.add_argument("--baseline", type=Path, help="a second cohort binary to compare build figures with")
     p.add_argument("--embree", type=Path, help="cohort-embree-bench: alternate Embree-high's BVH build "
@@ -250,16 +251,16 @@ def main():
     p.add_argument("--spp", type=int, default=16)
     args = p.parse_args()
     if not args.cohort.exists():
-        sys.exit(f"bench-large: {args.cohort} not found (build first: source scripts/setup.sh && cohort_build)")
+        sys.exit(f"scripts/bench large: {args.cohort} not found (build first: source scripts/setup.sh && cohort_build)")
     if args.embree:
         args.embree = args.embree.resolve()  # a bare name would be looked up on PATH
     if args.embree and not args.embree.exists():
-        sys.exit(f"bench-large: {args.embree} not found (it is built with cohort when Embree 3 is installed)")
+        sys.exit(f"scripts/bench large: {args.embree} not found (it is built with cohort when Embree 3 is installed)")
     (args.out / "scenes").mkdir(parents=True, exist_ok=True)
     scenes = []
     for size in filter(None, args.sizes.split(",")):
         if size not in SCENES:
-            sys.exit(f"bench-large: unknown size '{size}' (have {', '.join(SCENES)})")
+            sys.exit(f"scripts/bench large: unknown size '{size}' (have {', '.join(SCENES)})")
         for name, model, levels, copies in SCENES[size]:
             path = make_scene(args.cohort, args.shared, args.out / "scenes", name, model, levels, copies)
             if path:
