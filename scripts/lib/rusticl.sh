@@ -1,8 +1,8 @@
 # Sourced by the scripts that run Cohort on Mesa's rusticl (scripts/test-vendors, scripts/bench-suite's
-# "opencl": "rusticl" steps): cohort_rusticl unpacks Debian 12's mesa-opencl-icd (rusticl and clover; `apt-get download`, so nothing is
-# registered system-wide) into ${XDG_CACHE_HOME:-~/.cache}/cohort/rusticl, installs the libraries it
-# loads from Debian's packages (LLVM 15, libclc, the SPIR-V translator, libdrm), and exports, for the
-# commands that follow:
+# "opencl": "rusticl" steps): cohort_rusticl unpacks Debian 12's mesa-opencl-icd (rusticl and
+# clover; `apt-get download`, so nothing is registered system-wide) into
+# ${XDG_CACHE_HOME:-~/.cache}/cohort/rusticl, installs the libraries it loads from Debian's packages
+# (LLVM 15, libclc, the SPIR-V translator, libdrm), and exports, for the commands that follow:
 #   OCL_ICD_VENDORS  a folder of the project's own ICD files: the system's (PoCL, GPU drivers) and
 #                    rusticl's, so both are listed side by side and the default platforms stay as
 #                    they are for every other command
