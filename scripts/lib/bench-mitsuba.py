@@ -9,11 +9,12 @@ median of --reps renders; the last image is saved as EXR. --ladder renders once 
 (the error-against-time chart) and records their times and images. --variant llvm_ad_rgb is the
 fast CPU variant a user would pick (Dr.Jit's LLVM JIT, vectorised over samples): it needs libLLVM
 (Debian libllvm19, found through DRJIT_LIBLLVM_PATH, which scripts/bench sets); its first render
-includes the JIT compile, so it is rendered once untimed first.
+includes the JIT compile, so it is rendered once untimed first. --variant cuda_ad_rgb is the GPU
+variant (Dr.Jit's CUDA backend with OptiX), for a peer on the same GPU (scripts/lib/mitsuba-cuda-pack).
 
 Run inside the venv of scripts/lib/venv.sh (scripts/bench does):
   python bench-mitsuba.py --ply MESH.ply --camera-json COHORT.json [--view exterior] [--res 512]
-                          [--spp 4] [--reps 3] [--ladder 1,2,4,8] [--variant scalar_rgb|llvm_ad_rgb]
+                          [--spp 4] [--reps 3] [--ladder 1,2,4,8] [--variant scalar_rgb|llvm_ad_rgb|cuda_ad_rgb]
                           --out DIR --name NAME [--json OUT.json]"""
 import argparse
 import json
@@ -80,7 +81,7 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--name", required=True)
     ap.add_argument("--json", default="")
-    ap.add_argument("--variant", default="scalar_rgb", choices=["scalar_rgb", "llvm_ad_rgb"])
+    ap.add_argument("--variant", default="scalar_rgb", choices=["scalar_rgb", "llvm_ad_rgb", "cuda_ad_rgb"])
     args = ap.parse_args()
     mi.set_variant(args.variant)
     os.makedirs(args.out, exist_ok=True)
