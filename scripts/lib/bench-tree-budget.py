@@ -1,15 +1,17 @@
 #!/usr/bin/env python3
 """Rays/s against device bytes per triangle: the --tree-budget trade-off.
 
-Renders each scene with the default KD-tree and with --tree-budget set to fractions of the default
-tree's bytes (nodes, leaf lists, triangles), so the depth limit drops until the tree fits; reads
+Renders each scene with a KD-tree (--tree: compact, the CPU's, by default; deep on a GPU; the
+renderer's own default is the 4-wide BVH, which has no depth to trade) and with --tree-budget set
+to fractions of that tree's bytes (nodes, leaf lists, triangles), so the depth limit drops until the tree fits; reads
 path-tracing rays/s (the render loop's), device bytes per triangle, depth and nodes from --stats.
 White sky (docs/bench-protocol.md), --method naive, medians over --reps renders. Writes OUT/tree-budget.json,
 prints a markdown table and draws OUT/tree-budget.png (matplotlib: `scripts/bench tree-budget` runs this
 with the venv of scripts/lib/venv.sh when it can make one).
 
 Usage: scripts/bench tree-budget [--scenes sponza-interior,bunny] [--fractions 1,0.8,...] [--res 128]
-                                 [--spp 8] [--reps 3] [--device D] [--cohort build/cohort] [--out DIR]
+                                 [--spp 8] [--reps 3] [--device D] [--tree compact|deep]
+                                 [--cohort build/cohort] [--out DIR]
 """
 import argparse
 import json
@@ -33,7 +35,8 @@ SCENES = {
 
 def render(args, scene, extra, budget_mib, stats):
     cmd = [str(args.cohort), "render", str(scene), "--white-sky", *extra, "--res", f"{args.res}x{args.res}",
-           "--spp", str(args.spp), "--method", "naive", "--stats", str(stats), "-o", str(args.out / "image")]
+           "--spp", str(args.spp), "--method", "naive", "--tree", args.tree, "--stats", str(stats),
+           "-o", str(args.out / "image")]
     if budget_mib:
         cmd += ["--tree-budget", f"{budget_mib:.3f}"]
     if args.device:
@@ -109,6 +112,7 @@ def main():
     p.add_argument("--spp", type=int, default=8)
     p.add_argument("--reps", type=int, default=3)
     p.add_argument("--device", default="")
+    p.add_argument("--tree", default="compact", choices=["compact", "deep"])
     p.add_argument("--cohort", type=Path, default=ROOT / "build" / "cohort")
     p.add_argument("--out", type=Path, default=ROOT / "build" / "bench-tree-budget")
     p.add_argument("--json-only", action="store_true", help="no chart (no matplotlib needed)")
