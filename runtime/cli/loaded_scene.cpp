@@ -41,7 +41,7 @@ LoadedScene::LoadedScene(RenderCommand base)
 }
 
 LoadedScene::Variant& LoadedScene::variant(const RenderPlan& plan, bool& built) {
-  const bool needs_kd = plan.command.tree_budget_mib > 0;
+  const bool needs_kd = plan.command.tree_budget_mib > 0 || plan.settings().speculative;
   const VariantKey key{needs_kd, plan.command.white_sky,
                        plan.environment_map ? plan.command.environment : std::string()};
   built = false;

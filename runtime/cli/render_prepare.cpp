@@ -38,9 +38,9 @@ OpenedDevices open_render_devices(const RenderPlan& plan, int local_rank) {
 PreparedScene build_render_trees(const RenderPlan& plan, const std::vector<DeviceInfo>& devices,
                                  const std::function<PreparedScene(const TreeChoice&)>& build) {
   const RenderCommand& cmd = plan.command;
-  // what rays are traced through (tree_options: the BVH unless a tree budget asks for the KD-tree,
-  // which then fits the devices); any gives the same image
-  const TreeChoice tree = tree_options(cmd.tree, devices, cmd.tree_budget_mib > 0);
+  // what rays are traced through (tree_options: the BVH unless a tree budget or speculative traversal
+  // asks for the KD-tree, which then fits the devices); any gives the same image
+  const TreeChoice tree = tree_options(cmd.tree, devices, cmd.tree_budget_mib > 0 || plan.settings().speculative);
   PreparedScene prepared = build(tree);
   // the BVH has no depth to trade for bytes: where it does not fit, auto falls back to the KD-tree
   if (plan.memory_limit && prepared.bvh4 && cmd.tree == "auto" &&

@@ -27,7 +27,8 @@ TreeChoice tree_options(const std::string& choice, std::span<const DeviceInfo> d
     options.bvh4 = !needs_kd;
   } else if (choice == "bvh4") {
     if (needs_kd)
-      throw InputError("--tree bvh4: --tree-budget sizes the KD-tree; give --tree auto, deep or compact with it");
+      throw InputError("--tree bvh4: --tree-budget and --speculative need the KD-tree; give --tree auto, deep or "
+                       "compact with them");
     options.bvh4 = true;
   } else if (choice != "deep") {
     throw InputError(

@@ -48,7 +48,7 @@ struct TreeChoice {
 // samples per CPU second on PoCL, 1.1-2.1x its rays/s on the H200 for naive and sc; 0.9x on the
 // conference; docs/results.md), "deep" (the KD-tree built for GPUs), "compact" (KdBuildOptions::compact:
 // 0.55-0.67x the nodes and 0.74-0.83x the bytes) or "auto": bvh4 unless a KD-tree is asked for
-// (`needs_kd`: --tree-budget), then compact when no device is a GPU and deep when one is. Every
+// (`needs_kd`: --tree-budget, --speculative), then compact when no device is a GPU and deep when one is. Every
 // method walks either; pth's partial traversal walks the top of whichever is built. Every structure gives every ray the same hit (kernels/common/bvh4_traverse.h), so
 // the choice changes speed and memory, never the image. Throws InputError for another name, and for
 // bvh4 with `needs_kd`.

@@ -171,13 +171,21 @@ TEST(Cli, EveryTreeRendersTheSameImage) {
           << method << " on " << tree << " rendered another image";
     }
   }
-  // speculation is the KD-tree walk's: with the BVH, an error before rendering
+  // speculation is the KD-tree walk's: with the BVH asked for, an error before rendering; auto builds
+  // the KD-tree for it
   const CommandResult speculative = run("render " + scene("cornell-box.gltf") +
                                         " --res 8x8 --spp 1 --method pth --speculative --tree bvh4 -o " +
                                         (dir.path / "x").string());
   EXPECT_EQ(speculative.code, 2) << speculative.output;
   EXPECT_NE(speculative.output.find("KD-tree"), std::string::npos) << speculative.output;
   EXPECT_FALSE(fs::exists(dir.path / "x.exr"));
+  const CommandResult speculative_auto =
+      run("render " + scene("cornell-box.gltf") + " --res 40x32 --spp 8 --method pth --speculative -o " +
+          (dir.path / "spec").string() + " --stats " + (dir.path / "s.json").string());
+  ASSERT_EQ(speculative_auto.code, 0) << speculative_auto.output;
+  EXPECT_NE(nlohmann::json::parse(std::ifstream(dir.path / "s.json"))["kdtree"]["kind"], "bvh4");
+  std::ifstream spec_exr((dir.path / "spec.exr").string(), std::ios::binary);
+  EXPECT_TRUE(images[0] == std::string(std::istreambuf_iterator<char>(spec_exr), {})) << "speculative pth";
   EXPECT_EQ(run("render " + scene("cornell-box.gltf") + " --tree sparse -o " + (dir.path / "x").string()).code, 2);
 }
 

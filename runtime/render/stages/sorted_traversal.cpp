@@ -17,7 +17,7 @@ SortedTraversal::SortedTraversal(const WavefrontRender& render, RayOrder key)
   const Device& cl = in.device;
   const std::uint32_t slots = render.pool().slots;
   if (speculative_ && in.scene.bvh4)
-    throw InputError("--speculative is the KD-tree's resume: give --tree deep or compact with it");
+    throw InputError("--speculative is the KD-tree's resume: give --tree auto, deep or compact with it");
   program_ = cl.build_program(in.cache, "pth", in.scene.build_options);
   const bool pth = key == RayOrder::pth;
   // --code pth:N means N levels (docs/decisions.md): it and --pth-levels must agree when both are given
