@@ -14,6 +14,15 @@ decodes them (sRGB for colour, byte / 255 for data), so the filters and wrap mod
   sampler-wrap   three panels with coordinates from -0.75 to 1.75 and one 4x4 texture: NEAREST with
                  CLAMP_TO_EDGE, LINEAR with MIRRORED_REPEAT, LINEAR with REPEAT (Mitsuba's bitmap
                  filter_type and wrap_mode)
+  alpha-mask     a slanted panel between the light and the ground, alphaMode MASK with alphaCutoff 0.3 and a
+                 NEAREST texture whose alpha (40 or 120 of 255) cuts a checker of holes: the ground is
+                 lit through the holes and the wall seen through them; Mitsuba: the mask plugin with
+                 the cut-out as a 0/1 opacity bitmap around a two-sided diffuse
+  alpha-blend    the same panel with alphaMode BLEND: baseColorFactor alpha 0.9 times a LINEAR alpha
+                 ramp (stochastic transparency in Cohort); Mitsuba: mask with that alpha as opacity
+  (Mitsuba's path integrator counts a pass through a mask as a path segment where Cohort's does not,
+  and its shadow rays stop at masks: the alpha scenes use max_depth 24, where both have converged to
+  the unbounded answer of this open room)
   (normal maps: Mitsuba 3.9's normalmap plugin was checked with bump_map() below and loses about 2 %
   more light than the analytic expectation under a uniform sky, which Cohort meets within 0.1 %;
   test/render/gltf_material_test.cpp checks normal maps against analytic values instead)
@@ -88,6 +97,25 @@ def wrap_texture():
     return t
 
 
+def alpha_checker(n=8):
+    """Coloured texels whose alpha is 40 (below the cutoff 0.3: a hole) or 120 in a checker of 2x2 blocks."""
+    t = np.zeros((n, n, 4), dtype=np.uint8)
+    for y in range(n):
+        for x in range(n):
+            hole = (x // 2 + y // 2) % 2 == 0
+            t[y, x] = (200 - 15 * x, 80 + 20 * y, 60 + 10 * (x + y), 40 if hole else 120)
+    return t
+
+
+def alpha_ramp(n=8):
+    """Coloured texels whose alpha runs from 20 to 250 along u and a little along v."""
+    t = np.zeros((n, n, 4), dtype=np.uint8)
+    for y in range(n):
+        for x in range(n):
+            t[y, x] = (90 + 20 * y, 160, 220 - 20 * x, 20 + 28 * x + 2 * y)
+    return t
+
+
 def bump_map(n=16):
     """A tangent-space normal map of bumps tilting the normal by up to about 20 degrees."""
     t = np.zeros((n, n, 4), dtype=np.uint8)
@@ -125,10 +153,21 @@ def room_with(panels, light=True):
     return shapes
 
 
+ALPHA_PANEL = ([-1.3, 0.6, 1.2], [2.6, 0, 0], [0, 1.4, -2.2])  # between the light and the ground, facing the camera
+
+
 def scene_list():
     base, mr = checker_mr()
     wrap = wrap_texture()
     return {
+        "alpha-mask": {"environment": [0.1, 0.1, 0.1], "max_depth": 24, "shapes": room_with([
+            ("panel", panel(*ALPHA_PANEL),
+             {"kind": "alpha", "texels": alpha_checker(), "mode": "MASK", "cutoff": 0.3, "factor": 1.0,
+              "sampler": {"magFilter": NEAREST, "minFilter": NEAREST}})])},
+        "alpha-blend": {"environment": [0.1, 0.1, 0.1], "max_depth": 24, "shapes": room_with([
+            ("panel", panel(*ALPHA_PANEL),
+             {"kind": "alpha", "texels": alpha_ramp(), "mode": "BLEND", "factor": 0.9,
+              "sampler": {"magFilter": LINEAR, "minFilter": LINEAR}})])},
         "textured-mr": {"environment": [0.1, 0.1, 0.1], "shapes": room_with([
             ("panel", panel([-1.2, 0.2, 0.0], [2.4, 0, 0], [0, 2.0, -0.6]),
              {"kind": "textured_mr", "base": base, "mr": mr, "sampler": {"magFilter": NEAREST, "minFilter": NEAREST}})])},
@@ -187,6 +226,13 @@ def write_gltf(path, desc):
         elif kind == "textured_diffuse":
             m = {"pbrMetallicRoughness": {"baseColorTexture": add_texture(mat["texels"], mat["sampler"]),
                                           "metallicFactor": 0.0, "roughnessFactor": 1.0}}
+        elif kind == "alpha":
+            m = {"pbrMetallicRoughness": {"baseColorTexture": add_texture(mat["texels"], mat["sampler"]),
+                                          "baseColorFactor": [1.0, 1.0, 1.0, mat["factor"]],
+                                          "metallicFactor": 0.0, "roughnessFactor": 1.0},
+                 "alphaMode": mat["mode"], "doubleSided": True}
+            if "cutoff" in mat:
+                m["alphaCutoff"] = mat["cutoff"]
         elif kind == "normal_map":
             m = {"pbrMetallicRoughness": {"baseColorFactor": mat["albedo"] + [1.0], "metallicFactor": 0.0,
                                           "roughnessFactor": 1.0},
@@ -270,6 +316,13 @@ def mitsuba_bsdf(mat):
     if kind == "textured_diffuse":
         return {"type": "twosided", "bsdf": {"type": "diffuse",
                                              "reflectance": bitmap(srgb_to_linear(mat["texels"][:, :, :3]), mat["sampler"])}}
+    if kind == "alpha":
+        colour = srgb_to_linear(mat["texels"][:, :, :3])
+        alpha = mat["factor"] * mat["texels"][:, :, 3:4] / 255.0
+        if mat["mode"] == "MASK":
+            alpha = (alpha >= mat["cutoff"]).astype(np.float64)  # nearest texels: the cut-out exactly
+        return {"type": "mask", "opacity": bitmap(alpha, mat["sampler"]),
+                "bsdf": {"type": "twosided", "bsdf": {"type": "diffuse", "reflectance": bitmap(colour, mat["sampler"])}}}
     if kind == "normal_map":
         return {"type": "normalmap", "normalmap": bitmap(mat["normals"][:, :, :3] / 255.0, mat["sampler"]),
                 "bsdf": {"type": "twosided", "bsdf": {"type": "diffuse", "reflectance": rs.rgb_value(mat["albedo"])}}}
@@ -278,7 +331,7 @@ def mitsuba_bsdf(mat):
 
 def mitsuba_scene(desc, tmp):
     camera = rs.CAMERA
-    scene = {"type": "scene", "integrator": {"type": "path", "max_depth": rs.MAX_DEPTH},
+    scene = {"type": "scene", "integrator": {"type": "path", "max_depth": desc.get("max_depth", rs.MAX_DEPTH)},
              "sensor": {"type": "perspective", "fov": camera["fov"], "fov_axis": "y", "near_clip": 0.01,
                         "to_world": rs.look_at(camera["eye"], camera["target"], camera["up"]),
                         "sampler": {"type": "independent"},
@@ -305,7 +358,7 @@ def render(name, desc, args):
     out = os.path.join(rs.REFERENCES, f"reference-{name}.exr")
     mi.Bitmap(mean, pixel_format=mi.Bitmap.PixelFormat.RGB).write(out)
     meta = {"scene": f"scenes/reference/{name}.gltf", "mitsuba_version": mi.__version__, "variant": "scalar_rgb",
-            "integrator": "path", "max_depth": rs.MAX_DEPTH, "resolution": [rs.RES, rs.RES], "spp": spp,
+            "integrator": "path", "max_depth": desc.get("max_depth", rs.MAX_DEPTH), "resolution": [rs.RES, rs.RES], "spp": spp,
             "passes": passes, "seeds": f"0..{passes - 1} (one per pass of {args.pass_spp} spp)",
             "sampler": "independent", "reconstruction_filter": "box", "render_seconds": round(elapsed, 1),
             "machine": f"{platform.machine()}, {os.cpu_count()} logical CPUs",

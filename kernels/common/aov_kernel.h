@@ -27,7 +27,7 @@ CO_KERNEL render_aov(CO_PARAMS(RENDER_AOV_PARAMS)) {
   if (count > p.samples_per_pass) count = p.samples_per_pass;
   for (uint32_t i = 0u; i < count; ++i) {
     PathState st = path_start(&p, pixel, p.sample_offset + i);
-    HitOut hit = scene_trace_steps(&s.tree, st.org, st.dir, 0.0f, INFINITY, 0, 0);
+    HitOut hit = scene_trace_steps(&s.tree, st.org, st.dir, 0.0f, INFINITY, 0, 0 CO_ALPHA_ARG(st.alpha_seed));
     if (hit.triangle == HIT_NONE) continue;
     const CO_GLOBAL Material* m = &s.materials[s.triangle_material[hit.triangle]];
     co_vec3 base_color =

@@ -66,7 +66,7 @@ BVH4_DEFINE_WALK(bvh4_walk_global, CO_GLOBAL)
 /* The PTH bits alone (the gate benchmark's keys): the walk over the whole tree from the root, with
  * the ray's full interval. */
 CO_INLINE uint32_t bvh4_path_bits(const Bvh4View* bvh, co_vec3 org, co_vec3 dir, uint32_t levels) {
-  Bvh4Ray r = bvh4_ray(org, dir);
+  Bvh4Ray r = bvh4_ray(org, dir CO_ALPHA_ARG(0u)); /* a walk tests no triangle: no alpha seed */
   uint32_t stack_ref[BVH4_STACK];
   float stack_t[BVH4_STACK];
   uint32_t ref;

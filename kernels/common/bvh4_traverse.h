@@ -31,6 +31,9 @@
 typedef struct Bvh4View {
   const CO_GLOBAL Bvh4Node* nodes;
   const CO_GLOBAL Triangle* leaf_triangles;
+#if defined(COHORT_FEATURE_ALPHA)
+  AlphaView alpha; /* set by make_scene_view */
+#endif
 } Bvh4View;
 
 /* The scene's arrays as the kernels receive them: a BVH4 travels in the buffers of KD nodes and
@@ -99,9 +102,14 @@ typedef struct Bvh4Ray {
   int near_x, near_y, near_z;
 } Bvh4Ray;
 
-CO_INLINE Bvh4Ray bvh4_ray(co_vec3 org, co_vec3 dir) {
+/* With COHORT_FEATURE_ALPHA a last argument is the ray's alpha seed (alpha.h). */
+CO_INLINE Bvh4Ray bvh4_ray(co_vec3 org, co_vec3 dir CO_ALPHA_PARAM) {
   Bvh4Ray r;
   r.wr = watertight_ray(org, dir);
+#if defined(COHORT_FEATURE_ALPHA)
+  r.wr.alpha = 0; /* bvh4_continue points a copy at its tree's */
+  r.wr.alpha_seed = alpha_seed;
+#endif
   r.ox = co_f4_splat(org.x); r.oy = co_f4_splat(org.y); r.oz = co_f4_splat(org.z);
   r.ix = co_f4_splat(bvh4_inverse(dir.x)); r.iy = co_f4_splat(bvh4_inverse(dir.y));
   r.iz = co_f4_splat(bvh4_inverse(dir.z));
@@ -175,11 +183,18 @@ CO_INLINE void bvh4_continue(const Bvh4View* bvh, const Bvh4Ray* r, float tmin, 
                              float ref_t, uint32_t* stack_ref, float* stack_t, int sp, uint32_t* visited) {
   co_float4 enter_min = co_f4_splat(tmin);
   uint32_t count = 0u;
+#if defined(COHORT_FEATURE_ALPHA)
+  WatertightRay wr = r->wr;
+  wr.alpha = &bvh->alpha;
+#define BVH4_WR &wr
+#else
+#define BVH4_WR &r->wr
+#endif
   for (;;) {
     if (!kd_beyond_hit(hit->t, ref_t)) {
       ++count;
       if (bvh4_is_leaf(ref)) {
-        if (bvh4_intersect_leaf(&bvh->leaf_triangles[bvh4_leaf_first(ref)], bvh4_leaf_count(ref), &r->wr, tmin, hit,
+        if (bvh4_intersect_leaf(&bvh->leaf_triangles[bvh4_leaf_first(ref)], bvh4_leaf_count(ref), BVH4_WR, tmin, hit,
                                 any_hit))
           break;
       } else {
@@ -197,17 +212,18 @@ CO_INLINE void bvh4_continue(const Bvh4View* bvh, const Bvh4Ray* r, float tmin, 
     --sp;
     ref = stack_ref[sp]; ref_t = stack_t[sp];
   }
+#undef BVH4_WR
   if (visited) *visited = count;
 }
 
-/* Closest hit (any_hit = 0) or any hit (any_hit = 1) in (tmin, tmax), as kd_trace_steps: the whole
- * traversal from the root. `steps`, when not null, receives the number of nodes and leaves
- * visited. */
+/* Closest hit (any_hit = 0) or any hit (any_hit = 1) in (tmin, tmax), as kd_trace_steps (with its
+ * alpha seed under COHORT_FEATURE_ALPHA): the whole traversal from the root. `steps`, when not null,
+ * receives the number of nodes and leaves visited. */
 CO_INLINE HitOut bvh4_trace_steps(const Bvh4View* bvh, co_vec3 org, co_vec3 dir, float tmin, float tmax,
-                                  int any_hit, uint32_t* steps) {
+                                  int any_hit, uint32_t* steps CO_ALPHA_PARAM) {
   HitOut hit;
   hit.t = tmax; hit.u = 0.0f; hit.v = 0.0f; hit.triangle = HIT_NONE;
-  Bvh4Ray r = bvh4_ray(org, dir);
+  Bvh4Ray r = bvh4_ray(org, dir CO_ALPHA_ARG(alpha_seed));
   uint32_t stack_ref[BVH4_STACK];
   float stack_t[BVH4_STACK];
   bvh4_continue(bvh, &r, tmin, any_hit, &hit, 0u /* the root */, tmin, stack_ref, stack_t, 0, steps);

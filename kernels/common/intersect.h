@@ -7,6 +7,7 @@
 
 #include "common/types.h"
 #include "common/vec.h"
+#include "common/alpha_view.h"
 
 /* Per-ray constants of the watertight test: the shear that maps the ray to +Z, as three rows.
  * Row x is e_kx - sx e_kz, row y is e_ky - sy e_kz, row z is e_kz: each has at most two nonzero
@@ -16,6 +17,10 @@ typedef struct WatertightRay {
   co_vec3 org;
   co_vec3 row_x, row_y, row_z;
   float sz;
+#if defined(COHORT_FEATURE_ALPHA)
+  const AlphaView* alpha; /* the scene's alpha modes, set by the traversal (alpha.h) */
+  uint32_t alpha_seed;    /* the ray's seed for BLEND decisions */
+#endif
 } WatertightRay;
 
 CO_INLINE co_vec3 unit_axis(uint32_t k) { return v3(k == 0u ? 1.0f : 0.0f, k == 1u ? 1.0f : 0.0f, k == 2u ? 1.0f : 0.0f); }

@@ -99,9 +99,13 @@ CO_INLINE void kd_spec_leaf_phase(const KdTreeView* tree, KdSpeculativeRay* r) {
 }
 
 CO_INLINE void kd_spec_start(KdSpeculativeRay* r, int active, co_vec3 org, co_vec3 dir, float tmin, float tmax,
-                             uint32_t node, float t0, float t1, int sp) {
+                             uint32_t node, float t0, float t1, int sp CO_ALPHA_PARAM) {
   r->org = org; r->dir = dir; r->inv_dir = kd_inverse(dir);
   r->wr = watertight_ray(org, dir);
+#if defined(COHORT_FEATURE_ALPHA)
+  r->wr.alpha = 0; /* kd_spec_run_group points it at its tree's */
+  r->wr.alpha_seed = alpha_seed;
+#endif
   r->tmin = tmin;
   r->node = node; r->t0 = t0; r->t1 = t1;
   r->leaf = 0u; r->leaf_t0 = 0.0f;
@@ -151,6 +155,9 @@ CO_INLINE void kd_group_vote_init(CO_LOCAL uint32_t* votes) {
  * (inactive ones too), never from divergent code. */
 CO_INLINE void kd_spec_run_group(const KdTreeView* tree, KdSpeculativeRay* r, KdStackEntry* stack,
                                  CO_LOCAL uint32_t* votes) {
+#if defined(COHORT_FEATURE_ALPHA)
+  r->wr.alpha = &tree->alpha;
+#endif
   kd_group_vote_init(votes);
   for (uint32_t step = 0u;; ++step) {
     uint32_t group = kd_group_vote(votes, step, kd_spec_vote_bits(r));

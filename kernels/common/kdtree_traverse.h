@@ -14,6 +14,9 @@ typedef struct KdTreeView {
   const CO_GLOBAL uint32_t* leaf_triangles;
   const CO_GLOBAL Triangle* triangles;
   co_vec3 lo, hi;
+#if defined(COHORT_FEATURE_ALPHA)
+  AlphaView alpha; /* set by make_scene_view */
+#endif
 } KdTreeView;
 
 CO_INLINE KdTreeView make_tree_view(const CO_GLOBAL KdNode* nodes, const CO_GLOBAL uint32_t* leaf_triangles,
@@ -77,6 +80,10 @@ CO_INLINE int consider_triangle(const WatertightRay* wr, CO_GLOBAL const Triangl
   if (intersect_triangle(wr, v3_from4(tp->v0), v3_from4(tp->v1), v3_from4(tp->v2), ray_tmin,
                          any_hit ? hit->t : INFINITY, &t, &u, &v) &&
       (t < hit->t || (t == hit->t && tri < hit->triangle && hit->triangle != HIT_NONE))) {
+#if defined(COHORT_FEATURE_ALPHA)
+    /* a cut-out or passed-through hit (alpha.h) is as if the triangle were not there */
+    if (alpha_skips(wr->alpha, wr->alpha_seed, tri, u, v)) return 0;
+#endif
     hit->t = t; hit->u = u; hit->v = v; hit->triangle = tri;
     if (any_hit) return 1;
   }
@@ -174,11 +181,16 @@ CO_INLINE co_vec3 kd_inverse(co_vec3 dir) { return v3(1.0f / dir.x, 1.0f / dir.y
 /* Continues a traversal from `node_index` with cell interval [t0, t1] and `sp` stacked cells.
  * `steps`, when not null, counts nodes visited (the SIMD efficiency figure). */
 CO_INLINE HitOut kd_resume(const KdTreeView* tree, co_vec3 org, co_vec3 dir, float tmin, float tmax, int any_hit,
-                           uint32_t node_index, float t0, float t1, KdStackEntry* stack, int sp, uint32_t* steps) {
+                           uint32_t node_index, float t0, float t1, KdStackEntry* stack, int sp,
+                           uint32_t* steps CO_ALPHA_PARAM) {
   HitOut hit;
   hit.t = tmax; hit.u = 0.0f; hit.v = 0.0f; hit.triangle = HIT_NONE;
   co_vec3 inv_dir = kd_inverse(dir);
   WatertightRay wr = watertight_ray(org, dir);
+#if defined(COHORT_FEATURE_ALPHA)
+  wr.alpha = &tree->alpha;
+  wr.alpha_seed = alpha_seed;
+#endif
   uint32_t visited = 0u;
   int unordered = kd_stack_unordered(stack, sp);
   for (;;) {
@@ -209,9 +221,10 @@ CO_INLINE HitOut kd_resume(const KdTreeView* tree, co_vec3 org, co_vec3 dir, flo
 }
 
 /* Closest hit (any_hit = 0) or any hit (any_hit = 1) in (tmin, tmax). A miss has triangle HIT_NONE.
- * `steps`, when not null, receives the number of nodes visited. */
+ * `steps`, when not null, receives the number of nodes visited. With COHORT_FEATURE_ALPHA a last
+ * argument is the ray's alpha seed (alpha.h). */
 CO_INLINE HitOut kd_trace_steps(const KdTreeView* tree, co_vec3 org, co_vec3 dir, float tmin, float tmax, int any_hit,
-                                uint32_t* steps) {
+                                uint32_t* steps CO_ALPHA_PARAM) {
   float t0, t1;
   if (!kd_begin(tree, org, kd_inverse(dir), tmin, tmax, &t0, &t1)) {
     HitOut miss;
@@ -220,11 +233,13 @@ CO_INLINE HitOut kd_trace_steps(const KdTreeView* tree, co_vec3 org, co_vec3 dir
     return miss;
   }
   KdStackEntry stack[KD_MAX_DEPTH];
-  return kd_resume(tree, org, dir, tmin, tmax, any_hit, 0u, t0, t1, stack, 0, steps);
+  return kd_resume(tree, org, dir, tmin, tmax, any_hit, 0u, t0, t1, stack, 0, steps CO_ALPHA_ARG(alpha_seed));
 }
 
+#if !defined(COHORT_FEATURE_ALPHA)
 CO_INLINE HitOut kd_trace(const KdTreeView* tree, co_vec3 org, co_vec3 dir, float tmin, float tmax, int any_hit) {
   return kd_trace_steps(tree, org, dir, tmin, tmax, any_hit, 0);
 }
+#endif
 
 #endif

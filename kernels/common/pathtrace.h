@@ -31,6 +31,9 @@ typedef struct PathState {
   float prev_bsdf_pdf;    /* 0: the previous vertex was the camera */
   uint32_t segment;       /* the segment `dir` traces; the camera ray is segment 1 */
   uint32_t status;
+#if defined(COHORT_FEATURE_ALPHA)
+  uint32_t alpha_seed;    /* the seed of `dir`'s BLEND decisions (alpha.h) */
+#endif
 } PathState;
 
 /* A shadow ray whose `contribution` is added to the path's radiance when nothing occludes it. */
@@ -39,6 +42,9 @@ typedef struct ShadowRay {
   float tmax;
   co_vec3 contribution;
   int valid;
+#if defined(COHORT_FEATURE_ALPHA)
+  uint32_t alpha_seed;
+#endif
 } ShadowRay;
 
 /* The pixels a pass renders: every pixel, or (adaptive sampling) the first p->active_pixels entries
@@ -61,6 +67,9 @@ CO_INLINE PathState path_start(const RenderParams* p, uint32_t pixel, uint32_t s
   st.prev_bsdf_pdf = 0.0f;
   st.segment = 1u;
   st.status = PATH_ALIVE;
+#if defined(COHORT_FEATURE_ALPHA)
+  st.alpha_seed = alpha_ray_seed(p->seed, pixel, sample, 1u, RNG_ALPHA);
+#endif
   return st;
 }
 
@@ -117,6 +126,10 @@ CO_INLINE ShadowRay nee_triangle(const SceneView* s, const RenderParams* p, floa
   co_vec3 f = bsdf_eval(b, wi, wl_local); /* f |cos|; 0 on the wrong side of a reflector */
   if (!(v3_max_component(f) > 0.0f)) return sr;
   co_vec3 le = emitted_radiance_at(s, m, entry.triangle, b1, b2, nl, v3_neg(wl));
+#if defined(COHORT_FEATURE_ALPHA)
+  /* a cut-out point emits nothing; a BLEND emitter is met by a share alpha of the rays towards it */
+  le = v3_scale(le, alpha_coverage(&s->tree.alpha, m, entry.triangle, b1, b2));
+#endif
   if (v3_max_component(le) <= 0.0f) return sr;
 
   /* the light pdf of the MIS weight is the one path_shade uses when a BSDF sample hits the
@@ -351,6 +364,9 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
   if (nee && !bsdf_is_delta(&b)) {
     Rng light_rng = rng_make(p->seed, pixel, sample, segment, RNG_LIGHT);
     shadow = sample_direct_light(s, p, &light_rng, pos, offset, &frame, &b, wi, st->throughput);
+#if defined(COHORT_FEATURE_ALPHA)
+    shadow.alpha_seed = alpha_ray_seed(p->seed, pixel, sample, segment, RNG_ALPHA_SHADOW);
+#endif
   }
   if ((p->flags & RENDER_FLAG_RUSSIAN_ROULETTE) && segment >= p->rr_depth) {
     Rng rr_rng = rng_make(p->seed, pixel, sample, segment, RNG_ROULETTE);
@@ -384,6 +400,9 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
   st->prev_pos = st->org;
   st->dir = frame_to_world(&frame, bs.wo);
   st->segment = segment + 1u;
+#if defined(COHORT_FEATURE_ALPHA)
+  st->alpha_seed = alpha_ray_seed(p->seed, pixel, sample, segment + 1u, RNG_ALPHA);
+#endif
   return shadow;
 }
 
@@ -406,13 +425,14 @@ CO_INLINE PathResult trace_path(const SceneView* s, const RenderParams* p, uint3
   PathState st = path_start(p, pixel, sample);
   while (st.status == PATH_ALIVE) {
     uint32_t steps = 0u;
-    HitOut hit = scene_trace_steps(&s->tree, st.org, st.dir, 0.0f, INFINITY, 0, &steps);
+    HitOut hit = scene_trace_steps(&s->tree, st.org, st.dir, 0.0f, INFINITY, 0, &steps CO_ALPHA_ARG(st.alpha_seed));
     result.rays += 1u;
     result.max_steps = co_umax(result.max_steps, steps);
     ShadowRay sr = path_shade(s, p, &st, hit, pixel, sample);
     if (sr.valid) {
       result.rays += 1u;
-      path_resolve_shadow(&st, &sr, scene_trace_steps(&s->tree, sr.org, sr.dir, 0.0f, sr.tmax, 1, &steps));
+      path_resolve_shadow(&st, &sr,
+                          scene_trace_steps(&s->tree, sr.org, sr.dir, 0.0f, sr.tmax, 1, &steps CO_ALPHA_ARG(sr.alpha_seed)));
       result.max_steps = co_umax(result.max_steps, steps);
     }
   }

@@ -56,7 +56,7 @@ CO_INLINE uint64_t pth_walk_item(CO_PARAMS(PTH_WALK_PARAMS), const CO_LOCAL PTH_
   /* the walk itself tells a miss: the BVH's boxes, not the scene box, decide what the full
    * traversal would visit */
   Bvh4View bvh = make_bvh4_view(nodes, leaf_triangles);
-  Bvh4Ray r = bvh4_ray(org, dir);
+  Bvh4Ray r = bvh4_ray(org, dir CO_ALPHA_ARG(0u)); /* the walk tests no triangle: no alpha seed */
   uint32_t stack_ref[BVH4_STACK];
   float stack_t[BVH4_STACK];
   uint32_t ref;
@@ -177,7 +177,8 @@ CO_KERNEL pth_resume(CO_PARAMS(PTH_RESUME_PARAMS)) {
       stack_ref[k] = e.node;
       stack_t[k] = e.tmin;
     }
-    Bvh4Ray r = bvh4_ray(org, dir);
+    /* with COHORT_FEATURE_ALPHA the origin's w is the ray's alpha seed (wavefront_path.h) */
+    Bvh4Ray r = bvh4_ray(org, dir CO_ALPHA_ARG(alpha_seed_from_float(path_org[from].w)));
     HitOut hit;
     hit.t = INFINITY; hit.u = 0.0f; hit.v = 0.0f; hit.triangle = HIT_NONE;
     bvh4_continue(&s.tree, &r, 0.0f, 0, &hit, state.node, state.tmin, stack_ref, stack_t, (int)state.depth, &visited);
@@ -185,8 +186,9 @@ CO_KERNEL pth_resume(CO_PARAMS(PTH_RESUME_PARAMS)) {
 #else
     KdStackEntry stack[KD_MAX_DEPTH];
     load_traversal_stack(traversal_stack, stack_stride, from, state.depth, stack);
+    /* with COHORT_FEATURE_ALPHA the origin's w is the ray's alpha seed (wavefront_path.h) */
     hits[slot] = kd_resume(&s.tree, org, dir, 0.0f, INFINITY, 0, state.node, state.tmin, state.tmax, stack,
-                           (int)state.depth, &visited);
+                           (int)state.depth, &visited CO_ALPHA_ARG(alpha_seed_from_float(path_org[from].w)));
 #endif
   }
   steps[i] = visited;
@@ -213,7 +215,8 @@ CO_KERNEL pth_resume_speculative(CO_PARAMS(PTH_RESUME_PARAMS)) {
   KdSpeculativeRay ray;
   kd_spec_start(&ray, active, active ? v3_from4(path_org[from]) : v3(0.0f, 0.0f, 1.0f),
                 active ? v3_from4(path_dir[from]) : v3(0.0f, 0.0f, 1.0f), 0.0f, INFINITY, state.node,
-                state.tmin, state.tmax, (int)state.depth);
+                state.tmin, state.tmax,
+                (int)state.depth CO_ALPHA_ARG(active ? alpha_seed_from_float(path_org[from].w) : 0u));
   if (active) ray.unordered = kd_stack_unordered(stack, (int)state.depth);
   kd_spec_run_group(&s.tree, &ray, stack, votes);
   if (i >= count) return;

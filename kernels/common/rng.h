@@ -17,6 +17,8 @@ CO_INLINE uint32_t pcg_hash(uint32_t v) {
 #define RNG_LIGHT 1u
 #define RNG_BSDF 2u
 #define RNG_ROULETTE 3u
+#define RNG_ALPHA 4u         /* the segment's ray through BLEND surfaces (alpha.h) */
+#define RNG_ALPHA_SHADOW 5u  /* the segment's shadow ray through them */
 
 typedef struct Rng {
   uint32_t state;

@@ -3,7 +3,8 @@
  * built with COHORT_FEATURE_TEXTURES, and one-element placeholders otherwise), vertex colours
  * (COHORT_FEATURE_VERTEX_COLORS), the environment map
  * (COHORT_FEATURE_ENVMAP) and the punctual lights (COHORT_FEATURE_PUNCTUAL), placeholders
- * likewise. */
+ * likewise. With COHORT_FEATURE_ALPHA the traversal view also holds what alpha tests read
+ * (alpha.h). */
 #ifndef COHORT_SCENE_VIEW_H
 #define COHORT_SCENE_VIEW_H
 
@@ -12,6 +13,7 @@
 #include "common/punctual.h"
 #include "common/sampling.h"
 #include "common/texture.h"
+#include "common/alpha.h"
 
 typedef struct SceneView {
   SceneAccel tree;
@@ -48,6 +50,16 @@ CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNod
                                     const CO_GLOBAL PunctualLight* punctual_lights) {
   SceneView s;
   s.tree = make_scene_accel(nodes, leaf_triangles, triangles, p->scene_min, p->scene_max);
+#if defined(COHORT_FEATURE_ALPHA)
+  s.tree.alpha.triangle_material = triangle_material;
+  s.tree.alpha.materials = materials;
+  s.tree.alpha.triangle_uvs = triangle_uvs;
+  s.tree.alpha.textures = textures;
+  s.tree.alpha.texels = texels;
+#ifdef COHORT_FEATURE_VERTEX_COLORS
+  s.tree.alpha.triangle_colors = triangle_colors;
+#endif
+#endif
   s.triangles = triangles;
   s.triangle_material = triangle_material;
   s.materials = materials;

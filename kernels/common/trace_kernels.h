@@ -1,6 +1,14 @@
-/* Traversal only: closest or any hit for a buffer of rays. Used by tests and the ray benchmarks. */
+/* Traversal only: closest or any hit for a buffer of rays. Used by tests and the ray benchmarks.
+ * The rays carry no material, so these kernels trace every triangle as opaque whatever the build
+ * defines (the CUDA build compiles every feature into every file; the host never gives the trace
+ * program a scene's features). */
 #ifndef COHORT_TRACE_KERNELS_H
 #define COHORT_TRACE_KERNELS_H
+
+#if defined(COHORT_FEATURE_ALPHA) && defined(COHORT_INTERSECT_H)
+#error "trace_kernels.h traces without alpha: include it before any other kernel header, or without COHORT_FEATURE_ALPHA"
+#endif
+#undef COHORT_FEATURE_ALPHA
 
 #include "common/kernel_params.h"
 #include "common/scene_accel.h"

@@ -69,6 +69,10 @@ CO_STATIC_ASSERT(sizeof(Triangle) == 48, "Triangle must stay 48 bytes");
 #define MAT_UV1_METALLIC_ROUGHNESS 4u
 #define MAT_UV1_EMISSION 8u
 #define MAT_UV1_NORMAL 16u
+/* glTF alphaMode (OPAQUE when neither is set): MASK cuts the surface out where its alpha is below
+ * alpha_cutoff; BLEND lets a ray through with probability 1 - alpha (kernels/common/alpha.h) */
+#define MAT_ALPHA_MASK 32u
+#define MAT_ALPHA_BLEND 64u
 typedef struct Material {
   co_float4 base_color;  /* rgb; a = alpha */
   co_float4 emission;    /* rgb radiance (factor x strength); a unused */
@@ -82,7 +86,8 @@ typedef struct Material {
   int32_t metallic_roughness_texture; /* -1: none; B multiplies metallic, G roughness (linear data) */
   int32_t normal_texture;             /* -1: none; tangent-space normal map (COHORT_FEATURE_NORMAL_MAP) */
   float normal_scale;                 /* scales the map's x and y */
-  uint32_t pad0, pad1;
+  float alpha_cutoff;                 /* MAT_ALPHA_MASK: alpha below it is cut out (glTF alphaCutoff) */
+  uint32_t pad1;
 } Material;
 CO_STATIC_ASSERT(sizeof(Material) == 80, "Material must stay 80 bytes");
 

@@ -42,8 +42,8 @@ CO_KERNEL wf_extend(CO_PARAMS(WF_EXTEND_PARAMS)) {
   if (path_item[slot] != ITEM_NONE && path_status[slot] == PATH_ALIVE) {
     RenderParams p = *params;
     SceneView s = SCENE_VIEW(p);
-    hits[slot] =
-        scene_trace_steps(&s.tree, v3_from4(path_org[slot]), v3_from4(path_dir[slot]), 0.0f, INFINITY, 0, &visited);
+    hits[slot] = scene_trace_steps(&s.tree, v3_from4(path_org[slot]), v3_from4(path_dir[slot]), 0.0f, INFINITY, 0,
+                                   &visited CO_ALPHA_ARG(alpha_seed_from_float(path_org[slot].w)));
   }
   steps[i] = visited; /* nodes visited per launch index: the SIMD efficiency figure */
 }
@@ -61,7 +61,11 @@ CO_KERNEL wf_shade(CO_PARAMS(WF_SHADE_PARAMS)) {
   ShadowRay sr = path_shade(&s, &p, &st, hits[slot], pixel_of(item, pixel_list, &p), sample_of(item, &p));
   store_path(PATH_ARGS, slot, &st);
   if (sr.valid) {
+#if defined(COHORT_FEATURE_ALPHA)
+    shadow_org[slot] = to4(sr.org, alpha_seed_to_float(sr.alpha_seed));
+#else
     shadow_org[slot] = to4(sr.org, 0.0f);
+#endif
     shadow_dir[slot] = to4(sr.dir, sr.tmax);
     shadow_contribution[slot] = to4(sr.contribution, 0.0f);
     shadow_queue[co_atomic_inc(&counters[COUNTER_SHADOW])] = slot;
@@ -77,7 +81,8 @@ CO_KERNEL wf_shadow(CO_PARAMS(WF_SHADOW_PARAMS)) {
   SceneView s = SCENE_VIEW(p);
   co_float4 dir = shadow_dir[slot];
   uint32_t visited = 0u;
-  HitOut occ = scene_trace_steps(&s.tree, v3_from4(shadow_org[slot]), v3_from4(dir), 0.0f, dir.w, 1, &visited);
+  HitOut occ = scene_trace_steps(&s.tree, v3_from4(shadow_org[slot]), v3_from4(dir), 0.0f, dir.w, 1,
+                                 &visited CO_ALPHA_ARG(alpha_seed_from_float(shadow_org[slot].w)));
   steps[i] = visited; /* nodes visited per queue index: read by wf_shadow_max_steps */
   ShadowRay sr;
   sr.contribution = v3_from4(shadow_contribution[slot]);

@@ -19,13 +19,22 @@ CO_INLINE PathState load_path(PATH_PARAMS, uint32_t slot) {
   st.prev_bsdf_pdf = prev.w;
   st.segment = path_segment[slot];
   st.status = path_status[slot];
+#if defined(COHORT_FEATURE_ALPHA)
+  st.alpha_seed = alpha_seed_from_float(path_org[slot].w);
+#endif
   return st;
 }
 
 CO_INLINE co_float4 to4(co_vec3 v, float w) { return co_make_float4(v.x, v.y, v.z, w); }
 
+/* With COHORT_FEATURE_ALPHA the origin's w keeps the ray's alpha seed (alpha.h), so that the PTH
+ * sort's payload moves it with the ray. */
 CO_INLINE void store_path(PATH_PARAMS, uint32_t slot, const PathState *st) {
+#if defined(COHORT_FEATURE_ALPHA)
+  path_org[slot] = to4(st->org, alpha_seed_to_float(st->alpha_seed));
+#else
   path_org[slot] = to4(st->org, 0.0f);
+#endif
   path_dir[slot] = to4(st->dir, 0.0f);
   path_throughput[slot] = to4(st->throughput, 0.0f);
   path_radiance[slot] = to4(st->radiance, 0.0f);

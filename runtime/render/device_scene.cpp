@@ -63,6 +63,9 @@ Material to_device_material(const SceneMaterial& m) {
   d.normal_scale = m.normal_scale;
   d.emission_texture = m.emission_texture;
   d.metallic_roughness_texture = m.metallic_roughness_texture;
+  if (m.alpha_mode == AlphaMode::mask) d.flags |= MAT_ALPHA_MASK;
+  if (m.alpha_mode == AlphaMode::blend) d.flags |= MAT_ALPHA_BLEND;
+  d.alpha_cutoff = m.alpha_cutoff;
   return d;
 }
 
@@ -77,6 +80,7 @@ std::vector<std::string> SceneFeatures::names() const {
   if (plastic) out.push_back("plastic");
   if (envmap) out.push_back("envmap");
   if (punctual) out.push_back("punctual");
+  if (alpha) out.push_back("alpha");
   return out;
 }
 
@@ -251,6 +255,7 @@ SceneTables make_scene_tables(const Scene& scene, const KdTree& tree) {
     t.features.conductor |= f.conductor;
     t.features.dielectric |= f.dielectric;
     t.features.plastic |= f.plastic;
+    t.features.alpha |= (t.materials[i].flags & (MAT_ALPHA_MASK | MAT_ALPHA_BLEND)) != 0u;
   }
   t.emitters = build_emitter_table(tree, t.materials, t.triangle_material);
   t.punctual = make_punctual_table(scene.lights);

@@ -39,6 +39,7 @@ struct SceneFeatures {
   bool plastic = false;
   bool envmap = false;    // an environment map (--env FILE.exr)
   bool punctual = false;  // KHR_lights_punctual point or spot lights
+  bool alpha = false;     // some used material is alphaMode MASK or BLEND: every traversal tests alpha
 
   std::vector<std::string> names() const;  // "textures", "conductor", ...; empty for diffuse only
   std::string build_options() const;       // "-DCOHORT_FEATURE_TEXTURES ..."; empty for diffuse only

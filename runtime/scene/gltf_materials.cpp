@@ -1,5 +1,6 @@
 #include "runtime/scene/gltf_materials.h"
 
+#include <cmath>
 #include <map>
 #include <optional>
 #include <tuple>
@@ -134,6 +135,28 @@ class TextureTable {
   std::map<std::tuple<int, bool, TextureWrap, TextureWrap, bool>, int> by_key_;
 };
 
+// glTF's alphaMode and alphaCutoff (read with MASK only, as the specification says); a mode the
+// specification does not name, or a negative cutoff (its minimum is 0), is a broken file. A cutoff
+// above 1 is valid and cuts out the whole material.
+void read_alpha(const tinygltf::Material& m, std::size_t index, const std::string& file, SceneMaterial& out) {
+  const std::string which = fmt::format("material {}{}", index, m.name.empty() ? "" : fmt::format(" '{}'", m.name));
+  if (m.alphaMode == "OPAQUE") {
+    out.alpha_mode = AlphaMode::opaque;
+  } else if (m.alphaMode == "MASK") {
+    out.alpha_mode = AlphaMode::mask;
+  } else if (m.alphaMode == "BLEND") {
+    out.alpha_mode = AlphaMode::blend;
+  } else {
+    throw InputError(fmt::format("{}: {}: alphaMode \"{}\" is not one of glTF 2.0's OPAQUE, MASK and BLEND", file,
+                                 which, m.alphaMode));
+  }
+  if (out.alpha_mode != AlphaMode::mask) return;
+  if (!(m.alphaCutoff >= 0.0) || !std::isfinite(m.alphaCutoff))
+    throw InputError(fmt::format("{}: {}: alphaCutoff {} is negative; glTF 2.0 requires a cutoff >= 0 (default 0.5)",
+                                 file, which, m.alphaCutoff));
+  out.alpha_cutoff = static_cast<float>(m.alphaCutoff);
+}
+
 // TEXCOORD_0 and _1 are read; a higher set is named by report_unhonoured, and set 0 stands in.
 int texcoord_set(int tex_coord) { return tex_coord == 1 ? 1 : 0; }
 
@@ -171,7 +194,10 @@ SceneMaterial convert(const tinygltf::Material& m, TextureTable& textures) {
 void convert_materials(const tinygltf::Model& model, const std::string& file, Scene& scene) {
   TextureTable textures(model, file, scene);
   scene.materials.reserve(scene.materials.size() + model.materials.size());
-  for (const tinygltf::Material& m : model.materials) scene.materials.push_back(convert(m, textures));
+  for (std::size_t i = 0; i < model.materials.size(); ++i) {
+    scene.materials.push_back(convert(model.materials[i], textures));
+    read_alpha(model.materials[i], i, file, scene.materials.back());
+  }
 }
 
 }  // namespace cohort::gltf

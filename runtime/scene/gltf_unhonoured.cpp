@@ -54,8 +54,6 @@ struct Unhonoured {
 
 std::vector<Unhonoured> unhonoured_features() {
   return {
-      {"alphaMode MASK (rendered opaque)", [](const auto&, const auto& m) { return m.alphaMode == "MASK"; }},
-      {"alphaMode BLEND (rendered opaque)", [](const auto&, const auto& m) { return m.alphaMode == "BLEND"; }},
       {"textures read with TEXCOORD_2 or above (TEXCOORD_0 used)",
        [](const auto&, const auto& m) { return any_texture(m, [](const TextureRef& t) { return t.tex_coord > 1; }); }},
       {"KHR_texture_transform (texture coordinates used untransformed)",

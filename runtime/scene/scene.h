@@ -15,6 +15,10 @@
 
 namespace cohort {
 
+// glTF alphaMode: OPAQUE ignores alpha; MASK cuts out where alpha < alpha_cutoff; BLEND is
+// stochastic transparency (kernels/common/alpha.h). OBJ and PLY materials stay opaque.
+enum class AlphaMode : std::uint8_t { opaque, mask, blend };
+
 struct SceneMaterial {
   std::string name;
   glm::vec3 base_color{0.8f};
@@ -35,6 +39,8 @@ struct SceneMaterial {
   int metallic_roughness_texcoord = 0;
   int normal_texcoord = 0;
   bool double_sided = false;    // glTF doubleSided; emission leaves both faces when set
+  AlphaMode alpha_mode = AlphaMode::opaque;
+  float alpha_cutoff = 0.5f;    // glTF alphaCutoff, read with MASK only
   bool is_emissive() const { return emission.x > 0.f || emission.y > 0.f || emission.z > 0.f; }
 };
 

@@ -258,5 +258,31 @@ TEST(StrictMaterials, NonFiniteOrNegativeFactorsAreErrors) {
   expect_input_error(g.write_gltf(dir.path(), "emit"), "emission");
 }
 
+// glTF 2.0: alphaMode is OPAQUE (the default), MASK or BLEND; alphaCutoff (default 0.5, minimum 0)
+// is read with MASK and ignored otherwise; above 1 it is valid and cuts the whole material out.
+TEST(StrictMaterials, AlphaModeAndCutoffFollowTheSpecification) {
+  TempDir dir;
+  const auto with = [&](const json& material, const std::string& name) {
+    GltfWriter g = triangle_scene();
+    g.doc()["meshes"][0]["primitives"][0]["material"] = g.material(material);
+    return g.write_gltf(dir.path(), name);
+  };
+  expect_input_error(with({{"name", "leaf"}, {"alphaMode", "CUTOUT"}}, "mode"),
+                     "material 0 'leaf': alphaMode \"CUTOUT\" is not one of glTF 2.0's OPAQUE, MASK and BLEND");
+  expect_input_error(with({{"alphaMode", "mask"}}, "lower"), "alphaMode \"mask\"");
+  expect_input_error(with({{"alphaMode", "MASK"}, {"alphaCutoff", -0.25}}, "cutoff"), "alphaCutoff -0.25 is negative");
+  const auto loaded = [&](const json& material) { return load_scene(with(material, "ok")).materials.at(0); };
+  EXPECT_EQ(loaded(json::object()).alpha_mode, AlphaMode::opaque);
+  const SceneMaterial mask = loaded({{"alphaMode", "MASK"}});
+  EXPECT_EQ(mask.alpha_mode, AlphaMode::mask);
+  EXPECT_EQ(mask.alpha_cutoff, 0.5f);
+  EXPECT_EQ(loaded({{"alphaMode", "MASK"}, {"alphaCutoff", 0.0}}).alpha_cutoff, 0.f);
+  EXPECT_EQ(loaded({{"alphaMode", "MASK"}, {"alphaCutoff", 1.5}}).alpha_cutoff, 1.5f);
+  const SceneMaterial blend = loaded({{"alphaMode", "BLEND"}, {"alphaCutoff", -3}});  // ignored outside MASK
+  EXPECT_EQ(blend.alpha_mode, AlphaMode::blend);
+  EXPECT_EQ(blend.alpha_cutoff, 0.5f);
+  EXPECT_EQ(loaded({{"alphaMode", "OPAQUE"}, {"alphaCutoff", -1}}).alpha_mode, AlphaMode::opaque);
+}
+
 }  // namespace
 }  // namespace cohort
