@@ -20,6 +20,8 @@ decodes them (sRGB for colour, byte / 255 for data), so the filters and wrap mod
                  the cut-out as a 0/1 opacity bitmap around a two-sided diffuse
   alpha-blend    the same panel with alphaMode BLEND: baseColorFactor alpha 0.9 times a LINEAR alpha
                  ramp (stochastic transparency in Cohort); Mitsuba: mask with that alpha as opacity
+  texture-transform  the sampler-wrap texture (LINEAR, REPEAT) on one panel through KHR_texture_transform
+                 (offset, rotation and scale); Mitsuba: the bitmap's to_uv with glTF's T * R * S
   (Mitsuba's path integrator counts a pass through a mask as a path segment where Cohort's does not,
   and its shadow rays stop at masks: the alpha scenes use max_depth 24, where both have converged to
   the unbounded answer of this open room)
@@ -160,6 +162,10 @@ def scene_list():
     base, mr = checker_mr()
     wrap = wrap_texture()
     return {
+        "texture-transform": {"environment": [0.1, 0.1, 0.1], "shapes": room_with([
+            ("panel", panel([-1.2, 0.2, 0.0], [2.4, 0, 0], [0, 2.0, -0.6]),
+             dict(textured_diffuse(wrap, {"magFilter": LINEAR, "minFilter": LINEAR}),
+                  transform={"offset": [0.3, -0.2], "rotation": 0.6, "scale": [1.8, 1.3]}))])},
         "alpha-mask": {"environment": [0.1, 0.1, 0.1], "max_depth": 24, "shapes": room_with([
             ("panel", panel(*ALPHA_PANEL),
              {"kind": "alpha", "texels": alpha_checker(), "mode": "MASK", "cutoff": 0.3, "factor": 1.0,
@@ -226,6 +232,10 @@ def write_gltf(path, desc):
         elif kind == "textured_diffuse":
             m = {"pbrMetallicRoughness": {"baseColorTexture": add_texture(mat["texels"], mat["sampler"]),
                                           "metallicFactor": 0.0, "roughnessFactor": 1.0}}
+            if "transform" in mat:
+                m["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = {"KHR_texture_transform": mat["transform"]}
+                if "KHR_texture_transform" not in doc["extensionsUsed"]:
+                    doc["extensionsUsed"].append("KHR_texture_transform")
         elif kind == "alpha":
             m = {"pbrMetallicRoughness": {"baseColorTexture": add_texture(mat["texels"], mat["sampler"]),
                                           "baseColorFactor": [1.0, 1.0, 1.0, mat["factor"]],
@@ -290,16 +300,26 @@ def write_ply(path, p, f, uv):
             out.write(f"3 {t[0]} {t[1]} {t[2]}\n")
 
 
-def bitmap(values, sampler):
+def uv_transform(t):
+    """glTF KHR_texture_transform (T * R * S) as Mitsuba's to_uv."""
+    c, s = math.cos(t.get("rotation", 0.0)), math.sin(t.get("rotation", 0.0))
+    (ox, oy), (sx, sy) = t.get("offset", [0.0, 0.0]), t.get("scale", [1.0, 1.0])
+    return mi.ScalarTransform3f(mi.ScalarMatrix3f([[c * sx, s * sy, ox], [-s * sx, c * sy, oy], [0.0, 0.0, 1.0]]))
+
+
+def bitmap(values, sampler, transform=None):
     """A raw (already linear) bitmap texture with the glTF sampler's filter and wrap mode (one for
-    both axes: Mitsuba's bitmap has one wrap_mode)."""
+    both axes: Mitsuba's bitmap has one wrap_mode), and a KHR_texture_transform as to_uv."""
     filt = "nearest" if sampler.get("magFilter") == NEAREST else "bilinear"
     wrap = MI_WRAP[sampler.get("wrapS", REPEAT)]
     assert wrap == MI_WRAP[sampler.get("wrapT", REPEAT)]
     channels = values.shape[2] if values.ndim == 3 else 1
     fmt = mi.Bitmap.PixelFormat.RGB if channels == 3 else mi.Bitmap.PixelFormat.Y
-    return {"type": "bitmap", "bitmap": mi.Bitmap(np.ascontiguousarray(values, dtype=np.float32), pixel_format=fmt),
-            "raw": True, "filter_type": filt, "wrap_mode": wrap}
+    out = {"type": "bitmap", "bitmap": mi.Bitmap(np.ascontiguousarray(values, dtype=np.float32), pixel_format=fmt),
+           "raw": True, "filter_type": filt, "wrap_mode": wrap}
+    if transform:
+        out["to_uv"] = uv_transform(transform)
+    return out
 
 
 def mitsuba_bsdf(mat):
@@ -315,7 +335,8 @@ def mitsuba_bsdf(mat):
                   "sample_visible": True}}}
     if kind == "textured_diffuse":
         return {"type": "twosided", "bsdf": {"type": "diffuse",
-                                             "reflectance": bitmap(srgb_to_linear(mat["texels"][:, :, :3]), mat["sampler"])}}
+                                             "reflectance": bitmap(srgb_to_linear(mat["texels"][:, :, :3]), mat["sampler"],
+                                                                   mat.get("transform"))}}
     if kind == "alpha":
         colour = srgb_to_linear(mat["texels"][:, :, :3])
         alpha = mat["factor"] * mat["texels"][:, :, 3:4] / 255.0

@@ -39,6 +39,9 @@ CO_INLINE float texel_alpha(const CO_GLOBAL uint32_t* texels, uint32_t index) {
 CO_INLINE float texture_sample_alpha(const CO_GLOBAL TextureDesc* descs, const CO_GLOBAL uint32_t* texels,
                                      int32_t index, float u, float v) {
   TextureDesc d = descs[index];
+#ifdef COHORT_FEATURE_TEXTURE_TRANSFORM
+  texture_transform_uv(descs, d.sampler, &u, &v);
+#endif
   uint32_t wrap_s = tex_wrap_s(d.sampler), wrap_t = tex_wrap_t(d.sampler);
   float x = texture_wrap_mode(u, wrap_s) * (float)d.width;
   float y = texture_wrap_mode(v, wrap_t) * (float)d.height;

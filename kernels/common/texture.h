@@ -94,11 +94,27 @@ CO_INLINE uint32_t texel_index(int32_t i, uint32_t n, uint32_t mode) {
   return i < 0 ? 0u : ((uint32_t)i >= n ? n - 1u : (uint32_t)i);
 }
 
+#ifdef COHORT_FEATURE_TEXTURE_TRANSFORM
+/* (u, v) through the descriptor's KHR_texture_transform, where it has one. */
+CO_INLINE void texture_transform_uv(const CO_GLOBAL TextureDesc* descs, uint32_t sampler, float* u, float* v) {
+  if (!(sampler & TEX_TRANSFORM)) return;
+  TextureTransform t = *(const CO_GLOBAL TextureTransform*)&descs[tex_transform_entry(sampler)];
+  float tu = t.a * *u + t.b * *v + t.c;
+  float tv = t.d * *u + t.e * *v + t.f;
+  *u = tu;
+  *v = tv;
+}
+#endif
+
 /* Linear RGB of texture `index` at (u, v) with its sampler: nearest texel or bilinear filtering,
- * each axis wrapped by its own mode. */
+ * each axis wrapped by its own mode (after the slot's texture transform, with
+ * COHORT_FEATURE_TEXTURE_TRANSFORM). */
 CO_INLINE co_vec3 texture_sample(const CO_GLOBAL TextureDesc* descs, const CO_GLOBAL uint32_t* texels, int32_t index,
                                  float u, float v) {
   TextureDesc d = descs[index];
+#ifdef COHORT_FEATURE_TEXTURE_TRANSFORM
+  texture_transform_uv(descs, d.sampler, &u, &v);
+#endif
   uint32_t wrap_s = tex_wrap_s(d.sampler), wrap_t = tex_wrap_t(d.sampler);
   float x = texture_wrap_mode(u, wrap_s) * (float)d.width;
   float y = texture_wrap_mode(v, wrap_t) * (float)d.height;

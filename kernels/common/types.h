@@ -102,6 +102,7 @@ CO_STATIC_ASSERT(sizeof(Material) == 80, "Material must stay 80 bytes");
 #define TEX_WRAP_REPEAT 0u /* wrap modes, two bits each: along u in bits 2-3, along v in bits 4-5 */
 #define TEX_WRAP_CLAMP 1u
 #define TEX_WRAP_MIRROR 2u
+#define TEX_TRANSFORM 64u  /* glTF KHR_texture_transform: the sampler's bits 8-31 index its TextureTransform */
 typedef struct TextureDesc {
   uint32_t offset; /* first texel in the texel buffer */
   uint32_t width;
@@ -109,6 +110,18 @@ typedef struct TextureDesc {
   uint32_t sampler; /* TEX_* flags and wrap modes */
 } TextureDesc;
 CO_STATIC_ASSERT(sizeof(TextureDesc) == 16, "TextureDesc must stay 16 bytes");
+
+/* KHR_texture_transform of one texture slot as the affine map (u, v) -> (a u + b v + c, d u + e v + f)
+ * (glTF's T * R * S). Stored in the descriptor buffer after the descriptors, as two entries: a
+ * descriptor with TEX_TRANSFORM finds it at entry tex_transform_entry(sampler)
+ * (COHORT_FEATURE_TEXTURE_TRANSFORM; a scene without transforms stores none). */
+typedef struct TextureTransform {
+  float a, b, c;
+  float d, e, f;
+  float pad0, pad1;
+} TextureTransform;
+CO_STATIC_ASSERT(sizeof(TextureTransform) == 2 * sizeof(TextureDesc), "a TextureTransform fills two TextureDesc entries");
+CO_INLINE uint32_t tex_transform_entry(uint32_t sampler) { return sampler >> 8; }
 
 CO_INLINE uint32_t tex_wrap_s(uint32_t sampler) { return (sampler >> 2) & 3u; }
 CO_INLINE uint32_t tex_wrap_t(uint32_t sampler) { return (sampler >> 4) & 3u; }

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -81,6 +83,7 @@ std::vector<std::string> SceneFeatures::names() const {
   if (envmap) out.push_back("envmap");
   if (punctual) out.push_back("punctual");
   if (alpha) out.push_back("alpha");
+  if (texture_transform) out.push_back("texture_transform");
   return out;
 }
 
@@ -137,52 +140,87 @@ bool has_set(const Scene& scene, int set) {
   return (set == 1 ? scene.uvs1 : scene.uvs).size() == 3 * scene.triangle_count();
 }
 
+// glTF's T * R * S of KHR_texture_transform as the rows of an affine map of (u, v).
+TextureTransform affine(const UvTransform& x) {
+  const float c = std::cos(x.rotation), s = std::sin(x.rotation);
+  return TextureTransform{c * x.scale.x, s * x.scale.y, x.offset.x, -s * x.scale.x, c * x.scale.y, x.offset.y, 0.f, 0.f};
+}
+
 // Uploads only the textures that used materials refer to, renumbered; the others stay on the host.
-// A texture whose coordinate set the scene lacks is left out (the loader has warned).
+// A texture whose coordinate set the scene lacks is left out (the loader has warned). A texture read
+// through a KHR_texture_transform gets a descriptor of its own per transform (the texels are shared)
+// whose sampler points at the transform, stored after the descriptors.
 void add_textures(const Scene& scene, const KdTree& tree, const std::vector<bool>& used, SceneTables& t) {
-  std::vector<int> new_index(scene.textures.size(), -1);
-  auto remap = [&](std::int32_t& index) {
+  std::vector<std::uint32_t> texel_offset(scene.textures.size(), std::numeric_limits<std::uint32_t>::max());
+  std::map<std::pair<int, std::array<float, 5>>, int> new_index;  // (scene texture, transform) -> descriptor
+  std::vector<UvTransform> transforms;
+  auto remap = [&](std::int32_t& index, const UvTransform& transform) {
     if (!texture_usable(scene, index)) {
       index = -1;
       return;
     }
-    int& n = new_index[static_cast<std::size_t>(index)];
-    if (n < 0) {
-      const Texture& tex = scene.textures[static_cast<std::size_t>(index)];
+    const Texture& tex = scene.textures[static_cast<std::size_t>(index)];
+    std::uint32_t& offset = texel_offset[static_cast<std::size_t>(index)];
+    if (offset == std::numeric_limits<std::uint32_t>::max()) {
       const std::size_t texels = std::size_t(tex.width) * std::size_t(tex.height);
       if (t.texels.size() + texels > std::numeric_limits<std::uint32_t>::max()) {
         index = -1;  // the descriptor's 32-bit offset cannot reach it
         return;
       }
-      n = static_cast<int>(t.textures.size());
-      t.textures.push_back(TextureDesc{static_cast<std::uint32_t>(t.texels.size()), std::uint32_t(tex.width),
-                                       std::uint32_t(tex.height), sampler_bits(tex)});
-      const std::size_t first = t.texels.size();
-      t.texels.resize(first + texels);
-      std::memcpy(t.texels.data() + first, tex.rgba.data(), texels * 4);  // little-endian: r in the low byte
+      offset = static_cast<std::uint32_t>(t.texels.size());
+      t.texels.resize(t.texels.size() + texels);
+      std::memcpy(t.texels.data() + offset, tex.rgba.data(), texels * 4);  // little-endian: r in the low byte
     }
-    index = n;
+    const std::array<float, 5> key = {transform.offset.x, transform.offset.y, transform.rotation, transform.scale.x,
+                                      transform.scale.y};
+    auto [it, added] = new_index.try_emplace({index, key}, static_cast<int>(t.textures.size()));
+    if (added) {
+      std::uint32_t sampler = sampler_bits(tex);
+      if (!transform.identity()) {
+        // the transform's number for now; its entry once the descriptors are all known
+        sampler |= TEX_TRANSFORM | (static_cast<std::uint32_t>(transforms.size()) << 8);
+        transforms.push_back(transform);
+      }
+      t.textures.push_back(TextureDesc{offset, std::uint32_t(tex.width), std::uint32_t(tex.height), sampler});
+    }
+    index = it->second;
   };
   bool set1 = false;  // some uploaded texture reads TEXCOORD_1
-  auto slot = [&](std::int32_t& index, bool used_material, int set) {
+  auto slot = [&](std::int32_t& index, bool used_material, int set, const UvTransform& transform) {
     if (!used_material || !has_set(scene, set)) {
       index = -1;
       return;
     }
-    remap(index);
+    remap(index, transform);
     set1 |= index >= 0 && set == 1;
   };
   for (std::size_t i = 0; i < t.materials.size(); ++i) {
     Material& m = t.materials[i];
     const SceneMaterial& sm = scene.materials[i];
-    slot(m.base_color_texture, used[i], sm.base_color_texcoord);
-    slot(m.emission_texture, used[i], sm.emission_texcoord);
-    slot(m.metallic_roughness_texture, used[i], sm.metallic_roughness_texcoord);
-    slot(m.normal_texture, used[i], sm.normal_texcoord);
+    slot(m.base_color_texture, used[i], sm.base_color_texcoord, sm.base_color_transform);
+    slot(m.emission_texture, used[i], sm.emission_texcoord, sm.emission_transform);
+    slot(m.metallic_roughness_texture, used[i], sm.metallic_roughness_texcoord, sm.metallic_roughness_transform);
+    slot(m.normal_texture, used[i], sm.normal_texcoord, sm.normal_transform);
     t.features.normal_map |= m.normal_texture >= 0;
   }
   if (t.textures.empty()) return;
   t.features.textures = true;
+  if (!transforms.empty()) {
+    const auto descriptors = static_cast<std::uint32_t>(t.textures.size());
+    if (descriptors + 2 * transforms.size() > (1u << 24))
+      throw InputError(fmt::format("{} textures with {} texture transforms are more than the kernels address",
+                                   descriptors, transforms.size()));
+    for (TextureDesc& d : t.textures)
+      if (d.sampler & TEX_TRANSFORM)
+        d.sampler = (d.sampler & 0xffu) | ((descriptors + 2 * tex_transform_entry(d.sampler)) << 8);
+    for (const UvTransform& x : transforms) {
+      const TextureTransform rows = affine(x);
+      TextureDesc entries[2];
+      std::memcpy(entries, &rows, sizeof rows);
+      t.textures.insert(t.textures.end(), entries, entries + 2);
+    }
+    t.features.texture_transform = true;
+  }
   t.features.texcoord1 = set1;
   auto push = [&](const std::vector<glm::vec2>& uvs, std::uint32_t src) {
     if (uvs.empty()) {

@@ -40,6 +40,7 @@ struct SceneFeatures {
   bool envmap = false;    // an environment map (--env FILE.exr)
   bool punctual = false;  // KHR_lights_punctual point or spot lights
   bool alpha = false;     // some used material is alphaMode MASK or BLEND: every traversal tests alpha
+  bool texture_transform = false;  // some uploaded texture slot has a KHR_texture_transform
 
   std::vector<std::string> names() const;  // "textures", "conductor", ...; empty for diffuse only
   std::string build_options() const;       // "-DCOHORT_FEATURE_TEXTURES ..."; empty for diffuse only
@@ -57,7 +58,9 @@ struct SceneTables {
   // textures, only when some used material has one and the scene has texture coordinates
   // (otherwise empty, and every material's texture index is -1)
   std::vector<TriangleUv> triangle_uvs;  // per kept triangle
-  std::vector<TextureDesc> textures;     // the textures used, renumbered in order of first use
+  // the textures used, renumbered in order of first use (one per texture and transform), then each
+  // distinct KHR_texture_transform as two entries (TextureTransform, types.h)
+  std::vector<TextureDesc> textures;
   std::vector<std::uint32_t> texels;     // RGBA8 words, r in the low byte
   std::vector<TriangleColor> triangle_colors;  // per kept triangle, only with features.vertex_colors
   std::vector<TriangleFrame> triangle_frames;  // per kept triangle, only with features.normal_map

@@ -157,6 +157,39 @@ void read_alpha(const tinygltf::Material& m, std::size_t index, const std::strin
   out.alpha_cutoff = static_cast<float>(m.alphaCutoff);
 }
 
+// KHR_texture_transform of one texture reference: `offset` and `scale` arrays of two numbers,
+// `rotation` a number (radians), each optional, and `texCoord`, which replaces the reference's own
+// coordinate set. Anything else there is a broken file.
+UvTransform read_transform(const tinygltf::ExtensionMap& extensions, int& tex_coord, const std::string& where) {
+  UvTransform x;
+  const auto it = extensions.find("KHR_texture_transform");
+  if (it == extensions.end()) return x;
+  const tinygltf::Value& e = it->second;
+  const auto fail = [&](const std::string& what) {
+    throw InputError(fmt::format("{}: KHR_texture_transform {}", where, what));
+  };
+  if (!e.IsObject()) fail("is not an object");
+  const auto number = [&](const tinygltf::Value& v, const std::string& name) {
+    if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble())) fail(fmt::format("{} is not a finite number", name));
+    return static_cast<float>(v.GetNumberAsDouble());
+  };
+  const auto pair = [&](const std::string& name, glm::vec2& out) {
+    if (!e.Has(name)) return;
+    const tinygltf::Value& v = e.Get(name);
+    if (!v.IsArray() || v.ArrayLen() != 2) fail(fmt::format("{} is not an array of two numbers", name));
+    out = glm::vec2(number(v.Get(0), name), number(v.Get(1), name));
+  };
+  pair("offset", x.offset);
+  pair("scale", x.scale);
+  if (e.Has("rotation")) x.rotation = number(e.Get("rotation"), "rotation");
+  if (e.Has("texCoord")) {
+    const tinygltf::Value& v = e.Get("texCoord");
+    if (!v.IsInt() || v.GetNumberAsInt() < 0) fail("texCoord is not an integer >= 0");
+    tex_coord = v.GetNumberAsInt();
+  }
+  return x;
+}
+
 // TEXCOORD_0 and _1 are read; a higher set is named by report_unhonoured, and set 0 stands in.
 int texcoord_set(int tex_coord) { return tex_coord == 1 ? 1 : 0; }
 
@@ -195,8 +228,26 @@ void convert_materials(const tinygltf::Model& model, const std::string& file, Sc
   TextureTable textures(model, file, scene);
   scene.materials.reserve(scene.materials.size() + model.materials.size());
   for (std::size_t i = 0; i < model.materials.size(); ++i) {
-    scene.materials.push_back(convert(model.materials[i], textures));
-    read_alpha(model.materials[i], i, file, scene.materials.back());
+    const tinygltf::Material& m = model.materials[i];
+    scene.materials.push_back(convert(m, textures));
+    SceneMaterial& out = scene.materials.back();
+    read_alpha(m, i, file, out);
+    const std::string where =
+        fmt::format("{}: material {}{}", file, i, m.name.empty() ? "" : fmt::format(" '{}'", m.name));
+    const auto transform = [&](const tinygltf::ExtensionMap& extensions, int tex_coord, const char* slot,
+                               UvTransform& x, int& set) {
+      x = read_transform(extensions, tex_coord, fmt::format("{}: {}", where, slot));
+      set = texcoord_set(tex_coord);
+    };
+    const auto& pbr = m.pbrMetallicRoughness;
+    transform(pbr.baseColorTexture.extensions, pbr.baseColorTexture.texCoord, "baseColorTexture",
+              out.base_color_transform, out.base_color_texcoord);
+    transform(pbr.metallicRoughnessTexture.extensions, pbr.metallicRoughnessTexture.texCoord,
+              "metallicRoughnessTexture", out.metallic_roughness_transform, out.metallic_roughness_texcoord);
+    transform(m.emissiveTexture.extensions, m.emissiveTexture.texCoord, "emissiveTexture", out.emission_transform,
+              out.emission_texcoord);
+    transform(m.normalTexture.extensions, m.normalTexture.texCoord, "normalTexture", out.normal_transform,
+              out.normal_texcoord);
   }
 }
 

@@ -19,14 +19,22 @@ namespace {
 constexpr std::array kImplemented = {
     std::string_view("KHR_materials_emissive_strength"), std::string_view("KHR_materials_transmission"),
     std::string_view("KHR_materials_ior"), std::string_view("KHR_mesh_quantization"),
-    std::string_view("KHR_lights_punctual")};
+    std::string_view("KHR_lights_punctual"), std::string_view("KHR_texture_transform")};
 
-// A texture reference of a material (glTF's textureInfo and its normal and occlusion variants).
+// A texture reference of a material (glTF's textureInfo and its normal and occlusion variants), with
+// the coordinate set it reads (KHR_texture_transform's texCoord replaces the reference's own).
 struct TextureRef {
   int index;
   int tex_coord;
-  const tinygltf::ExtensionMap* extensions;
 };
+
+TextureRef texture_ref(int index, int tex_coord, const tinygltf::ExtensionMap& extensions) {
+  const auto it = extensions.find("KHR_texture_transform");
+  if (it != extensions.end() && it->second.IsObject() && it->second.Has("texCoord") &&
+      it->second.Get("texCoord").IsInt())
+    tex_coord = it->second.Get("texCoord").GetNumberAsInt();
+  return {index, tex_coord};
+}
 
 // The texture references of a material that the loader reads (their samplers and coordinate sets
 // matter); references inside unimplemented extensions are covered by the extension's own warning.
@@ -34,9 +42,9 @@ std::vector<TextureRef> honoured_textures(const tinygltf::Material& m) {
   std::vector<TextureRef> out;
   for (const tinygltf::TextureInfo* t : {&m.pbrMetallicRoughness.baseColorTexture,
                                          &m.pbrMetallicRoughness.metallicRoughnessTexture, &m.emissiveTexture})
-    if (t->index >= 0) out.push_back({t->index, t->texCoord, &t->extensions});
+    if (t->index >= 0) out.push_back(texture_ref(t->index, t->texCoord, t->extensions));
   if (m.normalTexture.index >= 0)
-    out.push_back({m.normalTexture.index, m.normalTexture.texCoord, &m.normalTexture.extensions});
+    out.push_back(texture_ref(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions));
   return out;
 }
 
@@ -56,11 +64,6 @@ std::vector<Unhonoured> unhonoured_features() {
   return {
       {"textures read with TEXCOORD_2 or above (TEXCOORD_0 used)",
        [](const auto&, const auto& m) { return any_texture(m, [](const TextureRef& t) { return t.tex_coord > 1; }); }},
-      {"KHR_texture_transform (texture coordinates used untransformed)",
-       [](const auto&, const auto& m) {
-         return any_texture(m, [](const TextureRef& t) { return t.extensions->count("KHR_texture_transform") != 0; });
-       },
-       "KHR_texture_transform"},
   };
 }
 

@@ -19,6 +19,16 @@ namespace cohort {
 // stochastic transparency (kernels/common/alpha.h). OBJ and PLY materials stay opaque.
 enum class AlphaMode : std::uint8_t { opaque, mask, blend };
 
+// glTF KHR_texture_transform of one texture slot: uv' = T(offset) R(rotation) S(scale) uv, with
+// glTF's rotation matrix (counter-clockwise in the image, whose v runs down).
+struct UvTransform {
+  glm::vec2 offset{0.f};
+  float rotation = 0.f;  // radians
+  glm::vec2 scale{1.f};
+  bool identity() const { return offset == glm::vec2(0.f) && rotation == 0.f && scale == glm::vec2(1.f); }
+  bool operator==(const UvTransform&) const = default;
+};
+
 struct SceneMaterial {
   std::string name;
   glm::vec3 base_color{0.8f};
@@ -38,6 +48,11 @@ struct SceneMaterial {
   int emission_texcoord = 0;
   int metallic_roughness_texcoord = 0;
   int normal_texcoord = 0;
+  // each texture's KHR_texture_transform (identity where the file has none)
+  UvTransform base_color_transform;
+  UvTransform emission_transform;
+  UvTransform metallic_roughness_transform;
+  UvTransform normal_transform;
   bool double_sided = false;    // glTF doubleSided; emission leaves both faces when set
   AlphaMode alpha_mode = AlphaMode::opaque;
   float alpha_cutoff = 0.5f;    // glTF alphaCutoff, read with MASK only

@@ -1,6 +1,7 @@
 // glTF alphaMode (kernels/common/alpha.h): MASK cuts surfaces out for camera, bounce and shadow rays,
 // BLEND is stochastic transparency that converges to the mix of the scene with and without the
-// surface, OPAQUE never reads alpha, and every method and tree gives the same bits with both.
+// surface, OPAQUE never reads alpha, and every method and tree gives the same bits with both. Also
+// KHR_texture_transform, which the alpha lookups share with the colour's.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -298,6 +299,7 @@ Scene alpha_room() {
   SceneMaterial leaves;  // MASK: a bilinear 4 x 1 alpha ramp
   leaves.base_color = glm::vec3(0.3f, 0.8f, 0.3f);
   leaves.base_color_texture = alpha_texture(s, {0, 90, 170, 255}, false);
+  leaves.base_color_transform = UvTransform{{0.1f, 0.05f}, 0.3f, {1.2f, 0.9f}};  // KHR_texture_transform
   SceneMaterial glass;  // BLEND: factor 0.7 times a 2 x 1 texture
   glass.base_color = glm::vec3(0.8f, 0.4f, 0.2f);
   glass.alpha = 0.7f;
@@ -364,6 +366,7 @@ TEST(GltfAlpha, EveryMethodAndTreeGivesTheSameBits) {
     PreparedScene p = prepare_loaded_scene("alpha-room", room, t.choice);
     p.camera = camera;
     ASSERT_TRUE(p.tables.features.alpha) << t.name;
+    ASSERT_TRUE(p.tables.features.texture_transform) << t.name;
     const DeviceScene scene = upload_scene(cl, p.tree, p.tables, p.bvh());
     for (const auto& m : methods()) {
       if (m.sorts && !device_support(cl.info()).sorts) continue;
@@ -388,3 +391,68 @@ TEST(GltfAlpha, EveryMethodAndTreeGivesTheSameBits) {
 }
 
 }  // namespace
+
+// ---- KHR_texture_transform ----------------------------------------------------------------------
+
+namespace {
+
+// A white-sky quad facing the camera whose base colour texture (4 x 1 texels, NEAREST) is read
+// through `x`, or (`baked`) through coordinates the host transformed per vertex with the same affine map.
+Scene transformed_quad(const UvTransform& x, bool baked) {
+  Scene s;
+  SceneMaterial m;
+  m.base_color_texture = add_texture(
+      s, 4, 1,
+      [](int i, int) {
+        const std::array<std::array<std::uint8_t, 4>, 4> c = {
+            {{200, 40, 40, 255}, {40, 200, 40, 255}, {40, 40, 200, 255}, {200, 200, 40, 255}}};
+        return c[std::size_t(i)];
+      },
+      TextureSampler{.nearest = true});
+  if (!baked) m.base_color_transform = x;
+  s.materials = {m};
+  add_quad(s, {-1, -1, 0}, {2, 0, 0}, {0, 2, 0}, 0, true);
+  if (baked) {
+    const float c = std::cos(x.rotation), sn = std::sin(x.rotation);
+    for (glm::vec2& uv : s.uvs)
+      uv = glm::vec2(c * x.scale.x * uv.x + sn * x.scale.y * uv.y + x.offset.x,
+                     -sn * x.scale.x * uv.x + c * x.scale.y * uv.y + x.offset.y);
+  }
+  return s;
+}
+
+}  // namespace
+
+TEST(TextureTransform, MapsCoordinatesAsGltfSaysOnlyWhereAsked) {
+  RenderSettings rs;
+  rs.width = rs.height = 16;
+  rs.spp = 2;
+  rs.environment = glm::vec3(1.f);
+  rs.max_depth = 2;
+  for (const UvTransform& x : {UvTransform{{0.25f, 0.f}, 0.f, {0.5f, 1.f}}, UvTransform{{0.1f, 0.3f}, 1.1f, {1.7f, 0.6f}},
+                               UvTransform{{-0.35f, 2.f}, -0.4f, {-1.f, 3.f}}}) {
+    const PreparedScene transformed = prepare(transformed_quad(x, false), kFacingQuad);
+    ASSERT_TRUE(transformed.tables.features.texture_transform);
+    EXPECT_NE(transformed.tables.features.build_options().find("-DCOHORT_FEATURE_TEXTURE_TRANSFORM"), std::string::npos);
+    const PreparedScene baked = prepare(transformed_quad(x, true), kFacingQuad);
+    EXPECT_FALSE(baked.tables.features.texture_transform);
+    const Image a = render_prepared(transformed, rs).image, b = render_prepared(baked, rs).image;
+    // nearest texels: the same texel everywhere but within rounding of a texel edge
+    int differing = 0;
+    for (std::size_t i = 0; i < a.rgb.size(); ++i) differing += a.rgb[i] != b.rgb[i];
+    EXPECT_LE(differing, 3) << "offset (" << x.offset.x << ", " << x.offset.y << ") rotation " << x.rotation;
+    EXPECT_GT(mean_of(a, 1), 0.01);
+  }
+  // the identity transform is no transform
+  const PreparedScene identity = prepare(transformed_quad(UvTransform{}, false), kFacingQuad);
+  EXPECT_FALSE(identity.tables.features.texture_transform);
+}
+
+// The alpha a MASK reads goes through the slot's transform as well: mapped onto the opaque texel of
+// half_cut_quad's texture, no part of the quad is cut out.
+TEST(TextureTransform, AppliesToTheAlphaOfMask) {
+  Scene s = half_cut_quad(AlphaMode::mask);
+  s.materials[0].base_color_transform = UvTransform{{0.5f, 0.f}, 0.f, {0.5f, 1.f}};
+  const Split cut = split(render_prepared(prepare(s, kFacingQuad), sky_seen_directly(16, 4)).image);
+  EXPECT_EQ(cut.zeros, 16 * 14);
+}

@@ -135,5 +135,32 @@ TEST(GltfVertexAttributes, ATextureOnACoordinateSetNoPrimitiveHasIsNamed) {
   })) << (s.warnings.empty() ? "no warning" : s.warnings.front());
 }
 
+// KHR_texture_transform per texture reference: offset, rotation and scale as written (defaults where
+// absent), and texCoord replacing the reference's own set; malformed values are input errors.
+TEST(GltfTextureTransform, IsReadPerTextureAndChecked) {
+  TempDir dir;
+  const auto with = [&](const json& transform) {
+    const json material = {
+        {"pbrMetallicRoughness",
+         {{"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", transform}}}}},
+          {"metallicRoughnessTexture", {{"index", 0}}}}},
+        {"emissiveTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"offset", {0.5, 0}}}}}}}},
+        {"emissiveFactor", {1, 1, 1}}};
+    return textured_triangle(dir, material, json::array({{{"source", 0}}}), nullptr).write_gltf(dir.path(), "tt");
+  };
+  const Scene s = load_scene(with({{"offset", {0.25, -1}}, {"rotation", 1.5}, {"scale", {2, 0.5}}, {"texCoord", 1}}));
+  const SceneMaterial& m = s.materials.at(0);
+  EXPECT_EQ(m.base_color_transform, (UvTransform{{0.25f, -1.f}, 1.5f, {2.f, 0.5f}}));
+  EXPECT_EQ(m.base_color_texcoord, 1);
+  EXPECT_TRUE(m.metallic_roughness_transform.identity());
+  EXPECT_EQ(m.metallic_roughness_texcoord, 0);
+  EXPECT_EQ(m.emission_transform, (UvTransform{{0.5f, 0.f}, 0.f, {1.f, 1.f}}));
+  EXPECT_EQ(load_scene(with({{"rotation", 0.5}})).materials[0].base_color_transform, (UvTransform{{0.f, 0.f}, 0.5f, {1.f, 1.f}}));
+  test::expect_input_error(with({{"offset", {1}}}), "material 0: baseColorTexture: KHR_texture_transform offset is not an array of two numbers");
+  test::expect_input_error(with({{"scale", {1, "x"}}}), "scale is not a finite number");
+  test::expect_input_error(with({{"rotation", "half"}}), "rotation is not a finite number");
+  test::expect_input_error(with({{"texCoord", -1}}), "texCoord is not an integer >= 0");
+}
+
 }  // namespace
 }  // namespace cohort

@@ -42,7 +42,7 @@ TEST(GltfUnhonoured, EachFeatureIsOneWarningWithItsMaterialCount) {
   TempDir dir;
   const json tex = {{"index", 0}};
   const json transformed = {
-      {"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"scale", {2, 2}}}}}}}}};
+      {"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"texCoord", 2}}}}}}}};
   GltfWriter g = triangles_with(dir, {{{"pbrMetallicRoughness", transformed},
                                        {"alphaMode", "BLEND"},
                                        {"extensions", {{"KHR_materials_sheen", json::object()}}}},
@@ -51,9 +51,9 @@ TEST(GltfUnhonoured, EachFeatureIsOneWarningWithItsMaterialCount) {
                                       {{"alphaMode", "OPAQUE"}, {"occlusionTexture", tex}}});
   g.doc()["extensionsUsed"] = {"KHR_materials_sheen", "EXT_meshopt_compression", "KHR_texture_transform"};
   const Scene s = load_scene(g.write_gltf(dir.path(), "features"));
-  EXPECT_EQ(lines_containing(s.warnings, "KHR_texture_transform"), 1u);
-  EXPECT_EQ(lines_containing(s.warnings, "KHR_texture_transform (texture coordinates used untransformed): 2 materials"),
-            1u);
+  EXPECT_EQ(lines_containing(s.warnings, "KHR_texture_transform"), 0u);  // honoured
+  // its texCoord replaces the reference's: set 2 is not read
+  EXPECT_EQ(lines_containing(s.warnings, "TEXCOORD_2 or above (TEXCOORD_0 used): 2 materials"), 1u);
   EXPECT_EQ(lines_containing(s.warnings, "alphaMode"), 0u);  // honoured (kernels/common/alpha.h)
   EXPECT_EQ(lines_containing(s.warnings, "extension KHR_materials_sheen: 2 materials"), 1u);
   // an extension no material carries is still named, once, and the sheen is not named twice
@@ -73,6 +73,9 @@ TEST(GltfUnhonoured, ASceneOfHonouredFeaturesWarnsNothing) {
              {"emissiveFactor", {1, 1, 1}},
              {"extensions", {{"KHR_materials_ior", {{"ior", 1.4}}}}}},
             {{"alphaMode", "MASK"}, {"alphaCutoff", 0.3}},
+            {{"pbrMetallicRoughness",
+              {{"baseColorTexture",
+                {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"scale", {2, 2}}, {"rotation", 0.5}}}}}}}}}},
             {{"alphaMode", "BLEND"}}});
   g.doc()["extensionsUsed"] = {"KHR_materials_ior"};
   const Scene s = load_scene(g.write_gltf(dir.path(), "plain"));

@@ -341,8 +341,8 @@ def make_gltf():
     g.doc["scene"] = 4
     bad("gltf-default-scene-missing.gltf", g.gltf(), "scene 4 does not exist")
     g = lit_gltf()
-    g.doc["extensionsUsed"] = ["KHR_texture_transform"]
-    odd("gltf-optional-extension.gltf", g.gltf(), "KHR_texture_transform", {"same_as": "gltf-lit-reference.gltf"})
+    g.doc["extensionsUsed"] = ["EXT_texture_webp"]
+    odd("gltf-optional-extension.gltf", g.gltf(), "EXT_texture_webp", {"same_as": "gltf-lit-reference.gltf"})
 
     def sparse_gltf(index_type=5123, indices=(1,), count=None):
         g = lit_gltf()
