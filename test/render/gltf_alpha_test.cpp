@@ -387,7 +387,7 @@ TEST(GltfAlpha, EveryMethodAndTreeGivesTheSameBits) {
       check(render(cl, cache, scene, p.camera, s), std::string(m.name) + " gathered on " + t.name);
     }
   }
-  EXPECT_GE(compared, 20);
+  EXPECT_GE(compared, device_support(cl.info()).sorts ? 20 : 8);
 }
 
 }  // namespace
