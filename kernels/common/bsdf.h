@@ -26,7 +26,7 @@
 /* ---- Families compiled --------------------------------------------------------------------------
  * A rendering program is specialised to its scene: pathtrace.h defines COHORT_BSDF_SPECIALISED and
  * the host passes -DCOHORT_FEATURE_CONDUCTOR / _DIELECTRIC / _PLASTIC for the families the scene's
- * materials can select (runtime/render/device_scene.cpp, with the rules of bsdf_from_gltf); the
+ * materials can select (runtime/render/scene/device_scene.cpp, with the rules of bsdf_from_gltf); the
  * Lambertian is always compiled. Everything else (host code, bsdf_test.cl) compiles every family. */
 #if defined(COHORT_BSDF_SPECIALISED) && !defined(COHORT_FEATURE_CONDUCTOR)
 #define BSDF_WITH_CONDUCTOR 0

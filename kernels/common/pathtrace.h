@@ -430,7 +430,7 @@ CO_INLINE co_float4 film_add(co_float4 acc, co_vec3 r) {
 }
 
 /* A beauty sample: film_add, and w sums the square of the sample's luminance (Rec. 709), the
- * per-pixel variance that adaptive sampling estimates its error from (runtime/render/adaptive.h).
+ * per-pixel variance that adaptive sampling estimates its error from (runtime/render/run/adaptive.h).
  * One expression per step, FP_CONTRACT off (port.h): the same bits in every kernel and on the host. */
 CO_INLINE co_float4 film_add_sample(co_float4 acc, co_vec3 r) {
   float y = 0.2126f * r.x + 0.7152f * r.y + 0.0722f * r.z;

@@ -179,7 +179,7 @@ typedef struct RenderParams {
   float pick_triangles;
   float pick_environment;
   float pick_punctual;
-  /* adaptive sampling (runtime/render/adaptive.h): this pass renders the first `active_pixels`
+  /* adaptive sampling (runtime/render/run/adaptive.h): this pass renders the first `active_pixels`
    * entries of its pixel list only; 0: every pixel, the list unused */
   uint32_t active_pixels;
   uint32_t pad1, pad2;

@@ -10,7 +10,7 @@
 #include "runtime/bench/protocol_rays.h"
 #include "runtime/accel/host_traversal.h"
 #include "runtime/bench/trace_bench.h"
-#include "runtime/render/coherence.h"
+#include "runtime/render/pth/coherence.h"
 #include "runtime/sort/radix_sort.h"
 
 namespace cohort {

@@ -12,7 +12,7 @@
 #include "accel/straggler_check.h"
 #include "runtime/cl/context.h"
 #include "runtime/cl/kernel_program.h"
-#include "runtime/render/device_scene.h"
+#include "runtime/render/scene/device_scene.h"
 #include "runtime/scene/scene.h"
 
 namespace fs = std::filesystem;

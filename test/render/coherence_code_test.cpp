@@ -1,5 +1,5 @@
 // The coherence code of kernels/common/coherence.h, compiled for the host, against the layouts of
-// runtime/render/coherence.cpp: keys fit the width the sort is given, and the two-point key's end
+// runtime/render/pth/coherence.cpp: keys fit the width the sort is given, and the two-point key's end
 // part is the cell of the estimated end point.
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "kernels/common/coherence.h"
-#include "runtime/render/coherence.h"
+#include "runtime/render/pth/coherence.h"
 
 using namespace cohort;
 

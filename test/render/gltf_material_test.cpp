@@ -15,7 +15,7 @@
 #include "kernels/common/texture.h"
 #include "render_fixture.h"
 #include "runtime/backend/device_support.h"
-#include "runtime/render/methods.h"
+#include "runtime/render/methods/methods.h"
 #include "scene_building.h"
 
 using namespace cohort;

@@ -14,7 +14,7 @@
 
 #include "render_fixture.h"
 #include "scene_building.h"
-#include "runtime/render/methods.h"
+#include "runtime/render/methods/methods.h"
 #include "kernels/common/texture.h"
 
 using namespace cohort;

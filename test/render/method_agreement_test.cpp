@@ -11,8 +11,8 @@
 
 #include "render_fixture.h"
 #include "runtime/backend/device_support.h"
-#include "runtime/render/coherence.h"
-#include "runtime/render/methods.h"
+#include "runtime/render/pth/coherence.h"
+#include "runtime/render/methods/methods.h"
 #include "runtime/render/workloads.h"
 #include "runtime/util/error.h"
 

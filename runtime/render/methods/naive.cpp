@@ -4,10 +4,10 @@
 #include <array>
 
 #include "kernels/common/contract.h"
-#include "runtime/render/launch_log.h"
+#include "runtime/render/run/launch_log.h"
 #include "runtime/backend/kernel_args.h"
 #include "runtime/render/methods/method.h"
-#include "runtime/render/pass_driver.h"
+#include "runtime/render/run/pass_driver.h"
 
 namespace cohort {
 namespace {

@@ -1,4 +1,4 @@
-#include "runtime/render/coherence.h"
+#include "runtime/render/pth/coherence.h"
 
 #include <algorithm>
 #include <charconv>

@@ -1,4 +1,4 @@
-#include "runtime/render/stages/sorted_traversal.h"
+#include "runtime/render/pth/sorted_traversal.h"
 
 #include <algorithm>
 

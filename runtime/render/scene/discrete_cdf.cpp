@@ -1,4 +1,4 @@
-#include "runtime/render/discrete_cdf.h"
+#include "runtime/render/scene/discrete_cdf.h"
 
 namespace cohort {
 

@@ -1,4 +1,4 @@
-#include "runtime/render/device_scene.h"
+#include "runtime/render/scene/device_scene.h"
 
 #include <algorithm>
 #include <cctype>
@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 
 #include "runtime/util/error.h"
-#include "runtime/render/scene_memory.h"
+#include "runtime/render/scene/scene_memory.h"
 
 namespace cohort {
 namespace {

@@ -1,4 +1,4 @@
-#include "runtime/render/camera_params.h"
+#include "runtime/render/scene/camera_params.h"
 
 #include <cmath>
 

@@ -11,8 +11,8 @@
 #include <map>
 #include <mutex>
 
-#include "runtime/render/adaptive.h"
-#include "runtime/render/pass_source.h"
+#include "runtime/render/run/adaptive.h"
+#include "runtime/render/run/pass_source.h"
 #include "runtime/render/renderer.h"
 
 namespace cohort {

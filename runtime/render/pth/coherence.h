@@ -8,7 +8,7 @@
 
 #include "kernels/common/types.h"
 #include "runtime/backend/device_info.h"
-#include "runtime/render/device_scene.h"
+#include "runtime/render/scene/device_scene.h"
 
 namespace cohort {
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "kernels/common/types.h"
-#include "runtime/render/pass_schedule.h"
+#include "runtime/render/run/pass_schedule.h"
 
 namespace cohort {
 

@@ -1,8 +1,8 @@
-// pth: the paper's method (Wang & Deng, "Mining Effective Parallelism from Hidden Coherence for GPU
-// Based Path Tracing", Figure 3). On sc+rg, each bounce's rays walk the top KD-tree levels in local
-// memory, which yields their coherence code (origin, PTH bits, direction); the codes are sorted on
-// the device, and traversal resumes in sorted order from where the walk stopped.
-#include "runtime/render/stages/sorted_traversal.h"
+// The bounce of the ray-sorting methods: sc+rg with `extend` replaced by SortedTraversal's walk,
+// sort and resume (sorted_traversal.h). pth (pth_method.cpp) sorts by the coherence code of the
+// paper, hash (runtime/render/methods/hash.cpp) by a hash of origin and direction.
+#include "runtime/render/methods/method.h"
+#include "runtime/render/pth/sorted_traversal.h"
 #include "runtime/render/stages/stages.h"
 
 namespace cohort {
@@ -26,7 +26,5 @@ std::unique_ptr<PassLauncher> sorted_traversal_method(const MethodInputs& in, Ra
       [sorted](RenderResult& result) { sorted->report(result); });
   return render;
 }
-
-std::unique_ptr<PassLauncher> pth_method(const MethodInputs& in) { return sorted_traversal_method(in, RayOrder::pth); }
 
 }  // namespace cohort

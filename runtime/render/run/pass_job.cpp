@@ -1,11 +1,11 @@
-#include "runtime/render/pass_job.h"
+#include "runtime/render/run/pass_job.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
 
-#include "runtime/render/adaptive.h"
+#include "runtime/render/run/adaptive.h"
 #include "runtime/util/error.h"
 
 namespace cohort {

@@ -1,4 +1,4 @@
-#include "runtime/render/adaptive.h"
+#include "runtime/render/run/adaptive.h"
 
 #include <algorithm>
 #include <cmath>

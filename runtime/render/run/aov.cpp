@@ -1,4 +1,4 @@
-#include "runtime/render/aov.h"
+#include "runtime/render/run/aov.h"
 
 #include <fmt/format.h>
 

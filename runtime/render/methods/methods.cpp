@@ -1,4 +1,4 @@
-#include "runtime/render/methods.h"
+#include "runtime/render/methods/methods.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

@@ -1,9 +1,9 @@
-#include "runtime/render/punctual_lights.h"
+#include "runtime/render/scene/punctual_lights.h"
 
 #include <cmath>
 
 #include "kernels/common/scene_view.h"
-#include "runtime/render/discrete_cdf.h"
+#include "runtime/render/scene/discrete_cdf.h"
 
 namespace cohort {
 

@@ -7,7 +7,7 @@
 
 #include "runtime/accel/bvh4.h"
 #include "runtime/accel/kdtree.h"
-#include "runtime/render/device_scene.h"
+#include "runtime/render/scene/device_scene.h"
 
 namespace cohort {
 

@@ -1,4 +1,4 @@
-#include "runtime/render/prepared_scene.h"
+#include "runtime/render/scene/prepared_scene.h"
 
 #include <algorithm>
 #include <chrono>
@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "runtime/render/scene_memory.h"
+#include "runtime/render/scene/scene_memory.h"
 #include "runtime/util/error.h"
 
 namespace cohort {

@@ -1,4 +1,4 @@
-#include "runtime/render/scene_memory.h"
+#include "runtime/render/scene/scene_memory.h"
 
 #include <fmt/format.h>
 

@@ -10,7 +10,7 @@
 #include "runtime/backend/device.h"
 #include "runtime/backend/program_cache.h"
 #include "runtime/image/image.h"
-#include "runtime/render/device_scene.h"
+#include "runtime/render/scene/device_scene.h"
 #include "runtime/render/render_settings.h"
 
 namespace cohort {

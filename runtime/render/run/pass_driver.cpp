@@ -1,4 +1,4 @@
-#include "runtime/render/pass_driver.h"
+#include "runtime/render/run/pass_driver.h"
 
 #include <algorithm>
 #include <chrono>
@@ -11,8 +11,8 @@
 
 #include "kernels/common/contract.h"
 #include "runtime/backend/kernel_args.h"
-#include "runtime/render/launch_log.h"
-#include "runtime/render/pass_job.h"
+#include "runtime/render/run/launch_log.h"
+#include "runtime/render/run/pass_job.h"
 #include "runtime/util/error.h"
 
 namespace cohort {

@@ -1,8 +1,8 @@
-#include "runtime/render/pass_schedule.h"
+#include "runtime/render/run/pass_schedule.h"
 
 #include <algorithm>
 
-#include "runtime/render/adaptive.h"
+#include "runtime/render/run/adaptive.h"
 
 namespace cohort {
 

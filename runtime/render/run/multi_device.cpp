@@ -1,10 +1,10 @@
-#include "runtime/render/multi_device.h"
+#include "runtime/render/run/multi_device.h"
 
 #include <algorithm>
 #include <chrono>
 
-#include "runtime/render/launch_log.h"
-#include "runtime/render/pass_driver.h"
+#include "runtime/render/run/launch_log.h"
+#include "runtime/render/run/pass_driver.h"
 
 namespace cohort {
 

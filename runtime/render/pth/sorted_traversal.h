@@ -10,7 +10,7 @@
 #include <optional>
 #include <string>
 
-#include "runtime/render/coherence.h"
+#include "runtime/render/pth/coherence.h"
 #include "runtime/render/stages/wavefront_loop.h"
 #include "runtime/sort/radix_sort.h"
 

@@ -22,7 +22,7 @@
 #include <memory>
 #include <vector>
 
-#include "runtime/render/checkpoint.h"
+#include "runtime/render/run/checkpoint.h"
 
 namespace cohort {
 

@@ -12,9 +12,9 @@
 #include "runtime/accel/kdtree.h"
 #include "runtime/backend/device.h"
 #include "runtime/backend/kernel_args.h"
-#include "runtime/render/emitters.h"
-#include "runtime/render/environment_map.h"
-#include "runtime/render/punctual_lights.h"
+#include "runtime/render/scene/emitters.h"
+#include "runtime/render/scene/environment_map.h"
+#include "runtime/render/scene/punctual_lights.h"
 #include "runtime/scene/scene.h"
 
 namespace cohort {

@@ -15,7 +15,7 @@
 
 #include "runtime/backend/device.h"
 #include "runtime/backend/open_device.h"
-#include "runtime/render/prepared_scene.h"
+#include "runtime/render/scene/prepared_scene.h"
 #include "runtime/render/renderer.h"
 
 namespace cohort {

@@ -1,4 +1,4 @@
-#include "runtime/render/checkpoint.h"
+#include "runtime/render/run/checkpoint.h"
 
 #include <cstring>
 #include <fstream>

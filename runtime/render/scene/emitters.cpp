@@ -1,7 +1,7 @@
-#include "runtime/render/emitters.h"
+#include "runtime/render/scene/emitters.h"
 
 #include "kernels/common/scene_view.h"
-#include "runtime/render/discrete_cdf.h"
+#include "runtime/render/scene/discrete_cdf.h"
 
 namespace cohort {
 

@@ -1,4 +1,4 @@
-#include "runtime/render/environment_map.h"
+#include "runtime/render/scene/environment_map.h"
 
 #include <cmath>
 #include <limits>
@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "kernels/common/scene_view.h"
-#include "runtime/render/discrete_cdf.h"
+#include "runtime/render/scene/discrete_cdf.h"
 #include "runtime/util/error.h"
 
 namespace cohort {
