@@ -1,4 +1,4 @@
-// SAH KD-tree over a triangle soup, in the device layout of kernels/common/types.h.
+// SAH KD-tree over a triangle soup, in the device layout of kernels/common/core/types.h.
 #pragma once
 
 #include <cstddef>
@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "kernels/common/types.h"
+#include "kernels/common/core/types.h"
 #include "runtime/scene/bounds.h"
 #include "runtime/util/uninitialised_vector.h"
 

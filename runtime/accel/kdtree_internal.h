@@ -22,7 +22,7 @@
 #include <utility>
 #include <vector>
 
-#include "kernels/common/kdtree_traverse.h"
+#include "kernels/common/accel/kdtree_traverse.h"
 #include "runtime/accel/kdtree.h"
 #include "runtime/scene/bounds.h"
 

@@ -1,4 +1,4 @@
-// Flattening the intermediate tree into the device layout of kernels/common/types.h: breadth-first
+// Flattening the intermediate tree into the device layout of kernels/common/core/types.h: breadth-first
 // node order with the two children of every inner node adjacent, so one index names both and the
 // top L levels are a prefix of the array (what a kernel caching the top of the tree needs).
 #include <fmt/format.h>

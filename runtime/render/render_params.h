@@ -1,6 +1,6 @@
 #pragma once
 
-#include "kernels/common/types.h"
+#include "kernels/common/core/types.h"
 #include "runtime/render/scene/device_scene.h"
 #include "runtime/render/render_settings.h"
 

@@ -1,4 +1,4 @@
-// The environment map's importance sampling (kernels/common/environment.h, built by
+// The environment map's importance sampling (kernels/common/shading/environment.h, built by
 // runtime/render/scene/environment_map.cpp): the pdf integrates to 1, samples fit the pdf (chi-square
 // with the BSDF suite's machinery), sample/pdf/eval agree, the lookup follows Mitsuba's envmap
 // convention, and the device (PoCL in CI) computes what the host computes.
@@ -10,7 +10,7 @@
 #include <memory>
 
 #include "bsdf/bsdf_check.h"
-#include "common/environment.h"
+#include "common/shading/environment.h"
 #include "kernels/test_kernels.h"
 #include "runtime/cl/context.h"
 #include "runtime/render/scene/environment_map.h"

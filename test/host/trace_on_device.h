@@ -1,4 +1,4 @@
-// Runs the traversal-only kernels (kernels/common/trace_kernels.h) on any backend: the full
+// Runs the traversal-only kernels (kernels/common/wavefront/trace_kernels.h) on any backend: the full
 // traversal (trace_rays) or the PTH walk in local memory followed by the resumed traversal
 // (trace_rays_pth), for the same rays on every device.
 #pragma once

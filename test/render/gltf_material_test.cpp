@@ -12,7 +12,7 @@
 
 #include <fmt/format.h>
 
-#include "kernels/common/texture.h"
+#include "kernels/common/shading/texture.h"
 #include "render_fixture.h"
 #include "runtime/backend/device_support.h"
 #include "runtime/render/methods/methods.h"

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "kernels/common/camera.h"
-#include "kernels/common/punctual.h"
+#include "kernels/common/shading/camera.h"
+#include "kernels/common/shading/punctual.h"
 #include "render_fixture.h"
 #include "runtime/render/scene/camera_params.h"
 #include "runtime/render/scene/environment_map.h"

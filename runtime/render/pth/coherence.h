@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "kernels/common/types.h"
+#include "kernels/common/core/types.h"
 #include "runtime/backend/device_info.h"
 #include "runtime/render/scene/device_scene.h"
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "kernels/common/contract.h"
+#include "kernels/common/core/contract.h"
 #include "runtime/render/stages/traversal_figures.h"
 #include "runtime/util/error.h"
 

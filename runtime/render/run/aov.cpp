@@ -6,7 +6,7 @@
 #include <limits>
 #include <sstream>
 
-#include "kernels/common/types.h"
+#include "kernels/common/core/types.h"
 #include "runtime/backend/kernel_args.h"
 #include "runtime/render/render_params.h"
 #include "runtime/util/error.h"

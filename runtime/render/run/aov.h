@@ -1,5 +1,5 @@
 // First-hit AOVs (arbitrary output variables) of a render: albedo, shading normal and depth, made
-// by kernels/common/aov_kernel.h over the camera rays of the beauty's samples, and written as extra
+// by kernels/common/wavefront/aov_kernel.h over the camera rays of the beauty's samples, and written as extra
 // EXR channels with the names docs/decisions.md fixes (those OIDN and compositors read).
 #pragma once
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "kernels/common/types.h"
+#include "kernels/common/core/types.h"
 
 namespace cohort {
 

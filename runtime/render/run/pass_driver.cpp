@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "kernels/common/contract.h"
+#include "kernels/common/core/contract.h"
 #include "runtime/backend/kernel_args.h"
 #include "runtime/render/run/launch_log.h"
 #include "runtime/render/run/pass_job.h"

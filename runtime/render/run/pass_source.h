@@ -9,7 +9,7 @@
 #include <optional>
 #include <vector>
 
-#include "kernels/common/types.h"
+#include "kernels/common/core/types.h"
 #include "runtime/render/run/pass_schedule.h"
 
 namespace cohort {

@@ -2,7 +2,7 @@
 
 #include <cstdint>
 
-#include "kernels/common/types.h"
+#include "kernels/common/core/types.h"
 #include "runtime/scene/scene.h"
 
 namespace cohort {

@@ -90,7 +90,7 @@ std::string SceneFeatures::build_options() const {
   return out;
 }
 
-// Mirrors bsdf_from_gltf (kernels/common/bsdf.h) with the same clamps, so that no family the
+// Mirrors bsdf_from_gltf (kernels/common/shading/bsdf.h) with the same clamps, so that no family the
 // kernel can select is left out. With u_select in [0, 1): a conductor whenever metallic > 0; the
 // remapped u lies in [0, 1], reaching 1 only through rounding when 0 < metallic < 1, so a
 // dielectric is possible whenever transmission > 0 and the opaque base unless transmission > 1,

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "kernels/common/types.h"
+#include "kernels/common/core/types.h"
 #include "runtime/accel/bvh4.h"
 #include "runtime/accel/kdtree.h"
 #include "runtime/backend/device.h"
@@ -99,12 +99,12 @@ struct DeviceScene {
   std::vector<std::uint32_t> level_starts;
   std::array<std::vector<float>, 3> centroid_samples;  // sorted triangle centroids per axis (subsampled)
 
-  // The scene's kernel arguments (SCENE_BUFFERS in kernels/common/kernel_params.h).
+  // The scene's kernel arguments (SCENE_BUFFERS in kernels/common/core/kernel_params.h).
   SceneBuffers kernel_buffers() const;
 };
 
 // The arrays behind the kernels' node and leaf-list arguments: the BVH's when there is one, else the
-// KD-tree's, and the build option with which a program reads them (kernels/common/scene_accel.h).
+// KD-tree's, and the build option with which a program reads them (kernels/common/accel/scene_accel.h).
 struct TraversalArrays {
   const char* name;  // "BVH" or "KD-tree", for buffer names and messages
   const void* nodes;

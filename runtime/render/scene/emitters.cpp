@@ -1,6 +1,6 @@
 #include "runtime/render/scene/emitters.h"
 
-#include "kernels/common/scene_view.h"
+#include "kernels/common/accel/scene_view.h"
 #include "runtime/render/scene/discrete_cdf.h"
 
 namespace cohort {

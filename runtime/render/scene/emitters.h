@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "kernels/common/types.h"
+#include "kernels/common/core/types.h"
 #include "runtime/accel/kdtree.h"
 
 namespace cohort {

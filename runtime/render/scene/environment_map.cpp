@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "kernels/common/scene_view.h"
+#include "kernels/common/accel/scene_view.h"
 #include "runtime/render/scene/discrete_cdf.h"
 #include "runtime/util/error.h"
 

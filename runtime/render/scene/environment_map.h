@@ -1,5 +1,5 @@
 // The environment map of `--env FILE.exr`: its radiance grid and the sampling tables NEE uses,
-// laid out as kernels/common/environment.h reads them (Mitsuba's envmap convention, bilinear,
+// laid out as kernels/common/shading/environment.h reads them (Mitsuba's envmap convention, bilinear,
 // piecewise-constant sampling over the cells of the grid; docs/lights.md).
 #pragma once
 
@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "kernels/common/types.h"
+#include "kernels/common/core/types.h"
 #include "runtime/image/image.h"
 
 namespace cohort {

@@ -49,7 +49,7 @@ struct TreeChoice {
 // conference; docs/results.md), "deep" (the KD-tree built for GPUs), "compact" (KdBuildOptions::compact:
 // 0.55-0.67x the nodes and 0.74-0.83x the bytes) or "auto": bvh4 unless a KD-tree is asked for
 // (`needs_kd`: --tree-budget, --speculative), then compact when no device is a GPU and deep when one is. Every
-// method walks either; pth's partial traversal walks the top of whichever is built. Every structure gives every ray the same hit (kernels/common/bvh4_traverse.h), so
+// method walks either; pth's partial traversal walks the top of whichever is built. Every structure gives every ray the same hit (kernels/common/accel/bvh4_traverse.h), so
 // the choice changes speed and memory, never the image. Throws InputError for another name, and for
 // bvh4 with `needs_kd`.
 TreeChoice tree_options(const std::string& choice, std::span<const DeviceInfo> devices = {}, bool needs_kd = false);

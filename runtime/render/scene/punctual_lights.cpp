@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "kernels/common/scene_view.h"
+#include "kernels/common/accel/scene_view.h"
 #include "runtime/render/scene/discrete_cdf.h"
 
 namespace cohort {

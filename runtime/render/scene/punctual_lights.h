@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "kernels/common/types.h"
+#include "kernels/common/core/types.h"
 #include "runtime/scene/scene.h"
 
 namespace cohort {

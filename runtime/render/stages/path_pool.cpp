@@ -4,7 +4,7 @@
 #include <array>
 #include <vector>
 
-#include "kernels/common/contract.h"
+#include "kernels/common/core/contract.h"
 
 namespace cohort {
 
