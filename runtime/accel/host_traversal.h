@@ -5,7 +5,7 @@
 #include "kernels/common/accel/bvh4_traverse.h"
 #include "kernels/common/accel/kdtree_traverse.h"
 #include "runtime/accel/bvh4.h"
-#include "runtime/accel/kdtree.h"
+#include "runtime/accel/kdtree/kdtree.h"
 
 namespace cohort {
 

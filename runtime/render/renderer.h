@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/accel/kdtree.h"
+#include "runtime/accel/kdtree/kdtree.h"
 #include "runtime/backend/device.h"
 #include "runtime/backend/program_cache.h"
 #include "runtime/image/image.h"

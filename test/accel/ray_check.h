@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "kernels/common/accel/kdtree_traverse.h"
-#include "runtime/accel/kdtree.h"
+#include "runtime/accel/kdtree/kdtree.h"
 
 namespace cohort::test {
 

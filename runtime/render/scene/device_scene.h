@@ -9,7 +9,7 @@
 
 #include "kernels/common/core/types.h"
 #include "runtime/accel/bvh4.h"
-#include "runtime/accel/kdtree.h"
+#include "runtime/accel/kdtree/kdtree.h"
 #include "runtime/backend/device.h"
 #include "runtime/backend/kernel_args.h"
 #include "runtime/render/scene/emitters.h"

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "kernels/common/core/types.h"
-#include "runtime/accel/kdtree.h"
+#include "runtime/accel/kdtree/kdtree.h"
 
 namespace cohort {
 

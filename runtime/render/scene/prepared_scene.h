@@ -11,7 +11,7 @@
 #include <optional>
 
 #include "runtime/accel/bvh4.h"
-#include "runtime/accel/kdtree.h"
+#include "runtime/accel/kdtree/kdtree.h"
 #include "runtime/backend/device_info.h"
 #include "runtime/render/scene/device_scene.h"
 #include "runtime/scene/scene.h"

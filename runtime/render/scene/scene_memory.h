@@ -6,7 +6,7 @@
 #include <string>
 
 #include "runtime/accel/bvh4.h"
-#include "runtime/accel/kdtree.h"
+#include "runtime/accel/kdtree/kdtree.h"
 #include "runtime/render/scene/device_scene.h"
 
 namespace cohort {

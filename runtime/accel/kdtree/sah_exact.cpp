@@ -10,7 +10,7 @@
 #include <limits>
 
 
-#include "runtime/accel/kdtree_internal.h"
+#include "runtime/accel/kdtree/sah.h"
 #include "runtime/accel/x86_dispatch.h"
 
 namespace cohort::kd {

@@ -7,7 +7,7 @@
 // search over it needs a few builds, each cheaper than the first.
 #include <fmt/format.h>
 
-#include "runtime/accel/kdtree_internal.h"
+#include "runtime/accel/kdtree/subtree.h"
 #include "runtime/util/error.h"
 
 namespace cohort {

@@ -14,7 +14,7 @@
 #include <utility>
 
 #include "runtime/accel/clip.h"
-#include "runtime/accel/kdtree_internal.h"
+#include "runtime/accel/kdtree/partition.h"
 
 namespace cohort::kd {
 

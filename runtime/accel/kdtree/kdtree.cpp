@@ -1,5 +1,5 @@
 // build_kdtree: drop the triangles no ray can hit reliably, build, flatten, measure.
-#include "runtime/accel/kdtree.h"
+#include "runtime/accel/kdtree/kdtree.h"
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
@@ -9,7 +9,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "runtime/accel/kdtree_internal.h"
+#include "runtime/accel/kdtree/subtree.h"
 
 namespace cohort {
 namespace {

@@ -31,7 +31,7 @@ struct KdBuildOptions {
   // the armadillo's SAH 2.4% above the old build's). 0: the chosen plane's plain cost is never
   // required, only that some plane pays.
   // On the H200 the compact Sponza tree takes 0.74x the bytes and traces 2-5 % slower (results/raw/nvidia-h200-2026-12-03-4b25879):
-  // the first step a memory budget takes (kdtree_budget.cpp). On CPUs it traces as fast in 0.6x the
+  // the first step a memory budget takes (budget.cpp). On CPUs it traces as fast in 0.6x the
   // nodes, so a render whose devices are all CPUs builds it (tree_options, --tree).
   bool compact = false;
   int plain_sah_triangles = 6;

@@ -6,7 +6,7 @@
 // hardly ran faster with more threads.)
 #include <algorithm>
 
-#include "runtime/accel/kdtree_internal.h"
+#include "runtime/accel/kdtree/subtree.h"
 
 namespace cohort::kd {
 SubtreeSums total_sums(const Subtree& subtree) {

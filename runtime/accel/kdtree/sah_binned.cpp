@@ -16,7 +16,7 @@
 #include <vector>
 
 
-#include "runtime/accel/kdtree_internal.h"
+#include "runtime/accel/kdtree/sah.h"
 #include "runtime/accel/x86_dispatch.h"
 
 namespace cohort::kd {
@@ -244,7 +244,7 @@ std::size_t in_bins_up_to(std::span<const float> sorted, std::size_t first, cons
 constexpr std::size_t kCountedRefined = 128;
 
 // count_refined on K (1-4) vectors of candidates from `first` on, in registers across the values
-// (as count_block in kdtree_sah.cpp).
+// (as count_block in sah_exact.cpp).
 template <int K>
 __attribute__((target("avx2"))) inline void count_refined_block(const float* pos,
                                                                 std::size_t n_starts,

@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "runtime/accel/kdtree_internal.h"
+#include "runtime/accel/kdtree/subtree.h"
 
 namespace cohort::kd {
 namespace {

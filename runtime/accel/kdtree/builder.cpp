@@ -18,7 +18,9 @@
 #include <stdexcept>
 #include <utility>
 
-#include "runtime/accel/kdtree_internal.h"
+#include "runtime/accel/kdtree/partition.h"
+#include "runtime/accel/kdtree/sah.h"
+#include "runtime/accel/kdtree/subtree.h"
 
 namespace cohort::kd {
 namespace {
@@ -88,7 +90,7 @@ class Builder {
   int max_depth_;
 };
 
-// The intermediate tree's indices (BuildNode) hold fewer bits than a size_t; kdtree_layout.cpp
+// The intermediate tree's indices (BuildNode) hold fewer bits than a size_t; layout.cpp
 // checks the device layout's limits, this only keeps the indices from wrapping before it gets
 // there.
 std::uint32_t checked_index(std::size_t value, std::size_t limit, const char* what) {
@@ -260,7 +262,7 @@ std::uint32_t Builder::build_one_sided(Subtree& out, Scratch& s, std::size_t beg
 }
 
 // Each child gets its references (partition_apart) as a stack of its own and is built as a task
-// into its own Subtree, kept in the parent's `spawned` (never copied: kdtree_layout.cpp walks them
+// into its own Subtree, kept in the parent's `spawned` (never copied: layout.cpp walks them
 // in place); the parent's stack is freed first (a node large enough for this has the stack to
 // itself: it is the root or a child of another parallel split).
 void Builder::build_children_parallel(Subtree& out, std::uint32_t index, Scratch& s,
