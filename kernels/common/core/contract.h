@@ -6,6 +6,7 @@
 #ifndef COHORT_CONTRACT_H
 #define COHORT_CONTRACT_H
 
+#include "common/core/path_slot.h"
 #include "common/core/types.h"
 
 /* ---- Sentinels ---------------------------------------------------------------------------- */
@@ -74,10 +75,8 @@ typedef struct CO_ALIGN(16) SavedStackEntry {
 CO_STATIC_ASSERT(sizeof(SavedStackEntry) == 16, "SavedStackEntry must stay 16 bytes");
 
 /* ---- Device bytes per path slot ----------------------------------------------------------------
- * Path state: origin, direction, throughput, radiance, previous vertex (float4 each), item,
- * segment, status (uint each); the hit; the shadow ray (origin, direction, contribution); the
- * shadow queue, the path queue and the nodes visited (uint each). */
-#define PATH_STATE_BYTES (5u * 16u + 3u * 4u)
+ * The path state (PATH_STATE_BYTES, path_slot.h); the hit; the shadow ray (origin, direction,
+ * contribution); the shadow queue, the path queue and the nodes visited (uint each). */
 #define SHADOW_RAY_BYTES (3u * 16u)
 #define WAVEFRONT_SLOT_BYTES (PATH_STATE_BYTES + (uint32_t)sizeof(HitOut) + SHADOW_RAY_BYTES + 3u * 4u)
 /* With a ray sort: key and value (twice, for the sort's ping-pong) and the traversal state; the

@@ -56,11 +56,10 @@
 /* What every rendering kernel takes: the render's parameters and the scene. */
 #define SCENE_PARAMS(P, G) P(UNIFORM, RenderParams, params) G(SceneBuffers, scene, SCENE_BUFFERS)
 
-/* The path slots of the wavefront pool, structure of arrays (wavefront_path.h). */
-#define PATH_BUFFERS(P, G)                                                                                    \
-  P(IO, co_float4, path_org) P(IO, co_float4, path_dir) P(IO, co_float4, path_throughput)                    \
-  P(IO, co_float4, path_radiance) P(IO, co_float4, path_prev) P(IO, uint32_t, path_item)                     \
-  P(IO, uint32_t, path_segment) P(IO, uint32_t, path_status)
+/* The path slots of the wavefront pool, structure of arrays: one path_<buffer> per entry of
+ * PATH_SLOT (path_slot.h), in its order. */
+#define CO_SLOT_PARAM(P, buf, T, N, state, f, wf, what) P(IO, CO_SLOT_TYPE(T, N), path_##buf)
+#define PATH_BUFFERS(P, G) PATH_SLOT(CO_SLOT_PARAM, P)
 
 /* The shadow ray each shaded path may queue, by slot, and the queue of slots that have one. */
 #define SHADOW_BUFFERS(P, G)                                                                                  \

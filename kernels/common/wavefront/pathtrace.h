@@ -11,6 +11,7 @@
 /* the BSDF dispatch compiles only the families named by COHORT_FEATURE_* (see bsdf.h) */
 #define COHORT_BSDF_SPECIALISED 1
 
+#include "common/core/path_slot.h"
 #include "common/shading/bsdf.h"
 #include "common/shading/camera.h"
 #include "common/accel/ray_offset.h"
@@ -23,15 +24,8 @@
 #define PATH_ALIVE 0u       /* `org, dir` is the next ray to trace */
 #define PATH_TERMINATED 1u  /* finished; its pending shadow ray may still add light */
 
-typedef struct PathState {
-  co_vec3 org, dir;
-  co_vec3 throughput;
-  co_vec3 radiance;
-  co_vec3 prev_pos;       /* origin of the current ray (the last vertex, offset), for the MIS weight of emission */
-  float prev_bsdf_pdf;    /* 0: the previous vertex was the camera */
-  uint32_t segment;       /* the segment `dir` traces; the camera ray is segment 1 */
-  uint32_t status;
-} PathState;
+/* PathState (org, dir, throughput, radiance, prev_pos, prev_bsdf_pdf, segment, status) is
+ * generated from the path slot's list, PATH_SLOT in common/core/path_slot.h. */
 
 /* A shadow ray whose `contribution` is added to the path's radiance when nothing occludes it. */
 typedef struct ShadowRay {

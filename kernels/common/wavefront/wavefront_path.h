@@ -1,5 +1,5 @@
-/* Path slots of the wavefront kernels (structure of arrays, PATH_BUFFERS in kernel_params.h): loads
- * and stores of a PathState. Shared by wavefront_kernels.h and pth_kernels.h. */
+/* Path slots of the wavefront kernels (structure of arrays, PATH_SLOT in common/core/path_slot.h):
+ * loads and stores of a PathState. Shared by wavefront_kernels.h and pth_kernels.h. */
 #ifndef COHORT_WAVEFRONT_PATH_H
 #define COHORT_WAVEFRONT_PATH_H
 
@@ -8,30 +8,35 @@
 
 #define PATH_PARAMS CO_PARAMS(PATH_BUFFERS)
 
+/* load_path and store_path, one statement per entry of PATH_SLOT (common/core/path_slot.h), in
+ * its order; a SLOT_ONLY buffer (the work item) is neither loaded nor stored. */
+#define CO_SLOT_LOAD(A, buf, T, N, state, f, wf, what) CO_SLOT_LOAD_##state(buf, f, wf)
+#define CO_SLOT_LOAD_VEC3(buf, f, wf) st.f = v3_from4(path_##buf[slot]);
+#define CO_SLOT_LOAD_VEC3_W(buf, f, wf)                                                                     \
+  {                                                                                                        \
+    co_float4 v = path_##buf[slot];                                                                        \
+    st.f = v3_from4(v);                                                                                    \
+    st.wf = v.w;                                                                                            \
+  }
+#define CO_SLOT_LOAD_SCALAR(buf, f, wf) st.f = path_##buf[slot];
+#define CO_SLOT_LOAD_SLOT_ONLY(buf, f, wf)
+
 CO_INLINE PathState load_path(PATH_PARAMS, uint32_t slot) {
   PathState st;
-  st.org = v3_from4(path_org[slot]);
-  st.dir = v3_from4(path_dir[slot]);
-  st.throughput = v3_from4(path_throughput[slot]);
-  st.radiance = v3_from4(path_radiance[slot]);
-  co_float4 prev = path_prev[slot];
-  st.prev_pos = v3_from4(prev);
-  st.prev_bsdf_pdf = prev.w;
-  st.segment = path_segment[slot];
-  st.status = path_status[slot];
+  PATH_SLOT(CO_SLOT_LOAD, _)
   return st;
 }
 
 CO_INLINE co_float4 to4(co_vec3 v, float w) { return co_make_float4(v.x, v.y, v.z, w); }
 
+#define CO_SLOT_STORE(A, buf, T, N, state, f, wf, what) CO_SLOT_STORE_##state(buf, f, wf)
+#define CO_SLOT_STORE_VEC3(buf, f, wf) path_##buf[slot] = to4(st->f, 0.0f);
+#define CO_SLOT_STORE_VEC3_W(buf, f, wf) path_##buf[slot] = to4(st->f, st->wf);
+#define CO_SLOT_STORE_SCALAR(buf, f, wf) path_##buf[slot] = st->f;
+#define CO_SLOT_STORE_SLOT_ONLY(buf, f, wf)
+
 CO_INLINE void store_path(PATH_PARAMS, uint32_t slot, const PathState *st) {
-  path_org[slot] = to4(st->org, 0.0f);
-  path_dir[slot] = to4(st->dir, 0.0f);
-  path_throughput[slot] = to4(st->throughput, 0.0f);
-  path_radiance[slot] = to4(st->radiance, 0.0f);
-  path_prev[slot] = to4(st->prev_pos, st->prev_bsdf_pdf);
-  path_segment[slot] = st->segment;
-  path_status[slot] = st->status;
+  PATH_SLOT(CO_SLOT_STORE, _)
 }
 
 #define PATH_ARGS CO_ARGS(PATH_BUFFERS)
