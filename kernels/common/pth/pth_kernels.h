@@ -46,7 +46,12 @@ CO_INLINE uint64_t pth_walk_item(CO_PARAMS(PTH_WALK_PARAMS), const CO_LOCAL PTH_
   float t0 = 0.0f, t1 = INFINITY;
   /* the scene box: where a camera ray leaves it, for the end part's estimate */
   KdTreeView box = make_tree_view(nodes, leaf_triangles, triangles, p.scene_min, p.scene_max);
+#if defined(COHORT_ACCEL_BVH4)
+  /* on the BVH the walk tells a miss itself: the box is only needed for the end part */
+  int inside = c.end_bits != 0u && kd_begin(&box, org, inv_dir, 0.0f, INFINITY, &t0, &t1);
+#else
   int inside = kd_begin(&box, org, inv_dir, 0.0f, INFINITY, &t0, &t1);
+#endif
   /* the previous hit is still in `hits` until this bounce's is written */
   float end_t = c.end_bits && inside ? estimated_end(path_segment[slot], hits[slot].t, t1) : 0.0f;
   TraversalState state;
