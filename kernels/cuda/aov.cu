@@ -1,3 +1,3 @@
 /* CUDA entry point: first-hit AOVs.
- * The kernel lives in common/aov_kernel.h. */
-#include "common/aov_kernel.h"
+ * The kernel lives in common/wavefront/aov_kernel.h. */
+#include "common/wavefront/aov_kernel.h"

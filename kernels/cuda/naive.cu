@@ -1,3 +1,3 @@
 /* CUDA entry point: NAIVE megakernel.
- * The kernels live in common/naive_kernel.h. */
-#include "common/naive_kernel.h"
+ * The kernels live in common/wavefront/naive_kernel.h. */
+#include "common/wavefront/naive_kernel.h"

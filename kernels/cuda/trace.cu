@@ -1,3 +1,3 @@
 /* CUDA entry point: traversal-only kernels for tests and ray benchmarks.
- * The kernels live in common/trace_kernels.h. */
-#include "common/trace_kernels.h"
+ * The kernels live in common/wavefront/trace_kernels.h. */
+#include "common/wavefront/trace_kernels.h"

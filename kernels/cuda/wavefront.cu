@@ -1,3 +1,3 @@
 /* CUDA entry point: wavefront stages.
- * The kernels live in common/wavefront_kernels.h. */
-#include "common/wavefront_kernels.h"
+ * The kernels live in common/wavefront/wavefront_kernels.h. */
+#include "common/wavefront/wavefront_kernels.h"

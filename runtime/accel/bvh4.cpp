@@ -16,7 +16,7 @@
 #include <numeric>
 #include <type_traits>
 
-#include "kernels/common/bvh4_traverse.h"
+#include "kernels/common/accel/bvh4_traverse.h"
 #include "runtime/accel/clip.h"
 #include "runtime/util/error.h"
 
@@ -538,7 +538,7 @@ struct Collapser {
 
 // The top BVH4_TOP_LEVELS levels moved to the front of the node array in breadth-first order (the
 // rest keeps its depth-first order behind them), so that any number of top levels is a prefix: the
-// part the PTH walk copies to local memory (kernels/common/bvh4_path.h). Returns the first node of
+// part the PTH walk copies to local memory (kernels/common/accel/bvh4_path.h). Returns the first node of
 // each of those depths, then the count of nodes above the deepest (as KD-tree level starts).
 std::vector<std::uint32_t> lay_out_top_breadth_first(std::vector<Bvh4Node>& nodes) {
   const auto count = static_cast<std::uint32_t>(nodes.size());

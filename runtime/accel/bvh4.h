@@ -1,6 +1,6 @@
-// A 4-wide BVH over the KD-tree's kept triangles, in the device layout of kernels/common/types.h
+// A 4-wide BVH over the KD-tree's kept triangles, in the device layout of kernels/common/core/types.h
 // (Bvh4Node): what renders trace with unless a KD-tree is asked for (--tree bvh4, and auto;
-// kernels/common/bvh4_traverse.h). Its leaves hold the same kept triangles as the KD-tree's, so
+// kernels/common/accel/bvh4_traverse.h). Its leaves hold the same kept triangles as the KD-tree's, so
 // every ray gets the same hit from either.
 #pragma once
 
@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "kernels/common/types.h"
+#include "kernels/common/core/types.h"
 
 namespace cohort {
 
@@ -32,7 +32,7 @@ struct Bvh4 {
   // last entry counts the top's nodes, so the nodes above depth d are a prefix of starts[d] nodes.
   std::vector<std::uint32_t> top_level_starts;
   // The leaves' entries (a leaf reference names its first entry and count): each a copy of a kept
-  // triangle, with that triangle's index in v0.w (kernels/common/bvh4_traverse.h).
+  // triangle, with that triangle's index in v0.w (kernels/common/accel/bvh4_traverse.h).
   std::vector<Triangle> leaf_vertices;
   Bvh4Stats stats;
 };

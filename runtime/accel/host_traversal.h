@@ -1,11 +1,11 @@
-// The device traversal (kernels/common/kdtree_traverse.h) over a tree in host memory: the same code,
+// The device traversal (kernels/common/accel/kdtree_traverse.h) over a tree in host memory: the same code,
 // compiled as C++, so a ray replays on the host exactly as a kernel traced it.
 #pragma once
 
-#include "kernels/common/bvh4_traverse.h"
-#include "kernels/common/kdtree_traverse.h"
+#include "kernels/common/accel/bvh4_traverse.h"
+#include "kernels/common/accel/kdtree_traverse.h"
 #include "runtime/accel/bvh4.h"
-#include "runtime/accel/kdtree.h"
+#include "runtime/accel/kdtree/kdtree.h"
 
 namespace cohort {
 

@@ -51,7 +51,7 @@ class DeviceBuffer {
   std::size_t bytes_ = 0;
 };
 
-// A kernel's dynamically sized local (CUDA: shared) array, CO_LOCAL_PARAM in kernels/common/port.h:
+// A kernel's dynamically sized local (CUDA: shared) array, CO_LOCAL_PARAM in kernels/common/core/port.h:
 // an argument in OpenCL, the launch's dynamic shared memory in CUDA.
 struct LocalMemory {
   std::size_t bytes = 0;

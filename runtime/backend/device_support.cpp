@@ -4,7 +4,7 @@
 
 #include <fmt/format.h>
 
-#include "common/types.h"
+#include "common/core/types.h"
 #include "runtime/backend/device.h"
 
 namespace cohort {

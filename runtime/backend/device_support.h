@@ -18,7 +18,7 @@ struct DeviceSupport {
   std::size_t work_group = 1;       // the most work items a launch of the default size takes there
   std::size_t local_budget = 0;     // bytes of local memory the PTH subtree may take
   std::uint32_t pth_levels = 0;     // full levels of a tree's top that fit in local_budget
-  bool prefetch = false;            // the BVH walk prefetches (kernels/common/port.h, co_prefetch)
+  bool prefetch = false;            // the BVH walk prefetches (kernels/common/core/port.h, co_prefetch)
   // The device radix sort (hash, pth, the gate benchmark) hands tiles from one work-group to the next
   // within a launch (decoupled look-back), which needs the groups of a launch to make progress
   // independently. OpenCL reports no such property; Mesa's OpenCL (rusticl, clover) was measured

@@ -8,7 +8,7 @@
 namespace cohort {
 
 struct EmbeddedSource {
-  const char* path;  // relative to kernels/, e.g. "common/types.h" or "naive.cl"
+  const char* path;  // relative to kernels/, e.g. "common/core/types.h" or "naive.cl"
   const char* text;
 };
 

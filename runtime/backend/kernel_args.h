@@ -1,4 +1,4 @@
-// The host side of kernels/common/kernel_params.h: each kernel's parameter list becomes a struct of
+// The host side of kernels/common/core/kernel_params.h: each kernel's parameter list becomes a struct of
 // named fields (a DeviceBuffer per buffer, LocalMemory for the local array, the value itself for a
 // value) whose bind() sets the kernel's arguments in the order of its signature. Call sites fill
 // fields by name and never count argument indices; a buffer left unset is an error at bind time.
@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "kernels/common/kernel_params.h"
-#include "kernels/common/types.h"
+#include "kernels/common/core/kernel_params.h"
+#include "kernels/common/core/types.h"
 #include "runtime/backend/device.h"
 
 namespace cohort {

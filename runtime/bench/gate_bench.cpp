@@ -5,12 +5,12 @@
 #include <optional>
 #include <random>
 
-#include "kernels/common/bvh4_path.h"
-#include "kernels/common/coherence.h"
+#include "kernels/common/accel/bvh4_path.h"
+#include "kernels/common/pth/coherence.h"
 #include "runtime/bench/protocol_rays.h"
 #include "runtime/accel/host_traversal.h"
 #include "runtime/bench/trace_bench.h"
-#include "runtime/render/coherence.h"
+#include "runtime/render/pth/coherence.h"
 #include "runtime/sort/radix_sort.h"
 
 namespace cohort {

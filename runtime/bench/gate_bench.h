@@ -12,7 +12,7 @@
 #include "runtime/bench/figures.h"
 #include "runtime/backend/device.h"
 #include "runtime/backend/program_cache.h"
-#include "runtime/render/prepared_scene.h"
+#include "runtime/render/scene/prepared_scene.h"
 
 namespace cohort {
 

@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "kernels/common/types.h"
+#include "kernels/common/core/types.h"
 #include "runtime/scene/bounds.h"
 #include "runtime/scene/scene.h"
 

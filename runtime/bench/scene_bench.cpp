@@ -6,8 +6,8 @@
 #include <ctime>
 
 #include "runtime/bench/trace_bench.h"
-#include "runtime/render/methods.h"
-#include "runtime/render/prepared_scene.h"
+#include "runtime/render/methods/methods.h"
+#include "runtime/render/scene/prepared_scene.h"
 #include "runtime/render/renderer.h"
 #include "runtime/render/workloads.h"
 #include "runtime/util/median.h"

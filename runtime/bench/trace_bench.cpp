@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "runtime/backend/kernel_args.h"
-#include "runtime/render/device_scene.h"
+#include "runtime/render/scene/device_scene.h"
 
 namespace cohort {
 

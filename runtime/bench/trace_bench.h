@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "runtime/accel/bvh4.h"
-#include "runtime/accel/kdtree.h"
+#include "runtime/accel/kdtree/kdtree.h"
 #include "runtime/bench/figures.h"
 #include "runtime/bench/protocol_rays.h"
 #include "runtime/backend/device.h"

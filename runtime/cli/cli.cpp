@@ -7,8 +7,8 @@
 #include <fmt/ranges.h>
 
 #include "runtime/cli/commands.h"
-#include "runtime/render/prepared_scene.h"
-#include "runtime/render/methods.h"
+#include "runtime/render/scene/prepared_scene.h"
+#include "runtime/render/methods/methods.h"
 #include "runtime/util/error.h"
 
 namespace cohort {

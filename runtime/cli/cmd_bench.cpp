@@ -12,7 +12,7 @@
 #include "runtime/backend/open_device.h"
 #include "runtime/cli/commands.h"
 #include "runtime/cli/parse_values.h"
-#include "runtime/render/methods.h"
+#include "runtime/render/methods/methods.h"
 #include "runtime/scene/scene.h"
 #include "runtime/util/atomic_file.h"
 #include "runtime/util/error.h"

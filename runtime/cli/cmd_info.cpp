@@ -3,8 +3,8 @@
 #include "runtime/backend/device_support.h"
 #include "runtime/backend/open_device.h"
 #include "runtime/cli/commands.h"
-#include "runtime/render/prepared_scene.h"
-#include "runtime/render/scene_memory.h"
+#include "runtime/render/scene/prepared_scene.h"
+#include "runtime/render/scene/scene_memory.h"
 #include "runtime/util/error.h"
 
 namespace cohort {

@@ -1,7 +1,7 @@
 // `cohort render`: each rank of the team parses, prepares and renders; rank 0 gathers the image
 // and writes the outputs (render_steps.h).
 #include "runtime/cli/render_steps.h"
-#include "runtime/render/adaptive.h"
+#include "runtime/render/run/adaptive.h"
 
 namespace cohort {
 namespace {

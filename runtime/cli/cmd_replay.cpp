@@ -9,7 +9,7 @@
 
 #include "runtime/accel/host_traversal.h"
 #include "runtime/cli/commands.h"
-#include "runtime/render/prepared_scene.h"
+#include "runtime/render/scene/prepared_scene.h"
 #include "runtime/util/error.h"
 
 namespace cohort {

@@ -4,8 +4,8 @@
 
 #include <chrono>
 
-#include "runtime/render/methods.h"
-#include "runtime/render/scene_memory.h"
+#include "runtime/render/methods/methods.h"
+#include "runtime/render/scene/scene_memory.h"
 #include "runtime/render/workloads.h"
 #include "runtime/util/error.h"
 

@@ -3,10 +3,10 @@
 #include "runtime/backend/open_device.h"
 #include "runtime/cli/parse_values.h"
 #include "runtime/cli/render_steps.h"
-#include "runtime/render/adaptive.h"
-#include "runtime/render/aov.h"
-#include "runtime/render/environment_map.h"
-#include "runtime/render/methods.h"
+#include "runtime/render/run/adaptive.h"
+#include "runtime/render/run/aov.h"
+#include "runtime/render/scene/environment_map.h"
+#include "runtime/render/methods/methods.h"
 #include "runtime/util/error.h"
 
 namespace cohort {

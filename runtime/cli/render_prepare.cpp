@@ -6,9 +6,9 @@
 #include "runtime/backend/open_device.h"
 #include "runtime/cli/parse_values.h"
 #include "runtime/cli/render_steps.h"
-#include "runtime/render/environment_map.h"
-#include "runtime/render/methods.h"
-#include "runtime/render/scene_memory.h"
+#include "runtime/render/scene/environment_map.h"
+#include "runtime/render/methods/methods.h"
+#include "runtime/render/scene/scene_memory.h"
 #include "runtime/render/workloads.h"
 
 namespace cohort {

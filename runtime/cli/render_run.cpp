@@ -4,7 +4,7 @@
 
 #include "runtime/cli/progress.h"
 #include "runtime/cli/render_steps.h"
-#include "runtime/render/checkpoint.h"
+#include "runtime/render/run/checkpoint.h"
 #include "runtime/util/hash.h"
 
 namespace cohort {

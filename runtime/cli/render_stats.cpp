@@ -4,8 +4,8 @@
 
 #include "runtime/bench/bench_json.h"
 #include "runtime/cli/render_steps.h"
-#include "runtime/render/adaptive.h"
-#include "runtime/render/scene_memory.h"
+#include "runtime/render/run/adaptive.h"
+#include "runtime/render/scene/scene_memory.h"
 #include "runtime/util/median.h"
 
 namespace cohort {

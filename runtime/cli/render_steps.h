@@ -18,10 +18,10 @@
 #include "runtime/cli/interrupt.h"
 #include "runtime/cli/output_paths.h"
 #include "runtime/cli/render_team.h"
-#include "runtime/render/aov.h"
-#include "runtime/render/multi_device.h"
-#include "runtime/render/pass_job.h"
-#include "runtime/render/prepared_scene.h"
+#include "runtime/render/run/aov.h"
+#include "runtime/render/run/multi_device.h"
+#include "runtime/render/run/pass_job.h"
+#include "runtime/render/scene/prepared_scene.h"
 
 namespace cohort {
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "runtime/render/multi_device.h"
-#include "runtime/render/pass_job.h"
+#include "runtime/render/run/multi_device.h"
+#include "runtime/render/run/pass_job.h"
 
 namespace cohort {
 

@@ -3,8 +3,8 @@
 
 #include "runtime/cli/render_steps.h"
 #include "runtime/image/image.h"
-#include "runtime/render/adaptive.h"
-#include "runtime/render/scene_memory.h"
+#include "runtime/render/run/adaptive.h"
+#include "runtime/render/scene/scene_memory.h"
 #include "runtime/util/atomic_file.h"
 
 namespace cohort {

@@ -14,7 +14,7 @@
 
 #include <fmt/format.h>
 
-#include "runtime/render/adaptive.h"
+#include "runtime/render/run/adaptive.h"
 #include "runtime/util/error.h"
 
 namespace cohort {

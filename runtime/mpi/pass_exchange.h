@@ -11,7 +11,7 @@
 #include <mutex>
 
 #include "runtime/mpi/mpi_session.h"
-#include "runtime/render/pass_job.h"
+#include "runtime/render/run/pass_job.h"
 
 namespace cohort {
 

@@ -1,6 +1,6 @@
 #include "runtime/render/render_params.h"
 
-#include "runtime/render/camera_params.h"
+#include "runtime/render/scene/camera_params.h"
 
 namespace cohort {
 

@@ -1,7 +1,7 @@
 #pragma once
 
-#include "kernels/common/types.h"
-#include "runtime/render/device_scene.h"
+#include "kernels/common/core/types.h"
+#include "runtime/render/scene/device_scene.h"
 #include "runtime/render/render_settings.h"
 
 namespace cohort {

@@ -9,13 +9,13 @@
 #include <string>
 #include <vector>
 
-#include "runtime/accel/kdtree.h"
+#include "runtime/accel/kdtree/kdtree.h"
 #include "runtime/backend/device.h"
 #include "runtime/backend/program_cache.h"
 #include "runtime/image/image.h"
-#include "runtime/render/checkpoint.h"
-#include "runtime/render/device_scene.h"
-#include "runtime/render/pass_source.h"
+#include "runtime/render/run/checkpoint.h"
+#include "runtime/render/scene/device_scene.h"
+#include "runtime/render/run/pass_source.h"
 #include "runtime/render/render_settings.h"
 
 namespace cohort {
@@ -116,7 +116,7 @@ struct RenderControl {
   std::function<bool()> stop_requested;                // checked after every pass
   double checkpoint_seconds = 0;                       // save every this many seconds; 0: only at the end
   std::function<void(const FilmState&)> checkpoint;    // saves the film; also called when the render ends
-  // Shared work of several devices (runtime/render/multi_device.h): the device takes its passes
+  // Shared work of several devices (runtime/render/run/multi_device.h): the device takes its passes
   // there and the caller combines the image. Null: this render owns all passes of the image.
   PassSource* passes = nullptr;
 };

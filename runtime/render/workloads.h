@@ -4,7 +4,7 @@
 #include <array>
 #include <optional>
 
-#include "runtime/render/prepared_scene.h"
+#include "runtime/render/scene/prepared_scene.h"
 #include "runtime/render/render_settings.h"
 
 namespace cohort {

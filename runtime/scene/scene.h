@@ -16,7 +16,7 @@
 namespace cohort {
 
 // glTF alphaMode: OPAQUE ignores alpha; MASK cuts out where alpha < alpha_cutoff; BLEND is
-// stochastic transparency (kernels/common/alpha.h). OBJ and PLY materials stay opaque.
+// stochastic transparency (kernels/common/accel/alpha.h). OBJ and PLY materials stay opaque.
 enum class AlphaMode : std::uint8_t { opaque, mask, blend };
 
 // glTF KHR_texture_transform of one texture slot: uv' = T(offset) R(rotation) S(scale) uv, with

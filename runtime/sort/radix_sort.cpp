@@ -1,4 +1,4 @@
-// Host side of the device radix sort (kernels/common/radix_sort_kernels.h): tiling, buffers and the
+// Host side of the device radix sort (kernels/common/sort/radix_sort_kernels.h): tiling, buffers and the
 // launches of one sort.
 #include "runtime/sort/radix_sort.h"
 

@@ -1,5 +1,5 @@
 // Stable device radix sort of (32- or 64-bit key, 32-bit value) pairs on any backend: one histogram
-// launch and one launch per digit of up to 8 bits (kernels/common/radix_sort_kernels.h).
+// launch and one launch per digit of up to 8 bits (kernels/common/sort/radix_sort_kernels.h).
 #pragma once
 
 #include <cstdint>

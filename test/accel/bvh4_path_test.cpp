@@ -1,4 +1,4 @@
-// bvh4_walk and bvh4_path_bits (kernels/common/bvh4_path.h), the BVH's partial traversal: at every
+// bvh4_walk and bvh4_path_bits (kernels/common/accel/bvh4_path.h), the BVH's partial traversal: at every
 // level the record names the child whose box the ray enters first among those it enters, checked
 // against slab tests done here in double precision; zeros once the walk ends; equal directions from
 // one point, equal bits. The traversal resumed where the walk stops finds the full traversal's hit,
@@ -12,7 +12,7 @@
 
 #include "accel/ray_check.h"
 #include "accel/test_meshes.h"
-#include "kernels/common/bvh4_path.h"
+#include "kernels/common/accel/bvh4_path.h"
 #include "runtime/accel/host_traversal.h"
 
 namespace cohort::test {

@@ -1,4 +1,4 @@
-// The 4-wide BVH (runtime/accel/bvh4.h) and its traversal (kernels/common/bvh4_traverse.h compiled
+// The 4-wide BVH (runtime/accel/bvh4.h) and its traversal (kernels/common/accel/bvh4_traverse.h compiled
 // as C++): every triangle once, inside its boxes, the same tree for any thread count, and for every
 // ray the KD-tree's hit bit for bit, also at shared edges and vertices and on degenerate inputs.
 #include <fmt/format.h>

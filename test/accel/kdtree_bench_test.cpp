@@ -9,7 +9,7 @@
 
 #include "accel/test_meshes.h"
 #include "accel/tree_check.h"
-#include "kernels/common/kdtree_traverse.h"
+#include "kernels/common/accel/kdtree_traverse.h"
 
 namespace cohort::test {
 namespace {

@@ -10,7 +10,7 @@
 #include "accel/ray_check.h"
 #include "accel/test_meshes.h"
 #include "accel/tree_check.h"
-#include "runtime/accel/kdtree_internal.h"
+#include "runtime/accel/kdtree/subtree.h"
 
 namespace cohort::test {
 namespace {

@@ -7,7 +7,7 @@
 #include <span>
 
 #include "accel/test_meshes.h"
-#include "runtime/accel/kdtree.h"
+#include "runtime/accel/kdtree/kdtree.h"
 
 namespace cohort::test {
 namespace {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "runtime/accel/clip.h"
-#include "runtime/accel/kdtree_internal.h"
+#include "runtime/accel/kdtree/partition.h"
 
 namespace cohort::test {
 namespace {

@@ -10,7 +10,8 @@
 
 #include "accel/test_meshes.h"
 #include "accel/tree_check.h"
-#include "runtime/accel/kdtree_internal.h"
+#include "kernels/common/accel/kdtree_traverse.h"
+#include "runtime/accel/kdtree/sah.h"
 #include "runtime/util/error.h"
 
 namespace cohort::test {

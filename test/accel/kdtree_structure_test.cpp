@@ -8,7 +8,7 @@
 
 #include "accel/test_meshes.h"
 #include "accel/tree_check.h"
-#include "runtime/accel/kdtree_internal.h"
+#include "runtime/accel/kdtree/subtree.h"
 
 namespace cohort::test {
 namespace {

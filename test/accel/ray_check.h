@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "kernels/common/kdtree_traverse.h"
-#include "runtime/accel/kdtree.h"
+#include "kernels/common/accel/kdtree_traverse.h"
+#include "runtime/accel/kdtree/kdtree.h"
 
 namespace cohort::test {
 
@@ -84,7 +84,7 @@ enum class TieRule {
 };
 
 enum class Traversal {
-  kDevice,    // kd_trace of kernels/common/kdtree_traverse.h, what the renderer runs
+  kDevice,    // kd_trace of kernels/common/accel/kdtree_traverse.h, what the renderer runs
   kTolerant,  // trace_tolerant below
 };
 

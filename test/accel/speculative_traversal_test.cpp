@@ -1,4 +1,4 @@
-// The speculative traversal's per-ray state machine (kernels/common/kdtree_speculative.h, compiled
+// The speculative traversal's per-ray state machine (kernels/common/pth/kdtree_speculative.h, compiled
 // as C++) run in emulated SIMD groups with the group vote done on the host: every ray must find
 // kd_trace's hit bit for bit, whatever the group size and whatever its neighbours do.
 #include <fmt/format.h>
@@ -8,7 +8,7 @@
 
 #include "accel/ray_check.h"
 #include "accel/test_meshes.h"
-#include "kernels/common/kdtree_speculative.h"
+#include "kernels/common/pth/kdtree_speculative.h"
 
 namespace cohort::test {
 namespace {

@@ -9,7 +9,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "kernels/common/sampling.h"
+#include "kernels/common/core/sampling.h"
 
 namespace cohort::test {
 namespace {

@@ -7,7 +7,7 @@
 #include <optional>
 #include <utility>
 
-#include "kernels/common/kdtree_traverse.h"
+#include "kernels/common/accel/kdtree_traverse.h"
 #include "runtime/accel/clip.h"
 
 namespace cohort::test {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/accel/kdtree.h"
+#include "runtime/accel/kdtree/kdtree.h"
 
 namespace cohort::test {
 

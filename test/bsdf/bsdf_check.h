@@ -1,4 +1,4 @@
-// Test machinery for the BSDFs of kernels/common/bsdf.h: configurations, a deterministic random
+// Test machinery for the BSDFs of kernels/common/shading/bsdf.h: configurations, a deterministic random
 // stream, numerical integration over the sphere, and the chi-square goodness-of-fit test (after the
 // one in Mitsuba's test suite: binned sphere, pdf integrated per bin, low-expectation bins pooled,
 // p-value from the regularised incomplete gamma function, Sidak correction over the tests).
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "common/bsdf_test_io.h"
+#include "test/kernels/bsdf_test_io.h"
 
 namespace cohort::bsdf_test {
 

@@ -1,4 +1,4 @@
-// The BSDFs on the OpenCL device (PoCL in CI) through kernels/bsdf_test.cl: the same queries as the
+// The BSDFs on the OpenCL device (PoCL in CI) through test/kernels/bsdf_test.cl: the same queries as the
 // host, outputs compared number by number, and the chi-square fit repeated on the device's samples
 // for one configuration of every BSDF. Kernels are built without contraction (port.h), the host
 // does not contract either, and the BSDFs use no library cos/sin (co_sincos_2pi), so on a CPU device

@@ -1,5 +1,5 @@
-// The environment map's importance sampling (kernels/common/environment.h, built by
-// runtime/render/environment_map.cpp): the pdf integrates to 1, samples fit the pdf (chi-square
+// The environment map's importance sampling (kernels/common/shading/environment.h, built by
+// runtime/render/scene/environment_map.cpp): the pdf integrates to 1, samples fit the pdf (chi-square
 // with the BSDF suite's machinery), sample/pdf/eval agree, the lookup follows Mitsuba's envmap
 // convention, and the device (PoCL in CI) computes what the host computes.
 #include <gtest/gtest.h>
@@ -10,10 +10,10 @@
 #include <memory>
 
 #include "bsdf/bsdf_check.h"
-#include "common/environment.h"
+#include "common/shading/environment.h"
 #include "kernels/test_kernels.h"
 #include "runtime/cl/context.h"
-#include "runtime/render/environment_map.h"
+#include "runtime/render/scene/environment_map.h"
 #include "runtime/util/error.h"
 
 using namespace cohort;

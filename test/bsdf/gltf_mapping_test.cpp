@@ -1,7 +1,7 @@
 // The glTF metallic-roughness mapping (bsdf_from_gltf / bsdf_from_material).
 #include <gtest/gtest.h>
 
-#include "common/bsdf.h"
+#include "common/shading/bsdf.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// The building blocks of kernels/common/microfacet.h against independent double-precision values.
+// The building blocks of kernels/common/shading/microfacet.h against independent double-precision values.
 #include <gtest/gtest.h>
 
 #include <cmath>

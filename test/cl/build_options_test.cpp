@@ -1,5 +1,5 @@
 // The OpenCL build options every program gets (runtime/cl/kernel_program.h): the software prefetch of
-// the BVH walk (kernels/common/port.h, co_prefetch, whose form the compiler's own macros choose) only
+// the BVH walk (kernels/common/core/port.h, co_prefetch, whose form the compiler's own macros choose) only
 // on devices whose local memory is the cached global memory (device_support), never on Oclgrind
 // (which checks, not times) nor on a GPU with a scratchpad (which hides the latency with other warps).
 // That the walk's hits do not change with it is TraceKernel.Bvh4* on the CPU device.

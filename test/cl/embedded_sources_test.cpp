@@ -22,9 +22,9 @@ TEST(EmbeddedSources, ProductionTableHasNoTestKernels) {
 TEST(EmbeddedSources, TestKernelsExpandWithProductionHeaders) {
   for (const char* path : {"bsdf_test.cl", "environment_test.cl", "cuda/bsdf_test.cu"}) {
     const std::string src = expand_test_kernel_source(path);
-    EXPECT_NE(src.find("#line 1 \"common/port.h\""), std::string::npos) << path;  // a production header
+    EXPECT_NE(src.find("#line 1 \"common/core/port.h\""), std::string::npos) << path;  // a production header
   }
-  EXPECT_NE(expand_test_kernel_source("bsdf_test.cl").find("#line 1 \"common/bsdf_test_kernel.h\""),
+  EXPECT_NE(expand_test_kernel_source("bsdf_test.cl").find("#line 1 \"bsdf_test_kernel.h\""),
             std::string::npos);
   EXPECT_NE(expand_test_kernel_source("naive.cl").find("naive"), std::string::npos);  // production files too
 }

@@ -33,9 +33,9 @@ TEST(EmbeddedSources, ExpandsIncludesOnce) {
   EXPECT_NE(src.find("render_naive"), std::string::npos);
   EXPECT_EQ(src.find("#include \""), std::string::npos);
   // types.h is reached through several headers but appears once
-  const auto first = src.find("#line 1 \"common/types.h\"");
+  const auto first = src.find("#line 1 \"common/core/types.h\"");
   ASSERT_NE(first, std::string::npos);
-  EXPECT_EQ(src.find("#line 1 \"common/types.h\"", first + 1), std::string::npos);
+  EXPECT_EQ(src.find("#line 1 \"common/core/types.h\"", first + 1), std::string::npos);
   EXPECT_THROW(expand_kernel_source("no-such-file.cl"), std::runtime_error);
 }
 

@@ -12,7 +12,7 @@
 #include "accel/straggler_check.h"
 #include "runtime/cl/context.h"
 #include "runtime/cl/kernel_program.h"
-#include "runtime/render/device_scene.h"
+#include "runtime/render/scene/device_scene.h"
 #include "runtime/scene/scene.h"
 
 namespace fs = std::filesystem;
@@ -74,7 +74,7 @@ DeviceTrace trace(const KdTree& tree, const std::vector<TestRay>& rays, std::uin
   } else {
     k.setArg(a++, cl_uint(0));
   }
-  k.setArg(a++, cl_uint(0));  // co_params_end (kernels/common/kernel_params.h)
+  k.setArg(a++, cl_uint(0));  // co_params_end (kernels/common/core/kernel_params.h)
   // the speculative kernel votes per work-group: one SIMD group of 32 where the kernel allows it;
   // the renderers' sizes (Device::launch) within the kernel's limit on this device
   const std::size_t group = cl_launch_group(k, cl.cl_device, mode == Traversal::speculative ? 32 : 0);

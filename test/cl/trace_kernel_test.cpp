@@ -14,7 +14,7 @@
 #include "runtime/cl/cl_error.h"
 #include "runtime/cl/context.h"
 #include "runtime/cl/kernel_program.h"
-#include "runtime/render/device_scene.h"
+#include "runtime/render/scene/device_scene.h"
 #include "runtime/scene/scene.h"
 
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-// --target-error (adaptive sampling, runtime/render/adaptive.h): tiles that are clean stop and the
+// --target-error (adaptive sampling, runtime/render/run/adaptive.h): tiles that are clean stop and the
 // samples go where the image is noisy; the image is the same bits twice, for every method, on
 // two devices and after a checkpoint and resume; at an equal sample budget it is closer to a
 // converged image than uniform sampling where every tile is noisy; bad values are exit 2.
@@ -15,7 +15,7 @@
 
 #include "cli/cli_helpers.h"
 #include "runtime/image/image.h"
-#include "runtime/render/adaptive.h"
+#include "runtime/render/run/adaptive.h"
 
 using namespace cohort_test;
 

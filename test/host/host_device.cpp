@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "kernels/common/port.h"
+#include "kernels/common/core/port.h"
 
 namespace cohort::test {
 namespace {

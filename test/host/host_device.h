@@ -1,5 +1,5 @@
 // A third implementation of the backend interface, for tests: the shared kernels compiled as plain
-// host C++ (kernels/common/port.h's host branch) and run one work item at a time. The renderers, the
+// host C++ (kernels/common/core/port.h's host branch) and run one work item at a time. The renderers, the
 // sort and the tracing helpers run on it unchanged, so comparing it with OpenCL on PoCL checks the
 // shared code through a C++ compiler, the path CUDA's code takes, on a machine without a GPU.
 //

@@ -4,11 +4,11 @@
 #define COHORT_FEATURE_CONDUCTOR
 #define COHORT_FEATURE_DIELECTRIC
 #define COHORT_FEATURE_PLASTIC
-#include "kernels/common/film_kernels.h"
-#include "kernels/common/naive_kernel.h"
-#include "kernels/common/pth_kernels.h"
-#include "kernels/common/trace_kernels.h"
-#include "kernels/common/wavefront_kernels.h"
+#include "kernels/common/film/film_kernels.h"
+#include "kernels/common/wavefront/naive_kernel.h"
+#include "kernels/common/pth/pth_kernels.h"
+#include "kernels/common/wavefront/trace_kernels.h"
+#include "kernels/common/wavefront/wavefront_kernels.h"
 
 #include "host/host_device.h"
 

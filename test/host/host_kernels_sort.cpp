@@ -5,7 +5,7 @@
 #define SORT_ITEMS 4096
 #define SORT_LOCAL_EXCHANGE 0
 #define SORT_KEY64 1
-#include "kernels/common/radix_sort_kernels.h"
+#include "kernels/common/sort/radix_sort_kernels.h"
 
 #include "host/host_device.h"
 

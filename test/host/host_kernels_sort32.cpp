@@ -4,9 +4,9 @@
 #define SORT_ITEMS 4096
 #define SORT_LOCAL_EXCHANGE 0
 #define SORT_KEY64 0
-#include "kernels/common/port.h"
+#include "kernels/common/core/port.h"
 namespace sort32 {
-#include "kernels/common/radix_sort_kernels.h"
+#include "kernels/common/sort/radix_sort_kernels.h"
 }  // namespace sort32
 
 #include "host/host_device.h"

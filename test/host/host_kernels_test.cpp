@@ -15,8 +15,8 @@
 #include "host/scene_paths.h"
 #include "host/trace_on_device.h"
 #include "runtime/cl/context.h"
-#include "runtime/render/prepared_scene.h"
-#include "runtime/render/methods.h"
+#include "runtime/render/scene/prepared_scene.h"
+#include "runtime/render/methods/methods.h"
 #include "runtime/sort/radix_sort.h"
 
 namespace fs = std::filesystem;

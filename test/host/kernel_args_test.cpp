@@ -1,16 +1,16 @@
-// The host side of kernels/common/kernel_params.h: every kernel's argument struct sets exactly as
+// The host side of kernels/common/core/kernel_params.h: every kernel's argument struct sets exactly as
 // many arguments as the kernel has parameters (compiled here as host C++), in the order of its
 // fields, and refuses a buffer left unset instead of launching with a null argument.
 #define COHORT_FEATURE_TEXTURES
 #define COHORT_FEATURE_CONDUCTOR
 #define COHORT_FEATURE_DIELECTRIC
 #define COHORT_FEATURE_PLASTIC
-#include "kernels/common/aov_kernel.h"
-#include "kernels/common/film_kernels.h"
-#include "kernels/common/naive_kernel.h"
-#include "kernels/common/pth_kernels.h"
-#include "kernels/common/trace_kernels.h"
-#include "kernels/common/wavefront_kernels.h"
+#include "kernels/common/wavefront/aov_kernel.h"
+#include "kernels/common/film/film_kernels.h"
+#include "kernels/common/wavefront/naive_kernel.h"
+#include "kernels/common/pth/pth_kernels.h"
+#include "kernels/common/wavefront/trace_kernels.h"
+#include "kernels/common/wavefront/wavefront_kernels.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Runs the traversal-only kernels (kernels/common/trace_kernels.h) on any backend: the full
+// Runs the traversal-only kernels (kernels/common/wavefront/trace_kernels.h) on any backend: the full
 // traversal (trace_rays) or the PTH walk in local memory followed by the resumed traversal
 // (trace_rays_pth), for the same rays on every device.
 #pragma once
@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "runtime/accel/kdtree.h"
+#include "runtime/accel/kdtree/kdtree.h"
 #include "runtime/backend/device.h"
 #include "runtime/backend/kernel_args.h"
 #include "runtime/backend/program_cache.h"

@@ -1,4 +1,4 @@
-// The kernels only tests run (kernels/*_test*: BSDF and environment-map queries), embedded into
+// The kernels only tests run (test/kernels/*_test*: BSDF and environment-map queries), embedded into
 // the tests through cohort_test_kernels and never into the `cohort` binary.
 #pragma once
 

@@ -1,12 +1,12 @@
-// Adaptive sampling's pieces (runtime/render/adaptive.h): rounds end at fixed sample counts and
+// Adaptive sampling's pieces (runtime/render/run/adaptive.h): rounds end at fixed sample counts and
 // every round is whole passes; a tile's error estimate; which pixels a round renders; and a job
 // that stops tiles, counts each pixel's samples and ends once every tile is done.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "runtime/render/adaptive.h"
-#include "runtime/render/pass_job.h"
+#include "runtime/render/run/adaptive.h"
+#include "runtime/render/run/pass_job.h"
 
 using namespace cohort;
 

@@ -9,7 +9,7 @@
 #include "accel/straggler_check.h"
 #include "render_fixture.h"
 #include "scene_building.h"
-#include "runtime/render/methods.h"
+#include "runtime/render/methods/methods.h"
 
 using namespace cohort;
 using namespace cohort::test;

@@ -1,13 +1,13 @@
-// The coherence code of kernels/common/coherence.h, compiled for the host, against the layouts of
-// runtime/render/coherence.cpp: keys fit the width the sort is given, and the two-point key's end
+// The coherence code of kernels/common/pth/coherence.h, compiled for the host, against the layouts of
+// runtime/render/pth/coherence.cpp: keys fit the width the sort is given, and the two-point key's end
 // part is the cell of the estimated end point.
 #include <gtest/gtest.h>
 
 #include <random>
 #include <vector>
 
-#include "kernels/common/coherence.h"
-#include "runtime/render/coherence.h"
+#include "kernels/common/pth/coherence.h"
+#include "runtime/render/pth/coherence.h"
 
 using namespace cohort;
 

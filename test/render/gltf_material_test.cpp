@@ -12,10 +12,10 @@
 
 #include <fmt/format.h>
 
-#include "kernels/common/texture.h"
+#include "kernels/common/shading/texture.h"
 #include "render_fixture.h"
 #include "runtime/backend/device_support.h"
-#include "runtime/render/methods.h"
+#include "runtime/render/methods/methods.h"
 #include "scene_building.h"
 
 using namespace cohort;

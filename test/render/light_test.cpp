@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "kernels/common/camera.h"
-#include "kernels/common/punctual.h"
+#include "kernels/common/shading/camera.h"
+#include "kernels/common/shading/punctual.h"
 #include "render_fixture.h"
-#include "runtime/render/camera_params.h"
-#include "runtime/render/environment_map.h"
+#include "runtime/render/scene/camera_params.h"
+#include "runtime/render/scene/environment_map.h"
 #include "scene_building.h"
 
 using namespace cohort;

@@ -14,8 +14,8 @@
 
 #include "render_fixture.h"
 #include "scene_building.h"
-#include "runtime/render/methods.h"
-#include "kernels/common/texture.h"
+#include "runtime/render/methods/methods.h"
+#include "kernels/common/shading/texture.h"
 
 using namespace cohort;
 using namespace cohort::test;

@@ -11,8 +11,8 @@
 
 #include "render_fixture.h"
 #include "runtime/backend/device_support.h"
-#include "runtime/render/coherence.h"
-#include "runtime/render/methods.h"
+#include "runtime/render/pth/coherence.h"
+#include "runtime/render/methods/methods.h"
 #include "runtime/render/workloads.h"
 #include "runtime/util/error.h"
 
@@ -416,7 +416,7 @@ TEST(Methods, StreamCompactionLaunchesOnlyLivePaths) {
 
 // Voxel geometry: every face in an integer plane, so paths leave faces at concave corners with
 // their origins in split planes that hold flat faces. Every tree and every method gives the naive
-// image on the deep KD-tree bit for bit, for several seeds (kernels/common/kdtree_traverse.h,
+// image on the deep KD-tree bit for bit, for several seeds (kernels/common/accel/kdtree_traverse.h,
 // kd_inner_step: an origin in the plane visits the side it does not go into too).
 TEST(Methods, VoxelTerrainIsTheSameOnEveryTreeAndMethod) {
   const auto path = shipped_scene("voxel-terrain.gltf");

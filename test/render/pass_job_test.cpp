@@ -5,7 +5,7 @@
 #include <cstring>
 #include <thread>
 
-#include "runtime/render/pass_job.h"
+#include "runtime/render/run/pass_job.h"
 
 using namespace cohort;
 

@@ -1,4 +1,4 @@
-// The error bounds of kernels/common/ray_offset.h against the watertight test they guard, on the
+// The error bounds of kernels/common/accel/ray_offset.h against the watertight test they guard, on the
 // host (the same code the kernels compile): random triangles and slivers, 1e-4 to 1e4 in size and
 // up to 1e5 from the origin, hit from random eyes; rays leaving the offset hit point (grazing ones
 // included) never hit their own triangle or its neighbour across a shared edge, and shadow rays
@@ -10,9 +10,9 @@
 #include <cmath>
 #include <random>
 
-#include "kernels/common/intersect.h"
-#include "kernels/common/ray_offset.h"
-#include "kernels/common/sampling.h"
+#include "kernels/common/accel/intersect.h"
+#include "kernels/common/accel/ray_offset.h"
+#include "kernels/common/core/sampling.h"
 
 namespace {
 

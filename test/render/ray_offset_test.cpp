@@ -1,4 +1,4 @@
-// Ray offsets from floating-point error bounds (kernels/common/ray_offset.h): the image does not
+// Ray offsets from floating-point error bounds (kernels/common/accel/ray_offset.h): the image does not
 // depend on the scene's size or bounds, surfaces far from the origin show no acne, a gap thinner
 // than any fraction of the scene leaks no light, and shadow rays reach lights exactly.
 #include <gtest/gtest.h>

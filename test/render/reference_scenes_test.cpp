@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "render_fixture.h"
-#include "runtime/render/environment_map.h"
+#include "runtime/render/scene/environment_map.h"
 
 using namespace cohort;
 using namespace cohort::test;

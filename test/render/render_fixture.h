@@ -10,7 +10,7 @@
 
 #include "runtime/cl/context.h"
 #include "runtime/backend/program_cache.h"
-#include "runtime/render/prepared_scene.h"
+#include "runtime/render/scene/prepared_scene.h"
 #include "runtime/render/renderer.h"
 
 namespace cohort::test {

@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-#include "runtime/render/prepared_scene.h"
+#include "runtime/render/scene/prepared_scene.h"
 #include "runtime/scene/scene.h"
 
 namespace cohort::test {

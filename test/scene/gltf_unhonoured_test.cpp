@@ -54,7 +54,7 @@ TEST(GltfUnhonoured, EachFeatureIsOneWarningWithItsMaterialCount) {
   EXPECT_EQ(lines_containing(s.warnings, "KHR_texture_transform"), 0u);  // honoured
   // its texCoord replaces the reference's: set 2 is not read
   EXPECT_EQ(lines_containing(s.warnings, "TEXCOORD_2 or above (TEXCOORD_0 used): 2 materials"), 1u);
-  EXPECT_EQ(lines_containing(s.warnings, "alphaMode"), 0u);  // honoured (kernels/common/alpha.h)
+  EXPECT_EQ(lines_containing(s.warnings, "alphaMode"), 0u);  // honoured (kernels/common/accel/alpha.h)
   EXPECT_EQ(lines_containing(s.warnings, "extension KHR_materials_sheen: 2 materials"), 1u);
   // an extension no material carries is still named, once, and the sheen is not named twice
   EXPECT_EQ(lines_containing(s.warnings, "ignored (optional, not implemented): EXT_meshopt_compression"), 1u);

@@ -39,8 +39,8 @@
 #include <fmt/format.h>
 
 #include "runtime/backend/device_support.h"
-#include "runtime/render/launch_log.h"
-#include "runtime/render/methods.h"
+#include "runtime/render/run/launch_log.h"
+#include "runtime/render/methods/methods.h"
 #include "runtime/render/methods/auto_finalists.h"
 #include "runtime/render/stages/wavefront_loop.h"
 

@@ -1,8 +1,8 @@
 // hash: sc+rg with the rays sorted by a hash of origin and direction before traversal (Garanzha &
-// Loop 2010): the sort of pth without its partial traversal, so pth's bounce (pth.cpp) with the
-// other key.
+// Loop 2010): the sort of pth without its partial traversal, so pth's bounce with the other key
+// (runtime/render/pth/sorted_traversal_method.cpp).
 #include "runtime/render/methods/method.h"
-#include "runtime/render/stages/sorted_traversal.h"
+#include "runtime/render/pth/sorted_traversal.h"
 
 namespace cohort {
 

@@ -1,18 +1,18 @@
 // What every method's render function receives, and the methods (one file each in this folder):
-// naive, the megakernel; wavefront, sc, rg and sc+rg, the wavefront schedules; hash and pth, the
-// ray-sorting methods. Each file shows its method as the sequence of stages (runtime/render/stages)
-// one bounce runs.
+// naive, the megakernel; wavefront, sc, rg and sc+rg, the wavefront schedules; hash, the hash sort;
+// pth, the paper's method, lives with the rest of the paper's pipeline in runtime/render/pth. Each
+// file shows its method as the sequence of stages (runtime/render/stages) one bounce runs.
 #pragma once
 
 #include <memory>
 
-#include "runtime/render/pass_driver.h"
+#include "runtime/render/run/pass_driver.h"
 #include "runtime/render/renderer.h"
 
 namespace cohort {
 
 struct WavefrontMemory;
-enum class RayOrder;  // runtime/render/stages/sorted_traversal.h
+enum class RayOrder;  // runtime/render/pth/sorted_traversal.h
 
 struct MethodInputs {
   const Device& device;
@@ -35,7 +35,8 @@ std::unique_ptr<PassLauncher> rg_method(const MethodInputs& in);
 std::unique_ptr<PassLauncher> sc_rg_method(const MethodInputs& in);
 std::unique_ptr<PassLauncher> hash_method(const MethodInputs& in);
 std::unique_ptr<PassLauncher> pth_method(const MethodInputs& in);
-// pth's bounce with the rays sorted by `order` (pth.cpp): pth, and with RayOrder::hash the hash method.
+// The ray-sorting bounce with the rays sorted by `order` (runtime/render/pth/sorted_traversal_method.cpp):
+// pth, and with RayOrder::hash the hash method.
 std::unique_ptr<PassLauncher> sorted_traversal_method(const MethodInputs& in, RayOrder order);
 std::unique_ptr<PassLauncher> auto_method(const MethodInputs& in);
 

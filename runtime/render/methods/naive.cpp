@@ -1,13 +1,13 @@
-// naive: the reference megakernel (kernels/common/naive_kernel.h), one launch per pass; a work item
+// naive: the reference megakernel (kernels/common/wavefront/naive_kernel.h), one launch per pass; a work item
 // traces its pixel's samples through every bounce.
 #include <algorithm>
 #include <array>
 
-#include "kernels/common/contract.h"
-#include "runtime/render/launch_log.h"
+#include "kernels/common/core/contract.h"
+#include "runtime/render/run/launch_log.h"
 #include "runtime/backend/kernel_args.h"
 #include "runtime/render/methods/method.h"
-#include "runtime/render/pass_driver.h"
+#include "runtime/render/run/pass_driver.h"
 
 namespace cohort {
 namespace {

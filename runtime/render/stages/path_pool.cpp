@@ -2,9 +2,8 @@
 
 #include <algorithm>
 #include <array>
-#include <vector>
 
-#include "kernels/common/contract.h"
+#include "kernels/common/core/contract.h"
 
 namespace cohort {
 
@@ -26,15 +25,12 @@ std::uint32_t device_pool_size(const DeviceInfo& device, const RenderSettings& s
 
 PathPool::PathPool(const Device& cl, std::uint32_t n) : slots(n) {
   const std::size_t f4 = std::size_t(n) * sizeof(co_float4), u = std::size_t(n) * sizeof(std::uint32_t);
-  path.path_org = cl.allocate("path origins", f4);
-  path.path_dir = cl.allocate("path directions", f4);
-  path.path_throughput = cl.allocate("path throughput", f4);
-  path.path_radiance = cl.allocate("path radiance", f4);
-  path.path_prev = cl.allocate("path previous vertex", f4);
-  const std::vector<std::uint32_t> free_slots(n, ITEM_NONE);
-  path.path_item = cl.allocate("path work items", u, free_slots.data());
-  path.path_segment = cl.allocate("path segments", u);
-  path.path_status = cl.allocate("path status", u);
+  // one buffer per entry of PATH_SLOT (kernels/common/core/path_slot.h); every slot starts free
+#define CO_SLOT_ALLOCATE(A, buf, T, N, state, f, wf, what) \
+  path.path_##buf = cl.allocate(what, std::size_t(n) * sizeof(CO_SLOT_TYPE(T, N)));
+  PATH_SLOT(CO_SLOT_ALLOCATE, _)
+#undef CO_SLOT_ALLOCATE
+  cl.fill(path.path_item, ITEM_NONE, n);
   hits = cl.allocate("hits", std::size_t(n) * sizeof(HitOut));
   steps = cl.allocate("traversal steps", u);
   shadow.shadow_org = cl.allocate("shadow origins", f4);

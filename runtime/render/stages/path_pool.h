@@ -1,6 +1,6 @@
-// The wavefront pool: path slots in structure-of-arrays buffers (PATH_BUFFERS of
-// kernels/common/kernel_params.h), their hits and shadow rays, the queue of live slots and the
-// queue counters (COUNTER_* of kernels/common/contract.h).
+// The wavefront pool: path slots in structure-of-arrays buffers (PATH_SLOT of
+// kernels/common/core/path_slot.h), their hits and shadow rays, the queue of live slots and the
+// queue counters (COUNTER_* of kernels/common/core/contract.h).
 #pragma once
 
 #include <cstddef>

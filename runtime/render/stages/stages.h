@@ -1,4 +1,4 @@
-// The stages of a wavefront bounce (kernels/common/wavefront_kernels.h), one file each. A method
+// The stages of a wavefront bounce (kernels/common/wavefront/wavefront_kernels.h), one file each. A method
 // (runtime/render/methods) runs them in order; sorted_traversal.h has the stages that replace `extend` when
 // rays are sorted before traversal.
 #pragma once

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <array>
 
-#include "kernels/common/contract.h"
+#include "kernels/common/core/contract.h"
 
 namespace cohort {
 namespace {

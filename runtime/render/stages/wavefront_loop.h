@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "runtime/backend/kernel_args.h"
-#include "runtime/render/launch_log.h"
+#include "runtime/render/run/launch_log.h"
 #include "runtime/render/methods/method.h"
-#include "runtime/render/pass_driver.h"
+#include "runtime/render/run/pass_driver.h"
 #include "runtime/render/stages/path_pool.h"
 
 namespace cohort {

@@ -1,0 +1,233 @@
+/* Closest-hit and any-hit traversal of the 4-wide BVH (types.h, Bvh4Node): each step tests a
+ * node's four child boxes at once, goes on with the nearest child the ray enters and pushes the
+ * others, farthest first. It visits about a quarter of the nodes a KD-tree walk does and tests
+ * fewer triangles: 1.5-2.3x the KD-tree's samples per CPU second on PoCL, 1.1-2.1x its rays/s on the
+ * H200, 0.9x on one scene (2026-12-03, results/raw/pocl-2026-12-03-ee75f6e, nvidia-h200-2026-12-03-ff6bbc9).
+ *
+ * The hit is the one kd_trace finds, bit for bit: the same watertight test on the same kept
+ * triangles, the least (t, triangle index) over every triangle the ray meets, and a box is
+ * skipped only when it starts beyond the best t by more than KD_TERMINATION_SLACK. The box test
+ * only has to be conservative, never exact: a box entered by mistake costs a visit, not a
+ * different hit. So the builder pads every box by 2^-20 of the scene's largest coordinate (the
+ * watertight test can report a hit on a shared edge for a ray that passes a few ulps outside the
+ * triangle's exact box: 1,069 of 30,000 rays at the vertices of a coplanar grid without it), a zero
+ * direction component becomes a tiny one (no 0 * inf NaN) and the exit distance is widened by a
+ * few ulps, as in intersect_box. */
+#ifndef COHORT_BVH4_TRAVERSE_H
+#define COHORT_BVH4_TRAVERSE_H
+
+#include "common/accel/kdtree_traverse.h"
+
+/* Entries of the traversal stack: a step pushes at most three children, and the builder keeps
+ * the tree at most BVH4_MAX_DEPTH levels deep. */
+#define BVH4_MAX_DEPTH 64
+#define BVH4_STACK (3 * BVH4_MAX_DEPTH)
+
+/* The leaves hold their triangles themselves, in leaf order (a triangle split into several
+ * references appears once per leaf), each with its kept-triangle index in v0.w: a leaf costs one
+ * run of consecutive loads instead of a list entry and then a triangle elsewhere. With the
+ * near-plane selection below (and 2 MiB pages on CPUs): Sponza interior diffuse rays 1.15-1.2x on
+ * PoCL, 1.14-1.18x on the H200 (2026-12-03, results/raw/nvidia-h200-2026-12-03-79b7d2b). */
+typedef struct Bvh4View {
+  const CO_GLOBAL Bvh4Node* nodes;
+  const CO_GLOBAL Triangle* leaf_triangles;
+#if defined(COHORT_FEATURE_ALPHA)
+  AlphaView alpha; /* set by make_scene_view */
+#endif
+} Bvh4View;
+
+/* The scene's arrays as the kernels receive them: a BVH4 travels in the buffers of KD nodes and
+ * leaf lists. */
+CO_INLINE Bvh4View make_bvh4_view(const CO_GLOBAL KdNode* nodes, const CO_GLOBAL uint32_t* leaf_lists) {
+  Bvh4View b;
+  b.nodes = (const CO_GLOBAL Bvh4Node*)nodes;
+  b.leaf_triangles = (const CO_GLOBAL Triangle*)leaf_lists;
+  return b;
+}
+
+/* A leaf's triangles, as intersect_leaf_list; returns 1 when an any-hit query is answered. */
+CO_INLINE int bvh4_intersect_leaf(const CO_GLOBAL Triangle* leaf, uint32_t count, const WatertightRay* wr,
+                                  float ray_tmin, HitOut* hit, int any_hit) {
+  for (uint32_t i = 0; i < count; ++i)
+    if (consider_triangle(wr, &leaf[i], co_as_uint(leaf[i].v0.w), ray_tmin, hit, any_hit)) return 1;
+  return 0;
+}
+
+/* 1 / d for the box tests, with |d| below 1e-18 taken as 1e-18 of its sign: the slabs stay finite
+ * and a box is only ever entered more often than exactly. */
+CO_INLINE float bvh4_inverse(float d) {
+  float tiny = d < 0.0f ? -1e-18f : 1e-18f;
+  return 1.0f / (fabs(d) < 1e-18f ? tiny : d);
+}
+
+/* Starts loading a pushed child's cache lines, for when it is popped: an inner node's two, or a
+ * leaf's first and last line and, past two triangles, the second (a leaf of four that starts late
+ * in a line spans a fourth, which is left to the hardware). On CPUs a walk is one chain of
+ * dependent loads, and a node that misses the caches stalls it. Sponza interior on PoCL and Intel's runtime: 7-11 % fewer render
+ * CPU seconds, the conference unchanged. Prefetching every child of each node as it is loaded
+ * gained more on Sponza (11-15 %) but cost the conference, whose walk stays in the caches, 20 % on
+ * PoCL (2026-12-03, results/raw/nvidia-h200-2026-12-03-1855911). A no-op where the host does not ask for it
+ * (co_prefetch, port.h). */
+CO_INLINE void bvh4_prefetch(const Bvh4View* bvh, uint32_t ref) {
+  if (bvh4_is_leaf(ref)) {
+    const CO_GLOBAL char* first = (const CO_GLOBAL char*)&bvh->leaf_triangles[bvh4_leaf_first(ref)];
+    const CO_GLOBAL char* last = first + bvh4_leaf_count(ref) * sizeof(Triangle) - 1u;
+    co_prefetch(first);
+    if (bvh4_leaf_count(ref) > 2u) co_prefetch(first + 64);
+    co_prefetch(last);
+  } else {
+    const CO_GLOBAL char* node = (const CO_GLOBAL char*)&bvh->nodes[ref];
+    co_prefetch(node);
+    co_prefetch(node + 64);
+  }
+}
+
+/* Puts the pair with the smaller t first (a compare-exchange of the sorting network). */
+#define BVH4_ORDER(ta, ra, tb, rb)                                  \
+  do {                                                              \
+    if ((tb) < (ta)) {                                              \
+      float tt_ = (ta); (ta) = (tb); (tb) = tt_;                    \
+      uint32_t rr_ = (ra); (ra) = (rb); (rb) = rr_;                 \
+    }                                                               \
+  } while (0)
+
+/* What a walk keeps of its ray: the watertight set-up, the origin and inverse direction splatted
+ * over four lanes, and the plane each slab is entered through, by the direction's sign: lo ahead of
+ * hi for a positive component. With a finite inverse and lo <= hi, (lo - o) * i and (hi - o) * i
+ * round in the same order as the planes, so this picks exactly what a min and a max of the two
+ * would; an unused lane (lo = hi = +infinity) gives equal values either way. */
+typedef struct Bvh4Ray {
+  WatertightRay wr;
+  co_float4 ox, oy, oz, ix, iy, iz;
+  int near_x, near_y, near_z;
+} Bvh4Ray;
+
+/* With COHORT_FEATURE_ALPHA a last argument is the ray's alpha seed (alpha.h). */
+CO_INLINE Bvh4Ray bvh4_ray(co_vec3 org, co_vec3 dir CO_ALPHA_PARAM) {
+  Bvh4Ray r;
+  r.wr = watertight_ray(org, dir);
+#if defined(COHORT_FEATURE_ALPHA)
+  r.wr.alpha = 0; /* bvh4_continue points a copy at its tree's */
+  r.wr.alpha_seed = alpha_seed;
+#endif
+  r.ox = co_f4_splat(org.x); r.oy = co_f4_splat(org.y); r.oz = co_f4_splat(org.z);
+  r.ix = co_f4_splat(bvh4_inverse(dir.x)); r.iy = co_f4_splat(bvh4_inverse(dir.y));
+  r.iz = co_f4_splat(bvh4_inverse(dir.z));
+  r.near_x = dir.x < 0.0f ? 1 : 0; r.near_y = dir.y < 0.0f ? 3 : 2; r.near_z = dir.z < 0.0f ? 5 : 4;
+  return r;
+}
+
+/* The four child boxes of a node (`planes`: its lo_x, hi_x, lo_y, hi_y, lo_z, hi_z, in global or
+ * local memory) against ray `r`: `enter` gets each box's entry distance (at least `enter_min`, a
+ * float4) and `mask` the lanes entered before `limit`. Strict: an unused lane's box at +infinity
+ * gives enter = leave = +infinity. A macro so that the walk over the top levels in local memory and
+ * the traversal in global memory make the same decisions from the same operations. */
+#define BVH4_ENTER(planes, r, enter_min, limit, enter, mask)                                                   \
+  do {                                                                                                        \
+    (enter) = co_f4_max(co_f4_max(co_f4_mul(co_f4_sub((planes)[(r)->near_x], (r)->ox), (r)->ix),               \
+                                  co_f4_mul(co_f4_sub((planes)[(r)->near_y], (r)->oy), (r)->iy)),              \
+                        co_f4_max(co_f4_mul(co_f4_sub((planes)[(r)->near_z], (r)->oz), (r)->iz), (enter_min))); \
+    co_float4 leave_ = co_f4_min(co_f4_min(co_f4_mul(co_f4_sub((planes)[(r)->near_x ^ 1], (r)->ox), (r)->ix),  \
+                                           co_f4_mul(co_f4_sub((planes)[(r)->near_y ^ 1], (r)->oy), (r)->iy)), \
+                                 co_f4_min(co_f4_mul(co_f4_sub((planes)[(r)->near_z ^ 1], (r)->oz), (r)->iz),  \
+                                           co_f4_splat(limit)));                                               \
+    (mask) = co_f4_less((enter), co_f4_scale(leave_, 1.0000004f));                                            \
+  } while (0)
+
+/* One step down from a node whose lanes `mask` (not 0) the ray enters at `enter`: goes on with the
+ * nearest child (*ref, *ref_t) and pushes the others, farthest first. */
+CO_INLINE void bvh4_descend(const Bvh4View* bvh, uint32_t mask, co_float4 enter, co_uint4 c, uint32_t* ref,
+                            float* ref_t, uint32_t* stack_ref, float* stack_t, int* sp) {
+  /* one or two lanes entered (most steps): no sorting network, and one branch on the count
+   * instead of five data-dependent ones */
+  uint32_t rest = mask & (mask - 1u);
+  if (rest == 0u) {
+    *ref = mask == 1u ? c.x : mask == 2u ? c.y : mask == 4u ? c.z : c.w;
+    *ref_t = mask == 1u ? enter.x : mask == 2u ? enter.y : mask == 4u ? enter.z : enter.w;
+    return;
+  }
+  if ((rest & (rest - 1u)) == 0u) {
+    uint32_t a = mask & ~rest; /* the lower lane's bit */
+    float ta = a == 1u ? enter.x : a == 2u ? enter.y : enter.z;
+    uint32_t ra = a == 1u ? c.x : a == 2u ? c.y : c.z;
+    float tb = rest == 2u ? enter.y : rest == 4u ? enter.z : enter.w;
+    uint32_t rb = rest == 2u ? c.y : rest == 4u ? c.z : c.w;
+    BVH4_ORDER(ta, ra, tb, rb);
+    bvh4_prefetch(bvh, rb);
+    stack_ref[*sp] = rb; stack_t[*sp] = tb; ++*sp;
+    *ref = ra; *ref_t = ta;
+    return;
+  }
+  /* three or four: a sorting network on (entry, child), the lanes not entered at +infinity so
+   * that they sort last; no indexed private arrays (registers) */
+  float t0 = (mask & 1u) ? enter.x : INFINITY, t1 = (mask & 2u) ? enter.y : INFINITY;
+  float t2 = (mask & 4u) ? enter.z : INFINITY, t3 = (mask & 8u) ? enter.w : INFINITY;
+  uint32_t r0 = c.x, r1 = c.y, r2 = c.z, r3 = c.w;
+  BVH4_ORDER(t0, r0, t1, r1);
+  BVH4_ORDER(t2, r2, t3, r3);
+  BVH4_ORDER(t0, r0, t2, r2);
+  BVH4_ORDER(t1, r1, t3, r3);
+  BVH4_ORDER(t1, r1, t2, r2);
+  bvh4_prefetch(bvh, r1);
+  bvh4_prefetch(bvh, r2);
+  if (mask == 15u) { bvh4_prefetch(bvh, r3); stack_ref[*sp] = r3; stack_t[*sp] = t3; ++*sp; }
+  stack_ref[*sp] = r2; stack_t[*sp] = t2; ++*sp;
+  stack_ref[*sp] = r1; stack_t[*sp] = t1; ++*sp;
+  *ref = r0; *ref_t = t0;
+}
+
+/* Continues a closest-hit (any_hit = 0) or any-hit (any_hit = 1) traversal at node or leaf `ref`,
+ * entered at `ref_t`, with `sp` entries on the stack, into `hit` (its t the current limit).
+ * `visited`, when not null, receives the number of nodes and leaves visited. */
+CO_INLINE void bvh4_continue(const Bvh4View* bvh, const Bvh4Ray* r, float tmin, int any_hit, HitOut* hit, uint32_t ref,
+                             float ref_t, uint32_t* stack_ref, float* stack_t, int sp, uint32_t* visited) {
+  co_float4 enter_min = co_f4_splat(tmin);
+  uint32_t count = 0u;
+#if defined(COHORT_FEATURE_ALPHA)
+  WatertightRay wr = r->wr;
+  wr.alpha = &bvh->alpha;
+#define BVH4_WR &wr
+#else
+#define BVH4_WR &r->wr
+#endif
+  for (;;) {
+    if (!kd_beyond_hit(hit->t, ref_t)) {
+      ++count;
+      if (bvh4_is_leaf(ref)) {
+        if (bvh4_intersect_leaf(&bvh->leaf_triangles[bvh4_leaf_first(ref)], bvh4_leaf_count(ref), BVH4_WR, tmin, hit,
+                                any_hit))
+          break;
+      } else {
+        const CO_GLOBAL Bvh4Node* n = &bvh->nodes[ref];
+        co_float4 enter;
+        uint32_t mask;
+        BVH4_ENTER(&n->lo_x, r, enter_min, hit->t * KD_TERMINATION_SLACK, enter, mask);
+        if (mask != 0u) {
+          bvh4_descend(bvh, mask, enter, n->child, &ref, &ref_t, stack_ref, stack_t, &sp);
+          continue;
+        }
+      }
+    }
+    if (sp == 0) break;
+    --sp;
+    ref = stack_ref[sp]; ref_t = stack_t[sp];
+  }
+#undef BVH4_WR
+  if (visited) *visited = count;
+}
+
+/* Closest hit (any_hit = 0) or any hit (any_hit = 1) in (tmin, tmax), as kd_trace_steps (with its
+ * alpha seed under COHORT_FEATURE_ALPHA): the whole traversal from the root. `steps`, when not null,
+ * receives the number of nodes and leaves visited. */
+CO_INLINE HitOut bvh4_trace_steps(const Bvh4View* bvh, co_vec3 org, co_vec3 dir, float tmin, float tmax,
+                                  int any_hit, uint32_t* steps CO_ALPHA_PARAM) {
+  HitOut hit;
+  hit.t = tmax; hit.u = 0.0f; hit.v = 0.0f; hit.triangle = HIT_NONE;
+  Bvh4Ray r = bvh4_ray(org, dir CO_ALPHA_ARG(alpha_seed));
+  uint32_t stack_ref[BVH4_STACK];
+  float stack_t[BVH4_STACK];
+  bvh4_continue(bvh, &r, tmin, any_hit, &hit, 0u /* the root */, tmin, stack_ref, stack_t, 0, steps);
+  return hit;
+}
+
+#endif

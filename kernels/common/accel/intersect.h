@@ -1,0 +1,90 @@
+/* Ray-triangle and ray-box tests.
+ * Triangles use the watertight test of Woop, Benthin & Wald, "Watertight Ray/Triangle Intersection"
+ * (JCGT 2013): rays through a shared edge or vertex never slip between adjacent triangles, so closed
+ * scenes (the Cornell box, the furnace sphere) leak no light, at a cost close to Moller-Trumbore. */
+#ifndef COHORT_INTERSECT_H
+#define COHORT_INTERSECT_H
+
+#include "common/core/types.h"
+#include "common/core/vec.h"
+#include "common/accel/alpha_view.h"
+
+/* Per-ray constants of the watertight test: the shear that maps the ray to +Z, as three rows.
+ * Row x is e_kx - sx e_kz, row y is e_ky - sy e_kz, row z is e_kz: each has at most two nonzero
+ * entries, so dot(A, row) rounds exactly as Woop's A[kx] - sx * A[kz] (adding the zero term is
+ * exact) while the kernel needs no data-dependent component selects per triangle. */
+typedef struct WatertightRay {
+  co_vec3 org;
+  co_vec3 row_x, row_y, row_z;
+  float sz;
+#if defined(COHORT_FEATURE_ALPHA)
+  const AlphaView* alpha; /* the scene's alpha modes, set by the traversal (alpha.h) */
+  uint32_t alpha_seed;    /* the ray's seed for BLEND decisions */
+#endif
+} WatertightRay;
+
+CO_INLINE co_vec3 unit_axis(uint32_t k) { return v3(k == 0u ? 1.0f : 0.0f, k == 1u ? 1.0f : 0.0f, k == 2u ? 1.0f : 0.0f); }
+
+CO_INLINE WatertightRay watertight_ray(co_vec3 org, co_vec3 dir) {
+  WatertightRay r;
+  co_vec3 a = v3_abs(dir);
+  uint32_t kz = (a.x > a.y) ? ((a.x > a.z) ? 0u : 2u) : ((a.y > a.z) ? 1u : 2u);
+  uint32_t kx = kz == 2u ? 0u : kz + 1u;
+  uint32_t ky = kx == 2u ? 0u : kx + 1u;
+  float dz = v3_get(dir, kz);
+  if (dz < 0.0f) { uint32_t tmp = kx; kx = ky; ky = tmp; }  /* keep the winding */
+  co_vec3 ez = unit_axis(kz);
+  r.org = org;
+  r.row_x = v3_madd(unit_axis(kx), ez, -(v3_get(dir, kx) / dz));
+  r.row_y = v3_madd(unit_axis(ky), ez, -(v3_get(dir, ky) / dz));
+  r.row_z = ez;
+  r.sz = 1.0f / dz;
+  return r;
+}
+
+/* Returns 1 and writes t, u, v (weights of v1 and v2) when the ray hits the triangle with
+ * tmin < t < tmax. Both faces hit. */
+CO_INLINE int intersect_triangle(const WatertightRay* r, co_vec3 p0, co_vec3 p1, co_vec3 p2,
+                                 float tmin, float tmax, float* t_out, float* u_out, float* v_out) {
+  co_vec3 a = v3_sub(p0, r->org), b = v3_sub(p1, r->org), c = v3_sub(p2, r->org);
+  float ax = v3_dot(a, r->row_x), ay = v3_dot(a, r->row_y), az = v3_dot(a, r->row_z);
+  float bx = v3_dot(b, r->row_x), by = v3_dot(b, r->row_y), bz = v3_dot(b, r->row_z);
+  float cx = v3_dot(c, r->row_x), cy = v3_dot(c, r->row_y), cz = v3_dot(c, r->row_z);
+  float eu = cx * by - cy * bx;
+  float ev = ax * cy - ay * cx;
+  float ew = bx * ay - by * ax;
+  if ((eu < 0.0f || ev < 0.0f || ew < 0.0f) && (eu > 0.0f || ev > 0.0f || ew > 0.0f)) return 0;
+  float det = eu + ev + ew;
+  if (det == 0.0f) return 0;
+  float tscaled = r->sz * (eu * az + ev * bz + ew * cz);
+  float inv_det = 1.0f / det;
+  float t = tscaled * inv_det;
+  if (!(t > tmin && t < tmax)) return 0;
+  *t_out = t;
+  *u_out = ev * inv_det;
+  *v_out = ew * inv_det;
+  return 1;
+}
+
+/* Slab test; returns 1 and the clipped interval when the ray meets the box within [*t0, *t1]. */
+CO_INLINE int intersect_box(co_vec3 org, co_vec3 inv_dir, co_vec3 lo, co_vec3 hi, float* t0, float* t1) {
+  float tx0 = (lo.x - org.x) * inv_dir.x, tx1 = (hi.x - org.x) * inv_dir.x;
+  float ty0 = (lo.y - org.y) * inv_dir.y, ty1 = (hi.y - org.y) * inv_dir.y;
+  float tz0 = (lo.z - org.z) * inv_dir.z, tz1 = (hi.z - org.z) * inv_dir.z;
+  /* An origin on a face of the box with a zero direction component across it (0 * inf, NaN) runs
+   * in that face: the whole slab, as for an origin inside it, so the box stays closed. fmin/fmax
+   * would drop the NaN and keep the other bound's infinity, which for the upper face is -inf. */
+  if (tx0 != tx0 || tx1 != tx1) { tx0 = -INFINITY; tx1 = INFINITY; }
+  if (ty0 != ty0 || ty1 != ty1) { ty0 = -INFINITY; ty1 = INFINITY; }
+  if (tz0 != tz0 || tz1 != tz1) { tz0 = -INFINITY; tz1 = INFINITY; }
+  float tnear = fmax(fmax(fmin(tx0, tx1), fmin(ty0, ty1)), fmax(fmin(tz0, tz1), *t0));
+  float tfar = fmin(fmin(fmax(tx0, tx1), fmax(ty0, ty1)), fmin(fmax(tz0, tz1), *t1));
+  /* widen by a few ulps so rays grazing the box face are not lost to rounding */
+  tfar *= 1.0000004f;
+  if (tnear > tfar) return 0;
+  *t0 = tnear;
+  *t1 = tfar;
+  return 1;
+}
+
+#endif

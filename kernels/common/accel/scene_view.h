@@ -1,0 +1,253 @@
+/* Device view of a loaded scene: the KD-tree, per-triangle materials, the emitter table, the
+ * textures (texture coordinates per triangle, descriptors, texels; read only when the program is
+ * built with COHORT_FEATURE_TEXTURES, and one-element placeholders otherwise), vertex colours
+ * (COHORT_FEATURE_VERTEX_COLORS), the environment map
+ * (COHORT_FEATURE_ENVMAP) and the punctual lights (COHORT_FEATURE_PUNCTUAL), placeholders
+ * likewise. With COHORT_FEATURE_ALPHA the traversal view also holds what alpha tests read
+ * (alpha.h). */
+#ifndef COHORT_SCENE_VIEW_H
+#define COHORT_SCENE_VIEW_H
+
+#include "common/shading/environment.h"
+#include "common/accel/scene_accel.h"
+#include "common/shading/punctual.h"
+#include "common/core/sampling.h"
+#include "common/shading/texture.h"
+#include "common/accel/alpha.h"
+
+typedef struct SceneView {
+  SceneAccel tree;
+  const CO_GLOBAL Triangle* triangles;         /* the kept triangles, for shading and lights */
+  const CO_GLOBAL uint32_t* triangle_material; /* per kept triangle */
+  const CO_GLOBAL Material* materials;
+  const CO_GLOBAL EmitterEntry* emitters;      /* emissive triangles, cdf by power */
+  const CO_GLOBAL TriangleUv* triangle_uvs;   /* per kept triangle */
+  const CO_GLOBAL TextureDesc* textures;
+  const CO_GLOBAL uint32_t* texels;           /* RGBA8 */
+#ifdef COHORT_FEATURE_VERTEX_COLORS
+  const CO_GLOBAL TriangleColor* triangle_colors; /* per kept triangle */
+#endif
+#ifdef COHORT_FEATURE_NORMAL_MAP
+  const CO_GLOBAL TriangleFrame* triangle_frames; /* per kept triangle */
+#endif
+  EnvironmentView env;
+  const CO_GLOBAL PunctualLight* punctual_lights;
+  uint32_t emitter_count;
+  float emitter_power_total;
+  uint32_t punctual_count;
+  float pick_triangles, pick_environment, pick_punctual; /* NEE's choice of a kind of light */
+} SceneView;
+
+/* The view of the scene that a rendering kernel's SCENE_PARAMS (kernel_params.h) make. */
+CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNode* nodes,
+                                    const CO_GLOBAL uint32_t* leaf_triangles, const CO_GLOBAL Triangle* triangles,
+                                    const CO_GLOBAL uint32_t* triangle_material, const CO_GLOBAL Material* materials,
+                                    const CO_GLOBAL EmitterEntry* emitters, const CO_GLOBAL TriangleUv* triangle_uvs,
+                                    const CO_GLOBAL TextureDesc* textures, const CO_GLOBAL uint32_t* texels,
+                                    const CO_GLOBAL TriangleColor* triangle_colors,
+                                    const CO_GLOBAL TriangleFrame* triangle_frames,
+                                    const CO_GLOBAL co_float4* env_texels, const CO_GLOBAL float* env_tables,
+                                    const CO_GLOBAL PunctualLight* punctual_lights) {
+  SceneView s;
+  s.tree = make_scene_accel(nodes, leaf_triangles, triangles, p->scene_min, p->scene_max);
+#if defined(COHORT_FEATURE_ALPHA)
+  s.tree.alpha.triangle_material = triangle_material;
+  s.tree.alpha.materials = materials;
+  s.tree.alpha.triangle_uvs = triangle_uvs;
+  s.tree.alpha.textures = textures;
+  s.tree.alpha.texels = texels;
+#ifdef COHORT_FEATURE_VERTEX_COLORS
+  s.tree.alpha.triangle_colors = triangle_colors;
+#endif
+#endif
+  s.triangles = triangles;
+  s.triangle_material = triangle_material;
+  s.materials = materials;
+  s.emitters = emitters;
+  s.triangle_uvs = triangle_uvs;
+  s.textures = textures;
+  s.texels = texels;
+  /* a scene without vertex colours or normal maps keeps no pointer to them */
+#ifdef COHORT_FEATURE_VERTEX_COLORS
+  s.triangle_colors = triangle_colors;
+#else
+  (void)triangle_colors;
+#endif
+#ifdef COHORT_FEATURE_NORMAL_MAP
+  s.triangle_frames = triangle_frames;
+#else
+  (void)triangle_frames;
+#endif
+  s.env.texels = env_texels;
+  s.env.tables = env_tables;
+  s.env.width = p->env_width;
+  s.env.height = p->env_height;
+  s.punctual_lights = punctual_lights;
+  s.emitter_count = p->emitter_count;
+  s.emitter_power_total = p->emitter_power_total;
+  s.punctual_count = p->punctual_count;
+  s.pick_triangles = p->pick_triangles;
+  s.pick_environment = p->pick_environment;
+  s.pick_punctual = p->pick_punctual;
+  return s;
+}
+#define SCENE_VIEW(p)                                                                                \
+  make_scene_view(&(p), nodes, leaf_triangles, triangles, triangle_material, materials, emitters, triangle_uvs, \
+                  textures, texels, triangle_colors, triangle_frames, env_texels, env_tables, punctual_lights)
+
+CO_INLINE float luminance(co_vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+/* Unnormalised geometric normal; its length is twice the area. Counter-clockwise is the front. */
+CO_INLINE co_vec3 triangle_cross(const CO_GLOBAL Triangle* t) {
+  co_vec3 p0 = v3_from4(t->v0);
+  return v3_cross(v3_sub(v3_from4(t->v1), p0), v3_sub(v3_from4(t->v2), p0));
+}
+
+CO_INLINE int material_two_sided_emission(const CO_GLOBAL Material* m) {
+  return (m->flags & MAT_TWO_SIDED_EMISSION) != 0u;
+}
+
+/* Power used to pick an emissive triangle; the host computes the table with the same function. */
+CO_INLINE float emitter_power(co_vec3 radiance, float area, int two_sided) {
+  return luminance(radiance) * area * (two_sided ? 2.0f : 1.0f);
+}
+
+/* Radiance leaving an emitter towards a point on the side of `to_viewer`; 0 from its back. */
+CO_INLINE co_vec3 emitted_radiance(const CO_GLOBAL Material* m, co_vec3 n_geo, co_vec3 to_viewer) {
+  co_vec3 le = v3_from4(m->emission);
+  if (!material_two_sided_emission(m) && v3_dot(n_geo, to_viewer) <= 0.0f) return v3_splat(0.0f);
+  return le;
+}
+
+/* Texture `index` at barycentric weights (b1, b2) of `triangle`, read with coordinate set 1
+ * (TEXCOORD_1) where the material's `uv1_flag` is set, else set 0; 1 where the material has no
+ * texture. Without COHORT_FEATURE_TEXTURES every texture is absent and no lookup is compiled. */
+CO_INLINE co_vec3 material_texture(const SceneView* s, const CO_GLOBAL Material* m, int32_t index, uint32_t uv1_flag,
+                                   uint32_t triangle, float b1, float b2) {
+#ifdef COHORT_FEATURE_TEXTURES
+  if (index >= 0) {
+    float u, v;
+#ifdef COHORT_FEATURE_TEXCOORD1
+    triangle_uv_at(s->triangle_uvs, 2u * triangle + ((m->flags & uv1_flag) ? 1u : 0u), b1, b2, &u, &v);
+#else
+    (void)m;
+    (void)uv1_flag;
+    triangle_uv_at(s->triangle_uvs, triangle, b1, b2, &u, &v);
+#endif
+    return texture_sample(s->textures, s->texels, index, u, v);
+  }
+#else
+  (void)s;
+  (void)m;
+  (void)index;
+  (void)uv1_flag;
+  (void)triangle;
+  (void)b1;
+  (void)b2;
+#endif
+  return v3_splat(1.0f);
+}
+
+/* The glTF metallic-roughness parameters at a surface point: factors times textures (base colour
+ * also times COLOR_0), what bsdf_from_gltf takes. */
+typedef struct SurfaceParams {
+  co_vec3 base_color;
+  float metallic;
+  float roughness;
+} SurfaceParams;
+
+CO_INLINE SurfaceParams surface_params(const SceneView* s, const CO_GLOBAL Material* m, uint32_t triangle, float b1,
+                                       float b2) {
+  SurfaceParams p;
+  p.base_color = v3_mul(v3_from4(m->base_color),
+                        material_texture(s, m, m->base_color_texture, MAT_UV1_BASE_COLOR, triangle, b1, b2));
+#ifdef COHORT_FEATURE_VERTEX_COLORS
+  {
+    TriangleColor c = s->triangle_colors[triangle];
+    float b0 = 1.0f - b1 - b2;
+    co_vec3 vc = v3_add(v3_add(v3_scale(v3_from4(c.c0), b0), v3_scale(v3_from4(c.c1), b1)), v3_scale(v3_from4(c.c2), b2));
+    p.base_color = v3_mul(p.base_color, vc);
+  }
+#endif
+  p.metallic = m->metallic;
+  p.roughness = m->roughness;
+#ifdef COHORT_FEATURE_TEXTURES
+  if (m->metallic_roughness_texture >= 0) {
+    co_vec3 mr = material_texture(s, m, m->metallic_roughness_texture, MAT_UV1_METALLIC_ROUGHNESS, triangle, b1, b2);
+    p.metallic = p.metallic * mr.z;
+    p.roughness = p.roughness * mr.y;
+  }
+#endif
+  return p;
+}
+
+#ifdef COHORT_FEATURE_NORMAL_MAP
+/* The normal a normal-mapped material shades with at (b1, b2): the map's texel as a tangent-space
+ * vector ((c * 2 - 1) with x and y times the material's scale) in the frame of the interpolated
+ * vertex normal and tangent (glTF's rule: bitangent = cross(n, t) * w). n_geo where the material
+ * has no map, or where the frame or the result is degenerate. */
+CO_INLINE co_vec3 mapped_normal(const SceneView* s, const CO_GLOBAL Material* m, uint32_t triangle, float b1, float b2,
+                                co_vec3 n_geo) {
+  if (m->normal_texture < 0) return n_geo;
+  TriangleFrame f = s->triangle_frames[triangle];
+  float b0 = 1.0f - b1 - b2;
+  co_vec3 n = v3_add(v3_add(v3_scale(v3_from4(f.n0), b0), v3_scale(v3_from4(f.n1), b1)), v3_scale(v3_from4(f.n2), b2));
+  co_vec3 t = v3_add(v3_add(v3_scale(v3_from4(f.t0), b0), v3_scale(v3_from4(f.t1), b1)), v3_scale(v3_from4(f.t2), b2));
+  float n_len = v3_length(n);
+  n = n_len > 0.0f ? v3_scale(n, 1.0f / n_len) : n_geo; /* no vertex normals: the flat one */
+  t = v3_sub(t, v3_scale(n, v3_dot(n, t)));             /* orthogonal to the interpolated normal */
+  float t_len = v3_length(t);
+  if (!(t_len > 0.0f)) return n_geo;
+  t = v3_scale(t, 1.0f / t_len);
+  co_vec3 b = v3_scale(v3_cross(n, t), f.t0.w < 0.0f ? -1.0f : 1.0f);
+  co_vec3 c = material_texture(s, m, m->normal_texture, MAT_UV1_NORMAL, triangle, b1, b2);
+  float x = (2.0f * c.x - 1.0f) * m->normal_scale, y = (2.0f * c.y - 1.0f) * m->normal_scale, z = 2.0f * c.z - 1.0f;
+  co_vec3 ns = v3_add(v3_add(v3_scale(t, x), v3_scale(b, y)), v3_scale(n, z));
+  float len = v3_length(ns);
+  if (!(len > 0.0f) || !v3_is_finite(ns)) return n_geo;
+  return v3_scale(ns, 1.0f / len);
+}
+#endif
+
+/* emitted_radiance times the emission texture at (b1, b2). The emitter table (host) and the
+ * light pdf below use the untextured emission factor: NEE picks a textured emitter with a
+ * probability that only approximates its power, which stays unbiased because the estimator
+ * divides by the probability the table used, and the MIS weights on both sides use that same
+ * light_pdf_solid_angle. */
+CO_INLINE co_vec3 emitted_radiance_at(const SceneView* s, const CO_GLOBAL Material* m, uint32_t triangle, float b1,
+                                      float b2, co_vec3 n_geo, co_vec3 to_viewer) {
+  co_vec3 le = emitted_radiance(m, n_geo, to_viewer);
+#ifdef COHORT_FEATURE_TEXTURES
+  if (m->emission_texture >= 0 && v3_max_component(le) > 0.0f)
+    le = v3_mul(le, material_texture(s, m, m->emission_texture, MAT_UV1_EMISSION, triangle, b1, b2));
+#else
+  (void)s;
+  (void)triangle;
+  (void)b1;
+  (void)b2;
+#endif
+  return le;
+}
+
+/* Solid-angle density of sampling point `p_light` (normal n_light, unit) from `p` by NEE. */
+CO_INLINE float light_pdf_solid_angle(const SceneView* s, const CO_GLOBAL Material* m, float area, co_vec3 p,
+                                      co_vec3 p_light, co_vec3 n_light) {
+  co_vec3 d = v3_sub(p_light, p);
+  float dist2 = v3_dot(d, d);
+  float cos_l = fabs(v3_dot(n_light, d)) / sqrt(dist2);
+  float pmf = emitter_power(v3_from4(m->emission), area, material_two_sided_emission(m)) / s->emitter_power_total;
+  /* pick_triangles is exactly 1 when emissive triangles are the only lights */
+  return pmf * s->pick_triangles * dist2 / (area * cos_l);
+}
+
+/* Index of the emitter whose cdf interval holds u (binary search). */
+CO_INLINE uint32_t pick_emitter(const SceneView* s, float u) {
+  uint32_t lo = 0, hi = s->emitter_count - 1u;
+  while (lo < hi) {
+    uint32_t mid = (lo + hi) >> 1;
+    if (u < s->emitters[mid].cdf) hi = mid; else lo = mid + 1u;
+  }
+  return lo;
+}
+
+#endif

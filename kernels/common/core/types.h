@@ -1,0 +1,265 @@
+/* Structs shared by host and device. Every layout is checked on the host with static_asserts;
+ * change one field and both sides change with it. */
+#ifndef COHORT_TYPES_H
+#define COHORT_TYPES_H
+
+#include "common/core/port.h"
+
+/* ---- KD-tree, 8 bytes per node --------------------------------------------------------------
+ * Children of an inner node are adjacent (left at `child`, right at `child + 1`) and nodes are in
+ * breadth-first order, so the top L levels of the tree are a prefix of the node array (what the
+ * PTH subtree in local memory needs).
+ *   word0 bits 0-1 : split axis 0..2, or KD_LEAF (3)
+ *   word0 bits 2-31: inner -> index of the left child; leaf -> number of triangles
+ *   word1          : inner -> split position (float bits); leaf -> first entry in the leaf index list */
+#define KD_LEAF 3u
+#define KD_MAX_INDEX ((1u << 30) - 1u)
+typedef struct KdNode {
+  uint32_t word0;
+  uint32_t word1;
+} KdNode;
+CO_STATIC_ASSERT(sizeof(KdNode) == 8, "KdNode must stay 8 bytes");
+
+CO_INLINE uint32_t kd_axis(KdNode n) { return n.word0 & 3u; }
+CO_INLINE int kd_is_leaf(KdNode n) { return (n.word0 & 3u) == KD_LEAF; }
+CO_INLINE uint32_t kd_left_child(KdNode n) { return n.word0 >> 2; }
+CO_INLINE uint32_t kd_leaf_count(KdNode n) { return n.word0 >> 2; }
+CO_INLINE uint32_t kd_leaf_first(KdNode n) { return n.word1; }
+
+/* ---- 4-wide BVH, 128 bytes per node (--tree bvh4, the default where the method allows) -------
+ * Each node holds its four children's boxes lane by lane (lane i is child i), so one ray tests
+ * all four with one SIMD operation per slab. A child reference is an inner node's index, or a
+ * leaf: BVH4_LEAF, the triangle count less one in bits 27-30 and the first entry of the leaf lists
+ * in bits 0-26. An unused lane has BVH4_EMPTY and a box at +infinity that no ray enters. */
+#define BVH4_LEAF 0x80000000u
+#define BVH4_EMPTY 0xffffffffu
+#define BVH4_LEAF_MAX 16u
+#define BVH4_LEAF_FIRST_MAX ((1u << 27) - 1u)
+/* The levels the builder lays out breadth first at the front of the node array (1,365 nodes at
+ * most, 171 KiB): more than any device's local memory holds for the PTH walk. */
+#define BVH4_TOP_LEVELS 6u
+typedef struct Bvh4Node {
+  co_float4 lo_x, hi_x, lo_y, hi_y, lo_z, hi_z;
+  co_uint4 child;
+  co_uint4 reserved; /* zero; pads the node to two 64-byte cache lines */
+} Bvh4Node;
+CO_STATIC_ASSERT(sizeof(Bvh4Node) == 128, "Bvh4Node must stay 128 bytes");
+
+CO_INLINE int bvh4_is_leaf(uint32_t ref) { return (ref & BVH4_LEAF) != 0u; }
+CO_INLINE uint32_t bvh4_leaf_first(uint32_t ref) { return ref & BVH4_LEAF_FIRST_MAX; }
+CO_INLINE uint32_t bvh4_leaf_count(uint32_t ref) { return ((ref >> 27) & 15u) + 1u; }
+CO_INLINE uint32_t bvh4_leaf_ref(uint32_t first, uint32_t count) { return BVH4_LEAF | ((count - 1u) << 27) | first; }
+
+/* ---- Triangles, stored for the watertight test of Woop, Benthin & Wald (JCGT 2013) -----------
+ * The watertight test needs the vertices themselves; w components are padding. 48 bytes. */
+typedef struct Triangle {
+  co_float4 v0;
+  co_float4 v1;
+  co_float4 v2;
+} Triangle;
+CO_STATIC_ASSERT(sizeof(Triangle) == 48, "Triangle must stay 48 bytes");
+
+/* ---- Materials ------------------------------------------------------------------------------
+ * The glTF metallic-roughness parameters, mapped to a BSDF by bsdf_from_gltf (bsdf.h), and
+ * emission as a one-sided (or two-sided) area light. Texture indices refer to the TextureDesc
+ * table; the host sets them to -1 when the scene has no texture coordinates. A MAT_UV1_* flag
+ * makes that texture read the triangle's second coordinate set (glTF TEXCOORD_1). */
+#define MAT_TWO_SIDED_EMISSION 1u
+#define MAT_UV1_BASE_COLOR 2u
+#define MAT_UV1_METALLIC_ROUGHNESS 4u
+#define MAT_UV1_EMISSION 8u
+#define MAT_UV1_NORMAL 16u
+/* glTF alphaMode (OPAQUE when neither is set): MASK cuts the surface out where its alpha is below
+ * alpha_cutoff; BLEND lets a ray through with probability 1 - alpha (kernels/common/accel/alpha.h) */
+#define MAT_ALPHA_MASK 32u
+#define MAT_ALPHA_BLEND 64u
+typedef struct Material {
+  co_float4 base_color;  /* rgb; a = alpha */
+  co_float4 emission;    /* rgb radiance (factor x strength); a unused */
+  float metallic;
+  float roughness;
+  float transmission;
+  float ior;
+  int32_t base_color_texture; /* -1: none; multiplies base_color */
+  uint32_t flags;
+  int32_t emission_texture;   /* -1: none; multiplies emission */
+  int32_t metallic_roughness_texture; /* -1: none; B multiplies metallic, G roughness (linear data) */
+  int32_t normal_texture;             /* -1: none; tangent-space normal map (COHORT_FEATURE_NORMAL_MAP) */
+  float normal_scale;                 /* scales the map's x and y */
+  float alpha_cutoff;                 /* MAT_ALPHA_MASK: alpha below it is cut out (glTF alphaCutoff) */
+  uint32_t pad1;
+} Material;
+CO_STATIC_ASSERT(sizeof(Material) == 80, "Material must stay 80 bytes");
+
+/* ---- Textures ---------------------------------------------------------------------------------
+ * Every texture's texels live in one buffer of RGBA8 words (r in the low byte, as glTF stores
+ * them, rows from the top: texture coordinate v = 0 is the first row); a descriptor per texture
+ * says where and how it is sampled (glTF's sampler, and whether the texels are sRGB colour or
+ * linear data). Texture coordinates are stored per kept triangle, 3 vertices; with
+ * COHORT_FEATURE_TEXCOORD1 two sets per triangle, TEXCOORD_0's then TEXCOORD_1's. */
+#define TEX_NEAREST 1u     /* nearest texel; else bilinear */
+#define TEX_DATA 2u        /* linear data (metallic-roughness, normals); else sRGB-encoded colour */
+#define TEX_WRAP_REPEAT 0u /* wrap modes, two bits each: along u in bits 2-3, along v in bits 4-5 */
+#define TEX_WRAP_CLAMP 1u
+#define TEX_WRAP_MIRROR 2u
+#define TEX_TRANSFORM 64u  /* glTF KHR_texture_transform: the sampler's bits 8-31 index its TextureTransform */
+typedef struct TextureDesc {
+  uint32_t offset; /* first texel in the texel buffer */
+  uint32_t width;
+  uint32_t height;
+  uint32_t sampler; /* TEX_* flags and wrap modes */
+} TextureDesc;
+CO_STATIC_ASSERT(sizeof(TextureDesc) == 16, "TextureDesc must stay 16 bytes");
+
+/* KHR_texture_transform of one texture slot as the affine map (u, v) -> (a u + b v + c, d u + e v + f)
+ * (glTF's T * R * S). Stored in the descriptor buffer after the descriptors, as two entries: a
+ * descriptor with TEX_TRANSFORM finds it at entry tex_transform_entry(sampler)
+ * (COHORT_FEATURE_TEXTURE_TRANSFORM; a scene without transforms stores none). */
+typedef struct TextureTransform {
+  float a, b, c;
+  float d, e, f;
+  float pad0, pad1;
+} TextureTransform;
+CO_STATIC_ASSERT(sizeof(TextureTransform) == 2 * sizeof(TextureDesc), "a TextureTransform fills two TextureDesc entries");
+CO_INLINE uint32_t tex_transform_entry(uint32_t sampler) { return sampler >> 8; }
+
+CO_INLINE uint32_t tex_wrap_s(uint32_t sampler) { return (sampler >> 2) & 3u; }
+CO_INLINE uint32_t tex_wrap_t(uint32_t sampler) { return (sampler >> 4) & 3u; }
+CO_INLINE uint32_t tex_sampler(uint32_t flags, uint32_t wrap_s, uint32_t wrap_t) {
+  return flags | (wrap_s << 2) | (wrap_t << 4);
+}
+
+typedef struct TriangleUv {
+  float u0, v0, u1, v1, u2, v2;
+} TriangleUv;
+CO_STATIC_ASSERT(sizeof(TriangleUv) == 24, "TriangleUv must stay 24 bytes");
+
+/* glTF COLOR_0 at a kept triangle's 3 vertices, linear RGBA (COHORT_FEATURE_VERTEX_COLORS) */
+typedef struct TriangleColor {
+  co_float4 c0;
+  co_float4 c1;
+  co_float4 c2;
+} TriangleColor;
+CO_STATIC_ASSERT(sizeof(TriangleColor) == 48, "TriangleColor must stay 48 bytes");
+
+/* The tangent frames of a kept triangle's 3 vertices, for normal maps (COHORT_FEATURE_NORMAL_MAP):
+ * unit vertex normals n (w unused; zero where the file has none: the geometric normal stands in)
+ * and unit tangents t with the bitangent's sign in w (glTF TANGENT: b = cross(n, t) * w). */
+typedef struct TriangleFrame {
+  co_float4 n0, n1, n2;
+  co_float4 t0, t1, t2;
+} TriangleFrame;
+CO_STATIC_ASSERT(sizeof(TriangleFrame) == 96, "TriangleFrame must stay 96 bytes");
+
+/* ---- Emissive triangles, sampled by power --------------------------------------------------- */
+typedef struct EmitterEntry {
+  uint32_t triangle;
+  float cdf;   /* inclusive running sum of power, normalised to 1 at the last entry */
+  float pmf;   /* probability of picking this triangle */
+  float area;
+} EmitterEntry;
+CO_STATIC_ASSERT(sizeof(EmitterEntry) == 16, "EmitterEntry must stay 16 bytes");
+
+/* ---- Camera and per-render constants -------------------------------------------------------- */
+typedef struct CameraParams {
+  co_float4 eye;
+  co_float4 forward;  /* unit */
+  co_float4 right;    /* unit, scaled by tan(fov/2) * aspect */
+  co_float4 up;       /* unit, scaled by tan(fov/2) */
+} CameraParams;
+CO_STATIC_ASSERT(sizeof(CameraParams) == 64, "CameraParams must stay 64 bytes");
+
+#define RENDER_FLAG_NEE 1u
+#define RENDER_FLAG_MIS 2u
+#define RENDER_FLAG_RUSSIAN_ROULETTE 4u
+#define RENDER_FLAG_ENVIRONMENT 8u       /* constant environment `environment` on escaped rays */
+#define RENDER_FLAG_ENVIRONMENT_MAP 16u  /* the environment map (COHORT_FEATURE_ENVMAP); replaces the constant */
+typedef struct RenderParams {
+  CameraParams camera;
+  co_float4 environment;   /* constant environment radiance, rgb */
+  co_float4 scene_min;     /* bounds of the KD-tree root; w unused */
+  co_float4 scene_max;
+  uint32_t width;
+  uint32_t height;
+  uint32_t max_depth;      /* path segments, as Mitsuba's max_depth; 0 = unbounded */
+  uint32_t rr_depth;       /* first segment at which Russian roulette may end a path */
+  uint32_t seed;
+  uint32_t flags;
+  uint32_t emitter_count;
+  uint32_t sample_offset;  /* index of the first sample of this pass */
+  uint32_t samples_per_pass;
+  float emitter_power_total; /* sum of emitter_power() over emissive triangles */
+  uint32_t pad3;             /* ray offsets come from error bounds (ray_offset.h), not from here */
+  uint32_t env_width;        /* environment map texels per row (the grid has one more column) */
+  uint32_t env_height;       /* rows, pole to pole; 0 without an environment map */
+  uint32_t punctual_count;   /* KHR_lights_punctual lights */
+  /* NEE first picks a kind of light with these probabilities (they sum to 1; see docs/lights.md) */
+  float pick_triangles;
+  float pick_environment;
+  float pick_punctual;
+  /* adaptive sampling (runtime/render/run/adaptive.h): this pass renders the first `active_pixels`
+   * entries of its pixel list only; 0: every pixel, the list unused */
+  uint32_t active_pixels;
+  uint32_t pad1, pad2;
+} RenderParams;
+CO_STATIC_ASSERT(sizeof(RenderParams) == 192, "RenderParams must stay 192 bytes");
+
+/* The pixels a pass renders (its work items per sample): every pixel, or the adaptive pass's
+ * active ones. The kernels and the host's launch sizes both use it. */
+CO_INLINE uint32_t pass_pixel_count(const RenderParams* p) {
+  return p->active_pixels ? p->active_pixels : p->width * p->height;
+}
+
+/* ---- KHR_lights_punctual: point and spot lights (delta lights, NEE only) ---------------------- */
+#define PUNCTUAL_POINT 0u
+#define PUNCTUAL_SPOT 1u
+typedef struct PunctualLight {
+  co_float4 position;   /* world; w unused */
+  co_float4 direction;  /* spot: unit direction the light shines in; w = cos(outer cone angle) */
+  co_float4 intensity;  /* rgb candela (colour x intensity); w = cos(inner cone angle) */
+  uint32_t type;        /* PUNCTUAL_POINT or PUNCTUAL_SPOT */
+  float cdf;            /* inclusive running sum of power, 1 at the last light */
+  float pmf;            /* probability NEE picks this light among the punctual lights */
+  float pad0;
+} PunctualLight;
+CO_STATIC_ASSERT(sizeof(PunctualLight) == 64, "PunctualLight must stay 64 bytes");
+
+/* ---- Coherence code (Wang & Deng, section 3) -------------------------------------------------
+ * A sort key of at most 64 bits (32-bit keys when key_bits <= 32) packing up to four parts; each
+ * part's width and position are set on the host (`--code`). Origin, end point and direction cells
+ * are Morton-interleaved so that nearby cells get nearby codes. */
+typedef struct CodeParams {
+  uint32_t origin_bits;      /* per axis, 0..10 */
+  uint32_t origin_shift;
+  uint32_t origin_adaptive;  /* 1: cells bounded by per-axis quantiles of triangle centroids */
+  uint32_t pth_levels;       /* 2 bits per level, 0..16 */
+  uint32_t pth_shift;
+  uint32_t direction_bits;   /* per octahedral coordinate, 0..16 */
+  uint32_t direction_shift;
+  uint32_t key_bits;         /* bits the radix sort must look at: at most 32 means 32-bit keys */
+  uint32_t end_bits;         /* per axis of the estimated end point (two-point key), 0..10 */
+  uint32_t end_shift;
+  uint32_t pad0;
+  uint32_t pad1;
+  co_float4 lo;              /* uniform origin grid, also the end point's */
+  co_float4 hi;
+} CodeParams;
+CO_STATIC_ASSERT(sizeof(CodeParams) == 80, "CodeParams must stay 80 bytes");
+
+/* ---- Rays and hits for the traversal-only kernels -------------------------------------------- */
+typedef struct RayIn {
+  co_float4 origin;  /* w = tmin */
+  co_float4 dir;     /* w = tmax */
+} RayIn;
+CO_STATIC_ASSERT(sizeof(RayIn) == 32, "RayIn must stay 32 bytes");
+
+#define HIT_NONE 0xffffffffu
+typedef struct HitOut {
+  float t;
+  float u;
+  float v;
+  uint32_t triangle; /* HIT_NONE on a miss */
+} HitOut;
+CO_STATIC_ASSERT(sizeof(HitOut) == 16, "HitOut must stay 16 bytes");
+
+#endif

@@ -1,0 +1,35 @@
+/* NAIVE: the reference megakernel. One work item per pixel of the pass traces this pass's samples of its
+ * pixel in sample order and adds each to the film in that order, so the film is the same sum
+ * whatever the work-group size or device scheduling. */
+#ifndef COHORT_NAIVE_KERNEL_H
+#define COHORT_NAIVE_KERNEL_H
+
+#include "common/core/kernel_params.h"
+#include "common/wavefront/pathtrace.h"
+
+CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
+  uint32_t k = co_global_id();
+  RenderParams p = *params;
+  if (k >= pass_pixel_count(&p)) return;
+  uint32_t pixel = pass_pixel(k, pixel_list, &p);
+  SceneView s = SCENE_VIEW(p);
+
+  co_float4 acc = film[pixel];
+  uint32_t rays = 0u, dropped = 0u, max_steps = 0u;
+  for (uint32_t i = 0u; i < p.samples_per_pass; ++i) {
+    PathResult r = trace_path(&s, &p, pixel, p.sample_offset + i);
+    rays += r.rays;
+    max_steps = co_umax(max_steps, r.max_steps);
+    /* a NaN or infinite sample never reaches the image; it counts as a zero sample */
+    if (v3_is_finite(r.radiance))
+      acc = film_add_sample(acc, r.radiance);
+    else
+      ++dropped;
+  }
+  film[pixel] = acc;
+  co_atomic_add(&counters[NAIVE_COUNTER_RAYS], rays);
+  co_atomic_max(&counters[NAIVE_COUNTER_MAX_STEPS], max_steps);
+  if (dropped) co_atomic_add(dropped_samples, dropped);
+}
+
+#endif

@@ -1,0 +1,101 @@
+#include "runtime/render/scene/prepared_scene.h"
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "runtime/render/scene/scene_memory.h"
+#include "runtime/util/error.h"
+
+namespace cohort {
+
+const std::vector<std::string>& tree_choices() {
+  static const std::vector<std::string> names{"auto", "deep", "compact", "bvh4"};
+  return names;
+}
+
+TreeChoice tree_options(const std::string& choice, std::span<const DeviceInfo> devices, bool needs_kd) {
+  TreeChoice options;
+  const bool no_gpu = std::none_of(devices.begin(), devices.end(), [](const DeviceInfo& d) { return d.is_gpu; });
+  if (choice == "compact") {
+    options.kd.compact = true;
+  } else if (choice == "auto") {
+    options.kd.compact = no_gpu;
+    options.bvh4 = !needs_kd;
+  } else if (choice == "bvh4") {
+    if (needs_kd)
+      throw InputError("--tree bvh4: --tree-budget and --speculative need the KD-tree; give --tree auto, deep or "
+                       "compact with them");
+    options.bvh4 = true;
+  } else if (choice != "deep") {
+    throw InputError(
+        fmt::format("--tree {}: unknown tree (choose from {})", choice, fmt::join(tree_choices(), ", ")));
+  }
+  return options;
+}
+
+std::string describe_tree(const PreparedScene& p) {
+  if (const Bvh4* bvh = p.bvh()) {
+    const Bvh4Stats& b = bvh->stats;
+    return fmt::format("4-wide BVH: depth {}, {} nodes, {} leaves, {} references to {} triangles, {:.2f} per leaf, "
+                       "SAH cost {:.2f}, built in {:.3f}s (triangles kept in {:.3f}s)",
+                       b.depth, b.node_count, b.leaf_count, b.references, p.tree.triangles.size(),
+                       b.average_leaf_triangles, b.sah_cost, b.build_seconds, p.tree.stats.build_seconds);
+  }
+  const KdTreeStats& ts = p.tree.stats;
+  return fmt::format("kd-tree ({}): depth {}, {} nodes, {} leaves ({} empty), {:.2f} triangles per leaf, SAH cost "
+                     "{:.2f}, built in {:.3f}s",
+                     tree_kind(ts), ts.depth, ts.node_count, ts.leaf_count, ts.empty_leaf_count,
+                     ts.average_leaf_triangles, ts.sah_cost, ts.build_seconds);
+}
+
+PreparedScene prepare_scene(const std::filesystem::path& path, const TreeChoice& choice) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Scene scene = load_scene(path);
+  const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  PreparedScene p = prepare_loaded_scene(path, std::move(scene), choice);
+  p.load_seconds = load_seconds;
+  return p;
+}
+
+PreparedScene prepare_loaded_scene(const std::filesystem::path& path, Scene scene, const TreeChoice& choice) {
+  PreparedScene p;
+  p.scene = std::move(scene);
+  KdBuildOptions one_leaf = choice.kd;
+  one_leaf.leaf_triangles = INT_MAX;  // with the BVH the KD-tree only keeps the triangles
+  p.tree = build_kdtree(p.scene.positions, choice.bvh4 ? one_leaf : choice.kd);
+  // The loaders reject a file without triangles; this catches one whose triangles all go, so that
+  // no command renders an image of nothing.
+  if (p.tree.triangles.empty())
+    throw InputError(fmt::format("{}: nothing to render: all {} triangles are degenerate (zero area) or have "
+                                 "non-finite corners",
+                                 path.string(), p.scene.triangle_count()));
+  if (choice.bvh4) p.bvh4 = build_bvh4(p.tree.triangles);
+  p.tables = make_scene_tables(p.scene, p.tree);
+  p.camera = p.scene.camera ? *p.scene.camera : framing_camera(p.scene.bounds());
+  return p;
+}
+
+void fit_scene_to(PreparedScene& p, std::size_t device_bytes, const KdBuildOptions& options) {
+  const SceneMemory memory = scene_memory(p.tree, p.tables, p.bvh());
+  if (memory.total() <= device_bytes) return;
+  if (p.bvh4)
+    throw InputError(fmt::format("the scene needs {:.2f} MiB of device memory with the 4-wide BVH; the limit is {:.2f} "
+                                 "MiB (a KD-tree can trade depth for bytes: --tree deep or compact)",
+                                 memory.total() / 1048576.0, device_bytes / 1048576.0));
+  // The smallest tree is one leaf: a node and one list entry and the vertices per triangle.
+  const std::size_t smallest = sizeof(KdNode) + p.tree.triangles.size() * (sizeof(std::uint32_t) + sizeof(Triangle));
+  if (memory.shading + smallest > device_bytes) {
+    throw InputError(fmt::format("the scene needs at least {:.2f} MiB of device memory ({:.2f} MiB of shading data and "
+                                 "{:.2f} MiB for the smallest KD-tree); the limit is {:.2f} MiB",
+                                 (memory.shading + smallest) / 1048576.0, memory.shading / 1048576.0,
+                                 smallest / 1048576.0, device_bytes / 1048576.0));
+  }
+  // The kept triangles, and so the shading tables, do not depend on the depth limit.
+  p.tree = build_kdtree_within(p.scene.positions, options, device_bytes - memory.shading);
+}
+
+}  // namespace cohort

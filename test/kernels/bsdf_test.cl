@@ -1,0 +1,3 @@
+/* OpenCL entry point: BSDF queries for test/bsdf.
+ * The kernels live in bsdf_test_kernel.h. */
+#include "bsdf_test_kernel.h"
