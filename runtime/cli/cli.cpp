@@ -165,12 +165,13 @@ int run_cli(int argc, char** argv) {
   add_render_options(*render_cmd, render);
 
   std::filesystem::path info_scene;
-  std::string info_tree = "deep";
-  auto* info_cmd = app.add_subcommand("info", "Print a scene's size, materials, lights and KD-tree");
+  std::string info_tree = "auto";
+  auto* info_cmd = app.add_subcommand("info", "Print a scene's size, materials, lights, tree and device memory");
   info_cmd->add_option("scene", info_scene, "Scene file")->required();
   info_cmd->add_option("--tree", info_tree,
-                       "What to build: deep (the KD-tree a GPU traces, the default), compact or bvh4 (a CPU's)")
-      ->check(CLI::IsMember({"deep", "compact", "bvh4"}));
+                       "What to build: auto (what a render builds: the 4-wide BVH, the default), bvh4, deep or "
+                       "compact (the KD-trees), or all (each, with its bytes per triangle)")
+      ->check(CLI::IsMember({"auto", "bvh4", "deep", "compact", "all"}));
 
   BenchCommand bench;
   auto* bench_cmd = app.add_subcommand("bench", "Measure rays/s (protocol rays) and path tracing per method");

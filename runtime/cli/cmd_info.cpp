@@ -23,10 +23,27 @@ std::string describe(const Texture& t) {
                      wrap_name(t.sampler.wrap_t), uses.empty() ? "unused" : uses);
 }
 
+// The tree `p` holds and its device memory, then, for --tree all, the KD-trees built from the same
+// kept triangles: what each layout costs a scene in bytes per triangle.
+void print_layouts(const PreparedScene& p, bool all) {
+  const std::size_t triangles = p.tree.triangles.size();
+  fmt::print("{}\n", describe_tree(p));
+  fmt::print("device memory: {}\n", describe(scene_memory(p.tree, p.tables, p.bvh()), triangles));
+  if (!all) return;
+  for (const bool compact : {false, true}) {
+    KdBuildOptions options;
+    options.compact = compact;
+    const KdTree kd = build_kdtree(p.scene.positions, options);
+    fmt::print("{}\n", describe_kdtree(kd.stats));
+    fmt::print("device memory: {}\n", describe(scene_memory(kd, p.tables), triangles));
+  }
+}
+
 }  // namespace
 
 int run_info(const std::filesystem::path& path, const std::string& tree) {
-  const PreparedScene p = prepare_scene(path, tree_options(tree));
+  const bool all = tree == "all";
+  const PreparedScene p = prepare_scene(path, tree_options(all ? "bvh4" : tree));
   const Bounds b = p.scene.bounds();
   const auto& ts = p.tree.stats;
   fmt::print("scene: {}\n", path.string());
@@ -55,8 +72,7 @@ int run_info(const std::filesystem::path& path, const std::string& tree) {
   fmt::print("camera: {}, eye ({:.4g}, {:.4g}, {:.4g}), target ({:.4g}, {:.4g}, {:.4g}), vfov {:.4g} deg\n",
              p.scene.camera ? "from the file" : "framing (bench protocol)", p.camera.eye.x, p.camera.eye.y,
              p.camera.eye.z, p.camera.target.x, p.camera.target.y, p.camera.target.z, p.camera.vfov_degrees);
-  fmt::print("{}\n", describe_tree(p));
-  fmt::print("device memory: {}\n", describe(scene_memory(p.tree, p.tables, p.bvh()), p.tree.triangles.size()));
+  print_layouts(p, all);
   fmt::print("scene geometry: {:.2f} MiB on the host\n", p.scene.geometry_bytes() / 1048576.0);
   for (const auto& n : p.scene.notes) fmt::print("note: {}\n", n);
   for (const auto& w : p.scene.warnings) fmt::print("warning: {}\n", w);

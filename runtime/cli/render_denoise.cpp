@@ -45,7 +45,7 @@ int write_denoised(const PreparedRender& render, const RenderOutcome& outcome, c
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     write_exr(out.denoised_exr, denoised);
     write_png(out.denoised_png, denoised);
-    // the cost of a denoised image beside the render's seconds (scripts/adaptive.py charts it)
+    // the cost of a denoised image beside the render's seconds (scripts/lib/adaptive.py charts it)
     fmt::print("denoised with {} in {:.3f}s (first-hit AOVs {:.3f}s)\nwrote {}\nwrote {}\n", library,
                seconds, outcome.aov_seconds, out.denoised_exr.string(), out.denoised_png.string());
     return 0;

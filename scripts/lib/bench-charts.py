@@ -14,13 +14,25 @@ import glob
 import json
 import os
 
-import matplotlib
+from bench_data import METHODS, STAGES, load, views
+
+
+def arguments():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("dir")
+    ap.add_argument("--out", default="docs")
+    return ap.parse_args()
+
+
+# --help answers before the imports below, which need the venv's packages
+ARGS = arguments() if __name__ == "__main__" else None
+
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import mitsuba as mi  # noqa: E402
 import numpy as np  # noqa: E402
-from bench_data import METHODS, STAGES, load, views  # noqa: E402
 
 mi.set_variant("scalar_rgb")
 COLORS = dict(zip(METHODS + ["mitsuba"], plt.get_cmap("tab10").colors))
@@ -202,10 +214,7 @@ def large_scenes(root, out):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("dir")
-    ap.add_argument("--out", default="docs")
-    args = ap.parse_args()
+    args = ARGS
     os.makedirs(args.out, exist_ok=True)
     cohort = load(os.path.join(args.dir, "cohort", "*.json"))
     if cohort:

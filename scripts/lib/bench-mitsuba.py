@@ -22,8 +22,28 @@ import os
 import statistics
 import time
 
-import drjit as dr
-import mitsuba as mi
+
+def arguments():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--ply", required=True)
+    ap.add_argument("--camera-json", required=True)
+    ap.add_argument("--view", default="exterior")
+    ap.add_argument("--res", type=int, default=512)
+    ap.add_argument("--spp", type=int, default=4)
+    ap.add_argument("--reps", type=int, default=3)
+    ap.add_argument("--ladder", default="")
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--name", required=True)
+    ap.add_argument("--json", default="")
+    ap.add_argument("--variant", default="scalar_rgb", choices=["scalar_rgb", "llvm_ad_rgb", "cuda_ad_rgb"])
+    return ap.parse_args()
+
+
+# --help answers before the imports below, which need the venv's packages
+ARGS = arguments() if __name__ == "__main__" else None
+
+import drjit as dr  # noqa: E402
+import mitsuba as mi  # noqa: E402
 
 
 def camera_from(path, view):
@@ -70,19 +90,7 @@ def timed_render(scene, spp, seed):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--ply", required=True)
-    ap.add_argument("--camera-json", required=True)
-    ap.add_argument("--view", default="exterior")
-    ap.add_argument("--res", type=int, default=512)
-    ap.add_argument("--spp", type=int, default=4)
-    ap.add_argument("--reps", type=int, default=3)
-    ap.add_argument("--ladder", default="")
-    ap.add_argument("--out", required=True)
-    ap.add_argument("--name", required=True)
-    ap.add_argument("--json", default="")
-    ap.add_argument("--variant", default="scalar_rgb", choices=["scalar_rgb", "llvm_ad_rgb", "cuda_ad_rgb"])
-    args = ap.parse_args()
+    args = ARGS
     mi.set_variant(args.variant)
     os.makedirs(args.out, exist_ok=True)
     camera = camera_from(args.camera_json, args.view)

@@ -12,24 +12,32 @@ import os
 import sys
 import tempfile
 
-import flip_evaluator as flip
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from reference_common import ROOT, references, render_cohort  # noqa: E402
+from reference_common import ROOT, references, render_cohort
 
 
-def main():
+def arguments():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--cohort", default=os.path.join(ROOT, "build", "cohort"))
     ap.add_argument("--max-spp", type=int, default=1024)
     ap.add_argument("--tolerance", type=float, default=0.05)
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "convergence.png"))
-    args = ap.parse_args()
+    return ap.parse_args()
+
+
+# --help answers before the imports below, which need the venv's packages
+ARGS = arguments() if __name__ == "__main__" else None
+
+import flip_evaluator as flip  # noqa: E402
+import matplotlib  # noqa: E402
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def main():
+    args = ARGS
     name, meta, exr, scene = next(r for r in references() if r[0] == "cornell-box-mitsuba-rgb")
     ref = flip.load(exr).astype(np.float64)
     ref_spp = meta["spp"]

@@ -13,18 +13,11 @@ import os
 import platform
 import sys
 
-import mitsuba as mi
-import numpy as np
-
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from reference_common import accumulate_passes  # noqa: E402
-
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-MODELS = os.environ.get("COHORT_SHARED_SCENES") or os.path.join(os.path.dirname(ROOT), "shared", "scenes")  # scenes/external.json
-SCENE = os.path.join(MODELS, "cornell-box-mitsuba", "cbox-rgb.xml")
+from reference_common import ROOT, accumulate_passes
 
 
-def main():
+def arguments():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--res", type=int, default=128)
     ap.add_argument("--max-depth", type=int, default=6)
@@ -32,7 +25,22 @@ def main():
     ap.add_argument("--pass-spp", type=int, default=64)
     ap.add_argument("--max-spp", type=int, default=1 << 16)
     ap.add_argument("--out", default=os.path.join(ROOT, "test", "reference", "cornell-box-mitsuba-rgb.exr"))
-    args = ap.parse_args()
+    return ap.parse_args()
+
+
+# --help answers before the imports below, which need the venv's packages
+ARGS = arguments() if __name__ == "__main__" else None
+
+import mitsuba as mi  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+MODELS = os.environ.get("COHORT_SHARED_SCENES") or os.path.join(os.path.dirname(ROOT), "shared", "scenes")  # scenes/external.json
+SCENE = os.path.join(MODELS, "cornell-box-mitsuba", "cbox-rgb.xml")
+
+
+def main():
+    args = ARGS
 
     mi.set_variant("scalar_rgb")
     scene = mi.load_file(SCENE, res=args.res, spp=args.pass_spp, max_depth=args.max_depth)

@@ -10,20 +10,28 @@ import os
 import sys
 import tempfile
 
-import flip_evaluator as flip
-import numpy as np
-
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from reference_common import ROOT, references, render_cohort  # noqa: E402
+from reference_common import ROOT, references, render_cohort
 
 
-def main():
+def arguments():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--cohort", default=os.path.join(ROOT, "build", "cohort"))
     ap.add_argument("--spp", type=int, default=256)
     ap.add_argument("--max-flip", type=float, default=0.08)
     ap.add_argument("--max-relative", type=float, default=0.1)
-    args = ap.parse_args()
+    return ap.parse_args()
+
+
+# --help answers before the imports below, which need the venv's packages
+ARGS = arguments() if __name__ == "__main__" else None
+
+import flip_evaluator as flip  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def main():
+    args = ARGS
     failed = []
     print(f"{'scene':28} {'spp':>5} {'rel. L1':>8} {'FLIP':>7}")
     with tempfile.TemporaryDirectory() as tmp:

@@ -117,8 +117,13 @@ TEST(Cli, OutputIntoAMissingDirectoryFailsBeforeRendering) {
 TEST(Cli, InfoPrintsSceneAndTree) {
   const CommandResult r = run("info " + scene("cornell-box.gltf"));
   ASSERT_EQ(r.code, 0) << r.output;
-  for (const char* word : {"triangles:", "materials:", "lights:", "bounds:", "kd-tree (deep):", "memory:"})
+  // by default the tree a render builds: the 4-wide BVH
+  for (const char* word : {"triangles:", "materials:", "lights:", "bounds:", "4-wide BVH: depth", "memory:"})
     EXPECT_NE(r.output.find(word), std::string::npos) << word << "\n" << r.output;
+  EXPECT_EQ(r.output.find("kd-tree"), std::string::npos) << r.output;
+  const CommandResult deep = run("info " + scene("cornell-box.gltf") + " --tree deep");
+  ASSERT_EQ(deep.code, 0) << deep.output;
+  EXPECT_NE(deep.output.find("kd-tree (deep):"), std::string::npos) << deep.output;
   const CommandResult compact = run("info " + scene("cornell-box.gltf") + " --tree compact");
   ASSERT_EQ(compact.code, 0) << compact.output;
   EXPECT_NE(compact.output.find("kd-tree (compact):"), std::string::npos) << compact.output;
@@ -126,6 +131,21 @@ TEST(Cli, InfoPrintsSceneAndTree) {
   ASSERT_EQ(bvh.code, 0) << bvh.output;
   EXPECT_NE(bvh.output.find("4-wide BVH: depth"), std::string::npos) << bvh.output;
   EXPECT_EQ(run("info " + scene("cornell-box.gltf") + " --tree sparse").code, 2);
+}
+
+// --tree all: every layout the renderer can trace, each with its device bytes per triangle.
+TEST(Cli, InfoAllListsEachLayoutsMemory) {
+  const CommandResult r = run("info " + scene("cornell-box.gltf") + " --tree all");
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::size_t at = 0;
+  for (const char* layout : {"4-wide BVH: depth", "kd-tree (deep):", "kd-tree (compact):"}) {
+    at = r.output.find(layout, at);
+    ASSERT_NE(at, std::string::npos) << layout << "\n" << r.output;
+    const std::size_t memory = r.output.find("device memory: ", at);
+    ASSERT_NE(memory, std::string::npos) << r.output;
+    EXPECT_NE(r.output.substr(memory, r.output.find('\n', memory) - memory).find("bytes per triangle"),
+              std::string::npos) << r.output;
+  }
 }
 
 // --tree picks what rays are traced through (auto: the 4-wide BVH unless the method walks the

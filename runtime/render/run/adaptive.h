@@ -32,7 +32,7 @@ namespace cohort {
 inline constexpr std::uint32_t kAdaptiveTile = 4;
 inline constexpr std::uint32_t kAdaptiveFirstRound = 16;  // samples every pixel takes
 // The relative squared error of a pixel is its variance over (mean^2 + this), as the relative MSE
-// of the charts (scripts/adaptive.py) and the denoise test: dark pixels do not demand endless samples.
+// of the charts (scripts/lib/adaptive.py) and the denoise test: dark pixels do not demand endless samples.
 inline constexpr double kRelativeErrorFloor = 0.01;
 
 // The sample count at which the round holding sample `sample` ends, capped at spp (0: no cap).

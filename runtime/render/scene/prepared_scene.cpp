@@ -45,7 +45,10 @@ std::string describe_tree(const PreparedScene& p) {
                        b.depth, b.node_count, b.leaf_count, b.references, p.tree.triangles.size(),
                        b.average_leaf_triangles, b.sah_cost, b.build_seconds, p.tree.stats.build_seconds);
   }
-  const KdTreeStats& ts = p.tree.stats;
+  return describe_kdtree(p.tree.stats);
+}
+
+std::string describe_kdtree(const KdTreeStats& ts) {
   return fmt::format("kd-tree ({}): depth {}, {} nodes, {} leaves ({} empty), {:.2f} triangles per leaf, SAH cost "
                      "{:.2f}, built in {:.3f}s",
                      tree_kind(ts), ts.depth, ts.node_count, ts.leaf_count, ts.empty_leaf_count,

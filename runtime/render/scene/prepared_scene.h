@@ -35,6 +35,7 @@ struct PreparedScene {
 // One line on what the scene is traced with, as `info` and `render -v` print it: "kd-tree (deep):
 // depth 21, ..., built in 0.12s" or "4-wide BVH: depth 9, ...".
 std::string describe_tree(const PreparedScene& scene);
+std::string describe_kdtree(const KdTreeStats& stats);
 
 // What a scene is traced with: a KD-tree built with `kd`, or with `bvh4` a 4-wide BVH over the
 // kept triangles (the KD-tree then one leaf; `kd` is still the KD-tree the choice would build without

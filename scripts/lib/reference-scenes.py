@@ -24,13 +24,28 @@ import platform
 import sys
 import tempfile
 
-import mitsuba as mi
-import numpy as np
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from reference_common import accumulate_passes
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
-from reference_common import accumulate_passes  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+def arguments():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--seconds", type=float, default=60.0, help="render time per scene (default 60)")
+    ap.add_argument("--pass-spp", type=int, default=64)
+    ap.add_argument("--max-spp", type=int, default=1 << 16)
+    ap.add_argument("--only", nargs="*", help="scene names (default: all)")
+    ap.add_argument("--scenes-only", action="store_true", help="write the glTF files and sky.exr, render nothing")
+    return ap.parse_args()
+
+
+# --help answers before the imports below, which need the venv's packages
+ARGS = arguments() if __name__ == "__main__" else None
+
+import mitsuba as mi  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SCENES = os.path.join(ROOT, "scenes", "reference")
 REFERENCES = os.path.join(ROOT, "test", "reference")
 RES = 64
@@ -205,7 +220,7 @@ def write_sky(path, w=64, h=32):
 
 def write_gltf(path, desc):
     blob = bytearray()
-    doc = {"asset": {"version": "2.0", "generator": "scripts/reference-scenes.py"}, "buffers": [],
+    doc = {"asset": {"version": "2.0", "generator": "scripts/reference --scenes"}, "buffers": [],
            "bufferViews": [], "accessors": [], "meshes": [], "materials": [], "nodes": [], "scenes": [{"nodes": []}],
            "scene": 0, "extensionsUsed": ["KHR_materials_transmission", "KHR_materials_ior",
                                           "KHR_materials_emissive_strength", "KHR_lights_punctual"]}
@@ -363,13 +378,7 @@ def render(name, desc, args):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--seconds", type=float, default=60.0, help="render time per scene (default 60)")
-    ap.add_argument("--pass-spp", type=int, default=64)
-    ap.add_argument("--max-spp", type=int, default=1 << 16)
-    ap.add_argument("--only", nargs="*", help="scene names (default: all)")
-    ap.add_argument("--scenes-only", action="store_true", help="write the glTF files and sky.exr, render nothing")
-    args = ap.parse_args()
+    args = ARGS
     mi.set_variant("scalar_rgb")
     os.makedirs(SCENES, exist_ok=True)
     os.makedirs(REFERENCES, exist_ok=True)

@@ -31,16 +31,40 @@ import re
 import sys
 import tempfile
 
-import flip_evaluator as flip
-import matplotlib
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from reference_common import ROOT, references, relative_mse, render_cohort
+
+
+def arguments():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--cohort", default=os.path.join(ROOT, "build", "cohort"))
+    ap.add_argument("--max-spp", type=int, default=512, help="uniform renders: 16, 32, ... this")
+    ap.add_argument("--adaptive-spp", type=int, default=2048, help="adaptive renders: each pixel's most")
+    ap.add_argument("--targets", type=float, nargs="+", default=[0.14, 0.1, 0.07, 0.05, 0.035])
+    ap.add_argument("--repeats", type=int, default=3, help="renders per point; its time is their median")
+    ap.add_argument("--scenes", nargs="+", default=["cornell-box", "sponza-interior"],
+                    help="of cornell-box sponza-interior sponza-roof")
+    ap.add_argument("--reference-cache", default=os.path.join(ROOT, "build", "adaptive-references"),
+                    help="where the Sponza references are kept between runs")
+    ap.add_argument("--sponza-res", type=int, nargs=2, default=[64, 48])
+    ap.add_argument("--reference-spp", type=int, default=4096, help="Sponza's Cohort reference (seed 1)")
+    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "adaptive-error-vs-time.png"))
+    ap.add_argument("--json", default=os.path.join(ROOT, "docs", "adaptive.json"))
+    ap.add_argument("--redraw", action="store_true", help="only draw the chart again from --json")
+    return ap.parse_args()
+
+
+# --help answers before the imports below, which need the venv's packages
+ARGS = arguments() if __name__ == "__main__" else None
+
+import flip_evaluator as flip  # noqa: E402
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.ticker import NullFormatter  # noqa: E402
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
-from reference_common import ROOT, references, relative_mse, render_cohort  # noqa: E402
 
 SPONZA = os.path.join(ROOT, "..", "shared", "scenes", "crytek-sponza", "sponza.obj.gz")
 SPONZA_VIEWS = {
@@ -214,22 +238,7 @@ def chart(results, path):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--cohort", default=os.path.join(ROOT, "build", "cohort"))
-    ap.add_argument("--max-spp", type=int, default=512, help="uniform renders: 16, 32, ... this")
-    ap.add_argument("--adaptive-spp", type=int, default=2048, help="adaptive renders: each pixel's most")
-    ap.add_argument("--targets", type=float, nargs="+", default=[0.14, 0.1, 0.07, 0.05, 0.035])
-    ap.add_argument("--repeats", type=int, default=3, help="renders per point; its time is their median")
-    ap.add_argument("--scenes", nargs="+", default=["cornell-box", "sponza-interior"],
-                    help="of cornell-box sponza-interior sponza-roof")
-    ap.add_argument("--reference-cache", default=os.path.join(ROOT, "build", "adaptive-references"),
-                    help="where the Sponza references are kept between runs")
-    ap.add_argument("--sponza-res", type=int, nargs=2, default=[64, 48])
-    ap.add_argument("--reference-spp", type=int, default=4096, help="Sponza's Cohort reference (seed 1)")
-    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "adaptive-error-vs-time.png"))
-    ap.add_argument("--json", default=os.path.join(ROOT, "docs", "adaptive.json"))
-    ap.add_argument("--redraw", action="store_true", help="only draw the chart again from --json")
-    args = ap.parse_args()
+    args = ARGS
     if args.redraw:
         with open(args.json) as f:
             chart(json.load(f)["scenes"], args.out)

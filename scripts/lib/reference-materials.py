@@ -46,7 +46,7 @@ import mitsuba as mi
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "lib"))
+sys.path.insert(0, HERE)
 from reference_common import accumulate_passes  # noqa: E402
 
 _spec = importlib.util.spec_from_file_location("reference_scenes", os.path.join(HERE, "reference-scenes.py"))
@@ -191,7 +191,7 @@ def scene_list():
 
 def write_gltf(path, desc):
     blob = bytearray()
-    doc = {"asset": {"version": "2.0", "generator": "scripts/reference-materials.py"}, "buffers": [],
+    doc = {"asset": {"version": "2.0", "generator": "scripts/reference --materials"}, "buffers": [],
            "bufferViews": [], "accessors": [], "meshes": [], "materials": [], "nodes": [], "images": [],
            "samplers": [], "textures": [], "scenes": [{"nodes": []}], "scene": 0,
            "extensionsUsed": ["KHR_materials_emissive_strength"]}
@@ -384,7 +384,7 @@ def render(name, desc, args):
             "sampler": "independent", "reconstruction_filter": "box", "render_seconds": round(elapsed, 1),
             "machine": f"{platform.machine()}, {os.cpu_count()} logical CPUs",
             "mean_rgb": [float(v) for v in mean.reshape(-1, 3).mean(axis=0)],
-            "environment": desc["environment"], "written_by": "scripts/reference-materials.py"}
+            "environment": desc["environment"], "written_by": "scripts/reference --materials"}
     with open(os.path.splitext(out)[0] + ".json", "w") as f:
         json.dump(meta, f, indent=2)
         f.write("\n")
