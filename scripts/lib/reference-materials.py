@@ -42,12 +42,26 @@ import sys
 import tempfile
 import zlib
 
-import mitsuba as mi
-import numpy as np
-
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from reference_common import accumulate_passes  # noqa: E402
+
+
+def arguments():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--seconds", type=float, default=60.0, help="render time per scene (default 60)")
+    ap.add_argument("--pass-spp", type=int, default=64)
+    ap.add_argument("--max-spp", type=int, default=1 << 16)
+    ap.add_argument("--only", nargs="*", help="scene names (default: all)")
+    ap.add_argument("--scenes-only", action="store_true", help="write the glTF files, render nothing")
+    return ap.parse_args()
+
+
+# --help answers before the imports below, which need the venv's packages
+ARGS = arguments() if __name__ == "__main__" else None
+
+import mitsuba as mi  # noqa: E402
+import numpy as np  # noqa: E402
 
 _spec = importlib.util.spec_from_file_location("reference_scenes", os.path.join(HERE, "reference-scenes.py"))
 rs = importlib.util.module_from_spec(_spec)
@@ -392,13 +406,7 @@ def render(name, desc, args):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--seconds", type=float, default=60.0, help="render time per scene (default 60)")
-    ap.add_argument("--pass-spp", type=int, default=64)
-    ap.add_argument("--max-spp", type=int, default=1 << 16)
-    ap.add_argument("--only", nargs="*", help="scene names (default: all)")
-    ap.add_argument("--scenes-only", action="store_true", help="write the glTF files, render nothing")
-    args = ap.parse_args()
+    args = ARGS
     mi.set_variant("scalar_rgb")
     os.makedirs(rs.SCENES, exist_ok=True)
     os.makedirs(rs.REFERENCES, exist_ok=True)
