@@ -30,7 +30,6 @@ decodes them (sRGB for colour, byte / 255 for data), so the filters and wrap mod
   test/render/gltf_material_test.cpp checks normal maps against analytic values instead)
 
 Run through scripts/reference --materials, which provides mitsuba and numpy."""
-import argparse
 import base64
 import importlib.util
 import json
@@ -44,21 +43,11 @@ import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from reference_common import accumulate_passes  # noqa: E402
-
-
-def arguments():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--seconds", type=float, default=60.0, help="render time per scene (default 60)")
-    ap.add_argument("--pass-spp", type=int, default=64)
-    ap.add_argument("--max-spp", type=int, default=1 << 16)
-    ap.add_argument("--only", nargs="*", help="scene names (default: all)")
-    ap.add_argument("--scenes-only", action="store_true", help="write the glTF files, render nothing")
-    return ap.parse_args()
+from reference_common import accumulate_passes, reference_arguments  # noqa: E402
 
 
 # --help answers before the imports below, which need the venv's packages
-ARGS = arguments() if __name__ == "__main__" else None
+ARGS = reference_arguments(__doc__, "the glTF files") if __name__ == "__main__" else None
 
 import mitsuba as mi  # noqa: E402
 import numpy as np  # noqa: E402

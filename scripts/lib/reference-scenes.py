@@ -15,7 +15,6 @@ Lambertian sphere under scenes/reference/sky.exr), punctual (a point and a spot 
 scenes of the kinds the scale-free ray offset was checked on: on-ground (plastic and metal resting on, and 0.03 above, a 400-wide
 ground under a constant sky) and nave (an interior lit only by emissive windows).
 Run through scripts/reference, which provides mitsuba and numpy."""
-import argparse
 import base64
 import json
 import math
@@ -25,21 +24,11 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from reference_common import accumulate_passes
-
-
-def arguments():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--seconds", type=float, default=60.0, help="render time per scene (default 60)")
-    ap.add_argument("--pass-spp", type=int, default=64)
-    ap.add_argument("--max-spp", type=int, default=1 << 16)
-    ap.add_argument("--only", nargs="*", help="scene names (default: all)")
-    ap.add_argument("--scenes-only", action="store_true", help="write the glTF files and sky.exr, render nothing")
-    return ap.parse_args()
+from reference_common import accumulate_passes, reference_arguments
 
 
 # --help answers before the imports below, which need the venv's packages
-ARGS = arguments() if __name__ == "__main__" else None
+ARGS = reference_arguments(__doc__, "the glTF files and sky.exr") if __name__ == "__main__" else None
 
 import mitsuba as mi  # noqa: E402
 import numpy as np  # noqa: E402

@@ -1,6 +1,7 @@
 """What the reference scripts share: Mitsuba's pass loop (reference-cbox.py, reference-scenes.py),
 the stored references (test/reference/*.json) and how to render the matching image with Cohort's
 CLI (reference-check.py, convergence.py). Imports neither mitsuba nor numpy itself."""
+import argparse
 import json
 import os
 import subprocess
@@ -8,6 +9,18 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 REFERENCES = os.path.join(ROOT, "test", "reference")
+
+
+def reference_arguments(description, written):
+    """The options of the Mitsuba reference generators (reference-scenes.py, reference-materials.py):
+    `written` says what --scenes-only writes."""
+    ap = argparse.ArgumentParser(description=description, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--seconds", type=float, default=60.0, help="render time per scene (default 60)")
+    ap.add_argument("--pass-spp", type=int, default=64)
+    ap.add_argument("--max-spp", type=int, default=1 << 16)
+    ap.add_argument("--only", nargs="*", help="scene names (default: all)")
+    ap.add_argument("--scenes-only", action="store_true", help=f"write {written}, render nothing")
+    return ap.parse_args()
 
 
 def references():
