@@ -58,6 +58,9 @@ void check_material(const SceneMaterial& m, std::size_t index, const std::filesy
                      m.base_color.z));
   if (!finite_and_non_negative(m.emission))
     fail(fmt::format("emission ({}, {}, {}) is negative or not finite", m.emission.x, m.emission.y, m.emission.z));
+  if (!finite_and_non_negative(m.absorption))
+    fail(fmt::format("volume absorption ({}, {}, {}) is negative or not finite", m.absorption.x, m.absorption.y,
+                     m.absorption.z));
   for (const auto& [name, value] : {std::pair{"alpha", m.alpha}, std::pair{"metallic", m.metallic},
                                     std::pair{"roughness", m.roughness}, std::pair{"transmission", m.transmission},
                                     std::pair{"ior", m.ior}})

@@ -38,6 +38,9 @@ struct SceneMaterial {
   float roughness = 1.f;
   float transmission = 0.f;  // KHR_materials_transmission
   float ior = 1.5f;          // KHR_materials_ior
+  // KHR_materials_volume: sigma_a per unit length of the interior, -ln(attenuationColor) /
+  // attenuationDistance per channel (0: no absorption), used where the material transmits
+  glm::vec3 absorption{0.f};
   int base_color_texture = -1;  // index into Scene::textures
   int emission_texture = -1;    // index into Scene::textures (sRGB-encoded); multiplies emission
   int metallic_roughness_texture = -1;  // linear data: B multiplies metallic, G roughness

@@ -4,6 +4,7 @@
 #define COHORT_FEATURE_CONDUCTOR
 #define COHORT_FEATURE_DIELECTRIC
 #define COHORT_FEATURE_PLASTIC
+#define COHORT_FEATURE_VOLUME
 #include "kernels/common/film/film_kernels.h"
 #include "kernels/common/wavefront/naive_kernel.h"
 #include "kernels/common/pth/pth_kernels.h"

@@ -88,8 +88,10 @@ typedef struct Material {
   float normal_scale;                 /* scales the map's x and y */
   float alpha_cutoff;                 /* MAT_ALPHA_MASK: alpha below it is cut out (glTF alphaCutoff) */
   uint32_t pad1;
+  co_float4 absorption; /* rgb sigma_a per unit length of the interior (KHR_materials_volume; 0: none,
+                         * COHORT_FEATURE_VOLUME, shading/medium.h); a unused */
 } Material;
-CO_STATIC_ASSERT(sizeof(Material) == 80, "Material must stay 80 bytes");
+CO_STATIC_ASSERT(sizeof(Material) == 96, "Material must stay 96 bytes");
 
 /* ---- Textures ---------------------------------------------------------------------------------
  * Every texture's texels live in one buffer of RGBA8 words (r in the low byte, as glTF stores

@@ -17,6 +17,9 @@
 #include "common/accel/ray_offset.h"
 #include "common/core/rng.h"
 #include "common/accel/scene_view.h"
+#if defined(COHORT_FEATURE_VOLUME)
+#include "common/shading/medium.h"
+#endif
 
 /* A path between stages: what the megakernel keeps in registers and the wavefront kernels keep
  * in structure-of-arrays buffers. Every method runs these same functions in the same order per
@@ -25,8 +28,9 @@
 #define PATH_TERMINATED 1u  /* finished; its pending shadow ray may still add light */
 
 /* PathState (org, dir, throughput, radiance, prev_pos, prev_bsdf_pdf, segment, status and, with
- * COHORT_FEATURE_ALPHA, alpha_seed: the seed of `dir`'s BLEND decisions, alpha.h) is generated from
- * the path slot's list, PATH_SLOT in common/core/path_slot.h. */
+ * COHORT_FEATURE_ALPHA, alpha_seed: the seed of `dir`'s BLEND decisions, alpha.h; with
+ * COHORT_FEATURE_VOLUME, medium: the absorbing volume `dir` travels in, shading/medium.h) is
+ * generated from the path slot's list, PATH_SLOT in common/core/path_slot.h. */
 
 /* A shadow ray whose `contribution` is added to the path's radiance when nothing occludes it. */
 typedef struct ShadowRay {
@@ -61,6 +65,9 @@ CO_INLINE PathState path_start(const RenderParams* p, uint32_t pixel, uint32_t s
   st.status = PATH_ALIVE;
 #if defined(COHORT_FEATURE_ALPHA)
   st.alpha_seed = alpha_ray_seed(p->seed, pixel, sample, 1u, RNG_ALPHA);
+#endif
+#if defined(COHORT_FEATURE_VOLUME)
+  st.medium = MEDIUM_NONE; /* the camera is outside every volume (docs/bsdf.md, "Volumes") */
 #endif
   return st;
 }
@@ -298,6 +305,12 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
   ShadowRay none;
   none.valid = 0;
   if (hit.triangle == HIT_NONE) {
+#if defined(COHORT_FEATURE_VOLUME)
+    /* an infinite segment: an absorbing channel sends nothing back (only an open volume escapes) */
+    if (st->medium != MEDIUM_NONE)
+      st->throughput = v3_mul(st->throughput, medium_transmittance(v3_from4(s->materials[st->medium - 1u].absorption),
+                                                                   INFINITY));
+#endif
     path_escape(s, p, st);
     st->status = PATH_TERMINATED;
     return none;
@@ -314,6 +327,14 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
   float magnitude;
   co_vec3 pos = triangle_point(p0, p1, p2, hit.u, hit.v, &magnitude);
   float offset = surface_offset(magnitude, triangle_edge_error(p0, p1, p2, cross_n));
+#if defined(COHORT_FEATURE_VOLUME)
+  /* Beer-Lambert over the segment, before the emission at its end: the length from the ray's origin
+   * to the point on the triangle (its barycentrics, which every method and tree agree on bit for bit,
+   * rather than the traversal's t) */
+  if (st->medium != MEDIUM_NONE)
+    st->throughput = v3_mul(st->throughput, medium_transmittance(v3_from4(s->materials[st->medium - 1u].absorption),
+                                                                 v3_length(v3_sub(pos, st->org))));
+#endif
 
   co_vec3 le = emitted_radiance_at(s, m, hit.triangle, hit.u, hit.v, n_geo, v3_neg(st->dir));
   if (v3_max_component(le) > 0.0f) {
@@ -359,6 +380,20 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
 #if defined(COHORT_FEATURE_ALPHA)
     shadow.alpha_seed = alpha_ray_seed(p->seed, pixel, sample, segment, RNG_ALPHA_SHADOW);
 #endif
+#if defined(COHORT_FEATURE_VOLUME)
+    /* A shadow ray that stays inside a volume (from a vertex inside, or through a rough dielectric
+     * into it) counts only if the light is inside too: the boundary occludes any other. Its light
+     * is absorbed over the ray's length (tmax, short of the light by the offset bound; infinite
+     * towards the environment). */
+    if (shadow.valid) {
+      float side_in = -v3_dot(st->dir, n_geo), side_out = v3_dot(shadow.dir, n_geo);
+      uint32_t medium = medium_beyond(st->medium, m, s->triangle_material[hit.triangle],
+                                      (side_in > 0.0f) != (side_out > 0.0f), side_out < 0.0f);
+      if (medium != MEDIUM_NONE)
+        shadow.contribution = v3_mul(shadow.contribution,
+                                     medium_transmittance(v3_from4(s->materials[medium - 1u].absorption), shadow.tmax));
+    }
+#endif
   }
   if ((p->flags & RENDER_FLAG_RUSSIAN_ROULETTE) && segment >= p->rr_depth) {
     Rng rr_rng = rng_make(p->seed, pixel, sample, segment, RNG_ROULETTE);
@@ -385,6 +420,11 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
   }
 #endif
   st->throughput = next_throughput;
+#if defined(COHORT_FEATURE_VOLUME)
+  /* a refraction enters or leaves the material's volume; wo.z has the geometric normal's sign
+   * (normal maps: checked above) */
+  st->medium = medium_beyond(st->medium, m, s->triangle_material[hit.triangle], (bs.flags & BSDF_TRANSMISSION) != 0u, bs.wo.z < 0.0f);
+#endif
   st->prev_bsdf_pdf = (bs.flags & BSDF_DELTA) ? 0.0f : bs.pdf; /* 0: the next emitter hit is not MIS-weighted */
   /* offset to the side the new direction leaves from, not the side of the incoming ray; the MIS
    * weight of an emitter this ray hits measures the light pdf from this origin, as NEE does */

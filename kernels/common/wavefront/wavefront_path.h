@@ -28,6 +28,16 @@
 #else
 #define CO_SLOT_LOAD_VEC3_SEED(buf, f, wf) CO_SLOT_LOAD_VEC3(buf, f, wf)
 #endif
+#if defined(COHORT_FEATURE_VOLUME)
+#define CO_SLOT_LOAD_VEC3_MEDIUM(buf, f, wf)                                                                \
+  {                                                                                                        \
+    co_float4 v = path_##buf[slot];                                                                        \
+    st.f = v3_from4(v);                                                                                    \
+    st.wf = (uint32_t)v.w;                                                                                  \
+  }
+#else
+#define CO_SLOT_LOAD_VEC3_MEDIUM(buf, f, wf) CO_SLOT_LOAD_VEC3(buf, f, wf)
+#endif
 #define CO_SLOT_LOAD_SCALAR(buf, f, wf) st.f = path_##buf[slot];
 #define CO_SLOT_LOAD_SLOT_ONLY(buf, f, wf)
 
@@ -46,6 +56,12 @@ CO_INLINE co_float4 to4(co_vec3 v, float w) { return co_make_float4(v.x, v.y, v.
 #define CO_SLOT_STORE_VEC3_SEED(buf, f, wf) path_##buf[slot] = to4(st->f, alpha_seed_to_float(st->wf));
 #else
 #define CO_SLOT_STORE_VEC3_SEED(buf, f, wf) CO_SLOT_STORE_VEC3(buf, f, wf)
+#endif
+#if defined(COHORT_FEATURE_VOLUME)
+/* the medium, 1 + a material index below 2^24 (device_scene.cpp checks), is exact as a float */
+#define CO_SLOT_STORE_VEC3_MEDIUM(buf, f, wf) path_##buf[slot] = to4(st->f, (float)st->wf);
+#else
+#define CO_SLOT_STORE_VEC3_MEDIUM(buf, f, wf) CO_SLOT_STORE_VEC3(buf, f, wf)
 #endif
 #define CO_SLOT_STORE_SCALAR(buf, f, wf) path_##buf[slot] = st->f;
 #define CO_SLOT_STORE_SLOT_ONLY(buf, f, wf)

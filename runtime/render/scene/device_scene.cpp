@@ -68,6 +68,7 @@ Material to_device_material(const SceneMaterial& m) {
   if (m.alpha_mode == AlphaMode::mask) d.flags |= MAT_ALPHA_MASK;
   if (m.alpha_mode == AlphaMode::blend) d.flags |= MAT_ALPHA_BLEND;
   d.alpha_cutoff = m.alpha_cutoff;
+  d.absorption = to_float4(m.absorption);
   return d;
 }
 
@@ -84,6 +85,7 @@ std::vector<std::string> SceneFeatures::names() const {
   if (punctual) out.push_back("punctual");
   if (alpha) out.push_back("alpha");
   if (texture_transform) out.push_back("texture_transform");
+  if (volume) out.push_back("volume");
   return out;
 }
 
@@ -114,6 +116,8 @@ SceneFeatures material_features(const Material& m) {
     const bool opaque = !(m.transmission >= 1.f) || (m.transmission == 1.f && met > 0.f);
     f.plastic = opaque && (r < 1.f || mr_texture);
   }
+  // a path enters a volume only by refracting through the dielectric
+  f.volume = f.dielectric && (m.absorption.x > 0.f || m.absorption.y > 0.f || m.absorption.z > 0.f);
   return f;
 }
 
@@ -293,8 +297,13 @@ SceneTables make_scene_tables(const Scene& scene, const KdTree& tree) {
     t.features.conductor |= f.conductor;
     t.features.dielectric |= f.dielectric;
     t.features.plastic |= f.plastic;
+    t.features.volume |= f.volume;
     t.features.alpha |= (t.materials[i].flags & (MAT_ALPHA_MASK | MAT_ALPHA_BLEND)) != 0u;
   }
+  // the path slot keeps the medium, 1 + a material index, as a float (wavefront_path.h): exact below 2^24
+  if (t.features.volume && t.materials.size() >= (std::size_t{1} << 24) - 1)
+    throw InputError(fmt::format("{} materials: volumes (KHR_materials_volume) need fewer than 2^24 - 1",
+                                 t.materials.size()));
   t.emitters = build_emitter_table(tree, t.materials, t.triangle_material);
   t.punctual = make_punctual_table(scene.lights);
   t.features.punctual = !t.punctual.lights.empty();

@@ -41,6 +41,7 @@ struct SceneFeatures {
   bool punctual = false;  // KHR_lights_punctual point or spot lights
   bool alpha = false;     // some used material is alphaMode MASK or BLEND: every traversal tests alpha
   bool texture_transform = false;  // some uploaded texture slot has a KHR_texture_transform
+  bool volume = false;  // some used material can refract into an absorbing interior (KHR_materials_volume)
 
   std::vector<std::string> names() const;  // "textures", "conductor", ...; empty for diffuse only
   std::string build_options() const;       // "-DCOHORT_FEATURE_TEXTURES ..."; empty for diffuse only
