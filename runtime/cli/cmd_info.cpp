@@ -55,11 +55,16 @@ int run_info(const std::filesystem::path& path, const std::string& tree) {
     const std::string alpha = m.alpha_mode == AlphaMode::mask    ? fmt::format(", alphaMode MASK (cutoff {:.3g})", m.alpha_cutoff)
                               : m.alpha_mode == AlphaMode::blend ? fmt::format(", alphaMode BLEND (alpha {:.3g})", m.alpha)
                                                                  : std::string();
+    const std::string volume =
+        m.absorption == glm::vec3(0.f)
+            ? std::string()
+            : fmt::format(", volume absorbing ({:.3g}, {:.3g}, {:.3g}) per unit length{}", m.absorption.x, m.absorption.y,
+                          m.absorption.z, m.transmission > 0.f ? "" : " (not reached: no transmission)");
     fmt::print("  [{}] {}: base colour ({:.3g}, {:.3g}, {:.3g}), metallic {:.3g}, roughness {:.3g}, emission ({:.3g}, "
-               "{:.3g}, {:.3g}){}{}\n",
+               "{:.3g}, {:.3g}){}{}{}\n",
                i, m.name.empty() ? "(unnamed)" : m.name, m.base_color.x, m.base_color.y, m.base_color.z, m.metallic,
                m.roughness, m.emission.x, m.emission.y, m.emission.z, m.base_color_texture >= 0 ? ", textured" : "",
-               alpha);
+               alpha, volume);
   }
   fmt::print("textures: {}\n", p.scene.textures.size());
   for (std::size_t i = 0; i < p.scene.textures.size(); ++i) fmt::print("  [{}] {}\n", i, describe(p.scene.textures[i]));

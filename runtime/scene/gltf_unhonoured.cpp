@@ -19,7 +19,8 @@ namespace {
 constexpr std::array kImplemented = {
     std::string_view("KHR_materials_emissive_strength"), std::string_view("KHR_materials_transmission"),
     std::string_view("KHR_materials_ior"), std::string_view("KHR_mesh_quantization"),
-    std::string_view("KHR_lights_punctual"), std::string_view("KHR_texture_transform")};
+    std::string_view("KHR_lights_punctual"), std::string_view("KHR_texture_transform"),
+    std::string_view("KHR_materials_volume")};
 
 // A texture reference of a material (glTF's textureInfo and its normal and occlusion variants), with
 // the coordinate set it reads (KHR_texture_transform's texCoord replaces the reference's own).
@@ -111,6 +112,16 @@ void report_unhonoured(const tinygltf::Model& model, const std::string& file, Sc
     scene.notes.push_back(fmt::format("{}: occlusionTexture of {} not used: a path tracer traces the occlusion "
                                       "it approximates",
                                       file, materials(static_cast<std::size_t>(occluded))));
+
+  const auto thick = std::count_if(model.materials.begin(), model.materials.end(), [](const tinygltf::Material& m) {
+    const auto it = m.extensions.find("KHR_materials_volume");
+    return it != m.extensions.end() && it->second.IsObject() &&
+           (it->second.Has("thicknessFactor") || it->second.Has("thicknessTexture"));
+  });
+  if (thick > 0)
+    scene.notes.push_back(fmt::format("{}: KHR_materials_volume thicknessFactor and thicknessTexture of {} not "
+                                      "used: a path tracer measures the distance inside on the geometry",
+                                      file, materials(static_cast<std::size_t>(thick))));
 }
 
 void report_missing_coordinates(const std::string& file, Scene& scene) {

@@ -1,6 +1,8 @@
 // glTF material inputs beyond the factors: samplers, the metallic-roughness texture, TEXCOORD_1 and
 // COLOR_0 as the loader reads them.
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -160,6 +162,52 @@ TEST(GltfTextureTransform, IsReadPerTextureAndChecked) {
   test::expect_input_error(with({{"scale", {1, "x"}}}), "scale is not a finite number");
   test::expect_input_error(with({{"rotation", "half"}}), "rotation is not a finite number");
   test::expect_input_error(with({{"texCoord", -1}}), "texCoord is not an integer >= 0");
+}
+
+
+// KHR_materials_volume: sigma_a = -ln(attenuationColor) / attenuationDistance per channel; an absent
+// distance is infinite (no absorption); a colour channel of 0 clamps to the largest float; thickness
+// is checked and left out with a note; wrong values name the file and the material.
+TEST(GltfVolume, AbsorptionIsReadAndChecked) {
+  TempDir dir;
+  const auto with = [&](const json& volume) {
+    const json material = {{"name", "glass"},
+                           {"extensions",
+                            {{"KHR_materials_transmission", {{"transmissionFactor", 1}}},
+                             {"KHR_materials_volume", volume}}}};
+    GltfWriter g = textured_triangle(dir, material, json::array({{{"source", 0}}}), nullptr);
+    g.doc()["extensionsUsed"] = g.doc()["extensionsRequired"] = {"KHR_materials_transmission", "KHR_materials_volume"};
+    return g.write_gltf(dir.path(), "volume");
+  };
+  const Scene s = load_scene(with({{"attenuationColor", {0.5, 1.0, 0.25}}, {"attenuationDistance", 2.0}}));
+  const glm::vec3 a = s.materials.at(0).absorption;
+  EXPECT_EQ(a.x, static_cast<float>(std::log(2.0) / 2.0));
+  EXPECT_EQ(a.y, 0.f);
+  EXPECT_EQ(a.z, static_cast<float>(std::log(4.0) / 2.0));
+  EXPECT_EQ(material_warnings(s), "") << "honoured, and accepted as required";
+  EXPECT_TRUE(s.notes.empty());
+  // no distance: infinite, nothing absorbed whatever the colour; no extension at all: the same
+  EXPECT_EQ(load_scene(with({{"attenuationColor", {0.5, 0.5, 0.5}}})).materials[0].absorption, glm::vec3(0.f));
+  EXPECT_EQ(load_scene(with(json::object())).materials[0].absorption, glm::vec3(0.f));
+  // a channel of 0 absorbs everything: the largest finite sigma, so sigma * 0 stays 0
+  EXPECT_EQ(load_scene(with({{"attenuationColor", {0, 1, 1}}, {"attenuationDistance", 1}})).materials[0].absorption.x,
+            std::numeric_limits<float>::max());
+  // thickness is read, checked and not used, which a note says once
+  const Scene thick = load_scene(with({{"thicknessFactor", 0.3}, {"thicknessTexture", {{"index", 0}, {"texCoord", 1}}},
+                                       {"attenuationDistance", 1}}));
+  EXPECT_EQ(thick.materials[0].absorption, glm::vec3(0.f));  // a white colour absorbs nothing
+  ASSERT_EQ(thick.notes.size(), 1u);
+  EXPECT_NE(thick.notes[0].find("KHR_materials_volume thicknessFactor and thicknessTexture of 1 material not used"),
+            std::string::npos) << thick.notes[0];
+  test::expect_input_error(with({{"attenuationDistance", -1}}),
+                           "material 0 'glass': KHR_materials_volume attenuationDistance -1 is not positive");
+  test::expect_input_error(with({{"attenuationDistance", 0}}), "attenuationDistance 0 is not positive");
+  test::expect_input_error(with({{"attenuationDistance", "far"}}), "attenuationDistance is not a finite number");
+  test::expect_input_error(with({{"attenuationColor", {0.5, 1.5, 0.5}}}), "attenuationColor (0.5, 1.5, 0.5) is outside [0, 1]");
+  test::expect_input_error(with({{"attenuationColor", {0.5, -0.1, 0.5}}}), "is outside [0, 1]");
+  test::expect_input_error(with({{"attenuationColor", {0.5, 0.5}}}), "attenuationColor is not an array of three numbers");
+  test::expect_input_error(with({{"thicknessFactor", -0.5}}), "thicknessFactor is negative");
+  test::expect_input_error(with({{"thicknessTexture", {{"index", 3}}}}), "thicknessTexture does not name an existing texture");
 }
 
 }  // namespace

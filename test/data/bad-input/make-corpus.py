@@ -369,6 +369,22 @@ def make_gltf():
     g.doc["materials"][1]["extensions"] = {"KHR_materials_emissive_strength": {"emissiveStrength": -3}}
     bad("gltf-emissive-strength-negative.gltf", g.gltf(), "emission")
 
+    # KHR_materials_volume outside its schema: the loader names the material and the value.
+    def volume_gltf(volume):
+        g = lit_gltf()
+        g.doc["materials"][0]["extensions"] = {"KHR_materials_transmission": {"transmissionFactor": 1.0},
+                                               "KHR_materials_volume": volume}
+        g.doc["extensionsUsed"] = g.doc["extensionsRequired"] = ["KHR_materials_transmission", "KHR_materials_volume"]
+        return g.gltf()
+    bad("gltf-volume-distance-negative.gltf", volume_gltf({"attenuationDistance": -2.0}),
+        "material 0: KHR_materials_volume attenuationDistance -2 is not positive")
+    bad("gltf-volume-colour-above-1.gltf",
+        volume_gltf({"attenuationColor": [0.5, 1.2, 0.5], "attenuationDistance": 1.0}),
+        "attenuationColor (0.5, 1.2, 0.5) is outside [0, 1]")
+    bad("gltf-volume-colour-string.gltf", volume_gltf({"attenuationColor": "red"}),
+        "attenuationColor is not an array of three numbers")
+    bad("gltf-volume-thickness-negative.gltf", volume_gltf({"thicknessFactor": -1.0}), "thicknessFactor is negative")
+
     g = Gltf()
     g.node({"mesh": g.mesh([[(0, 0, 0), (1, 0, 0), (2, 0, 0)], [(0, 1, 0), (0, 1, 0), (0, 1, 0)]],
                            g.material((0, 0, 0), (4.0, 4.0, 4.0)))})
