@@ -22,6 +22,9 @@ decodes them (sRGB for colour, byte / 255 for data), so the filters and wrap mod
                  ramp (stochastic transparency in Cohort); Mitsuba: mask with that alpha as opacity
   texture-transform  the sampler-wrap texture (LINEAR, REPEAT) on one panel through KHR_texture_transform
                  (offset, rotation and scale); Mitsuba: the bitmap's to_uv with glTF's T * R * S
+  glass-volume   a closed block of smooth glass (IOR 1.5) whose interior absorbs a colour
+                 (KHR_materials_volume attenuationColor and attenuationDistance); Mitsuba: volpath with
+                 a dielectric and an interior homogeneous medium of albedo 0 and sigma_t = sigma_a
   (Mitsuba's path integrator counts a pass through a mask as a path segment where Cohort's does not,
   and its shadow rays stop at masks: the alpha scenes use max_depth 24, where both have converged to
   the unbounded answer of this open room)
@@ -149,6 +152,20 @@ def textured_diffuse(texels, sampler):
     return {"kind": "textured_diffuse", "texels": texels, "sampler": sampler}
 
 
+def glass_volume(colour, distance, ior):
+    """Smooth glass whose interior absorbs sigma_a = -ln(colour) / distance per channel (Beer-Lambert)."""
+    sigma = [-math.log(c) / distance for c in colour]
+    return {"gltf": {"baseColorFactor": [1.0, 1.0, 1.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.0},
+            "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0},
+                           "KHR_materials_ior": {"ior": ior},
+                           "KHR_materials_volume": {"attenuationColor": list(colour),
+                                                    "attenuationDistance": distance, "thicknessFactor": 1.0}},
+            "mitsuba": {"type": "dielectric", "int_ior": ior, "ext_ior": 1.0},
+            # Mitsuba's rgb value is a reflectance in [0, 1]: sigma_t = scale * a colour of peak 1
+            "interior": {"type": "homogeneous", "albedo": 0.0, "sigma_t": rs.rgb_value([v / max(sigma) for v in sigma]),
+                         "scale": max(sigma)}}
+
+
 def room_with(panels, light=True):
     shapes = [("ground", (*rs.quad([-4, 0, 4], [8, 0, 0], [0, 0, -8]), None), rs.diffuse([0.5, 0.5, 0.5])),
               ("wall", (*rs.quad([-4, 0, -3], [8, 0, 0], [0, 5, 0]), None), rs.diffuse([0.2, 0.4, 0.7]))]
@@ -165,6 +182,9 @@ def scene_list():
     base, mr = checker_mr()
     wrap = wrap_texture()
     return {
+        "glass-volume": {"environment": [0.1, 0.1, 0.1], "integrator": "volpath", "shapes": room_with([
+            ("block", (*rs.cuboid([-0.9, 0.02, -0.5], [0.9, 1.3, 0.5]), None),
+             glass_volume([0.85, 0.55, 0.25], 0.6, 1.5))])},
         "texture-transform": {"environment": [0.1, 0.1, 0.1], "shapes": room_with([
             ("panel", panel([-1.2, 0.2, 0.0], [2.4, 0, 0], [0, 2.0, -0.6]),
              dict(textured_diffuse(wrap, {"magFilter": LINEAR, "minFilter": LINEAR}),
@@ -259,11 +279,14 @@ def write_gltf(path, desc):
             attributes["TANGENT"] = add_accessor(np.tile(np.append(t, 1.0), (len(p), 1)), "VEC4")
         else:
             m = {"pbrMetallicRoughness": mat["gltf"]}
+            if "extensions" in mat:
+                m["extensions"] = dict(mat["extensions"])
+                doc["extensionsUsed"] += [e for e in mat["extensions"] if e not in doc["extensionsUsed"]]
         m["name"] = name
         if "emission" in mat:
             peak = max(mat["emission"])
             m["emissiveFactor"] = [c / peak for c in mat["emission"]]
-            m["extensions"] = {"KHR_materials_emissive_strength": {"emissiveStrength": peak}}
+            m.setdefault("extensions", {})["KHR_materials_emissive_strength"] = {"emissiveStrength": peak}
         doc["materials"].append(m)
         iv = add_view(f.astype(np.uint32).tobytes(), 34963)
         doc["accessors"].append({"bufferView": iv, "componentType": 5125, "count": int(f.size), "type": "SCALAR"})
@@ -355,7 +378,8 @@ def mitsuba_bsdf(mat):
 
 def mitsuba_scene(desc, tmp):
     camera = rs.CAMERA
-    scene = {"type": "scene", "integrator": {"type": "path", "max_depth": desc.get("max_depth", rs.MAX_DEPTH)},
+    scene = {"type": "scene", "integrator": {"type": desc.get("integrator", "path"),
+                                             "max_depth": desc.get("max_depth", rs.MAX_DEPTH)},
              "sensor": {"type": "perspective", "fov": camera["fov"], "fov_axis": "y", "near_clip": 0.01,
                         "to_world": rs.look_at(camera["eye"], camera["target"], camera["up"]),
                         "sampler": {"type": "independent"},
@@ -368,6 +392,8 @@ def mitsuba_scene(desc, tmp):
         shape = {"type": "ply", "filename": path, "face_normals": True, "bsdf": mitsuba_bsdf(mat)}
         if "emission" in mat:
             shape["emitter"] = {"type": "area", "radiance": rs.rgb_value(mat["emission"])}
+        if "interior" in mat:
+            shape["interior"] = mat["interior"]
         scene[name] = shape
     return mi.load_dict(scene)
 
@@ -382,7 +408,7 @@ def render(name, desc, args):
     out = os.path.join(rs.REFERENCES, f"reference-{name}.exr")
     mi.Bitmap(mean, pixel_format=mi.Bitmap.PixelFormat.RGB).write(out)
     meta = {"scene": f"scenes/reference/{name}.gltf", "mitsuba_version": mi.__version__, "variant": "scalar_rgb",
-            "integrator": "path", "max_depth": desc.get("max_depth", rs.MAX_DEPTH), "resolution": [rs.RES, rs.RES], "spp": spp,
+            "integrator": desc.get("integrator", "path"), "max_depth": desc.get("max_depth", rs.MAX_DEPTH), "resolution": [rs.RES, rs.RES], "spp": spp,
             "passes": passes, "seeds": f"0..{passes - 1} (one per pass of {args.pass_spp} spp)",
             "sampler": "independent", "reconstruction_filter": "box", "render_seconds": round(elapsed, 1),
             "machine": f"{platform.machine()}, {os.cpu_count()} logical CPUs",
