@@ -49,10 +49,17 @@ nlohmann::json rate_json(const RateFigure& f, double scale) {
   return {{"median", f.median() * scale}, {"best", f.best() * scale}, {"runs", runs}};
 }
 
+nlohmann::json sort_json(const SortSettings& s) {
+  return {{"code", s.code},
+          {"pth_levels", s.pth_levels},
+          {"sort_from_bounce", s.sort_from_bounce},
+          {"sort_payload", s.sort_payload}};
+}
+
 nlohmann::json coherence_json(const CoherenceFigures& c) {
-  return {{"code", c.code_layout},         {"key_bits", c.key_bits},           {"sort_from_bounce", c.sort_from_bounce},
-          {"pth_levels", c.pth_levels},    {"subtree_nodes", c.subtree_nodes}, {"speculative", c.speculative},
-          {"sort_payload", c.sort_payload}};
+  nlohmann::json j = sort_json(c.sort);
+  j.update({{"key_bits", c.key_bits}, {"subtree_nodes", c.subtree_nodes}, {"speculative", c.speculative}});
+  return j;
 }
 
 nlohmann::json bvh4_json(const Bvh4Stats& b) {
@@ -97,11 +104,9 @@ nlohmann::json bench_json(const Device& d, const BenchOptions& o, const std::vec
                  {"platform", device.platform_name}, {"vendor", device.vendor},
                  {"version", device.version}, {"driver", device.driver_version}, {"is_gpu", device.is_gpu},
                  {"compute_units", device.compute_units}};
-  j["settings"] = {{"trace_res", o.trace_res}, {"res", o.res}, {"spp", o.spp}, {"reps", o.reps},
-                   {"methods", o.methods}, {"code", o.code}, {"pth_levels", o.pth_levels},
-                   {"sort_from_bounce", o.sort_from_bounce},
-                   {"sort_payload", o.sort_payload},
-                   {"workload", "white sky (docs/bench-protocol.md)"}, {"max_depth", 5}};
+  j["settings"] = sort_json(o.sort);
+  j["settings"].update({{"trace_res", o.trace_res}, {"res", o.res}, {"spp", o.spp}, {"reps", o.reps},
+                        {"methods", o.methods}, {"workload", "white sky (docs/bench-protocol.md)"}, {"max_depth", 5}});
   j["scenes"] = scenes_json(scenes);
   return j;
 }

@@ -96,10 +96,7 @@ SceneFigures bench_scene(const Device& cl, const ProgramCache& cache, const std:
   apply_white_sky(prepared, settings);
   settings.width = settings.height = options.res;
   settings.spp = options.spp;
-  settings.code = options.code;
-  settings.pth_levels = options.pth_levels;
-  settings.sort_from_bounce = options.sort_from_bounce;
-  settings.sort_payload = options.sort_payload;
+  settings.sort = options.sort;
 
   SceneFigures out;
   out.path = path;

@@ -41,10 +41,7 @@ struct BenchOptions {
   unsigned reps = 3;
   bool traversal = true;              // the primary and diffuse workloads
   std::vector<std::string> methods;   // white-sky path tracing; empty: none
-  std::string code;                   // coherence code of hash/pth; empty: default
-  std::uint32_t pth_levels = 0;       // 0: chosen from the device and the tree
-  std::uint32_t sort_from_bounce = RenderSettings{}.sort_from_bounce;  // hash/pth, as render's
-  std::string sort_payload = RenderSettings{}.sort_payload;            // hash/pth, as render's
+  SortSettings sort;                  // hash/pth, as render's
   std::string tree = "auto";          // tree_options: the device's tree unless deep or compact
 };
 

@@ -164,10 +164,7 @@ int run_bench(const BenchCommand& cmd) {
   options.reps = cmd.reps;
   options.traversal = !cmd.no_traversal;
   options.methods = bench_methods(cmd.methods);
-  options.code = cmd.code;
-  options.pth_levels = cmd.pth_levels;
-  options.sort_from_bounce = cmd.sort_from_bounce;
-  options.sort_payload = cmd.sort_payload;
+  options.sort = cmd.sort;
   options.tree = cmd.tree;
   const std::vector<BenchView> views = bench_views(cmd);
   const std::unique_ptr<Device> opened = open_device(parse_backend(cmd.backend), cmd.device);

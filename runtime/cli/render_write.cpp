@@ -49,7 +49,7 @@ void print_details(const PreparedRender& render, const RenderOutcome& outcome) {
                result.simd_efficiency);
   if (const auto& c = result.coherence)
     fmt::print("coherence code: {} ({} bits), sorted from bounce {}; PTH subtree {} levels, {} nodes\n",
-               c->code_layout, c->key_bits, c->sort_from_bounce, c->pth_levels, c->subtree_nodes);
+               c->sort.code, c->key_bits, c->sort.sort_from_bounce, c->sort.pth_levels, c->subtree_nodes);
   if (!result.auto_choice.method.empty()) {
     auto rates = [](const std::map<std::string, double>& by_method) {
       std::string text;
