@@ -94,13 +94,13 @@ nlohmann::json scenes_json(const std::vector<SceneFigures>& scenes, const std::s
   return list;
 }
 
-nlohmann::json bench_json(const Device& d, const BenchOptions& o, const std::vector<SceneFigures>& scenes) {
+nlohmann::json bench_json(const BenchDevice& d, const BenchOptions& o, const std::vector<SceneFigures>& scenes) {
   const BuildInfo b = build_info();
-  const DeviceInfo& device = d.info();
+  const DeviceInfo& device = d.info;
   nlohmann::json j;
   j["cohort"] = {{"git_commit", b.git_commit}, {"build_type", b.build_type}, {"compiler", b.compiler},
-                 {"cxx_flags", b.cxx_flags}, {"kernel_build_options", d.compile_options()}};
-  j["device"] = {{"name", device.name}, {"backend", backend_name(d.backend())},
+                 {"cxx_flags", b.cxx_flags}, {"kernel_build_options", d.compile_options}};
+  j["device"] = {{"name", device.name}, {"backend", backend_name(d.backend)},
                  {"platform", device.platform_name}, {"vendor", device.vendor},
                  {"version", device.version}, {"driver", device.driver_version}, {"is_gpu", device.is_gpu},
                  {"compute_units", device.compute_units}};

@@ -21,7 +21,7 @@ nlohmann::json sort_json(const SortSettings& s);
 // key_bits, subtree_nodes, speculative.
 nlohmann::json coherence_json(const CoherenceFigures& c);
 nlohmann::json scenes_json(const std::vector<SceneFigures>& scenes, const std::string& accel_key = "kdtree");
-nlohmann::json bench_json(const Device& device, const BenchOptions& options,
+nlohmann::json bench_json(const BenchDevice& device, const BenchOptions& options,
                           const std::vector<SceneFigures>& scenes);
 
 }  // namespace cohort

@@ -86,6 +86,18 @@ DevicePool::DevicePool(const std::vector<DeviceInfo>& devices, const DeviceOpene
   wait_all();
 }
 
+DevicePool::DevicePool(std::size_t count, const DeviceOpener& open) : runs_(count) {
+  for (std::size_t i = 0; i < count; ++i) workers_.push_back(std::make_unique<Worker>(open, i));
+  wait_all();
+  for (std::size_t i = 0; i < count; ++i) runs_[i].device = workers_[i]->device->info();
+}
+
+std::vector<DeviceInfo> DevicePool::infos() const {
+  std::vector<DeviceInfo> out;
+  for (const auto& run : runs_) out.push_back(run.device);
+  return out;
+}
+
 void DevicePool::wait_all() {
   std::exception_ptr first;
   for (auto& w : workers_)
@@ -126,8 +138,24 @@ std::vector<DeviceRun> DevicePool::join() {
 void DevicePool::run_on(std::size_t index, const PreparedScene& scene,
                         const std::function<void(const Device&, const DeviceScene&)>& task) {
   Worker& w = *workers_.at(index);
-  w.post([&w, &scene, &task] { task(*w.device, w.scene_for(scene)); });
+  run_on(index, [&w, &scene, &task](const Device& device) { task(device, w.scene_for(scene)); });
+}
+
+void DevicePool::run_on(std::size_t index, const std::function<void(const Device&)>& task) {
+  Worker& w = *workers_.at(index);
+  w.post([&w, &task] { task(*w.device); });
   if (auto failure = w.wait()) std::rethrow_exception(failure);
+}
+
+void DevicePool::drop_scenes() {
+  for (auto& w : workers_) {
+    Worker& worker = *w;
+    worker.post([&worker] {
+      worker.uploaded.reset();
+      worker.uploaded_scene = nullptr;
+    });
+  }
+  wait_all();
 }
 
 DeviceWorkers::DeviceWorkers(DevicePool& pool, const ProgramCache& cache, const PreparedScene& scene,

@@ -32,6 +32,12 @@ OpenedDevices open_render_devices(const RenderInput& input, int local_rank) {
   return {std::move(devices), std::move(pool)};
 }
 
+OpenedDevices open_one_device(Backend backend, const std::string& spec) {
+  // opened on the pool's thread only (a CUDA context is current there); its info comes from there
+  auto pool = std::make_shared<DevicePool>(1, [backend, spec](std::size_t) { return open_device(backend, spec); });
+  return {pool->infos(), std::move(pool)};
+}
+
 PreparedScene build_render_trees(const RenderInput& input, const std::vector<DeviceInfo>& devices,
                                  const std::function<PreparedScene(const TreeChoice&)>& build) {
   // what rays are traced through (tree_options: the BVH unless a tree budget or speculative traversal

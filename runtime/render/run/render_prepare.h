@@ -24,6 +24,10 @@ struct OpenedDevices {
 // under MPI (select_devices).
 OpenedDevices open_render_devices(const RenderInput& input, int local_rank);
 
+// One device, as open_device chooses it from `spec` (the default device, an index or a name
+// substring; its support checked), open in a pool: what `cohort bench` measures on.
+OpenedDevices open_one_device(Backend backend, const std::string& spec);
+
 // The scene as this process renders it and the devices that render it.
 struct PreparedRender {
   RenderInput input;  // settings as the scene set them (white sky)
