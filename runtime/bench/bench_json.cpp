@@ -11,19 +11,20 @@ nlohmann::json trace_json(const TraceFigures& f) {
   return {{"rays", f.rays}, {"hits", f.hits}, {"mrays_per_second", rate_json(f.rays_per_second)}};
 }
 
-nlohmann::json method_json(const MethodFigures& m) {
+nlohmann::json method_json(const MethodFigures& f) {
+  const RenderResult& m = f.median;
   nlohmann::json j = {{"rays", m.rays},
-                      {"mrays_per_second", rate_json(m.rays_per_second)},
-                      {"msamples_per_second", rate_json(m.samples_per_second)},
-                      {"msamples_per_cpu_second", rate_json(m.samples_per_cpu_second)},
+                      {"mrays_per_second", rate_json(f.rays_per_second)},
+                      {"msamples_per_second", rate_json(f.samples_per_second)},
+                      {"msamples_per_cpu_second", rate_json(f.samples_per_cpu_second)},
                       {"simd_efficiency", m.simd_efficiency},
                       {"render_seconds", m.render_seconds},
-                      {"breakdown_seconds", m.breakdown},
+                      {"breakdown_seconds", f.breakdown},
                       {"kernel_seconds", m.kernel_seconds},
-                      {"pass_seconds", {{"median", m.pass_seconds_median}, {"max", m.pass_seconds_max}}},
-                      {"max_nodes_per_ray", m.max_nodes_per_ray}};
+                      {"pass_seconds", {{"median", f.pass_seconds_median}, {"max", f.pass_seconds_max}}},
+                      {"max_nodes_per_ray", f.max_nodes_per_ray}};
   if (m.wavefront.slots) j["wavefront_size"] = m.wavefront.slots;
-  if (!m.auto_pick.empty()) j["auto_pick"] = m.auto_pick;
+  if (!m.auto_choice.method.empty()) j["auto_pick"] = m.auto_choice.method;
   if (m.coherence) j["coherence"] = coherence_json(*m.coherence);
   return j;
 }

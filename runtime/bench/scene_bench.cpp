@@ -79,15 +79,8 @@ MethodFigures bench_method(PreparedRender& render, const RenderTeam& team, const
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(),
             [&](std::size_t a, std::size_t b) { return f.rays_per_second.runs[a] < f.rays_per_second.runs[b]; });
-  const RenderResult& m = runs[order[order.size() / 2]];
-  f.rays = m.rays;
-  f.simd_efficiency = m.simd_efficiency;
-  f.wavefront = m.wavefront;
-  f.coherence = m.coherence;
-  f.auto_pick = m.auto_choice.method;
-  f.kernel_seconds = m.kernel_seconds;
-  f.breakdown = time_breakdown(m.kernel_seconds);
-  f.render_seconds = m.render_seconds;
+  f.median = std::move(runs[order[order.size() / 2]]);
+  f.breakdown = time_breakdown(f.median.kernel_seconds);
   f.pass_seconds_median = median(pass_seconds);
   if (!pass_seconds.empty()) f.pass_seconds_max = *std::max_element(pass_seconds.begin(), pass_seconds.end());
   return f;

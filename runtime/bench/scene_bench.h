@@ -53,15 +53,10 @@ struct MethodFigures {
   // `cohort render`, render_run.h; the scene uploaded before it): on a CPU device, a figure that
   // other programs on a loaded machine disturb far less than wall time
   RateFigure samples_per_cpu_second;
-  std::uint64_t rays = 0;         // per render
-  double simd_efficiency = 0;     // wavefront methods: traversal, mean over max steps per 32 rays
-  WavefrontFigures wavefront;                 // wavefront methods
-  std::optional<CoherenceFigures> coherence;  // hash and pth
-  std::string auto_pick;                      // auto: the method its probe chose
-  // device seconds per stage (time_breakdown) and per kernel, of the repetition with the median rate
-  std::map<std::string, double> breakdown;
-  std::map<std::string, double> kernel_seconds;
-  double render_seconds = 0;      // of the same repetition
+  // the repetition with the median rate, its figures whole (its image dropped): rays, kernel
+  // seconds, SIMD efficiency, the wavefront pool, the sort, auto's pick, the render's seconds
+  RenderResult median;
+  std::map<std::string, double> breakdown;  // device seconds per stage of it (time_breakdown)
   // device time per pass over every repetition (stragglers: a max far above the median), and the
   // most KD-tree nodes one ray visited
   double pass_seconds_median = 0, pass_seconds_max = 0;

@@ -75,7 +75,7 @@ void print_view(const SceneFigures& s, const ViewFigures& v) {
       return t * 1e3;
     };
     fmt::print("  | {} | {} | {:.3f} | {:.3f} | {:.1f} / {:.1f} / {:.1f} / {:.1f} / {:.1f} / {:.1f} / {:.1f} |\n",
-               m.method, mrays(m.rays_per_second), m.samples_per_second.median() * 1e-6, m.simd_efficiency,
+               m.method, mrays(m.rays_per_second), m.samples_per_second.median() * 1e-6, m.median.simd_efficiency,
                stage("pth walk", "hash codes"), stage("sort"), stage("resume traversal"),
                stage("traversal", "megakernel"), stage("shadow rays"), stage("shading"), stage("other"));
   }
@@ -99,7 +99,7 @@ void print_view(const SceneFigures& s, const ViewFigures& v) {
     for (const MethodFigures& m : v.methods)
       if (m.method != "auto" && (!winner || m.rays_per_second.median() > winner->rays_per_second.median())) winner = &m;
     if (winner)
-      fmt::print("  auto picked {} (probe included: {:.2f}x the fastest method by name, {})\n", automatic->auto_pick,
+      fmt::print("  auto picked {} (probe included: {:.2f}x the fastest method by name, {})\n", automatic->median.auto_choice.method,
                  automatic->rays_per_second.median() / winner->rays_per_second.median(), winner->method);
   }
 }

@@ -27,13 +27,23 @@ struct Progress {
   double seconds = 0;
 };
 
-// One bounce of a wavefront method (one iteration of its loop), summed over passes.
+// One bounce of a wavefront method (one iteration of its loop), summed over passes and devices:
+// a figure added here is added to the sum below and to --stats's "bounces".
 struct IterationStats {
   std::uint64_t live_paths = 0;  // paths traced this iteration (= extension rays)
   std::uint64_t shadow_rays = 0;
   std::uint64_t simd_groups = 0;        // groups of 32 traced rays
   double simd_efficiency_sum = 0;       // sum over groups of mean / max nodes visited
   std::map<std::string, double> kernel_seconds;
+
+  IterationStats& operator+=(const IterationStats& other) {
+    live_paths += other.live_paths;
+    shadow_rays += other.shadow_rays;
+    simd_groups += other.simd_groups;
+    simd_efficiency_sum += other.simd_efficiency_sum;
+    for (const auto& [name, seconds] : other.kernel_seconds) kernel_seconds[name] += seconds;
+    return *this;
+  }
 };
 
 // An extension ray that visited many KD-tree nodes, as traced: it replays on the host

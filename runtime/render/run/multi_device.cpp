@@ -205,15 +205,9 @@ RenderResult merge_device_results(const std::vector<DeviceRun>& runs) {
     add_seconds(merged.kernel_seconds, r.kernel_seconds);
     if (merged.iterations.size() < r.iterations.size()) merged.iterations.resize(r.iterations.size());
     for (std::size_t i = 0; i < r.iterations.size(); ++i) {
-      IterationStats& into = merged.iterations[i];
-      const IterationStats& from = r.iterations[i];
-      into.live_paths += from.live_paths;
-      into.shadow_rays += from.shadow_rays;
-      into.simd_groups += from.simd_groups;
-      into.simd_efficiency_sum += from.simd_efficiency_sum;
-      add_seconds(into.kernel_seconds, from.kernel_seconds);
-      groups += from.simd_groups;
-      efficiency += from.simd_efficiency_sum;
+      merged.iterations[i] += r.iterations[i];
+      groups += r.iterations[i].simd_groups;
+      efficiency += r.iterations[i].simd_efficiency_sum;
     }
   }
   merged.simd_efficiency = groups ? efficiency / double(groups) : 0;
