@@ -1,5 +1,5 @@
-// The compiled part of the `cohort` Python package (python/cohort/__init__.py wraps it): a LoadedScene
-// per scene (runtime/cli/loaded_scene.h), renders run with the GIL released, images
+// The compiled part of the `cohort` Python package (python/cohort/__init__.py wraps it): a loaded
+// scene per scene (SceneCommands, runtime/cli/scene_commands.h), renders run with the GIL released, images
 // handed to NumPy without a copy, and Ctrl-C turned into a stop between passes.
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
@@ -17,7 +17,7 @@
 #include "runtime/backend/device_support.h"
 #include "runtime/backend/open_device.h"
 #include "runtime/cli/cli.h"
-#include "runtime/cli/loaded_scene.h"
+#include "runtime/cli/scene_commands.h"
 #include "runtime/image/denoiser.h"
 #include "runtime/util/error.h"
 
@@ -172,7 +172,7 @@ class PyScene {
   }
 
  private:
-  LoadedScene scene_;
+  SceneCommands scene_;
 };
 
 }  // namespace

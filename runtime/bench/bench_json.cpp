@@ -11,19 +11,20 @@ nlohmann::json trace_json(const TraceFigures& f) {
   return {{"rays", f.rays}, {"hits", f.hits}, {"mrays_per_second", rate_json(f.rays_per_second)}};
 }
 
-nlohmann::json method_json(const MethodFigures& m) {
+nlohmann::json method_json(const MethodFigures& f) {
+  const RenderResult& m = f.median;
   nlohmann::json j = {{"rays", m.rays},
-                      {"mrays_per_second", rate_json(m.rays_per_second)},
-                      {"msamples_per_second", rate_json(m.samples_per_second)},
-                      {"msamples_per_cpu_second", rate_json(m.samples_per_cpu_second)},
+                      {"mrays_per_second", rate_json(f.rays_per_second)},
+                      {"msamples_per_second", rate_json(f.samples_per_second)},
+                      {"msamples_per_cpu_second", rate_json(f.samples_per_cpu_second)},
                       {"simd_efficiency", m.simd_efficiency},
                       {"render_seconds", m.render_seconds},
-                      {"breakdown_seconds", m.breakdown},
+                      {"breakdown_seconds", f.breakdown},
                       {"kernel_seconds", m.kernel_seconds},
-                      {"pass_seconds", {{"median", m.pass_seconds_median}, {"max", m.pass_seconds_max}}},
-                      {"max_nodes_per_ray", m.max_nodes_per_ray}};
+                      {"pass_seconds", {{"median", f.pass_seconds_median}, {"max", f.pass_seconds_max}}},
+                      {"max_nodes_per_ray", f.max_nodes_per_ray}};
   if (m.wavefront.slots) j["wavefront_size"] = m.wavefront.slots;
-  if (!m.auto_pick.empty()) j["auto_pick"] = m.auto_pick;
+  if (!m.auto_choice.method.empty()) j["auto_pick"] = m.auto_choice.method;
   if (m.coherence) j["coherence"] = coherence_json(*m.coherence);
   return j;
 }
@@ -49,10 +50,17 @@ nlohmann::json rate_json(const RateFigure& f, double scale) {
   return {{"median", f.median() * scale}, {"best", f.best() * scale}, {"runs", runs}};
 }
 
+nlohmann::json sort_json(const SortSettings& s) {
+  return {{"code", s.code},
+          {"pth_levels", s.pth_levels},
+          {"sort_from_bounce", s.sort_from_bounce},
+          {"sort_payload", s.sort_payload}};
+}
+
 nlohmann::json coherence_json(const CoherenceFigures& c) {
-  return {{"code", c.code_layout},         {"key_bits", c.key_bits},           {"sort_from_bounce", c.sort_from_bounce},
-          {"pth_levels", c.pth_levels},    {"subtree_nodes", c.subtree_nodes}, {"speculative", c.speculative},
-          {"sort_payload", c.sort_payload}};
+  nlohmann::json j = sort_json(c.sort);
+  j.update({{"key_bits", c.key_bits}, {"subtree_nodes", c.subtree_nodes}, {"speculative", c.speculative}});
+  return j;
 }
 
 nlohmann::json bvh4_json(const Bvh4Stats& b) {
@@ -87,21 +95,19 @@ nlohmann::json scenes_json(const std::vector<SceneFigures>& scenes, const std::s
   return list;
 }
 
-nlohmann::json bench_json(const Device& d, const BenchOptions& o, const std::vector<SceneFigures>& scenes) {
+nlohmann::json bench_json(const BenchDevice& d, const BenchOptions& o, const std::vector<SceneFigures>& scenes) {
   const BuildInfo b = build_info();
-  const DeviceInfo& device = d.info();
+  const DeviceInfo& device = d.info;
   nlohmann::json j;
   j["cohort"] = {{"git_commit", b.git_commit}, {"build_type", b.build_type}, {"compiler", b.compiler},
-                 {"cxx_flags", b.cxx_flags}, {"kernel_build_options", d.compile_options()}};
-  j["device"] = {{"name", device.name}, {"backend", backend_name(d.backend())},
+                 {"cxx_flags", b.cxx_flags}, {"kernel_build_options", d.compile_options}};
+  j["device"] = {{"name", device.name}, {"backend", backend_name(d.backend)},
                  {"platform", device.platform_name}, {"vendor", device.vendor},
                  {"version", device.version}, {"driver", device.driver_version}, {"is_gpu", device.is_gpu},
                  {"compute_units", device.compute_units}};
-  j["settings"] = {{"trace_res", o.trace_res}, {"res", o.res}, {"spp", o.spp}, {"reps", o.reps},
-                   {"methods", o.methods}, {"code", o.code}, {"pth_levels", o.pth_levels},
-                   {"sort_from_bounce", o.sort_from_bounce},
-                   {"sort_payload", o.sort_payload},
-                   {"workload", "white sky (docs/bench-protocol.md)"}, {"max_depth", 5}};
+  j["settings"] = sort_json(o.sort);
+  j["settings"].update({{"trace_res", o.trace_res}, {"res", o.res}, {"spp", o.spp}, {"reps", o.reps},
+                        {"methods", o.methods}, {"workload", "white sky (docs/bench-protocol.md)"}, {"max_depth", 5}});
   j["scenes"] = scenes_json(scenes);
   return j;
 }

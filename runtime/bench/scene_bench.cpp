@@ -6,9 +6,7 @@
 #include <ctime>
 
 #include "runtime/bench/trace_bench.h"
-#include "runtime/render/methods/methods.h"
-#include "runtime/render/scene/prepared_scene.h"
-#include "runtime/render/renderer.h"
+#include "runtime/render/run/render_run.h"
 #include "runtime/render/workloads.h"
 #include "runtime/util/median.h"
 
@@ -42,17 +40,29 @@ std::map<std::string, double> time_breakdown(const std::map<std::string, double>
 
 namespace {
 
-MethodFigures bench_method(const Device& cl, const ProgramCache& cache, const DeviceScene& scene,
-                           const SceneCamera& camera, RenderSettings settings, const std::string& method,
-                           unsigned reps) {
-  settings.method = method;
+// The render a bench measures: the white sky at res x res with spp samples, the sort and the tree
+// as given.
+RenderInput bench_input(const std::filesystem::path& path, const BenchOptions& options) {
+  RenderInput input{.scene = path};
+  input.settings.width = input.settings.height = options.res;
+  input.settings.spp = options.spp;
+  input.settings.sort = options.sort;
+  input.white_sky = true;
+  input.tree = options.tree;
+  return input;
+}
+
+// Renders `method` `reps` times through the run, with no progress and no checkpoint.
+MethodFigures bench_method(PreparedRender& render, const RenderTeam& team, const std::string& method, unsigned reps) {
+  render.input.settings.method = method;
+  const RenderSettings& settings = render.input.settings;
   MethodFigures f;
   f.method = method;
   std::vector<RenderResult> runs;
   std::vector<double> pass_seconds;
   for (unsigned r = 0; r < std::max(reps, 1u); ++r) {
     const std::clock_t cpu_start = std::clock();
-    RenderResult result = render(cl, cache, scene, camera, settings);
+    RenderResult result = run_render_passes(render, team, {}, {}).result;
     const double cpu = double(std::clock() - cpu_start) / CLOCKS_PER_SEC;
     result.image = Image{};  // keep the figures only
     const double s = result.render_seconds;
@@ -69,15 +79,8 @@ MethodFigures bench_method(const Device& cl, const ProgramCache& cache, const De
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(),
             [&](std::size_t a, std::size_t b) { return f.rays_per_second.runs[a] < f.rays_per_second.runs[b]; });
-  const RenderResult& m = runs[order[order.size() / 2]];
-  f.rays = m.rays;
-  f.simd_efficiency = m.simd_efficiency;
-  f.wavefront = m.wavefront;
-  f.coherence = m.coherence;
-  f.auto_pick = m.auto_choice.method;
-  f.kernel_seconds = m.kernel_seconds;
-  f.breakdown = time_breakdown(m.kernel_seconds);
-  f.render_seconds = m.render_seconds;
+  f.median = std::move(runs[order[order.size() / 2]]);
+  f.breakdown = time_breakdown(f.median.kernel_seconds);
   f.pass_seconds_median = median(pass_seconds);
   if (!pass_seconds.empty()) f.pass_seconds_max = *std::max_element(pass_seconds.begin(), pass_seconds.end());
   return f;
@@ -85,21 +88,23 @@ MethodFigures bench_method(const Device& cl, const ProgramCache& cache, const De
 
 }  // namespace
 
-SceneFigures bench_scene(const Device& cl, const ProgramCache& cache, const std::filesystem::path& path,
+BenchDevice bench_device(DevicePool& pool) {
+  BenchDevice out;
+  pool.run_on(0, [&](const Device& device) {
+    out = {device.info(), device.backend(), device.compile_options()};
+  });
+  return out;
+}
+
+SceneFigures bench_scene(const OpenedDevices& devices, const std::filesystem::path& path,
                          const std::vector<BenchView>& views, const BenchOptions& options,
                          const std::function<void(const std::string&)>& log_line) {
   const auto log = [&](const std::string& s) {
     if (log_line) log_line(s);
   };
-  PreparedScene prepared = prepare_scene(path, tree_options(options.tree, cl.info()));
-  RenderSettings settings;
-  apply_white_sky(prepared, settings);
-  settings.width = settings.height = options.res;
-  settings.spp = options.spp;
-  settings.code = options.code;
-  settings.pth_levels = options.pth_levels;
-  settings.sort_from_bounce = options.sort_from_bounce;
-  settings.sort_payload = options.sort_payload;
+  PreparedRender render = prepare_render(bench_input(path, options), devices);
+  const PreparedScene& prepared = render.scene;
+  DevicePool& pool = *render.pool;
 
   SceneFigures out;
   out.path = path;
@@ -113,10 +118,25 @@ SceneFigures bench_scene(const Device& cl, const ProgramCache& cache, const std:
   log(fmt::format("{}: {} triangles, {} tree built in {:.3f}s", path.string(), out.triangles, out.tree_kind,
                   out.build_seconds));
 
+  // what this scene put on the device goes when the bench leaves it, on the device's thread (a
+  // CUDA context is current there), the scene's upload with it: the next scene may take its address
   std::optional<TraceBench> tracer;
-  if (options.traversal) tracer.emplace(cl, cache, prepared.tree, prepared.bvh());
-  std::optional<DeviceScene> device_scene;
-  if (!options.methods.empty()) device_scene.emplace(upload_scene(cl, prepared.tree, prepared.tables, prepared.bvh()));
+  struct Release {
+    DevicePool& pool;
+    std::optional<TraceBench>& tracer;
+    ~Release() {
+      try {
+        pool.run_on(0, [&](const Device&) { tracer.reset(); });
+        pool.drop_scenes();
+      } catch (...) {  // unwinding already, or a device that failed: nothing more to free
+      }
+    }
+  } release{pool, tracer};
+  if (options.traversal)
+    pool.run_on(0, [&](const Device& device) { tracer.emplace(device, render.cache, prepared.tree, prepared.bvh()); });
+  // uploaded before any clock starts (a render's own upload is not rendering)
+  if (!options.methods.empty()) pool.run_on(0, prepared, [](const Device&, const DeviceScene&) {});
+  const auto team = solo_render_team();
 
   for (const BenchView& view : views) {
     ViewFigures vf;
@@ -124,21 +144,22 @@ SceneFigures bench_scene(const Device& cl, const ProgramCache& cache, const std:
     vf.camera = view_camera(out.bounds, view);
     if (tracer) {
       const auto primary = protocol_primary_rays(vf.camera, options.trace_res);
-      vf.primary = tracer->trace(primary, options.reps);
+      pool.run_on(0, [&](const Device&) { vf.primary = tracer->trace(primary, options.reps); });
       log(fmt::format("  {} primary: {:.2f} Mrays/s median, {:.2f} best, {} hits", view.name,
                       vf.primary->rays_per_second.median() * 1e-6, vf.primary->rays_per_second.best() * 1e-6,
                       vf.primary->hits));
       const auto diffuse =
           protocol_diffuse_rays(primary, vf.primary->closest, prepared.scene.positions, out.bounds.diagonal());
       vf.primary->closest.clear();
-      vf.diffuse = tracer->trace(diffuse, options.reps);
+      pool.run_on(0, [&](const Device&) { vf.diffuse = tracer->trace(diffuse, options.reps); });
       vf.diffuse->closest.clear();
       log(fmt::format("  {} diffuse: {:.2f} Mrays/s median, {:.2f} best, {} rays", view.name,
                       vf.diffuse->rays_per_second.median() * 1e-6, vf.diffuse->rays_per_second.best() * 1e-6,
                       vf.diffuse->rays));
     }
+    render.scene.camera = vf.camera;
     for (const std::string& method : options.methods) {
-      vf.methods.push_back(bench_method(cl, cache, *device_scene, vf.camera, settings, method, options.reps));
+      vf.methods.push_back(bench_method(render, *team, method, options.reps));
       const MethodFigures& m = vf.methods.back();
       log(fmt::format("  {} {}: {:.2f} Mrays/s, {:.3f} M samples/s median", view.name, method,
                       m.rays_per_second.median() * 1e-6, m.samples_per_second.median() * 1e-6));

@@ -15,9 +15,9 @@
 #include "runtime/accel/kdtree/kdtree.h"
 #include "runtime/bench/figures.h"
 #include "runtime/backend/device.h"
-#include "runtime/backend/program_cache.h"
 #include "runtime/render/render_settings.h"
 #include "runtime/render/renderer.h"
+#include "runtime/render/run/render_prepare.h"
 #include "runtime/scene/scene.h"
 
 namespace cohort {
@@ -41,10 +41,7 @@ struct BenchOptions {
   unsigned reps = 3;
   bool traversal = true;              // the primary and diffuse workloads
   std::vector<std::string> methods;   // white-sky path tracing; empty: none
-  std::string code;                   // coherence code of hash/pth; empty: default
-  std::uint32_t pth_levels = 0;       // 0: chosen from the device and the tree
-  std::uint32_t sort_from_bounce = RenderSettings{}.sort_from_bounce;  // hash/pth, as render's
-  std::string sort_payload = RenderSettings{}.sort_payload;            // hash/pth, as render's
+  SortSettings sort;                  // hash/pth, as render's
   std::string tree = "auto";          // tree_options: the device's tree unless deep or compact
 };
 
@@ -52,18 +49,14 @@ struct MethodFigures {
   std::string method;
   RateFigure rays_per_second;     // path-tracing rays/s: every ray over the render loop's wall time
   RateFigure samples_per_second;  // res * res * spp over the same time
-  // res * res * spp over the process's CPU seconds (every thread) of the render call: on a CPU
-  // device, a figure that other programs on a loaded machine disturb far less than wall time
+  // res * res * spp over the process's CPU seconds (every thread) of the render's run (the run of
+  // `cohort render`, render_run.h; the scene uploaded before it): on a CPU device, a figure that
+  // other programs on a loaded machine disturb far less than wall time
   RateFigure samples_per_cpu_second;
-  std::uint64_t rays = 0;         // per render
-  double simd_efficiency = 0;     // wavefront methods: traversal, mean over max steps per 32 rays
-  WavefrontFigures wavefront;                 // wavefront methods
-  std::optional<CoherenceFigures> coherence;  // hash and pth
-  std::string auto_pick;                      // auto: the method its probe chose
-  // device seconds per stage (time_breakdown) and per kernel, of the repetition with the median rate
-  std::map<std::string, double> breakdown;
-  std::map<std::string, double> kernel_seconds;
-  double render_seconds = 0;      // of the same repetition
+  // the repetition with the median rate, its figures whole (its image dropped): rays, kernel
+  // seconds, SIMD efficiency, the wavefront pool, the sort, auto's pick, the render's seconds
+  RenderResult median;
+  std::map<std::string, double> breakdown;  // device seconds per stage of it (time_breakdown)
   // device time per pass over every repetition (stragglers: a max far above the median), and the
   // most KD-tree nodes one ray visited
   double pass_seconds_median = 0, pass_seconds_max = 0;
@@ -94,9 +87,19 @@ struct SceneFigures {
 // "shadow rays", "shading", "megakernel" (naive) and "other" (generate, finish, accumulate, counters).
 std::map<std::string, double> time_breakdown(const std::map<std::string, double>& kernel_seconds);
 
-// Loads and builds the scene, then measures every view. `log` receives one line per figure as it
-// is measured (progress on a slow device); may be empty.
-SceneFigures bench_scene(const Device& device, const ProgramCache& cache, const std::filesystem::path& path,
+// The device a bench measures on, as its JSON names it.
+struct BenchDevice {
+  DeviceInfo info;
+  Backend backend = Backend::opencl;
+  std::string compile_options;  // the kernels' build options there
+};
+BenchDevice bench_device(DevicePool& pool);  // of the pool's first device
+
+// Loads and builds the scene, then measures every view on `devices` (`cohort bench` opens one:
+// open_one_device): the traversal workloads on the first device's thread, the path tracing through
+// a render's run (render_run.h), the run `cohort render` takes. `log` receives one line per figure as it is measured (progress on a
+// slow device); may be empty.
+SceneFigures bench_scene(const OpenedDevices& devices, const std::filesystem::path& path,
                          const std::vector<BenchView>& views, const BenchOptions& options,
                          const std::function<void(const std::string&)>& log = {});
 

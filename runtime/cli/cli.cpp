@@ -36,18 +36,18 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
       ->default_val("auto");
   cmd.add_option("--wavefront-size", r.settings.wavefront_size,
                  "Path slots of the wavefront methods (default: chosen from the device)");
-  cmd.add_option("--code", r.settings.code,
+  cmd.add_option("--code", r.settings.sort.code,
                  "Coherence code of hash/pth, most significant part first: origin:N, origin-uniform:N, end:N, pth:N, "
                  "dir:N (default: origin-first for hash, pth-32 for pth), or a preset: paper, hash, origin-first, "
                  "two-point, pth-32; its pth:N sets the levels pth walks; up to 32 bits sort as 32-bit keys");
-  cmd.add_option("--pth-levels", r.settings.pth_levels,
+  cmd.add_option("--pth-levels", r.settings.sort.pth_levels,
                  "KD-tree levels pth walks in local memory (default: 10, fewer if the tree or local memory is smaller)")
       ->check(CLI::Range(1, 16));
-  cmd.add_option("--sort-from-bounce", r.settings.sort_from_bounce,
+  cmd.add_option("--sort-from-bounce", r.settings.sort.sort_from_bounce,
                  "hash/pth sort the rays of this bounce and later ones (1: camera rays too); earlier bounces trace "
                  "unsorted (default 3: on the H200 the sort of bounces 1 and 2 costs more than their sorted traversal saves)")
       ->check(CLI::Range(1, 1000));
-  cmd.add_option("--sort-payload", r.settings.sort_payload,
+  cmd.add_option("--sort-payload", r.settings.sort.sort_payload,
                  "hash/pth: gather (copy each sorted ray and its traversal state to its sorted position, then "
                  "trace them contiguously) or indirect (trace through the permutation, the default: faster on the H200)")
       ->check(CLI::IsMember({"gather", "indirect"}));
@@ -121,11 +121,11 @@ void add_bench_options(CLI::App& cmd, BenchCommand& b) {
   cmd.add_option("--view", b.views, "Comma list: exterior (the protocol camera), interior (Crytek Sponza's view)");
   cmd.add_option("--camera-bounds", b.camera_bounds, "An extra view at fractions of the bounds: ex,ey,ez,tx,ty,tz");
   cmd.add_option("--fov", b.fov, "Vertical field of view of the extra view")->check(CLI::Range(0.01f, 179.f));
-  cmd.add_option("--code", b.code, "Coherence code of hash/pth (see render --code)");
-  cmd.add_option("--pth-levels", b.pth_levels, "Subtree levels of pth")->check(CLI::Range(1, 16));
-  cmd.add_option("--sort-from-bounce", b.sort_from_bounce, "First bounce hash/pth sort (see render --sort-from-bounce)")
+  cmd.add_option("--code", b.sort.code, "Coherence code of hash/pth (see render --code)");
+  cmd.add_option("--pth-levels", b.sort.pth_levels, "Subtree levels of pth")->check(CLI::Range(1, 16));
+  cmd.add_option("--sort-from-bounce", b.sort.sort_from_bounce, "First bounce hash/pth sort (see render --sort-from-bounce)")
       ->check(CLI::Range(1, 1000));
-  cmd.add_option("--sort-payload", b.sort_payload, "hash/pth: gather or indirect (see render --sort-payload)")
+  cmd.add_option("--sort-payload", b.sort.sort_payload, "hash/pth: gather or indirect (see render --sort-payload)")
       ->check(CLI::IsMember({"gather", "indirect"}));
   cmd.add_option("--device", b.device, "Device index or name substring");
   cmd.add_option("--backend", b.backend, "Device backend: opencl or cuda (the same kernels either way)")

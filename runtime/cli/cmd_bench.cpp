@@ -75,7 +75,7 @@ void print_view(const SceneFigures& s, const ViewFigures& v) {
       return t * 1e3;
     };
     fmt::print("  | {} | {} | {:.3f} | {:.3f} | {:.1f} / {:.1f} / {:.1f} / {:.1f} / {:.1f} / {:.1f} / {:.1f} |\n",
-               m.method, mrays(m.rays_per_second), m.samples_per_second.median() * 1e-6, m.simd_efficiency,
+               m.method, mrays(m.rays_per_second), m.samples_per_second.median() * 1e-6, m.median.simd_efficiency,
                stage("pth walk", "hash codes"), stage("sort"), stage("resume traversal"),
                stage("traversal", "megakernel"), stage("shadow rays"), stage("shading"), stage("other"));
   }
@@ -99,26 +99,27 @@ void print_view(const SceneFigures& s, const ViewFigures& v) {
     for (const MethodFigures& m : v.methods)
       if (m.method != "auto" && (!winner || m.rays_per_second.median() > winner->rays_per_second.median())) winner = &m;
     if (winner)
-      fmt::print("  auto picked {} (probe included: {:.2f}x the fastest method by name, {})\n", automatic->auto_pick,
+      fmt::print("  auto picked {} (probe included: {:.2f}x the fastest method by name, {})\n", automatic->median.auto_choice.method,
                  automatic->rays_per_second.median() / winner->rays_per_second.median(), winner->method);
   }
 }
 
 // --gate: every order's trace rate against generation order, and what its sort costs.
-int run_gate(const BenchCommand& cmd, const std::vector<BenchView>& views, const Device& device,
-             const ProgramCache& cache) {
+int run_gate(const BenchCommand& cmd, const std::vector<BenchView>& views, DevicePool& pool, const DeviceInfo& info) {
+  const ProgramCache cache(ProgramCache::default_directory());
   GateOptions options;
   options.res = parse_resolution(cmd.trace_resolution + "x" + cmd.trace_resolution).first;
   options.bounces = cmd.bounces;
   options.reps = cmd.reps;
   nlohmann::json all = nlohmann::json::array();
   // the tree the renderer traces (--tree auto: the BVH), or a KD-tree; the PTH keys walk its top
-  const TreeChoice tree = tree_options(cmd.tree, device.info());
+  const TreeChoice tree = tree_options(cmd.tree, info);
   for (const auto& path : cmd.scenes) {
     PreparedScene prepared = prepare_scene(path, tree);
     for (const BenchView& view : views) {
       const SceneCamera camera = view_camera(prepared.scene.bounds(), view);
-      const auto bounces = gate_bench(device, cache, prepared, camera, options);
+      std::vector<GateBounce> bounces;
+      pool.run_on(0, [&](const Device& device) { bounces = gate_bench(device, cache, prepared, camera, options); });
       fmt::print("\n{} [{} view], {} triangles, {}, {}x{} primary rays: trace Mrays/s median (best), x generation "
                  "order, device sort ms\n",
                  path.string(), view.name, prepared.scene.triangle_count(), prepared.tree_kind(), options.res,
@@ -147,7 +148,7 @@ int run_gate(const BenchCommand& cmd, const std::vector<BenchView>& views, const
   fmt::print("\nnet: trace time in generation order over (trace time in this order + its sort); the payload gather "
              "is not counted\n");
   if (!cmd.json.empty()) {
-    write_file_atomically(cmd.json, nlohmann::json{{"device", device.info().name}, {"driver", device.info().driver_version},
+    write_file_atomically(cmd.json, nlohmann::json{{"device", info.name}, {"driver", info.driver_version},
                                                    {"gate", all}}.dump(2) + "\n");
     fmt::print("wrote {}\n", cmd.json);
   }
@@ -164,22 +165,19 @@ int run_bench(const BenchCommand& cmd) {
   options.reps = cmd.reps;
   options.traversal = !cmd.no_traversal;
   options.methods = bench_methods(cmd.methods);
-  options.code = cmd.code;
-  options.pth_levels = cmd.pth_levels;
-  options.sort_from_bounce = cmd.sort_from_bounce;
-  options.sort_payload = cmd.sort_payload;
+  options.sort = cmd.sort;
   options.tree = cmd.tree;
   const std::vector<BenchView> views = bench_views(cmd);
-  const std::unique_ptr<Device> opened = open_device(parse_backend(cmd.backend), cmd.device);
-  const Device& device = *opened;
-  const DeviceInfo& info = device.info();
-  const ProgramCache cache(ProgramCache::default_directory());
+  // one device, in a pool: the renders take the run of `cohort render`, everything on the device's thread
+  const OpenedDevices opened = open_one_device(parse_backend(cmd.backend), cmd.device);
+  const BenchDevice device = bench_device(*opened.pool);
+  const DeviceInfo& info = device.info;
   fmt::print("device: {} ({}, driver {}), {} compute units\n", info.name, info.platform_name, info.driver_version,
              info.compute_units);
-  if (cmd.gate) return run_gate(cmd, views, device, cache);
+  if (cmd.gate) return run_gate(cmd, views, *opened.pool, info);
   std::vector<SceneFigures> scenes;
   for (const auto& path : cmd.scenes) {
-    scenes.push_back(bench_scene(device, cache, path, views, options, [](const std::string& line) {
+    scenes.push_back(bench_scene(opened, path, views, options, [](const std::string& line) {
       fmt::print(stderr, "{}\n", line);
     }));
     for (const auto& v : scenes.back().views) print_view(scenes.back(), v);

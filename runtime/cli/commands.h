@@ -45,10 +45,7 @@ struct BenchCommand {
   std::string views = "exterior";
   std::string camera_bounds;  // an extra "custom" view
   float fov = 0;
-  std::string code;
-  std::uint32_t pth_levels = 0;
-  std::uint32_t sort_from_bounce = RenderSettings{}.sort_from_bounce;  // render's default
-  std::string sort_payload = RenderSettings{}.sort_payload;
+  SortSettings sort;  // render's defaults
   std::string device;
   std::string backend = "opencl";  // opencl | cuda
   std::string tree = "auto";       // --tree, as render's

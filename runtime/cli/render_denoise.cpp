@@ -36,8 +36,8 @@ Image denoise_image(const RenderOutcome& outcome, const std::vector<std::filesys
   return denoiser.denoise(outcome.result.image, &aovs.albedo, &aovs.normal);
 }
 
-int write_denoised(const PreparedRender& render, const RenderOutcome& outcome, const OutputPaths& out) {
-  if (!render.plan.command.denoise) return 0;
+int write_denoised(const RenderCommand& command, const RenderOutcome& outcome, const OutputPaths& out) {
+  if (!command.denoise) return 0;
   try {
     const auto start = std::chrono::steady_clock::now();
     std::string library;

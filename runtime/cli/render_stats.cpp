@@ -12,17 +12,6 @@ namespace cohort {
 
 namespace {
 
-// One device's share of the render: passes, rays, rays/s while busy, busy time.
-nlohmann::json device_json(const DeviceRun& run) {
-  const RenderResult& r = run.result;
-  return {{"name", run.device.name}, {"platform", run.device.platform_name}, {"driver", run.device.driver_version},
-          {"compute_units", run.device.compute_units}, {"passes", r.passes}, {"samples", r.samples},
-          {"rays", r.rays}, {"rays_per_second", r.busy_seconds > 0 ? double(r.rays) / r.busy_seconds : 0.0},
-          {"busy_seconds", r.busy_seconds}, {"upload_seconds", run.upload_seconds},
-          {"compile_seconds", r.compile_seconds}, {"pass_kernel_seconds", r.pass_kernel_seconds},
-          {"max_nodes_per_ray", r.max_nodes_per_ray}};
-}
-
 // Median and max of a per-pass count.
 nlohmann::json per_pass(const std::vector<std::uint32_t>& counts) {
   const std::vector<double> values(counts.begin(), counts.end());
@@ -31,30 +20,16 @@ nlohmann::json per_pass(const std::vector<std::uint32_t>& counts) {
 
 }  // namespace
 
-// One process's serial part (load, build) beside its render time, so scaling losses are visible.
-nlohmann::json rank_json(int rank, const std::string& host, const PreparedScene& prepared,
-                         const std::vector<DeviceRun>& runs) {
-  nlohmann::json devices = nlohmann::json::array();
-  double render_seconds = 0, compile_seconds = 0;
-  for (const auto& run : runs) {
-    devices.push_back(device_json(run));
-    render_seconds = std::max(render_seconds, run.result.render_seconds);
-    compile_seconds = std::max(compile_seconds, run.result.compile_seconds);
-  }
-  return {{"rank", rank}, {"host", host}, {"load_seconds", prepared.load_seconds},
-          {"build_seconds", prepared.build_seconds()}, {"compile_seconds", compile_seconds},
-          {"render_seconds", render_seconds}, {"devices", devices}};
-}
-
 nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& outcome, const OutputPaths* out) {
-  const RenderCommand& cmd = render.plan.command;
+  const RenderInput& in = render.input;
+  const RenderSettings& settings = in.settings;
   const PreparedScene& prepared = render.scene;
   const RenderResult& r = outcome.result;
   const auto& mean = outcome.image_mean;
   nlohmann::json j;
   j["image_mean"] = {{"rgb", mean.mean}, {"standard_error", mean.standard_error}};
-  j["scene"] = cmd.scene.string();
-  j["method"] = cmd.settings.method;
+  j["scene"] = in.scene.string();
+  j["method"] = settings.method;
   if (!r.auto_choice.method.empty())
     j["auto"] = {{"method", r.auto_choice.method},
                  {"reason", r.auto_choice.reason},
@@ -63,12 +38,12 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
                  {"probe_rays_per_second", r.auto_choice.probe_rays_per_second},
                  {"final_rays_per_second", r.auto_choice.final_rays_per_second}};
   nlohmann::json devices = nlohmann::json::array();
-  for (const auto& rank : outcome.ranks)
-    for (auto d : rank["devices"]) {
-      d["rank"] = rank["rank"];
+  for (const RankFigures& rank : outcome.ranks)
+    for (const DeviceFigures& d : rank.devices) {
       devices.push_back(d);
+      devices.back()["rank"] = rank.rank;
     }
-  j["backend"] = cmd.backend;
+  j["backend"] = backend_name(in.backend);
   j["device"] = devices.at(0);  // the first device, as before several devices
   j["devices"] = devices;
   j["ranks"] = outcome.ranks;
@@ -76,14 +51,15 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
   // stragglers show as passes far slower than the median, and as rays that visit much of the tree
   std::vector<double> pass_seconds;
   std::uint32_t max_nodes = 0;
-  for (const auto& d : devices) {
-    for (const auto& s : d["pass_kernel_seconds"]) pass_seconds.push_back(s.get<double>());
-    max_nodes = std::max(max_nodes, d["max_nodes_per_ray"].get<std::uint32_t>());
-  }
+  for (const RankFigures& rank : outcome.ranks)
+    for (const DeviceFigures& d : rank.devices) {
+      pass_seconds.insert(pass_seconds.end(), d.pass_kernel_seconds.begin(), d.pass_kernel_seconds.end());
+      max_nodes = std::max(max_nodes, d.max_nodes_per_ray);
+    }
   j["pass_seconds"] = {{"median", median(pass_seconds)},
                        {"max", pass_seconds.empty() ? 0.0 : *std::max_element(pass_seconds.begin(), pass_seconds.end())}};
   j["max_nodes_per_ray"] = max_nodes;
-  if (cmd.settings.straggler_rays) {
+  if (settings.straggler_rays) {
     nlohmann::json per_pass = nlohmann::json::array(), worst = nlohmann::json::array();
     for (const auto& p : r.pass_stragglers) per_pass.push_back({{"max", p.max}, {"p9999", p.p9999}});
     // hex floats: the exact bits, so the ray replays as traced
@@ -96,14 +72,14 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
     j["stragglers"] = {{"rays", "extension rays of this device (rank 0's devices under MPI)"},
                        {"per_pass", per_pass}, {"worst", worst}};
   }
-  j["image"] = {{"width", cmd.settings.width}, {"height", cmd.settings.height}, {"spp", r.samples}};
+  j["image"] = {{"width", settings.width}, {"height", settings.height}, {"spp", r.samples}};
   if (out) {
     j["image"]["exr"] = out->exr.string();
     j["image"]["png"] = out->png.string();
   }
-  j["settings"] = {{"max_depth", cmd.settings.max_depth}, {"rr_depth", cmd.settings.rr_depth},
-                   {"seed", cmd.settings.seed}, {"nee", cmd.settings.nee}, {"mis", cmd.settings.mis},
-                   {"russian_roulette", cmd.settings.russian_roulette}};
+  j["settings"] = {{"max_depth", settings.max_depth}, {"rr_depth", settings.rr_depth},
+                   {"seed", settings.seed}, {"nee", settings.nee}, {"mis", settings.mis},
+                   {"russian_roulette", settings.russian_roulette}};
   const auto& ts = prepared.tree.stats;
   j["scene_stats"] = {{"triangles", prepared.scene.triangle_count()}, {"dropped_triangles", ts.dropped_triangles},
                       {"emitters", prepared.tables.emitters.entries.size()},
@@ -127,10 +103,10 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
                   {"render_seconds", r.render_seconds}, {"render_cpu_seconds", r.render_cpu_seconds}};
   j["rays"] = r.rays;
   j["rays_per_second"] = r.render_seconds > 0 ? static_cast<double>(r.rays) / r.render_seconds : 0.0;
-  const AdaptiveFigures adaptive = adaptive_figures(outcome.film, cmd.settings.target_error);
+  const AdaptiveFigures adaptive = adaptive_figures(outcome.film, settings.target_error);
   j["samples_per_second"] = r.render_seconds > 0 ? double(adaptive.samples) / r.render_seconds : 0.0;
-  if (cmd.settings.target_error > 0)
-    j["adaptive"] = {{"target_error", cmd.settings.target_error},
+  if (settings.target_error > 0)
+    j["adaptive"] = {{"target_error", settings.target_error},
                      {"tile", kAdaptiveTile},
                      {"samples", adaptive.samples},
                      {"mean_spp", double(adaptive.samples) / double(std::max<std::size_t>(render.pixels(), 1))},

@@ -14,12 +14,11 @@ namespace {
 void print_details(const PreparedRender& render, const RenderOutcome& outcome) {
   const PreparedScene& prepared = render.scene;
   const RenderResult& result = outcome.result;
-  for (const auto& rank_entry : outcome.ranks)
-    for (const auto& d : rank_entry["devices"])
+  for (const RankFigures& rank : outcome.ranks)
+    for (const DeviceFigures& d : rank.devices)
       fmt::print("device{}: {} ({}): {} passes, {:.3f}s busy, {:.2f} Mrays/s\n",
-                 outcome.ranks.size() > 1 ? fmt::format(" (rank {})", rank_entry["rank"].get<int>()) : std::string(),
-                 d["name"].get<std::string>(), d["platform"].get<std::string>(), d["passes"].get<std::uint32_t>(),
-                 d["busy_seconds"].get<double>(), d["rays_per_second"].get<double>() * 1e-6);
+                 outcome.ranks.size() > 1 ? fmt::format(" (rank {})", rank.rank) : std::string(), d.name, d.platform,
+                 d.passes, d.busy_seconds, d.rays_per_second * 1e-6);
   fmt::print("scene: {} triangles, {} emissive, {} punctual lights, loaded in {:.3f}s\n",
              prepared.scene.triangle_count(), prepared.tables.emitters.entries.size(),
              prepared.tables.punctual.lights.size(), prepared.load_seconds);
@@ -34,7 +33,7 @@ void print_details(const PreparedRender& render, const RenderOutcome& outcome) {
   fmt::print("kernel features: {}\n", features.empty() ? std::string("none (Lambertian only)")
                                                        : fmt::format("{}", fmt::join(features, " ")));
   fmt::print("passes: {} of {} spp\n", result.passes, outcome.film.pass_samples);
-  if (const double target = render.plan.settings().target_error; target > 0) {
+  if (const double target = render.input.settings.target_error; target > 0) {
     const AdaptiveFigures f = adaptive_figures(outcome.film, target);
     fmt::print("adaptive: target error {}, estimated error {:.4f}, {} samples spent ({:.1f} spp mean, {}-{} per "
                "pixel), {} of {} {}x{} tiles stopped early, {} at their share of the target at the end\n",
@@ -49,7 +48,7 @@ void print_details(const PreparedRender& render, const RenderOutcome& outcome) {
                result.simd_efficiency);
   if (const auto& c = result.coherence)
     fmt::print("coherence code: {} ({} bits), sorted from bounce {}; PTH subtree {} levels, {} nodes\n",
-               c->code_layout, c->key_bits, c->sort_from_bounce, c->pth_levels, c->subtree_nodes);
+               c->sort.code, c->key_bits, c->sort.sort_from_bounce, c->sort.pth_levels, c->subtree_nodes);
   if (!result.auto_choice.method.empty()) {
     auto rates = [](const std::map<std::string, double>& by_method) {
       std::string text;
@@ -65,13 +64,13 @@ void print_details(const PreparedRender& render, const RenderOutcome& outcome) {
 
 }  // namespace
 
-int write_render(const PreparedRender& render, const RenderOutcome& outcome, const OutputPaths& out,
-                 const InterruptGuard& interrupt) {
-  const RenderCommand& cmd = render.plan.command;
+int write_render(const RenderCommand& cmd, const PreparedRender& render, const RenderOutcome& outcome,
+                 const OutputPaths& out, const InterruptGuard& interrupt) {
+  const RenderSettings& settings = render.input.settings;
   const RenderResult& result = outcome.result;
   std::vector<ExrLayer> aovs;
-  if (outcome.aovs) aovs = aov_layers(*outcome.aovs, render.plan.aovs);
-  const bool adaptive = render.plan.settings().target_error > 0;
+  if (outcome.aovs) aovs = aov_layers(*outcome.aovs, render.input.aovs);
+  const bool adaptive = settings.target_error > 0;
   if (adaptive) {
     // each pixel's own sample count: the beauty is each pixel's sum over it
     const auto& counts = outcome.film.pixel_samples;
@@ -83,18 +82,17 @@ int write_render(const PreparedRender& render, const RenderOutcome& outcome, con
   if (result.dropped_samples)
     fmt::print(stderr, "warning: {} NaN or infinite samples were dropped\n", result.dropped_samples);
   std::size_t device_count = 0;
-  for (const auto& rank_entry : outcome.ranks) device_count += rank_entry["devices"].size();
+  for (const RankFigures& rank : outcome.ranks) device_count += rank.devices.size();
   const std::size_t ranks = outcome.ranks.size();
   const double mrays = result.render_seconds > 0 ? double(result.rays) / result.render_seconds * 1e-6 : 0;
   std::string spp = fmt::format("{} spp", result.samples);
   if (adaptive) {
-    const AdaptiveFigures f = adaptive_figures(outcome.film, render.plan.settings().target_error);
+    const AdaptiveFigures f = adaptive_figures(outcome.film, settings.target_error);
     spp = fmt::format("{}-{} spp (mean {:.1f}; estimated relative error {:.4f}, target {})", f.min_pixel_samples,
                       f.max_pixel_samples, double(f.samples) / double(std::max<std::size_t>(render.pixels(), 1)),
-                      f.estimated_error, render.plan.settings().target_error);
+                      f.estimated_error, settings.target_error);
   }
-  fmt::print("rendered {}x{} at {} in {:.2f}s ({:.2f} Mrays/s{})\n", render.plan.settings().width,
-             render.plan.settings().height, spp, result.render_seconds, mrays,
+  fmt::print("rendered {}x{} at {} in {:.2f}s ({:.2f} Mrays/s{})\n", settings.width, settings.height, spp, result.render_seconds, mrays,
              device_count > 1 ? fmt::format(", {} devices in {} rank{}", device_count, ranks, ranks > 1 ? "s" : "")
                               : std::string());
   fmt::print("wrote {}\nwrote {}\n", out.exr.string(), out.png.string());
@@ -103,13 +101,22 @@ int write_render(const PreparedRender& render, const RenderOutcome& outcome, con
     write_file_atomically(cmd.stats_file, stats_json(render, outcome, &out).dump(2) + "\n");
     fmt::print("wrote {}\n", cmd.stats_file);
   }
-  if (const int code = write_denoised(render, outcome, out)) return code;
+  if (const int code = write_denoised(cmd, outcome, out)) return code;
   if (result.interrupted) {
     fmt::print(stderr, "interrupted by signal {} at {} spp: the image so far is saved{}\n", interrupt.signal_number(),
                result.samples, cmd.checkpoint || cmd.resume ? "; --resume continues it" : "");
     return 128 + interrupt.signal_number();
   }
   return 0;
+}
+
+void report_scene_warnings(const PreparedScene& prepared, const std::filesystem::path& path) {
+  // the loaders name the file in most of their warnings already
+  for (const auto& w : prepared.scene.warnings)
+    fmt::print(stderr, "warning: {}{}\n", w.starts_with(path.string()) ? "" : path.string() + ": ", w);
+  if (prepared.tree.stats.dropped_triangles)
+    fmt::print(stderr, "warning: {}: dropped {} degenerate or non-finite triangles\n", path.string(),
+               prepared.tree.stats.dropped_triangles);
 }
 
 }  // namespace cohort

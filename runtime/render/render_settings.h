@@ -11,6 +11,19 @@
 
 namespace cohort {
 
+// How hash and pth sort their rays (--code, --pth-levels, --sort-from-bounce, --sort-payload):
+// `cohort render` and `cohort bench` set them alike, and the render reports them as it resolved
+// them (CoherenceFigures). Declared once, copied whole, written by one printer (sort_json).
+struct SortSettings {
+  std::string code;                    // coherence code layout; empty: the method's default
+  std::uint32_t pth_levels = 0;        // subtree levels of pth; 0: chosen from the device and the tree
+  std::uint32_t sort_from_bounce = 3;  // sort bounces from this one on (1: camera rays too);
+                                       // H200: bounces 1 and 2 never pay for their sort
+  std::string sort_payload = "indirect";  // "indirect" traces through the permutation; "gather"
+                                          // first copies each sorted ray to its sorted position
+                                          // (H200: 3 % faster trace, but the copy costs more)
+};
+
 struct RenderSettings {
   std::uint32_t width = 512;
   std::uint32_t height = 512;
@@ -28,14 +41,8 @@ struct RenderSettings {
   std::optional<glm::vec3> environment;  // constant environment radiance
   std::string method = "naive";
   std::uint32_t wavefront_size = 0;  // path slots of the wavefront methods; 0: chosen from the device
-  std::string code;                  // coherence code layout of hash/pth; empty: the method's default
-  std::uint32_t pth_levels = 0;      // subtree levels of pth; 0: chosen from the device and the tree
-  std::uint32_t sort_from_bounce = 3;  // hash/pth sort bounces from this one on (1: camera rays too);
-                                       // H200: bounces 1 and 2 never pay for their sort
   bool speculative = false;          // hash/pth: resumed traversal postpones leaf tests (Aila & Laine)
-  std::string sort_payload = "indirect";  // hash/pth: "indirect" traces through the permutation;
-                                          // "gather" first copies each sorted ray to its sorted
-                                          // position (H200: 3 % faster trace, but the copy costs more)
+  SortSettings sort;                 // hash/pth: how they sort their rays
   std::uint32_t straggler_rays = 0;  // wavefront methods: keep this many of the extension rays that
                                      // visited the most nodes, and per-pass percentiles (a diagnostic)
 };

@@ -27,13 +27,23 @@ struct Progress {
   double seconds = 0;
 };
 
-// One bounce of a wavefront method (one iteration of its loop), summed over passes.
+// One bounce of a wavefront method (one iteration of its loop), summed over passes and devices:
+// a figure added here is added to the sum below and to --stats's "bounces".
 struct IterationStats {
   std::uint64_t live_paths = 0;  // paths traced this iteration (= extension rays)
   std::uint64_t shadow_rays = 0;
   std::uint64_t simd_groups = 0;        // groups of 32 traced rays
   double simd_efficiency_sum = 0;       // sum over groups of mean / max nodes visited
   std::map<std::string, double> kernel_seconds;
+
+  IterationStats& operator+=(const IterationStats& other) {
+    live_paths += other.live_paths;
+    shadow_rays += other.shadow_rays;
+    simd_groups += other.simd_groups;
+    simd_efficiency_sum += other.simd_efficiency_sum;
+    for (const auto& [name, seconds] : other.kernel_seconds) kernel_seconds[name] += seconds;
+    return *this;
+  }
 };
 
 // An extension ray that visited many KD-tree nodes, as traced: it replays on the host
@@ -66,15 +76,14 @@ struct WavefrontFigures {
   std::size_t path_state_bytes = 0;  // device bytes per path slot (a sorting method's sort state included)
 };
 
-// How hash and pth ordered their rays: the coherence code, the PTH walk, the resumed traversal.
+// How hash and pth ordered their rays: the sort as resolved (the code used, the levels walked),
+// the key's width, the PTH walk and the resumed traversal. Filled once by the sort's report,
+// written by coherence_json for --stats and the bench JSON alike.
 struct CoherenceFigures {
-  std::string code_layout;             // the coherence code used
-  std::uint32_t key_bits = 0;          // its width (sorted as 32-bit keys up to 32)
-  std::uint32_t sort_from_bounce = 0;  // the first bounce they sort
-  std::uint32_t pth_levels = 0;        // pth: subtree levels in local memory
+  SortSettings sort;                   // code: the layout used; pth_levels: subtree levels in local memory
+  std::uint32_t key_bits = 0;          // the code's width (sorted as 32-bit keys up to 32)
   std::uint32_t subtree_nodes = 0;
   bool speculative = false;            // resumed with speculative traversal
-  std::string sort_payload;            // "gather" or "indirect" (--sort-payload)
 };
 
 struct RenderResult {

@@ -346,7 +346,7 @@ TEST(GltfAlpha, EveryMethodAndTreeGivesTheSameBits) {
   s.spp = 3;
   s.rr_depth = 3;
   s.seed = 9;
-  s.sort_from_bounce = 1;  // hash and pth sort the camera rays too
+  s.sort.sort_from_bounce = 1;  // hash and pth sort the camera rays too
   std::vector<float> reference;
   std::uint64_t reference_rays = 0;
   int compared = 0;
@@ -373,7 +373,7 @@ TEST(GltfAlpha, EveryMethodAndTreeGivesTheSameBits) {
       s.method = m.name;
       s.wavefront_size = 0;
       s.speculative = false;
-      s.sort_payload = "indirect";
+      s.sort.sort_payload = "indirect";
       check(render(cl, cache, scene, p.camera, s), std::string(m.name) + " on " + t.name);
       if (!m.sorts) continue;
       // the ray's alpha seed travels in its origin's w: through the gathered payload, the resumed and
@@ -383,7 +383,7 @@ TEST(GltfAlpha, EveryMethodAndTreeGivesTheSameBits) {
       check(render(cl, cache, scene, p.camera, s), std::string(m.name) + (s.speculative ? " speculative" : " pool 129") +
                                                        " on " + t.name);
       s.speculative = false;
-      s.sort_payload = "gather";
+      s.sort.sort_payload = "gather";
       check(render(cl, cache, scene, p.camera, s), std::string(m.name) + " gathered on " + t.name);
     }
   }

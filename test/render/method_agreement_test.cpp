@@ -81,7 +81,7 @@ TEST_P(MethodAgreement, CornellBoxBitForBit) {
   s.method = GetParam().method;
   s.wavefront_size = GetParam().wavefront_size;
   s.speculative = GetParam().speculative;
-  s.sort_payload = GetParam().payload;
+  s.sort.sort_payload = GetParam().payload;
   const RenderResult other = render_scene(path, s);
   expect_bitwise_equal(reference, other, GetParam().method);
   if (GetParam().wavefront_size) {
@@ -106,7 +106,7 @@ TEST_P(MethodAgreement, SharedModelUnderWhiteSkyBitForBit) {
   s.method = GetParam().method;
   s.wavefront_size = GetParam().wavefront_size;
   s.speculative = GetParam().speculative;
-  s.sort_payload = GetParam().payload;
+  s.sort.sort_payload = GetParam().payload;
   const RenderResult other = render(cl, cache, scene, prepared.camera, s);
   expect_bitwise_equal(reference, other, GetParam().method);
 }
@@ -146,32 +146,32 @@ TEST(Methods, PthWithOtherCodeLayoutsAndSubtreeDepthsStillBitForBit) {
   };
   for (const Case& c : {Case{"pth:4", 4}, Case{"dir:16,pth:6,origin:4", 6}, Case{"origin-uniform:10,pth:12", 12},
                         Case{"pth:16,dir:16", 16}, Case{"paper", 10}, Case{"pth:1,origin-uniform:8,dir:4", 1}}) {
-    s.code = c.code;
+    s.sort.code = c.code;
     // the gathered copies hold every saved stack entry, up to 16
-    s.sort_payload = c.levels >= 12 ? "gather" : "indirect";
+    s.sort.sort_payload = c.levels >= 12 ? "gather" : "indirect";
     const RenderResult r = render_scene(path, s);
     expect_bitwise_equal(reference, r, c.code);
     ASSERT_TRUE(r.coherence) << c.code;
-    EXPECT_EQ(r.coherence->code_layout, c.code);
-    EXPECT_GT(r.coherence->pth_levels, 0u) << c.code;
-    EXPECT_LE(r.coherence->pth_levels, c.levels) << c.code;
+    EXPECT_EQ(r.coherence->sort.code, c.code);
+    EXPECT_GT(r.coherence->sort.pth_levels, 0u) << c.code;
+    EXPECT_LE(r.coherence->sort.pth_levels, c.levels) << c.code;
     if (c.levels <= 4) {  // the box's tree is deeper than 4
-      EXPECT_EQ(r.coherence->pth_levels, c.levels) << c.code;
+      EXPECT_EQ(r.coherence->sort.pth_levels, c.levels) << c.code;
     }
   }
   // --pth-levels alone sets the default layout's pth width; with a --code that agrees it is fine
-  s.code.clear();
+  s.sort.code.clear();
   for (std::uint32_t levels : {1u, 3u}) {
-    s.pth_levels = levels;
+    s.sort.pth_levels = levels;
     const RenderResult r = render_scene(path, s);
     expect_bitwise_equal(reference, r, "--pth-levels");
     ASSERT_TRUE(r.coherence);
-    EXPECT_EQ(r.coherence->pth_levels, levels);
+    EXPECT_EQ(r.coherence->sort.pth_levels, levels);
   }
-  s.code = "pth:3,dir:8";
+  s.sort.code = "pth:3,dir:8";
   const RenderResult from_code = render_scene(path, s);
   ASSERT_TRUE(from_code.coherence);
-  EXPECT_EQ(from_code.coherence->pth_levels, 3u);
+  EXPECT_EQ(from_code.coherence->sort.pth_levels, 3u);
 }
 
 TEST(Methods, CodeAndPthLevelsThatDisagreeAreAnInputError) {
@@ -179,8 +179,8 @@ TEST(Methods, CodeAndPthLevelsThatDisagreeAreAnInputError) {
   s.width = s.height = 8;
   s.spp = 1;
   s.method = "pth";
-  s.code = "origin:8,pth:4,dir:8";
-  s.pth_levels = 6;
+  s.sort.code = "origin:8,pth:4,dir:8";
+  s.sort.pth_levels = 6;
   EXPECT_THROW(render_scene(shipped_scene("cornell-box.gltf"), s), InputError);
   EXPECT_EQ(requested_pth_levels("pth:4", 0), 4u);
   EXPECT_EQ(requested_pth_levels("", 7), 7u);
@@ -194,7 +194,7 @@ TEST(Methods, CodeAndPthLevelsThatDisagreeAreAnInputError) {
 // wider ones as 64-bit keys; either way the image is naive's, so the sort kept every slot.
 TEST(Methods, KeyWidthFollowsTheLayoutAndImagesStayBitForBit) {
   RenderSettings s = small_box_settings(5u);
-  s.sort_from_bounce = 1;
+  s.sort.sort_from_bounce = 1;
   const auto path = shipped_scene("cornell-box.gltf");
   const RenderResult reference = render_scene(path, s);
   struct Case {
@@ -207,20 +207,20 @@ TEST(Methods, KeyWidthFollowsTheLayoutAndImagesStayBitForBit) {
                         Case{"pth", "origin:4,end:4,pth:2,dir:1", 30}, Case{"hash", "origin:8,end:3,dir:1", 35},
                         Case{"pth", "paper", 60}, Case{"hash", "hash", 40}}) {
     s.method = c.method;
-    s.code = c.code;
+    s.sort.code = c.code;
     const RenderResult r = render_scene(path, s);
     expect_bitwise_equal(reference, r, c.code);
     ASSERT_TRUE(r.coherence) << c.code;
     EXPECT_EQ(r.coherence->key_bits, c.key_bits) << c.code;
   }
   // the defaults fit 32 bits
-  s.code.clear();
+  s.sort.code.clear();
   for (const char* method : {"hash", "pth"}) {
     s.method = method;
     const RenderResult r = render_scene(path, s);
     expect_bitwise_equal(reference, r, method);
     ASSERT_TRUE(r.coherence) << method;
-    EXPECT_EQ(r.coherence->code_layout, default_code_layout(s.method == "pth"));
+    EXPECT_EQ(r.coherence->sort.code, default_code_layout(s.method == "pth"));
     EXPECT_LE(r.coherence->key_bits, 32u) << method;
   }
 }
@@ -248,16 +248,16 @@ TEST(Methods, SortFromBounceKeepsImagesBitForBit) {
   s.rr_depth = 2;
   const auto path = shipped_scene("cornell-box.gltf");
   const RenderResult reference = render_scene(path, s);
-  EXPECT_EQ(s.sort_from_bounce, 3u);  // where sorting paid on the H200
+  EXPECT_EQ(s.sort.sort_from_bounce, 3u);  // where sorting paid on the H200
   for (const char* method : {"hash", "pth"}) {
     for (std::uint32_t from : {1u, 2u, 3u, 1000u}) {
       s.method = method;
-      s.sort_from_bounce = from;
+      s.sort.sort_from_bounce = from;
       const RenderResult r = render_scene(path, s);
       const std::string what = fmt::format("{} from bounce {}", method, from);
       expect_bitwise_equal(reference, r, what.c_str());
       ASSERT_TRUE(r.coherence) << what;
-      EXPECT_EQ(r.coherence->sort_from_bounce, from);
+      EXPECT_EQ(r.coherence->sort.sort_from_bounce, from);
       // the walk's launches carry the method's name; extend's "extend"
       const bool walked = r.kernel_seconds.count(method) != 0, extended = r.kernel_seconds.count("extend") != 0;
       EXPECT_EQ(walked, from <= r.iterations.size()) << what;
@@ -279,7 +279,7 @@ TEST(Methods, MalformedCodeLayoutsAreInputErrors) {
   s.method = "pth";
   for (const char* code : {"origin:11", "pth", "dir:8,colour:3", "origin:10,pth:16,dir:16", "papers", "end:11", "end",
                            "end:x", "end:-1", "origin:10,end:10,dir:3"}) {
-    s.code = code;
+    s.sort.code = code;
     EXPECT_THROW(render_scene(shipped_scene("cornell-box.gltf"), s), InputError) << code;
   }
 }

@@ -11,8 +11,8 @@ namespace cohort {
 SortedTraversal::SortedTraversal(const WavefrontRender& render, RayOrder key)
     : key_(key),
       speculative_(render.inputs().settings.speculative),
-      gather_(render.inputs().settings.sort_payload == "gather"),
-      sort_from_bounce_(render.inputs().settings.sort_from_bounce) {
+      gather_(render.inputs().settings.sort.sort_payload == "gather"),
+      sort_from_bounce_(render.inputs().settings.sort.sort_from_bounce) {
   const MethodInputs& in = render.inputs();
   const Device& cl = in.device;
   const std::uint32_t slots = render.pool().slots;
@@ -21,9 +21,9 @@ SortedTraversal::SortedTraversal(const WavefrontRender& render, RayOrder key)
   program_ = cl.build_program(in.cache, "pth", in.scene.build_options);
   const bool pth = key == RayOrder::pth;
   // --code pth:N means N levels (docs/decisions.md): it and --pth-levels must agree when both are given
-  const std::uint32_t requested = requested_pth_levels(in.settings.code, in.settings.pth_levels);
+  const std::uint32_t requested = requested_pth_levels(in.settings.sort.code, in.settings.sort.pth_levels);
   subtree_ = pth ? choose_subtree(cl.info(), in.scene, requested) : SubtreeChoice{};
-  layout_ = in.settings.code.empty() ? default_code_layout(pth) : in.settings.code;
+  layout_ = in.settings.sort.code.empty() ? default_code_layout(pth) : in.settings.sort.code;
   code_ = parse_code_layout(layout_, subtree_.levels, in.scene.bounds);
   if (!pth) code_.pth_levels = 0;  // the hash sort never walks the subtree
   if (code_.pth_levels > PTH_MAX_LEVELS) code_.pth_levels = PTH_MAX_LEVELS;
@@ -142,13 +142,13 @@ void SortedTraversal::report(RenderResult& result) const {
   result.compile_from_cache = result.compile_from_cache && program_.from_cache;
   result.wavefront.path_state_bytes += SORT_SLOT_BYTES + sizeof(SavedStackEntry) * stack_entries_;
   if (gather_) result.wavefront.path_state_bytes += SORT_GATHER_SLOT_BYTES + sizeof(SavedStackEntry) * stack_entries_;
-  result.coherence = CoherenceFigures{.code_layout = layout_,
+  result.coherence = CoherenceFigures{.sort = {.code = layout_,
+                                               .pth_levels = code_.pth_levels,
+                                               .sort_from_bounce = sort_from_bounce_,
+                                               .sort_payload = gather_ ? "gather" : "indirect"},
                                       .key_bits = code_.key_bits,
-                                      .sort_from_bounce = sort_from_bounce_,
-                                      .pth_levels = code_.pth_levels,
                                       .subtree_nodes = subtree_.nodes,
-                                      .speculative = speculative_,
-                                      .sort_payload = gather_ ? "gather" : "indirect"};
+                                      .speculative = speculative_};
 }
 
 }  // namespace cohort

@@ -86,6 +86,18 @@ DevicePool::DevicePool(const std::vector<DeviceInfo>& devices, const DeviceOpene
   wait_all();
 }
 
+DevicePool::DevicePool(std::size_t count, const DeviceOpener& open) : runs_(count) {
+  for (std::size_t i = 0; i < count; ++i) workers_.push_back(std::make_unique<Worker>(open, i));
+  wait_all();
+  for (std::size_t i = 0; i < count; ++i) runs_[i].device = workers_[i]->device->info();
+}
+
+std::vector<DeviceInfo> DevicePool::infos() const {
+  std::vector<DeviceInfo> out;
+  for (const auto& run : runs_) out.push_back(run.device);
+  return out;
+}
+
 void DevicePool::wait_all() {
   std::exception_ptr first;
   for (auto& w : workers_)
@@ -126,8 +138,24 @@ std::vector<DeviceRun> DevicePool::join() {
 void DevicePool::run_on(std::size_t index, const PreparedScene& scene,
                         const std::function<void(const Device&, const DeviceScene&)>& task) {
   Worker& w = *workers_.at(index);
-  w.post([&w, &scene, &task] { task(*w.device, w.scene_for(scene)); });
+  run_on(index, [&w, &scene, &task](const Device& device) { task(device, w.scene_for(scene)); });
+}
+
+void DevicePool::run_on(std::size_t index, const std::function<void(const Device&)>& task) {
+  Worker& w = *workers_.at(index);
+  w.post([&w, &task] { task(*w.device); });
   if (auto failure = w.wait()) std::rethrow_exception(failure);
+}
+
+void DevicePool::drop_scenes() {
+  for (auto& w : workers_) {
+    Worker& worker = *w;
+    worker.post([&worker] {
+      worker.uploaded.reset();
+      worker.uploaded_scene = nullptr;
+    });
+  }
+  wait_all();
 }
 
 DeviceWorkers::DeviceWorkers(DevicePool& pool, const ProgramCache& cache, const PreparedScene& scene,
@@ -177,15 +205,9 @@ RenderResult merge_device_results(const std::vector<DeviceRun>& runs) {
     add_seconds(merged.kernel_seconds, r.kernel_seconds);
     if (merged.iterations.size() < r.iterations.size()) merged.iterations.resize(r.iterations.size());
     for (std::size_t i = 0; i < r.iterations.size(); ++i) {
-      IterationStats& into = merged.iterations[i];
-      const IterationStats& from = r.iterations[i];
-      into.live_paths += from.live_paths;
-      into.shadow_rays += from.shadow_rays;
-      into.simd_groups += from.simd_groups;
-      into.simd_efficiency_sum += from.simd_efficiency_sum;
-      add_seconds(into.kernel_seconds, from.kernel_seconds);
-      groups += from.simd_groups;
-      efficiency += from.simd_efficiency_sum;
+      merged.iterations[i] += r.iterations[i];
+      groups += r.iterations[i].simd_groups;
+      efficiency += r.iterations[i].simd_efficiency_sum;
     }
   }
   merged.simd_efficiency = groups ? efficiency / double(groups) : 0;

@@ -34,11 +34,14 @@ class DevicePool {
  public:
   // Opens every device of `devices` (what `open` opens) on its own thread; throws the first failure.
   DevicePool(const std::vector<DeviceInfo>& devices, const DeviceOpener& open);
+  // `count` devices, each as `open` opens it; their DeviceInfo is what the opened device reports.
+  DevicePool(std::size_t count, const DeviceOpener& open);
   ~DevicePool();  // stops and joins the threads
   DevicePool(const DevicePool&) = delete;
   DevicePool& operator=(const DevicePool&) = delete;
 
   std::size_t size() const { return workers_.size(); }
+  std::vector<DeviceInfo> infos() const;
 
   // Starts rendering `scene` (uploaded where it is not the scene a device holds: scenes are told
   // apart by address, so a scene must outlive its renders and stay unchanged while this pool holds
@@ -53,6 +56,13 @@ class DevicePool {
   // first-hit AOVs after the passes); rethrows what it throws.
   void run_on(std::size_t index, const PreparedScene& scene,
               const std::function<void(const Device&, const DeviceScene&)>& task);
+  // The same without a scene (work of the caller's own on the device, such as `cohort bench`'s
+  // traversal workloads).
+  void run_on(std::size_t index, const std::function<void(const Device&)>& task);
+
+  // Every device frees the scene it uploaded last, so that a scene made later at the same address
+  // is uploaded (a caller that renders several scenes one after another).
+  void drop_scenes();
 
  private:
   struct Worker;

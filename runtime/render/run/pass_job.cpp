@@ -245,14 +245,15 @@ FilmState PassJob::finish() {
   return film_;
 }
 
-void PassJob::finish_into(RenderResult& result) {
-  const FilmState film = finish();
+FilmState PassJob::finish_into(RenderResult& result) {
+  FilmState film = finish();
   result.image = film_image(film);
   result.samples = film.samples;
   result.resumed_samples = resumed_samples();
   result.dropped_samples = film.dropped_samples;
   result.interrupted = interrupted();
   result.render_seconds = seconds();
+  return film;
 }
 
 PassJob::ImageMean PassJob::image_mean() const {

@@ -41,8 +41,9 @@ class PassJob final : public PassSource {
   bool aborted() const;
   bool finished() const;  // nothing more will be handed out and everything handed out is combined
   FilmState finish();     // waits until finished (after next() said no more), saves the final checkpoint
-  // finish(), then the image and the job's figures (samples, time, interruption) into `result`
-  void finish_into(RenderResult& result);
+  // finish(), then the image and the job's figures (samples, time, interruption) into `result`;
+  // returns the film
+  FilmState finish_into(RenderResult& result);
 
   // The image's mean radiance and its standard error from the spread of the passes' means (batch
   // means): the yardstick for renders that cannot agree bit for bit (different kinds of device).

@@ -1,6 +1,6 @@
 // The strict readers (docs/input.md): gzip read to its end, numbers read whole, glTF versions and
 // required extensions, node transforms. The CLI's view of the same cases (exit 2, no image) is the
-// malformed-input corpus in test/data/bad-input.
+// malformed-input corpus in test/data/bad-input (bad_input_test.cpp, beside this file).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,7 +12,7 @@
 #include "runtime/scene/scene.h"
 #include "runtime/scene/strict_number.h"
 #include "runtime/util/error.h"
-#include "scene_test_util.h"
+#include "scene/scene_test_util.h"
 
 namespace cohort {
 namespace {

@@ -1,8 +1,6 @@
-#include "runtime/cli/loaded_scene.h"
+#include "runtime/cli/scene_commands.h"
 
 #include <fmt/format.h>
-
-#include <chrono>
 
 #include "runtime/render/methods/methods.h"
 #include "runtime/render/scene/scene_memory.h"
@@ -29,51 +27,16 @@ void check_shared_options(const RenderCommand& base, const RenderCommand& c) {
 
 }  // namespace
 
-LoadedScene::LoadedScene(RenderCommand base)
-    : base_(std::move(base)), cache_(base_.no_cache ? std::nullopt : std::optional(ProgramCache::default_directory())) {
-  const RenderPlan plan = parse_render(base_);
-  OpenedDevices opened = open_render_devices(plan, 0);
-  devices_ = std::move(opened.devices);
-  pool_ = std::move(opened.pool);
-  const auto t0 = std::chrono::steady_clock::now();
-  loaded_ = load_scene(base_.scene);
-  load_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
+SceneCommands::SceneCommands(RenderCommand base)
+    : base_(std::move(base)),
+      scene_(parse_render(base_), [this](const PreparedScene& scene) { report_scene_warnings(scene, base_.scene); }) {}
 
-LoadedScene::Variant& LoadedScene::variant(const RenderPlan& plan, bool& built) {
-  const bool needs_kd = plan.command.tree_budget_mib > 0 || plan.settings().speculative;
-  const VariantKey key{needs_kd, plan.command.white_sky,
-                       plan.environment_map ? plan.command.environment : std::string()};
-  built = false;
-  if (auto it = variants_.find(key); it != variants_.end()) return it->second;
-  auto tree = trees_.find(needs_kd);
-  if (tree == trees_.end()) {
-    PreparedScene prepared = build_render_trees(plan, devices_, [&](const TreeChoice& choice) {
-      return prepare_loaded_scene(base_.scene, loaded_, choice);
-    });
-    if (trees_.empty()) report_scene_warnings(prepared, base_.scene);
-    tree = trees_.emplace(needs_kd, std::move(prepared)).first;
-    built = true;
-  }
-  PreparedScene scene = tree->second;
-  RenderPlan scene_plan = plan;  // its settings are each render's own
-  apply_scene_options(scene, scene_plan);
-  const SceneCamera camera = scene.camera;
-  auto render = std::make_unique<PreparedRender>(PreparedRender{
-      .plan = std::move(scene_plan), .devices = devices_, .pool = pool_, .scene = std::move(scene), .cache = cache_});
-  return variants_.emplace(key, Variant{std::move(render), camera}).first->second;
-}
-
-SceneRender LoadedScene::render(const RenderCommand& command, const std::optional<SceneCamera>& camera,
-                                const RenderHooks& hooks, const std::vector<std::filesystem::path>& denoise_venvs) {
+SceneRender SceneCommands::render(const RenderCommand& command, const std::optional<SceneCamera>& camera,
+                                  const RenderHooks& hooks, const std::vector<std::filesystem::path>& denoise_venvs) {
   check_shared_options(base_, command);
-  RenderPlan plan = parse_render(command);
-  if (command.white_sky) apply_white_sky_settings(plan.command.settings);
-  bool built = false;
-  Variant& v = variant(plan, built);
-  PreparedRender& render = *v.render;
-  render.plan = plan;
-  render.scene.camera = plan_camera(camera ? *camera : v.camera, render.scene.scene.bounds(), command);
+  const LoadedScene::Prepared prepared = scene_.prepare(parse_render(command), camera);
+  const PreparedRender& render = prepared.render;
+  const bool built = prepared.built_tree;
 
   const auto team = solo_render_team();
   RenderOutcome outcome = run_render_passes(render, *team, {}, hooks);
@@ -85,7 +48,7 @@ SceneRender LoadedScene::render(const RenderCommand& command, const std::optiona
   out.stats = stats_json(render, outcome, nullptr);
   // what this render set up: the file is read once per scene, a tree built once
   const bool first = renders_++ == 0;
-  const double load = first ? load_seconds_ : 0.0;
+  const double load = first ? scene_.load_seconds() : 0.0;
   const double build = built ? render.scene.build_seconds() : 0.0;
   out.stats["timings"]["load_seconds"] = load;
   out.stats["timings"]["build_seconds"] = build;
@@ -94,15 +57,14 @@ SceneRender LoadedScene::render(const RenderCommand& command, const std::optiona
     rank["build_seconds"] = build;
   }
   out.stats["setup"] = {{"render", renders_}, {"loaded_scene", first}, {"built_tree", built},
-                          {"compiled", !outcome.result.compile_from_cache || outcome.result.compile_seconds > 0}};
+                        {"compiled", !outcome.result.compile_from_cache || outcome.result.compile_seconds > 0}};
   out.image = std::move(outcome.result.image);
   out.aovs = std::move(outcome.aovs);
   return out;
 }
 
-nlohmann::json LoadedScene::info() {
-  bool built = false;
-  const PreparedScene& p = variant(parse_render(base_), built).render->scene;
+nlohmann::json SceneCommands::info() {
+  const PreparedScene& p = scene_.scene(parse_render(base_));
   const Bounds b = p.scene.bounds();
   nlohmann::json materials = nlohmann::json::array();
   for (const auto& m : p.scene.materials)
@@ -135,7 +97,7 @@ nlohmann::json LoadedScene::info() {
                              {"triangles", memory.triangles}, {"shading", memory.shading}, {"total", memory.total()},
                              {"text", describe(memory, p.tree.triangles.size())}}},
           {"host_geometry_bytes", p.scene.geometry_bytes()},
-          {"load_seconds", load_seconds_},
+          {"load_seconds", scene_.load_seconds()},
           {"warnings", p.scene.warnings}};
 }
 

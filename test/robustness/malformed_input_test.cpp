@@ -1,8 +1,9 @@
-// Bad input of every kind throws InputError naming the file; nothing crashes.
+// The loaders on bad input of every kind: InputError naming the file; nothing crashes. The CLI's
+// view of the malformed-input corpus is bad_input_test.cpp, beside this file.
 #include <gtest/gtest.h>
 
 #include "runtime/scene/scene.h"
-#include "scene_test_util.h"
+#include "scene/scene_test_util.h"
 
 namespace cohort {
 namespace {

@@ -9,7 +9,6 @@
 
 #include "accel/ray_check.h"
 #include "host/scene_paths.h"
-#include "accel/straggler_check.h"
 #include "runtime/cl/context.h"
 #include "runtime/cl/kernel_program.h"
 #include "runtime/render/scene/device_scene.h"
@@ -26,10 +25,10 @@ struct DeviceTrace {
   std::vector<std::uint32_t> bits;
 };
 
-enum class Traversal { full, partial, speculative, counted };
+enum class Traversal { full, partial, speculative };
 
-// Full traversal, partial + resumed traversal (with subtree_nodes and levels), full traversal with
-// speculative leaf tests, or full traversal counting the nodes each ray visits (in `bits`).
+// Full traversal, partial + resumed traversal (with subtree_nodes and levels), or full traversal
+// with speculative leaf tests (the nodes each ray visits in `bits`).
 DeviceTrace trace(const KdTree& tree, const std::vector<TestRay>& rays, std::uint32_t subtree_nodes,
                   std::uint32_t levels, Traversal mode) {
   const bool partial = mode == Traversal::partial;
@@ -49,7 +48,6 @@ DeviceTrace trace(const KdTree& tree, const std::vector<TestRay>& rays, std::uin
   const co_float4 hi{tree.bounds.hi.x, tree.bounds.hi.y, tree.bounds.hi.z, 0.f};
   const char* name = partial                           ? "trace_rays_pth"
                      : mode == Traversal::speculative ? "trace_rays_speculative"
-                     : mode == Traversal::counted     ? "trace_rays_steps"
                                                       : "trace_rays";
   cl::Kernel k(build.program, name);
   cl_uint a = 0;
@@ -67,9 +65,6 @@ DeviceTrace trace(const KdTree& tree, const std::vector<TestRay>& rays, std::uin
     k.setArg(a++, levels);
     k.setArg(a++, bit_buf);
   } else if (mode == Traversal::speculative) {
-    k.setArg(a++, bit_buf);  // nodes visited per ray
-  } else if (mode == Traversal::counted) {
-    k.setArg(a++, cl_uint(0));
     k.setArg(a++, bit_buf);  // nodes visited per ray
   } else {
     k.setArg(a++, cl_uint(0));
@@ -196,41 +191,4 @@ TEST(PthKernel, BunnyResumeEqualsFullTraversal) {
 TEST(PthKernel, SponzaDeepSubtree) {
   if (!fs::exists(shared("dabrovic-sponza"))) GTEST_SKIP() << "the external models (scenes/external.json) are missing";
   check(shared("dabrovic-sponza/sponza.obj.gz"), 14);
-}
-
-// Straggler rays through the OpenCL traversal: on rays built to straggle (test/accel/
-// straggler_check.h) the kernel visits exactly the nodes the host traversal visits, finds the same
-// hits, and no ray visits a node whose cell it does not touch.
-namespace {
-
-void expect_no_stragglers_on_device(const fs::path& path, std::size_t ray_count) {
-  const KdTree tree = build_kdtree(load_scene(path).positions);
-  const auto rays = straggler_rays(tree, ray_count, 777);
-  const DeviceTrace device = trace(tree, rays, 0, 0, Traversal::counted);
-  std::vector<HitOut> host_hits;
-  const std::vector<std::uint32_t> host = host_visits(tree, rays, &host_hits);
-  std::size_t step_differences = 0, hit_differences = 0;
-  for (std::size_t i = 0; i < rays.size(); ++i) {
-    step_differences += device.bits[i] != host[i];
-    hit_differences += std::memcmp(&host_hits[i], &device.hits[i], sizeof(HitOut)) != 0;
-  }
-  const StragglerCheck check = check_stragglers(tree, rays, device.bits);
-  std::printf("%s: %zu rays, most nodes visited %u, 99.99th percentile %u, %zu over the bound\n",
-              path.filename().c_str(), check.rays, check.max_visited, check.p9999_visited, check.over_bound);
-  for (const std::string& w : check.worst) std::printf("  %s\n", w.c_str());
-  EXPECT_EQ(check.over_bound, 0u);
-  EXPECT_EQ(step_differences, 0u) << "the kernel and the host traversal visit different nodes";
-  EXPECT_EQ(hit_differences, 0u) << "the kernel and the host traversal disagree on hits";
-}
-
-}  // namespace
-
-TEST(StragglerKernel, ShippedCornellBox) {
-  expect_no_stragglers_on_device(fs::path(COHORT_SOURCE_DIR) / "scenes/cornell-box.gltf", 60'000);
-}
-
-TEST(StragglerKernel, SharedBunny) {
-  const fs::path bunny = fs::path(COHORT_SHARED_SCENES) / "bunny/bun_zipper_res2.ply";
-  if (!fs::exists(bunny)) GTEST_SKIP() << "the external models (scenes/external.json) are missing";
-  expect_no_stragglers_on_device(bunny, 60'000);
 }

@@ -1,5 +1,5 @@
-// How one process takes part in `cohort render`: alone, or as one rank of an MPI job. Chosen once
-// (join_render_team); the render steps ask the team and never test for MPI themselves.
+// How one process takes part in a render: alone, or as one rank of an MPI job (runtime/mpi/mpi_team.h).
+// Chosen once by the caller; the run (render_run.h) asks the team and never tests for MPI itself.
 #pragma once
 
 #include <cstddef>
@@ -39,9 +39,8 @@ class RenderTeam {
   virtual std::vector<std::string> gather(const std::string& figures) const = 0;
 };
 
-// MPI when an MPI launcher started this process with more than one rank, else a team of one.
-std::unique_ptr<RenderTeam> join_render_team();
-// A team of this process alone, whatever launched it (the Python module).
-std::unique_ptr<RenderTeam> solo_render_team();
+// A team of this process alone, whatever launched it; `keep` stays alive as long as the team (the
+// MPI session of a job of one rank).
+std::unique_ptr<RenderTeam> solo_render_team(std::shared_ptr<const void> keep = nullptr);
 
 }  // namespace cohort
