@@ -217,7 +217,7 @@ TEST(GltfVolume, EveryMethodAndTreeGivesTheSameBits) {
   s.rr_depth = 3;
   s.seed = 9;
   s.environment = glm::vec3(0.3f);
-  s.sort_from_bounce = 1;
+  s.sort.sort_from_bounce = 1;
   std::vector<float> reference;
   std::uint64_t reference_rays = 0;
   int compared = 0;
@@ -243,7 +243,7 @@ TEST(GltfVolume, EveryMethodAndTreeGivesTheSameBits) {
       s.method = m.name;
       s.wavefront_size = 0;
       s.speculative = false;
-      s.sort_payload = "indirect";
+      s.sort.sort_payload = "indirect";
       check(render(cl, cache, scene, p.camera, s), std::string(m.name) + " on " + t.name);
       if (!m.sorts) continue;
       s.wavefront_size = 129;
@@ -251,7 +251,7 @@ TEST(GltfVolume, EveryMethodAndTreeGivesTheSameBits) {
       check(render(cl, cache, scene, p.camera, s),
             std::string(m.name) + (s.speculative ? " speculative" : " pool 129") + " on " + t.name);
       s.speculative = false;
-      s.sort_payload = "gather";
+      s.sort.sort_payload = "gather";
       check(render(cl, cache, scene, p.camera, s), std::string(m.name) + " gathered on " + t.name);
     }
   }
