@@ -36,23 +36,24 @@ Image denoise_image(const RenderOutcome& outcome, const std::vector<std::filesys
   return denoiser.denoise(outcome.result.image, &aovs.albedo, &aovs.normal);
 }
 
-int write_denoised(const RenderCommand& command, const RenderOutcome& outcome, const OutputPaths& out) {
-  if (!command.denoise) return 0;
+DenoiseOutcome write_denoised(const RenderCommand& command, const RenderOutcome& outcome, const OutputPaths& out) {
+  DenoiseOutcome done;
+  if (!command.denoise) return done;
   try {
     const auto start = std::chrono::steady_clock::now();
-    std::string library;
-    const Image denoised = denoise_image(outcome, {}, &library);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const Image denoised = denoise_image(outcome, {}, &done.library);
+    done.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    done.aov_seconds = outcome.aov_seconds;
+    done.denoised = true;
     write_exr(out.denoised_exr, denoised);
     write_png(out.denoised_png, denoised);
-    // the cost of a denoised image beside the render's seconds (scripts/lib/adaptive.py charts it)
-    fmt::print("denoised with {} in {:.3f}s (first-hit AOVs {:.3f}s)\nwrote {}\nwrote {}\n", library,
-               seconds, outcome.aov_seconds, out.denoised_exr.string(), out.denoised_png.string());
-    return 0;
+    fmt::print("denoised with {} in {:.3f}s (first-hit AOVs {:.3f}s)\nwrote {}\nwrote {}\n", done.library,
+               done.seconds, done.aov_seconds, out.denoised_exr.string(), out.denoised_png.string());
   } catch (const DenoiserUnavailable& e) {
     fmt::print(stderr, "cohort: --denoise: {}\nthe undenoised image is written: {}\n", e.what(), out.exr.string());
-    return 2;
+    done.code = 2;
   }
+  return done;
 }
 
 }  // namespace cohort

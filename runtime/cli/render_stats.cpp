@@ -20,7 +20,8 @@ nlohmann::json per_pass(const std::vector<std::uint32_t>& counts) {
 
 }  // namespace
 
-nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& outcome, const OutputPaths* out) {
+nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& outcome, const OutputPaths* out,
+                          const DenoiseOutcome* denoise) {
   const RenderInput& in = render.input;
   const RenderSettings& settings = in.settings;
   const PreparedScene& prepared = render.scene;
@@ -137,6 +138,10 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
                          {"kernel_seconds", it.kernel_seconds}});
     j["bounces"] = bounces;
   }
+  if (denoise && denoise->denoised)
+    j["denoise"] = {{"library", denoise->library},
+                    {"seconds", denoise->seconds},
+                    {"aov_seconds", denoise->aov_seconds}};
   return j;
 }
 

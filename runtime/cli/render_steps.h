@@ -35,11 +35,23 @@ int write_render(const RenderCommand& command, const PreparedRender& render, con
 Image denoise_image(const RenderOutcome& outcome, const std::vector<std::filesystem::path>& venvs = {},
                     std::string* library = nullptr);
 
-// --denoise: writes out.denoised_exr and .png; 0, or 2 with a message when Open Image Denoise
-// cannot be loaded or run (the beauty is written by then).
-int write_denoised(const RenderCommand& command, const RenderOutcome& outcome, const OutputPaths& out);
+// What --denoise did: `code` 0, or 2 when Open Image Denoise could not be loaded or run (with a
+// message; the beauty is written by then); on success the library and what it cost, which --stats
+// records beside the render's seconds.
+struct DenoiseOutcome {
+  int code = 0;
+  bool denoised = false;
+  std::string library;
+  double seconds = 0;      // the denoiser itself
+  double aov_seconds = 0;  // the first-hit albedo and normal it is guided by
+};
 
-// The JSON figures of the --stats file; `out` names the image files (none: not written).
-nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& outcome, const OutputPaths* out);
+// --denoise: writes out.denoised_exr and .png.
+DenoiseOutcome write_denoised(const RenderCommand& command, const RenderOutcome& outcome, const OutputPaths& out);
+
+// The JSON figures of the --stats file; `out` names the image files (none: not written), `denoise`
+// what --denoise did (none: not asked).
+nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& outcome, const OutputPaths* out,
+                          const DenoiseOutcome* denoise = nullptr);
 
 }  // namespace cohort

@@ -97,11 +97,13 @@ int write_render(const RenderCommand& cmd, const PreparedRender& render, const R
                               : std::string());
   fmt::print("wrote {}\nwrote {}\n", out.exr.string(), out.png.string());
   if (cmd.checkpoint || cmd.resume) fmt::print("wrote {}\n", out.checkpoint.string());
+  // denoised first, so that --stats records what the denoiser cost
+  const DenoiseOutcome denoise = write_denoised(cmd, outcome, out);
   if (!cmd.stats_file.empty()) {
-    write_file_atomically(cmd.stats_file, stats_json(render, outcome, &out).dump(2) + "\n");
+    write_file_atomically(cmd.stats_file, stats_json(render, outcome, &out, &denoise).dump(2) + "\n");
     fmt::print("wrote {}\n", cmd.stats_file);
   }
-  if (const int code = write_denoised(cmd, outcome, out)) return code;
+  if (denoise.code) return denoise.code;
   if (result.interrupted) {
     fmt::print(stderr, "interrupted by signal {} at {} spp: the image so far is saved{}\n", interrupt.signal_number(),
                result.samples, cmd.checkpoint || cmd.resume ? "; --resume continues it" : "");

@@ -27,7 +27,6 @@ Run through scripts/reference --adaptive, which provides the venv (numpy, matplo
 import argparse
 import json
 import os
-import re
 import sys
 import tempfile
 
@@ -97,12 +96,12 @@ def scenes(args):
 def render_once(args, scene, meta, spp, seed, out, extra):
     """Renders with --stats; returns (stats, denoise seconds or None, the EXR's bytes)."""
     stats_path = out[: -len(".exr")] + ".json"
-    stdout = render_cohort(args.cohort, scene, meta, spp, seed, out, list(extra) + ["--stats", stats_path])
+    render_cohort(args.cohort, scene, meta, spp, seed, out, list(extra) + ["--stats", stats_path])
     with open(stats_path) as f:
         stats = json.load(f)
-    m = re.search(r"denoised with .* in ([0-9.]+)s \(first-hit AOVs ([0-9.]+)s\)", stdout)
+    denoise = stats.get("denoise")
     with open(out, "rb") as f:
-        return stats, float(m.group(1)) + float(m.group(2)) if m else None, f.read()
+        return stats, denoise["seconds"] + denoise["aov_seconds"] if denoise else None, f.read()
 
 
 def render_points(args, scene, meta, extra, jobs):

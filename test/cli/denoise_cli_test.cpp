@@ -2,12 +2,14 @@
 // box closer to a converged one; without the library the render still writes its image and exits 2.
 // scripts/test installs the pyoidn wheel and sets COHORT_REQUIRE_OIDN, so in CI these tests run.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cstdlib>
 #include <numeric>
-#include <vector>
 #include <filesystem>
+#include <fstream>
+#include <vector>
 
 #include "cli/cli_helpers.h"
 #include "runtime/image/image.h"
@@ -42,11 +44,19 @@ TEST(Denoise, CornellBoxAt16SppIsCloserToTheReference) {
   TempDir dir;
   const std::string res = " --res 48x48 ";
   const fs::path noisy = dir.path / "noisy", plain = dir.path / "plain";
-  const CommandResult r = run("render " + kBox + res + "--spp 16 --seed 2 --denoise -o " + noisy.string());
+  const fs::path stats = dir.path / "stats.json";
+  const CommandResult r =
+      run("render " + kBox + res + "--spp 16 --seed 2 --denoise --stats " + stats.string() + " -o " + noisy.string());
   if (r.code == 2 && r.output.find("Open Image Denoise was not found") != std::string::npos &&
       !std::getenv("COHORT_REQUIRE_OIDN"))
     GTEST_SKIP() << "no Open Image Denoise here (scripts/test installs it): " << r.output;
   ASSERT_EQ(r.code, 0) << r.output;
+  // --stats records what the denoiser cost (the adaptive chart reads it there)
+  const nlohmann::json figures = nlohmann::json::parse(std::ifstream(stats));
+  ASSERT_TRUE(figures.contains("denoise")) << figures.dump(1);
+  EXPECT_FALSE(figures["denoise"]["library"].get<std::string>().empty());
+  EXPECT_GT(figures["denoise"]["seconds"].get<double>(), 0.0);
+  EXPECT_GT(figures["denoise"]["aov_seconds"].get<double>(), 0.0);
   // the denoised image is an extra output: the beauty is the same bits as without --denoise
   ASSERT_EQ(run("render " + kBox + res + "--spp 16 --seed 2 -o " + plain.string()).code, 0);
   EXPECT_EQ(cohort_test::read_all(noisy.string() + ".exr"), cohort_test::read_all(plain.string() + ".exr"));
