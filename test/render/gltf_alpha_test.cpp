@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "method_tree_agreement.h"
 #include "render_fixture.h"
 #include "runtime/backend/device_support.h"
 #include "runtime/render/methods/methods.h"
@@ -329,17 +330,6 @@ Scene alpha_room() {
 }
 
 TEST(GltfAlpha, EveryMethodAndTreeGivesTheSameBits) {
-  const Scene room = alpha_room();
-  const SceneCamera camera{{0.5f, 0.5f, 0.02f}, {0.5f, 0.4f, 1.f}, {0, 1, 0}, 75};
-  struct Tree {
-    const char* name;
-    TreeChoice choice;
-  };
-  const Tree trees[] = {{"deep", TreeChoice{KdBuildOptions{}, false}},
-                        {"compact", TreeChoice{KdBuildOptions{.compact = true}, false}},
-                        {"bvh4", TreeChoice{KdBuildOptions{}, true}}};
-  const ClContext cl(select_device(""));
-  const ProgramCache cache(ProgramCache::default_directory());
   RenderSettings s;
   s.width = 24;
   s.height = 20;
@@ -347,52 +337,15 @@ TEST(GltfAlpha, EveryMethodAndTreeGivesTheSameBits) {
   s.rr_depth = 3;
   s.seed = 9;
   s.sort.sort_from_bounce = 1;  // hash and pth sort the camera rays too
-  std::vector<float> reference;
-  std::uint64_t reference_rays = 0;
-  int compared = 0;
-  const auto check = [&](const RenderResult& r, const std::string& what) {
-    if (reference.empty()) {
-      reference = r.image.rgb;
-      reference_rays = r.rays;
-      EXPECT_GT(mean_of(r.image), 0.01) << "a black image proves nothing";
-      return;
-    }
-    ++compared;
-    EXPECT_EQ(0, std::memcmp(reference.data(), r.image.rgb.data(), reference.size() * sizeof(float)))
-        << what << " differs from naive on deep";
-    EXPECT_EQ(reference_rays, r.rays) << what;
-  };
-  for (const Tree& t : trees) {
-    PreparedScene p = prepare_loaded_scene("alpha-room", room, t.choice);
-    p.camera = camera;
-    ASSERT_TRUE(p.tables.features.alpha) << t.name;
-    ASSERT_TRUE(p.tables.features.texture_transform) << t.name;
-    const DeviceScene scene = upload_scene(cl, p.tree, p.tables, p.bvh());
-    for (const auto& m : methods()) {
-      if (m.sorts && !device_support(cl.info()).sorts) continue;
-      s.method = m.name;
-      s.wavefront_size = 0;
-      s.speculative = false;
-      s.sort.sort_payload = "indirect";
-      check(render(cl, cache, scene, p.camera, s), std::string(m.name) + " on " + t.name);
-      if (!m.sorts) continue;
-      // the ray's alpha seed travels in its origin's w: through the gathered payload, the resumed and
-      // the speculative walks, and small pools that refill
-      s.wavefront_size = 129;
-      s.speculative = !p.bvh();  // the speculative resume walks the KD-tree only
-      check(render(cl, cache, scene, p.camera, s), std::string(m.name) + (s.speculative ? " speculative" : " pool 129") +
-                                                       " on " + t.name);
-      s.speculative = false;
-      s.sort.sort_payload = "gather";
-      check(render(cl, cache, scene, p.camera, s), std::string(m.name) + " gathered on " + t.name);
-    }
-  }
-  // every method on every tree: hash and pth (three ways each) walk and resume on the BVH too
-  std::size_t sorting = 0;
-  for (const auto& m : methods()) sorting += m.sorts ? 1u : 0u;
-  const std::size_t per_tree =
-      device_support(cl.info()).sorts ? methods().size() + 2 * sorting : methods().size() - sorting;
-  EXPECT_EQ(std::size_t(compared), std::size(trees) * per_tree - 1);  // the first render is the reference
+  // the ray's alpha seed travels in its origin's w: through the gathered payload, the resumed and the
+  // speculative walks, and small pools that refill
+  expect_every_method_and_tree_agree(
+      "alpha-room", alpha_room(), {{0.5f, 0.5f, 0.02f}, {0.5f, 0.4f, 1.f}, {0, 1, 0}, 75}, s,
+      [](const PreparedScene& p, const char* tree) {
+        ASSERT_TRUE(p.tables.features.alpha) << tree;
+        ASSERT_TRUE(p.tables.features.texture_transform) << tree;
+      },
+      [](const Image& image) { return mean_of(image) > 0.01; });
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "kernels/common/shading/texture.h"
+#include "method_tree_agreement.h"
 #include "render_fixture.h"
 #include "runtime/backend/device_support.h"
 #include "runtime/render/methods/methods.h"
@@ -261,47 +262,24 @@ Scene feature_room() {
 }
 
 TEST(GltfMaterial, EveryMethodAndTreeGivesTheSameBits) {
-  const Scene room = feature_room();
-  const SceneCamera camera{{0.5f, 0.5f, 0.02f}, {0.5f, 0.3f, 1.f}, {0, 1, 0}, 70};
-  struct Tree {
-    const char* name;
-    TreeChoice choice;
-  };
-  const Tree trees[] = {{"deep", TreeChoice{KdBuildOptions{}, false}},
-                        {"compact", TreeChoice{KdBuildOptions{.compact = true}, false}},
-                        {"bvh4", TreeChoice{KdBuildOptions{}, true}}};
-  const ClContext cl(select_device(""));
-  const ProgramCache cache(ProgramCache::default_directory());
   RenderSettings s;
   s.width = 24;
   s.height = 20;
   s.spp = 3;
   s.rr_depth = 3;
   s.seed = 5;
-  std::vector<float> reference;
-  for (const Tree& t : trees) {
-    PreparedScene p = prepare_loaded_scene("feature-room", room, t.choice);
-    p.camera = camera;
-    const SceneFeatures expected{.textures = true, .texcoord1 = true, .vertex_colors = true, .normal_map = true,
-                                 .conductor = true, .plastic = true};
-    EXPECT_EQ(p.tables.features, expected) << t.name;
-    const DeviceScene scene = upload_scene(cl, p.tree, p.tables, p.bvh());
-    for (const auto& m : methods()) {
-      // hash and pth sort on the device where it can
-      if (m.sorts && !device_support(cl.info()).sorts) continue;
-      s.method = m.name;
-      const RenderResult r = render(cl, cache, scene, p.camera, s);
-      if (reference.empty()) {
-        reference = r.image.rgb;
+  expect_every_method_and_tree_agree(
+      "feature-room", feature_room(), {{0.5f, 0.5f, 0.02f}, {0.5f, 0.3f, 1.f}, {0, 1, 0}, 70}, s,
+      [](const PreparedScene& p, const char* tree) {
+        const SceneFeatures expected{.textures = true, .texcoord1 = true, .vertex_colors = true, .normal_map = true,
+                                     .conductor = true, .plastic = true};
+        EXPECT_EQ(p.tables.features, expected) << tree;
+      },
+      [](const Image& image) {
         double sum = 0;
-        for (float v : reference) sum += v;
-        EXPECT_GT(sum, 0.0) << "a black image proves nothing";
-        continue;
-      }
-      EXPECT_EQ(0, std::memcmp(reference.data(), r.image.rgb.data(), reference.size() * sizeof(float)))
-          << m.name << " on " << t.name << " differs from naive on deep";
-    }
-  }
+        for (float v : image.rgb) sum += v;
+        return sum > 0.0;
+      });
 }
 
 }  // namespace

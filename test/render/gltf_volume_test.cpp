@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "kernels/common/shading/medium.h"
+#include "method_tree_agreement.h"
 #include "render_fixture.h"
 #include "runtime/backend/device_support.h"
 #include "runtime/render/methods/methods.h"
@@ -201,15 +202,6 @@ TEST(GltfVolume, EveryMethodAndTreeGivesTheSameBits) {
   room.materials.push_back(absorbing_glass({1.2f, 0.4f, 0.1f}, 1.33f, 0.3f));
   add_sphere(room, {1.8f, 0.6f, 0.5f}, 0.6f, 3, 2);
   add_quad(room, {-4, -0.01f, 4}, {8, 0, 0}, {0, 0, -8}, 1);
-  struct Tree {
-    const char* name;
-    TreeChoice choice;
-  };
-  const Tree trees[] = {{"deep", TreeChoice{KdBuildOptions{}, false}},
-                        {"compact", TreeChoice{KdBuildOptions{.compact = true}, false}},
-                        {"bvh4", TreeChoice{KdBuildOptions{}, true}}};
-  const ClContext cl(select_device(""));
-  const ProgramCache cache(ProgramCache::default_directory());
   RenderSettings s;
   s.width = 24;
   s.height = 20;
@@ -218,42 +210,8 @@ TEST(GltfVolume, EveryMethodAndTreeGivesTheSameBits) {
   s.seed = 9;
   s.environment = glm::vec3(0.3f);
   s.sort.sort_from_bounce = 1;
-  std::vector<float> reference;
-  std::uint64_t reference_rays = 0;
-  int compared = 0;
-  const auto check = [&](const RenderResult& r, const std::string& what) {
-    if (reference.empty()) {
-      reference = r.image.rgb;
-      reference_rays = r.rays;
-      EXPECT_GT(mean_of(r.image, 2), 0.005) << "a black image proves nothing";
-      return;
-    }
-    ++compared;
-    EXPECT_EQ(0, std::memcmp(reference.data(), r.image.rgb.data(), reference.size() * sizeof(float)))
-        << what << " differs from naive on deep";
-    EXPECT_EQ(reference_rays, r.rays) << what;
-  };
-  for (const Tree& t : trees) {
-    PreparedScene p = prepare_loaded_scene("volume-room", room, t.choice);
-    p.camera = kIntoTheBox;
-    ASSERT_TRUE(p.tables.features.volume) << t.name;
-    const DeviceScene scene = upload_scene(cl, p.tree, p.tables, p.bvh());
-    for (const auto& m : methods()) {
-      if (m.sorts && !device_support(cl.info()).sorts) continue;
-      s.method = m.name;
-      s.wavefront_size = 0;
-      s.speculative = false;
-      s.sort.sort_payload = "indirect";
-      check(render(cl, cache, scene, p.camera, s), std::string(m.name) + " on " + t.name);
-      if (!m.sorts) continue;
-      s.wavefront_size = 129;
-      s.speculative = !p.bvh();  // the speculative resume walks the KD-tree only
-      check(render(cl, cache, scene, p.camera, s),
-            std::string(m.name) + (s.speculative ? " speculative" : " pool 129") + " on " + t.name);
-      s.speculative = false;
-      s.sort.sort_payload = "gather";
-      check(render(cl, cache, scene, p.camera, s), std::string(m.name) + " gathered on " + t.name);
-    }
-  }
-  EXPECT_GE(compared, 8);
+  expect_every_method_and_tree_agree(
+      "volume-room", room, kIntoTheBox, s,
+      [](const PreparedScene& p, const char* tree) { ASSERT_TRUE(p.tables.features.volume) << tree; },
+      [](const Image& image) { return mean_of(image, 2) > 0.005; });
 }

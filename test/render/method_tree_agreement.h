@@ -1,0 +1,88 @@
+// Every method on every tree renders a scene as naive does on the deep KD-tree, bit for bit: the
+// check the glTF feature tests (alpha, volumes, textures) run on their own scenes.
+#pragma once
+
+#include <cstring>
+#include <functional>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "runtime/backend/device_support.h"
+#include "runtime/backend/program_cache.h"
+#include "runtime/cl/context.h"
+#include "runtime/render/methods/methods.h"
+#include "runtime/render/renderer.h"
+#include "runtime/render/scene/prepared_scene.h"
+
+namespace cohort::test {
+
+// Renders `scene` from `camera` with `settings` (its method, pool, payload and speculation are set
+// here) on the deep and compact KD-trees and the 4-wide BVH, with every method the device runs; the
+// sorting methods also in a pool of 129 paths that refills (the speculative resume on the KD-trees)
+// and with the gathered payload. Every image and ray count must equal the first (naive on the deep
+// tree), which `lit` must accept (a black image proves nothing). `check` sees each tree's prepared
+// scene (for its feature options). Returns how many renders were compared with the first.
+inline int expect_every_method_and_tree_agree(const std::string& name, const Scene& scene, const SceneCamera& camera,
+                                              RenderSettings settings,
+                                              const std::function<void(const PreparedScene&, const char*)>& check,
+                                              const std::function<bool(const Image&)>& lit) {
+  struct Tree {
+    const char* name;
+    TreeChoice choice;
+  };
+  const Tree trees[] = {{"deep", TreeChoice{KdBuildOptions{}, false}},
+                        {"compact", TreeChoice{KdBuildOptions{.compact = true}, false}},
+                        {"bvh4", TreeChoice{KdBuildOptions{}, true}}};
+  const ClContext cl(select_device(""));
+  const ProgramCache cache(ProgramCache::default_directory());
+  const bool sorts = device_support(cl.info()).sorts;
+  std::vector<float> reference;
+  std::uint64_t reference_rays = 0;
+  int compared = 0;
+  const auto compare = [&](const RenderResult& r, const std::string& what) {
+    if (reference.empty()) {
+      reference = r.image.rgb;
+      reference_rays = r.rays;
+      EXPECT_TRUE(lit(r.image)) << name << ": a black image proves nothing";
+      return;
+    }
+    ++compared;
+    EXPECT_EQ(0, std::memcmp(reference.data(), r.image.rgb.data(), reference.size() * sizeof(float)))
+        << name << ": " << what << " differs from naive on deep";
+    EXPECT_EQ(reference_rays, r.rays) << name << ": " << what;
+  };
+  for (const Tree& t : trees) {
+    PreparedScene p = prepare_loaded_scene(name, scene, t.choice);
+    p.camera = camera;
+    check(p, t.name);
+    const DeviceScene uploaded = upload_scene(cl, p.tree, p.tables, p.bvh());
+    for (const auto& m : methods()) {
+      if (m.sorts && !sorts) continue;
+      RenderSettings s = settings;
+      s.method = m.name;
+      s.wavefront_size = 0;
+      s.speculative = false;
+      s.sort.sort_payload = "indirect";
+      compare(render(cl, cache, uploaded, p.camera, s), std::string(m.name) + " on " + t.name);
+      if (!m.sorts) continue;
+      s.wavefront_size = 129;
+      s.speculative = !p.bvh();  // the speculative resume walks the KD-tree only
+      compare(render(cl, cache, uploaded, p.camera, s),
+              std::string(m.name) + (s.speculative ? " speculative" : " pool 129") + " on " + t.name);
+      s.speculative = false;
+      s.sort.sort_payload = "gather";
+      compare(render(cl, cache, uploaded, p.camera, s), std::string(m.name) + " gathered on " + t.name);
+    }
+  }
+  // every method on every tree: hash and pth (three ways each) walk and resume on the BVH too
+  std::size_t sorting = 0;
+  for (const auto& m : methods()) sorting += m.sorts ? 1u : 0u;
+  const std::size_t per_tree = sorts ? methods().size() + 2 * sorting : methods().size() - sorting;
+  EXPECT_EQ(std::size_t(compared), std::size(trees) * per_tree - 1) << name;  // the first is the reference
+  return compared;
+}
+
+}  // namespace cohort::test
