@@ -31,35 +31,18 @@ CO_INLINE uint32_t alpha_ray_seed(uint32_t seed, uint32_t pixel, uint32_t sample
 }
 #ifdef COHORT_FEATURE_TEXTURES
 /* The alpha channel (linear in glTF, never sRGB) of texture `index` at (u, v), filtered and
- * wrapped exactly as texture_sample filters the colour channels. */
+ * wrapped exactly as texture_sample filters the colour channels (the same footprint). */
 CO_INLINE float texel_alpha(const CO_GLOBAL uint32_t* texels, uint32_t index) {
   return (float)(texels[index] >> 24) * (1.0f / 255.0f);
 }
 
 CO_INLINE float texture_sample_alpha(const CO_GLOBAL TextureDesc* descs, const CO_GLOBAL uint32_t* texels,
                                      int32_t index, float u, float v) {
-  TextureDesc d = descs[index];
-#ifdef COHORT_FEATURE_TEXTURE_TRANSFORM
-  texture_transform_uv(descs, d.sampler, &u, &v);
-#endif
-  uint32_t wrap_s = tex_wrap_s(d.sampler), wrap_t = tex_wrap_t(d.sampler);
-  float x = texture_wrap_mode(u, wrap_s) * (float)d.width;
-  float y = texture_wrap_mode(v, wrap_t) * (float)d.height;
-  if (d.sampler & TEX_NEAREST) {
-    uint32_t ix = co_umin((uint32_t)x, d.width - 1u), iy = co_umin((uint32_t)y, d.height - 1u);
-    return texel_alpha(texels, d.offset + iy * d.width + ix);
-  }
-  x = x - 0.5f;
-  y = y - 0.5f;
-  float fx = floor(x), fy = floor(y);
-  float tx = x - fx, ty = y - fy;
-  int32_t ix = (int32_t)fx, iy = (int32_t)fy;
-  uint32_t x0 = texel_index(ix, d.width, wrap_s), x1 = texel_index(ix + 1, d.width, wrap_s);
-  uint32_t y0 = texel_index(iy, d.height, wrap_t), y1 = texel_index(iy + 1, d.height, wrap_t);
-  uint32_t row0 = d.offset + y0 * d.width, row1 = d.offset + y1 * d.width;
-  float a = texel_alpha(texels, row0 + x0) * (1.0f - tx) + texel_alpha(texels, row0 + x1) * tx;
-  float b = texel_alpha(texels, row1 + x0) * (1.0f - tx) + texel_alpha(texels, row1 + x1) * tx;
-  return a * (1.0f - ty) + b * ty;
+  TexelFootprint f = texture_footprint(descs, index, u, v);
+  if (f.nearest) return texel_alpha(texels, f.row0 + f.x0);
+  float a = texel_alpha(texels, f.row0 + f.x0) * (1.0f - f.tx) + texel_alpha(texels, f.row0 + f.x1) * f.tx;
+  float b = texel_alpha(texels, f.row1 + f.x0) * (1.0f - f.tx) + texel_alpha(texels, f.row1 + f.x1) * f.tx;
+  return a * (1.0f - f.ty) + b * f.ty;
 }
 #endif
 

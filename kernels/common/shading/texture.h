@@ -106,37 +106,61 @@ CO_INLINE void texture_transform_uv(const CO_GLOBAL TextureDesc* descs, uint32_t
 }
 #endif
 
-/* Linear RGB of texture `index` at (u, v) with its sampler: nearest texel or bilinear filtering,
- * each axis wrapped by its own mode (after the slot's texture transform, with
- * COHORT_FEATURE_TEXTURE_TRANSFORM). */
-CO_INLINE co_vec3 texture_sample(const CO_GLOBAL TextureDesc* descs, const CO_GLOBAL uint32_t* texels, int32_t index,
-                                 float u, float v) {
+/* Where a lookup of texture `index` at (u, v) reads: one texel (nearest) or four with their bilinear
+ * weights, each axis wrapped by its own mode (after the slot's texture transform, with
+ * COHORT_FEATURE_TEXTURE_TRANSFORM). The colour (texture_sample) and the alpha (alpha.h) lookups
+ * share it, so they filter and wrap alike. */
+typedef struct TexelFootprint {
+  uint32_t row0, row1, x0, x1; /* nearest: the texel is row0 + x0 */
+  float tx, ty;
+  int nearest;
+  uint32_t sampler;
+} TexelFootprint;
+
+CO_INLINE TexelFootprint texture_footprint(const CO_GLOBAL TextureDesc* descs, int32_t index, float u, float v) {
   TextureDesc d = descs[index];
+  TexelFootprint f;
+  f.sampler = d.sampler;
 #ifdef COHORT_FEATURE_TEXTURE_TRANSFORM
   texture_transform_uv(descs, d.sampler, &u, &v);
 #endif
   uint32_t wrap_s = tex_wrap_s(d.sampler), wrap_t = tex_wrap_t(d.sampler);
   float x = texture_wrap_mode(u, wrap_s) * (float)d.width;
   float y = texture_wrap_mode(v, wrap_t) * (float)d.height;
-  if (d.sampler & TEX_NEAREST) {
+  f.nearest = (d.sampler & TEX_NEAREST) != 0u;
+  if (f.nearest) {
     /* x in [0, width]: width itself (u = 1 when clamped or mirrored, or rounding) is the last column */
-    uint32_t ix = co_umin((uint32_t)x, d.width - 1u), iy = co_umin((uint32_t)y, d.height - 1u);
-    return texel_linear(texels, d.offset + iy * d.width + ix, d.sampler);
+    f.x0 = co_umin((uint32_t)x, d.width - 1u);
+    f.row0 = d.offset + co_umin((uint32_t)y, d.height - 1u) * d.width;
+    f.x1 = f.x0;
+    f.row1 = f.row0;
+    f.tx = f.ty = 0.0f;
+    return f;
   }
   x = x - 0.5f;
   y = y - 0.5f;
   float fx = floor(x), fy = floor(y);
-  float tx = x - fx, ty = y - fy;
+  f.tx = x - fx;
+  f.ty = y - fy;
   /* fx in [-1, width]: the neighbours beyond the edges wrap, or clamp to the edge */
   int32_t ix = (int32_t)fx, iy = (int32_t)fy;
-  uint32_t x0 = texel_index(ix, d.width, wrap_s), x1 = texel_index(ix + 1, d.width, wrap_s);
-  uint32_t y0 = texel_index(iy, d.height, wrap_t), y1 = texel_index(iy + 1, d.height, wrap_t);
-  uint32_t row0 = d.offset + y0 * d.width, row1 = d.offset + y1 * d.width;
-  co_vec3 a = v3_add(v3_scale(texel_linear(texels, row0 + x0, d.sampler), 1.0f - tx),
-                     v3_scale(texel_linear(texels, row0 + x1, d.sampler), tx));
-  co_vec3 b = v3_add(v3_scale(texel_linear(texels, row1 + x0, d.sampler), 1.0f - tx),
-                     v3_scale(texel_linear(texels, row1 + x1, d.sampler), tx));
-  return v3_add(v3_scale(a, 1.0f - ty), v3_scale(b, ty));
+  f.x0 = texel_index(ix, d.width, wrap_s);
+  f.x1 = texel_index(ix + 1, d.width, wrap_s);
+  f.row0 = d.offset + texel_index(iy, d.height, wrap_t) * d.width;
+  f.row1 = d.offset + texel_index(iy + 1, d.height, wrap_t) * d.width;
+  return f;
+}
+
+/* Linear RGB of texture `index` at (u, v) with its sampler: nearest texel or bilinear filtering. */
+CO_INLINE co_vec3 texture_sample(const CO_GLOBAL TextureDesc* descs, const CO_GLOBAL uint32_t* texels, int32_t index,
+                                 float u, float v) {
+  TexelFootprint f = texture_footprint(descs, index, u, v);
+  if (f.nearest) return texel_linear(texels, f.row0 + f.x0, f.sampler);
+  co_vec3 a = v3_add(v3_scale(texel_linear(texels, f.row0 + f.x0, f.sampler), 1.0f - f.tx),
+                     v3_scale(texel_linear(texels, f.row0 + f.x1, f.sampler), f.tx));
+  co_vec3 b = v3_add(v3_scale(texel_linear(texels, f.row1 + f.x0, f.sampler), 1.0f - f.tx),
+                     v3_scale(texel_linear(texels, f.row1 + f.x1, f.sampler), f.tx));
+  return v3_add(v3_scale(a, 1.0f - f.ty), v3_scale(b, f.ty));
 }
 
 /* Texture coordinates at barycentric weights (b1, b2) of vertices 1 and 2. */
