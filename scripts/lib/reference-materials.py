@@ -304,27 +304,10 @@ def write_gltf(path, desc):
                                                                "aspectRatio": 1.0, "znear": 0.01}}]
     doc["nodes"].append({"name": "camera", "camera": 0,
                          "matrix": rs.column_major(right, np.cross(back, right), back, eye)})
-    doc["scenes"][0]["nodes"] = list(range(len(doc["nodes"])))
-    doc["buffers"].append({"byteLength": len(blob),
-                           "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()})
-    with open(path, "w") as out:
-        json.dump(doc, out, indent=1)
-        out.write("\n")
+    rs.write_gltf_file(path, doc, blob)
 
 
 # ---- Mitsuba ----------------------------------------------------------------------------------
-
-def write_ply(path, p, f, uv):
-    with open(path, "w") as out:
-        out.write(f"ply\nformat ascii 1.0\nelement vertex {len(p)}\nproperty float x\nproperty float y\n"
-                  "property float z\n" + ("property float u\nproperty float v\n" if uv is not None else "") +
-                  f"element face {len(f)}\nproperty list uchar int vertex_indices\nend_header\n")
-        for i, v in enumerate(p.astype(np.float32)):
-            extra = f" {float(uv[i][0]):.9g} {float(uv[i][1]):.9g}" if uv is not None else ""
-            out.write(f"{float(v[0]):.9g} {float(v[1]):.9g} {float(v[2]):.9g}{extra}\n")
-        for t in f:
-            out.write(f"3 {t[0]} {t[1]} {t[2]}\n")
-
 
 def uv_transform(t):
     """glTF KHR_texture_transform (T * R * S) as Mitsuba's to_uv."""
@@ -388,7 +371,7 @@ def mitsuba_scene(desc, tmp):
              "environment": {"type": "constant", "radiance": rs.rgb_value(desc["environment"])}}
     for name, (p, f, uv), mat in desc["shapes"]:
         path = os.path.join(tmp, name + ".ply")
-        write_ply(path, p, f, uv)
+        rs.write_ply(path, p, f, uv)
         shape = {"type": "ply", "filename": path, "face_normals": True, "bsdf": mitsuba_bsdf(mat)}
         if "emission" in mat:
             shape["emitter"] = {"type": "area", "radiance": rs.rgb_value(mat["emission"])}

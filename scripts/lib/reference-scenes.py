@@ -273,6 +273,11 @@ def write_gltf(path, desc):
         doc["nodes"].append(node)
     if lights:
         doc["extensions"] = {"KHR_lights_punctual": {"lights": lights}}
+    write_gltf_file(path, doc, blob)
+
+
+def write_gltf_file(path, doc, blob):
+    """Every node in the scene, `blob` as the one embedded buffer, and the document written to `path`."""
     doc["scenes"][0]["nodes"] = list(range(len(doc["nodes"])))
     doc["buffers"].append({"byteLength": len(blob),
                            "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()})
@@ -287,12 +292,15 @@ def column_major(x, y, z, t):
 
 # ---- Mitsuba ----------------------------------------------------------------------------------
 
-def write_ply(path, p, f):
+def write_ply(path, p, f, uv=None):
+    """An ASCII PLY of positions `p`, triangles `f` and, when given, texture coordinates `uv`."""
     with open(path, "w") as out:
         out.write(f"ply\nformat ascii 1.0\nelement vertex {len(p)}\nproperty float x\nproperty float y\n"
-                  f"property float z\nelement face {len(f)}\nproperty list uchar int vertex_indices\nend_header\n")
-        for v in p.astype(np.float32):
-            out.write(f"{float(v[0]):.9g} {float(v[1]):.9g} {float(v[2]):.9g}\n")
+                  "property float z\n" + ("property float u\nproperty float v\n" if uv is not None else "") +
+                  f"element face {len(f)}\nproperty list uchar int vertex_indices\nend_header\n")
+        for i, v in enumerate(p.astype(np.float32)):
+            extra = f" {float(uv[i][0]):.9g} {float(uv[i][1]):.9g}" if uv is not None else ""
+            out.write(f"{float(v[0]):.9g} {float(v[1]):.9g} {float(v[2]):.9g}{extra}\n")
         for t in f:
             out.write(f"3 {t[0]} {t[1]} {t[2]}\n")
 
