@@ -4,7 +4,9 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <string>
 #include <tuple>
+#include <utility>
 
 #include <fmt/format.h>
 #include <tiny_gltf.h>
@@ -158,6 +160,25 @@ void read_alpha(const tinygltf::Material& m, std::size_t index, const std::strin
   out.alpha_cutoff = static_cast<float>(m.alphaCutoff);
 }
 
+// One extension object of a glTF file, read strictly: `fail` throws an InputError naming the place
+// and the extension, `number` takes a finite number or fails naming the field.
+class ExtensionReader {
+ public:
+  ExtensionReader(const tinygltf::Value& value, std::string context) : value_(value), context_(std::move(context)) {
+    if (!value_.IsObject()) fail("is not an object");
+  }
+  const tinygltf::Value& value() const { return value_; }
+  [[noreturn]] void fail(const std::string& what) const { throw InputError(fmt::format("{} {}", context_, what)); }
+  double number(const tinygltf::Value& v, const std::string& name) const {
+    if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble())) fail(fmt::format("{} is not a finite number", name));
+    return v.GetNumberAsDouble();
+  }
+
+ private:
+  const tinygltf::Value& value_;
+  std::string context_;
+};
+
 // KHR_texture_transform of one texture reference: `offset` and `scale` arrays of two numbers,
 // `rotation` a number (radians), each optional, and `texCoord`, which replaces the reference's own
 // coordinate set. Anything else there is a broken file.
@@ -165,27 +186,20 @@ UvTransform read_transform(const tinygltf::ExtensionMap& extensions, int& tex_co
   UvTransform x;
   const auto it = extensions.find("KHR_texture_transform");
   if (it == extensions.end()) return x;
-  const tinygltf::Value& e = it->second;
-  const auto fail = [&](const std::string& what) {
-    throw InputError(fmt::format("{}: KHR_texture_transform {}", where, what));
-  };
-  if (!e.IsObject()) fail("is not an object");
-  const auto number = [&](const tinygltf::Value& v, const std::string& name) {
-    if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble())) fail(fmt::format("{} is not a finite number", name));
-    return static_cast<float>(v.GetNumberAsDouble());
-  };
+  const ExtensionReader r(it->second, fmt::format("{}: KHR_texture_transform", where));
+  const tinygltf::Value& e = r.value();
   const auto pair = [&](const std::string& name, glm::vec2& out) {
     if (!e.Has(name)) return;
     const tinygltf::Value& v = e.Get(name);
-    if (!v.IsArray() || v.ArrayLen() != 2) fail(fmt::format("{} is not an array of two numbers", name));
-    out = glm::vec2(number(v.Get(0), name), number(v.Get(1), name));
+    if (!v.IsArray() || v.ArrayLen() != 2) r.fail(fmt::format("{} is not an array of two numbers", name));
+    out = glm::vec2(static_cast<float>(r.number(v.Get(0), name)), static_cast<float>(r.number(v.Get(1), name)));
   };
   pair("offset", x.offset);
   pair("scale", x.scale);
-  if (e.Has("rotation")) x.rotation = number(e.Get("rotation"), "rotation");
+  if (e.Has("rotation")) x.rotation = static_cast<float>(r.number(e.Get("rotation"), "rotation"));
   if (e.Has("texCoord")) {
     const tinygltf::Value& v = e.Get("texCoord");
-    if (!v.IsInt() || v.GetNumberAsInt() < 0) fail("texCoord is not an integer >= 0");
+    if (!v.IsInt() || v.GetNumberAsInt() < 0) r.fail("texCoord is not an integer >= 0");
     tex_coord = v.GetNumberAsInt();
   }
   return x;
@@ -201,39 +215,32 @@ UvTransform read_transform(const tinygltf::ExtensionMap& extensions, int& tex_co
 glm::vec3 read_volume(const tinygltf::Material& m, std::size_t texture_count, const std::string& where) {
   const auto it = m.extensions.find("KHR_materials_volume");
   if (it == m.extensions.end()) return glm::vec3(0.f);
-  const tinygltf::Value& e = it->second;
-  const auto fail = [&](const std::string& what) {
-    throw InputError(fmt::format("{}: KHR_materials_volume {}", where, what));
-  };
-  if (!e.IsObject()) fail("is not an object");
-  const auto number = [&](const tinygltf::Value& v, const std::string& name) {
-    if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble())) fail(fmt::format("{} is not a finite number", name));
-    return v.GetNumberAsDouble();
-  };
-  if (e.Has("thicknessFactor") && !(number(e.Get("thicknessFactor"), "thicknessFactor") >= 0.0))
-    fail("thicknessFactor is negative");
+  const ExtensionReader r(it->second, fmt::format("{}: KHR_materials_volume", where));
+  const tinygltf::Value& e = r.value();
+  if (e.Has("thicknessFactor") && !(r.number(e.Get("thicknessFactor"), "thicknessFactor") >= 0.0))
+    r.fail("thicknessFactor is negative");
   if (e.Has("thicknessTexture")) {
     const tinygltf::Value& t = e.Get("thicknessTexture");
     if (!t.IsObject() || !t.Has("index") || !t.Get("index").IsInt() || t.Get("index").GetNumberAsInt() < 0 ||
         static_cast<std::size_t>(t.Get("index").GetNumberAsInt()) >= texture_count)
-      fail("thicknessTexture does not name an existing texture");
+      r.fail("thicknessTexture does not name an existing texture");
     if (t.Has("texCoord") && (!t.Get("texCoord").IsInt() || t.Get("texCoord").GetNumberAsInt() < 0))
-      fail("thicknessTexture.texCoord is not an integer >= 0");
+      r.fail("thicknessTexture.texCoord is not an integer >= 0");
   }
   double distance = INFINITY;
   if (e.Has("attenuationDistance")) {
-    distance = number(e.Get("attenuationDistance"), "attenuationDistance");
-    if (!(distance > 0.0)) fail(fmt::format("attenuationDistance {} is not positive", distance));
+    distance = r.number(e.Get("attenuationDistance"), "attenuationDistance");
+    if (!(distance > 0.0)) r.fail(fmt::format("attenuationDistance {} is not positive", distance));
   }
   glm::dvec3 colour(1.0);
   if (e.Has("attenuationColor")) {
     const tinygltf::Value& c = e.Get("attenuationColor");
-    if (!c.IsArray() || c.ArrayLen() != 3) fail("attenuationColor is not an array of three numbers");
+    if (!c.IsArray() || c.ArrayLen() != 3) r.fail("attenuationColor is not an array of three numbers");
     for (int i = 0; i < 3; ++i) {
-      colour[i] = number(c.Get(i), "attenuationColor");
+      colour[i] = r.number(c.Get(i), "attenuationColor");
       if (!(colour[i] >= 0.0 && colour[i] <= 1.0))
-        fail(fmt::format("attenuationColor ({}, {}, {}) is outside [0, 1]", c.Get(0).GetNumberAsDouble(),
-                         c.Get(1).GetNumberAsDouble(), c.Get(2).GetNumberAsDouble()));
+        r.fail(fmt::format("attenuationColor ({}, {}, {}) is outside [0, 1]", c.Get(0).GetNumberAsDouble(),
+                           c.Get(1).GetNumberAsDouble(), c.Get(2).GetNumberAsDouble()));
     }
   }
   glm::vec3 sigma(0.f);
