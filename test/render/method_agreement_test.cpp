@@ -8,9 +8,11 @@
 #include <filesystem>
 #include <initializer_list>
 #include <optional>
+#include <string>
 
 #include <fmt/format.h>
 
+#include "method_tree_agreement.h"
 #include "render_fixture.h"
 #include "runtime/backend/device_support.h"
 #include "runtime/render/pth/coherence.h"
@@ -427,16 +429,9 @@ void expect_every_tree_and_method_agrees(const std::filesystem::path& path, std:
                                          std::optional<glm::vec3> environment = std::nullopt) {
   const ClContext cl(select_device(""));
   const ProgramCache cache(ProgramCache::default_directory());
-  struct Tree {
-    const char* name;
-    TreeChoice choice;
-  };
-  const Tree trees[] = {{"deep", TreeChoice{KdBuildOptions{}, false}},
-                        {"compact", TreeChoice{KdBuildOptions{.compact = true}, false}},
-                        {"bvh4", TreeChoice{KdBuildOptions{}, true}}};
   std::vector<PreparedScene> prepared;
   std::vector<DeviceScene> scenes;
-  for (const Tree& t : trees) {
+  for (const NamedTree& t : every_tree()) {
     prepared.push_back(prepare_scene(path, t.choice));
     scenes.push_back(upload_scene(cl, prepared.back().tree, prepared.back().tables, prepared.back().bvh()));
   }
@@ -453,9 +448,9 @@ void expect_every_tree_and_method_agrees(const std::filesystem::path& path, std:
         if (device_cannot_sort(method)) continue;
         s.method = method;
         const RenderResult other = render(cl, cache, scenes[t], prepared[t].camera, s);
-        expect_bitwise_equal(reference, other,
-                             fmt::format("{}: seed {}, {} on {}", path.filename().string(), seed, method, trees[t].name)
-                                 .c_str());
+        const std::string what =
+            fmt::format("{}: seed {}, {} on {}", path.filename().string(), seed, method, every_tree()[t].name);
+        expect_bitwise_equal(reference, other, what.c_str());
       }
     }
   }

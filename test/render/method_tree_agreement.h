@@ -2,9 +2,9 @@
 // check the glTF feature tests (alpha, volumes, textures) run on their own scenes.
 #pragma once
 
+#include <array>
 #include <cstring>
 #include <functional>
-#include <iterator>
 #include <string>
 #include <vector>
 
@@ -19,6 +19,18 @@
 
 namespace cohort::test {
 
+// The trees a render can trace, by their --tree names: the deep and compact KD-trees and the 4-wide BVH.
+struct NamedTree {
+  const char* name;
+  TreeChoice choice;
+};
+inline const std::array<NamedTree, 3>& every_tree() {
+  static const std::array<NamedTree, 3> trees{{{"deep", TreeChoice{KdBuildOptions{}, false}},
+                                               {"compact", TreeChoice{KdBuildOptions{.compact = true}, false}},
+                                               {"bvh4", TreeChoice{KdBuildOptions{}, true}}}};
+  return trees;
+}
+
 // Renders `scene` from `camera` with `settings` (its method, pool, payload and speculation are set
 // here) on the deep and compact KD-trees and the 4-wide BVH, with every method the device runs; the
 // sorting methods also in a pool of 129 paths that refills (the speculative resume on the KD-trees)
@@ -29,13 +41,6 @@ inline int expect_every_method_and_tree_agree(const std::string& name, const Sce
                                               RenderSettings settings,
                                               const std::function<void(const PreparedScene&, const char*)>& check,
                                               const std::function<bool(const Image&)>& lit) {
-  struct Tree {
-    const char* name;
-    TreeChoice choice;
-  };
-  const Tree trees[] = {{"deep", TreeChoice{KdBuildOptions{}, false}},
-                        {"compact", TreeChoice{KdBuildOptions{.compact = true}, false}},
-                        {"bvh4", TreeChoice{KdBuildOptions{}, true}}};
   const ClContext cl(select_device(""));
   const ProgramCache cache(ProgramCache::default_directory());
   const bool sorts = device_support(cl.info()).sorts;
@@ -54,7 +59,7 @@ inline int expect_every_method_and_tree_agree(const std::string& name, const Sce
         << name << ": " << what << " differs from naive on deep";
     EXPECT_EQ(reference_rays, r.rays) << name << ": " << what;
   };
-  for (const Tree& t : trees) {
+  for (const NamedTree& t : every_tree()) {
     PreparedScene p = prepare_loaded_scene(name, scene, t.choice);
     p.camera = camera;
     check(p, t.name);
@@ -81,7 +86,7 @@ inline int expect_every_method_and_tree_agree(const std::string& name, const Sce
   std::size_t sorting = 0;
   for (const auto& m : methods()) sorting += m.sorts ? 1u : 0u;
   const std::size_t per_tree = sorts ? methods().size() + 2 * sorting : methods().size() - sorting;
-  EXPECT_EQ(std::size_t(compared), std::size(trees) * per_tree - 1) << name;  // the first is the reference
+  EXPECT_EQ(std::size_t(compared), every_tree().size() * per_tree - 1) << name;  // the first is the reference
   return compared;
 }
 
