@@ -43,6 +43,17 @@ typedef struct ShadowRay {
 #endif
 } ShadowRay;
 
+/* The shadow ray of a light sample that passed every test: from `org` along the unit `dir` up to
+ * `tmax`, adding `contribution` when nothing occludes it. */
+CO_INLINE ShadowRay shadow_ray_towards(ShadowRay sr, co_vec3 org, co_vec3 dir, float tmax, co_vec3 contribution) {
+  sr.org = org;
+  sr.dir = dir;
+  sr.tmax = tmax;
+  sr.contribution = contribution;
+  sr.valid = 1;
+  return sr;
+}
+
 /* The pixels a pass renders: every pixel, or (adaptive sampling) the first p->active_pixels entries
  * of `pixel_list` (pass_pixel_count, types.h). Work item or item k of a pass stands for the pass's
  * k-th pixel. */
@@ -139,12 +150,7 @@ CO_INLINE ShadowRay nee_triangle(const SceneView* s, const RenderParams* p, floa
    * the probability of picking a triangle at all, exactly 1 when they are the only lights) */
   float pdf_pick = entry.pmf * s->pick_triangles * dist2 / (entry.area * cos_light);
   float scale = weight / pdf_pick;
-  sr.org = origin;
-  sr.dir = wl;
-  sr.tmax = tmax;
-  sr.contribution = v3_mul(throughput, v3_scale(v3_mul(f, le), scale));
-  sr.valid = 1;
-  return sr;
+  return shadow_ray_towards(sr, origin, wl, tmax, v3_mul(throughput, v3_scale(v3_mul(f, le), scale)));
 }
 
 /* The shadow ray's origin for a light in the unit direction wl: `pos` offset along the normal to
@@ -182,12 +188,7 @@ CO_INLINE ShadowRay nee_environment(const SceneView* s, const RenderParams* p, f
   co_vec3 le = env_eval(&s->env, wl);
   float pdf_light = pdf_pick * pdf_env;
   float weight = (p->flags & RENDER_FLAG_MIS) ? mis_power(pdf_light, bsdf_pdf(b, wi, wl_local)) : 1.0f;
-  sr.org = origin;
-  sr.dir = wl;
-  sr.tmax = INFINITY;
-  sr.contribution = v3_mul(throughput, v3_scale(v3_mul(f, le), weight / pdf_light));
-  sr.valid = 1;
-  return sr;
+  return shadow_ray_towards(sr, origin, wl, INFINITY, v3_mul(throughput, v3_scale(v3_mul(f, le), weight / pdf_light)));
 }
 #endif
 
@@ -219,12 +220,7 @@ CO_INLINE ShadowRay nee_punctual(const SceneView* s, float pdf_pick, float u_pic
   if (!(v3_max_component(intensity) > 0.0f)) return sr;
   /* irradiance I / r^2 from the light's point; bsdf_eval already holds the cosine */
   float scale = 1.0f / (pdf_pick * l->pmf * dist2);
-  sr.org = origin;
-  sr.dir = wl;
-  sr.tmax = tmax;
-  sr.contribution = v3_mul(throughput, v3_scale(v3_mul(f, intensity), scale));
-  sr.valid = 1;
-  return sr;
+  return shadow_ray_towards(sr, origin, wl, tmax, v3_mul(throughput, v3_scale(v3_mul(f, intensity), scale)));
 }
 #endif
 
