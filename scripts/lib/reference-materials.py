@@ -35,10 +35,8 @@ decodes them (sRGB for colour, byte / 255 for data), so the filters and wrap mod
 Run through scripts/reference --materials, which provides mitsuba and numpy."""
 import base64
 import importlib.util
-import json
 import math
 import os
-import platform
 import struct
 import sys
 import tempfile
@@ -46,7 +44,7 @@ import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from reference_common import accumulate_passes, reference_arguments  # noqa: E402
+from reference_common import reference_arguments  # noqa: E402
 
 
 # --help answers before the imports below, which need the venv's packages
@@ -383,24 +381,9 @@ def mitsuba_scene(desc, tmp):
 
 def render(name, desc, args):
     with tempfile.TemporaryDirectory() as tmp:
-        scene = mitsuba_scene(desc, tmp)
-        mean, spp, passes, elapsed = accumulate_passes(
-            lambda seed: np.array(mi.render(scene, spp=args.pass_spp, seed=seed), dtype=np.float64),
-            args.pass_spp, args.max_spp, args.seconds)
-    mean = mean.astype(np.float32)
-    out = os.path.join(rs.REFERENCES, f"reference-{name}.exr")
-    mi.Bitmap(mean, pixel_format=mi.Bitmap.PixelFormat.RGB).write(out)
-    meta = {"scene": f"scenes/reference/{name}.gltf", "mitsuba_version": mi.__version__, "variant": "scalar_rgb",
-            "integrator": desc.get("integrator", "path"), "max_depth": desc.get("max_depth", rs.MAX_DEPTH), "resolution": [rs.RES, rs.RES], "spp": spp,
-            "passes": passes, "seeds": f"0..{passes - 1} (one per pass of {args.pass_spp} spp)",
-            "sampler": "independent", "reconstruction_filter": "box", "render_seconds": round(elapsed, 1),
-            "machine": f"{platform.machine()}, {os.cpu_count()} logical CPUs",
-            "mean_rgb": [float(v) for v in mean.reshape(-1, 3).mean(axis=0)],
-            "environment": desc["environment"], "written_by": "scripts/reference --materials"}
-    with open(os.path.splitext(out)[0] + ".json", "w") as f:
-        json.dump(meta, f, indent=2)
-        f.write("\n")
-    print(f"{out}: {rs.RES}x{rs.RES}, {spp} spp in {passes} passes, {elapsed:.1f} s, mean rgb {meta['mean_rgb']}")
+        rs.render_reference(name, mitsuba_scene(desc, tmp), args, desc.get("integrator", "path"),
+                            desc.get("max_depth", rs.MAX_DEPTH),
+                            {"environment": desc["environment"], "written_by": "scripts/reference --materials"})
 
 
 def main():

@@ -346,32 +346,37 @@ def mitsuba_scene(desc, tmp):
     return mi.load_dict(scene)
 
 
-def render(name, desc, args):
-    with tempfile.TemporaryDirectory() as tmp:
-        scene = mitsuba_scene(desc, tmp)
-        mean, spp, passes, elapsed = accumulate_passes(
-            lambda seed: np.array(mi.render(scene, spp=args.pass_spp, seed=seed), dtype=np.float64),
-            args.pass_spp, args.max_spp, args.seconds)
+def render_reference(name, scene, args, integrator, max_depth, extra):
+    """Renders a loaded Mitsuba scene in passes (accumulate_passes) into test/reference/reference-NAME.exr
+    and writes the settings beside it (.json): what every reference records, then `extra`."""
+    mean, spp, passes, elapsed = accumulate_passes(
+        lambda seed: np.array(mi.render(scene, spp=args.pass_spp, seed=seed), dtype=np.float64),
+        args.pass_spp, args.max_spp, args.seconds)
     mean = mean.astype(np.float32)
     out = os.path.join(REFERENCES, f"reference-{name}.exr")
     mi.Bitmap(mean, pixel_format=mi.Bitmap.PixelFormat.RGB).write(out)
     meta = {"scene": f"scenes/reference/{name}.gltf", "mitsuba_version": mi.__version__, "variant": "scalar_rgb",
-            "integrator": "path", "max_depth": MAX_DEPTH, "resolution": [RES, RES], "spp": spp, "passes": passes,
+            "integrator": integrator, "max_depth": max_depth, "resolution": [RES, RES], "spp": spp, "passes": passes,
             "seeds": f"0..{passes - 1} (one per pass of {args.pass_spp} spp)", "sampler": "independent",
             "reconstruction_filter": "box", "render_seconds": round(elapsed, 1),
             "machine": f"{platform.machine()}, {os.cpu_count()} logical CPUs",
-            "mean_rgb": [float(v) for v in mean.reshape(-1, 3).mean(axis=0)],
-            "materials": {n: m["mitsuba"] for n, _, m in desc["shapes"]}}
-    if "environment" in desc:
-        meta["environment"] = desc["environment"]
-    if "environment_map" in desc:
-        meta["environment_map"] = os.path.relpath(desc["environment_map"], ROOT)
-    if "lights" in desc:
-        meta["lights"] = desc["lights"]
+            "mean_rgb": [float(v) for v in mean.reshape(-1, 3).mean(axis=0)], **extra}
     with open(os.path.splitext(out)[0] + ".json", "w") as f:
         json.dump(meta, f, indent=2)
         f.write("\n")
     print(f"{out}: {RES}x{RES}, {spp} spp in {passes} passes, {elapsed:.1f} s, mean rgb {meta['mean_rgb']}")
+
+
+def render(name, desc, args):
+    extra = {"materials": {n: m["mitsuba"] for n, _, m in desc["shapes"]}}
+    if "environment" in desc:
+        extra["environment"] = desc["environment"]
+    if "environment_map" in desc:
+        extra["environment_map"] = os.path.relpath(desc["environment_map"], ROOT)
+    if "lights" in desc:
+        extra["lights"] = desc["lights"]
+    with tempfile.TemporaryDirectory() as tmp:
+        render_reference(name, mitsuba_scene(desc, tmp), args, "path", MAX_DEPTH, extra)
 
 
 def main():
