@@ -66,8 +66,11 @@ int run_info(const std::filesystem::path& path, const std::string& tree) {
                m.roughness, m.emission.x, m.emission.y, m.emission.z, m.base_color_texture >= 0 ? ", textured" : "",
                alpha, volume);
   }
-  fmt::print("textures: {}\n", p.scene.textures.size());
+  const std::size_t unread = p.scene.unread_textures.size();
+  fmt::print("textures: {}{}\n", p.scene.textures.size(),
+             unread == 0 ? std::string() : fmt::format(" read, {} not read", unread));
   for (std::size_t i = 0; i < p.scene.textures.size(); ++i) fmt::print("  [{}] {}\n", i, describe(p.scene.textures[i]));
+  for (const std::string& t : p.scene.unread_textures) fmt::print("  [not read] {}\n", t);
   std::size_t spots = 0;
   for (const auto& l : p.scene.lights) spots += l.type == SceneLight::Type::spot;
   fmt::print("lights: {} emissive triangles, total power {:.4g}; {} point, {} spot (KHR_lights_punctual)\n",

@@ -98,6 +98,8 @@ nlohmann::json SceneCommands::info() {
                              {"text", describe(memory, p.tree.triangles.size())}}},
           {"host_geometry_bytes", p.scene.geometry_bytes()},
           {"load_seconds", scene_.load_seconds()},
+          {"unread_textures", p.scene.unread_textures},
+          {"notes", p.scene.notes},
           {"warnings", p.scene.warnings}};
 }
 

@@ -107,9 +107,7 @@ class TextureTable {
 
   int decode(int index) {
     const tinygltf::Image& image = model_.images[static_cast<std::size_t>(index)];
-    // A data URI would quote the whole image in messages.
-    const std::string name = image.uri.empty() || image.uri.starts_with("data:") ? fmt::format("image {}", index)
-                                                                                   : image.uri;
+    const std::string name = image_name(model_, index);
     // Images in buffer views are read here, bounds-checked; tinygltf only kept the external ones.
     const std::string_view bytes =
         image.bufferView >= 0
@@ -285,6 +283,11 @@ SceneMaterial convert(const tinygltf::Material& m, TextureTable& textures) {
 }
 
 }  // namespace
+
+std::string image_name(const tinygltf::Model& model, int index) {
+  const tinygltf::Image& image = model.images[static_cast<std::size_t>(index)];
+  return image.uri.empty() || image.uri.starts_with("data:") ? fmt::format("image {}", index) : image.uri;
+}
 
 void convert_materials(const tinygltf::Model& model, const std::string& file, Scene& scene) {
   TextureTable textures(model, file, scene);

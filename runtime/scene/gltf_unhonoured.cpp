@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <tiny_gltf.h>
 
+#include "runtime/scene/gltf_materials.h"
 #include "runtime/scene/library_message.h"
 
 namespace cohort::gltf {
@@ -70,6 +71,25 @@ std::vector<Unhonoured> unhonoured_features() {
 
 std::string materials(std::size_t n) { return fmt::format("{} material{}", n, n == 1 ? "" : "s"); }
 
+// Each image bound as an occlusionTexture, once, with the materials it would darken: a path tracer
+// traces the occlusion such a map approximates, so the slot is not read (one line per image in
+// `info`'s texture list, no warning).
+void list_occlusion_textures(const tinygltf::Model& model, Scene& scene) {
+  std::map<int, std::string> uses;  // image -> "occlusion of 'A'; occlusion of 'B'"
+  for (std::size_t i = 0; i < model.materials.size(); ++i) {
+    const tinygltf::Material& m = model.materials[i];
+    const int texture = m.occlusionTexture.index;
+    if (texture < 0 || static_cast<std::size_t>(texture) >= model.textures.size()) continue;
+    const int image = model.textures[static_cast<std::size_t>(texture)].source;
+    if (image < 0 || static_cast<std::size_t>(image) >= model.images.size()) continue;
+    std::string& use = uses[image];
+    use += fmt::format("{}occlusion of '{}'", use.empty() ? "" : "; ", m.name.empty() ? fmt::format("material {}", i) : m.name);
+  }
+  for (const auto& [image, use] : uses)
+    scene.unread_textures.push_back(fmt::format("{}: {}, not used: a path tracer traces the occlusion it approximates",
+                                                image_name(model, image), use));
+}
+
 }  // namespace
 
 bool extension_implemented(const std::string& name) {
@@ -106,12 +126,7 @@ void report_unhonoured(const tinygltf::Model& model, const std::string& file, Sc
     scene.warnings.push_back(fmt::format("{}: glTF extensions ignored (optional, not implemented): {}", file,
                                          library_message(others)));
 
-  const auto occluded = std::count_if(model.materials.begin(), model.materials.end(),
-                                      [](const tinygltf::Material& m) { return m.occlusionTexture.index >= 0; });
-  if (occluded > 0)
-    scene.notes.push_back(fmt::format("{}: occlusionTexture of {} not used: a path tracer traces the occlusion "
-                                      "it approximates",
-                                      file, materials(static_cast<std::size_t>(occluded))));
+  list_occlusion_textures(model, scene);
 
   const auto thick = std::count_if(model.materials.begin(), model.materials.end(), [](const tinygltf::Material& m) {
     const auto it = m.extensions.find("KHR_materials_volume");

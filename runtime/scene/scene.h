@@ -118,6 +118,10 @@ struct Scene {
   std::vector<SceneLight> lights;          // punctual lights (glTF KHR_lights_punctual)
   std::vector<std::string> warnings;       // legal but odd input (no light, skipped primitives)
   std::vector<std::string> notes;          // input left out by design, said once by `info`
+  // Images the file binds to a slot the renderer does not read by design, each with what it would
+  // drive and why it is not read ("Default_AO.jpg: occlusion of 'Helmet', not used: ..."), which
+  // `info` lists after the textures it reads.
+  std::vector<std::string> unread_textures;
 
   std::size_t triangle_count() const { return positions.size() / 3; }
   Bounds bounds() const;
