@@ -136,7 +136,7 @@ CO_INLINE Bvh4Ray bvh4_ray(co_vec3 org, co_vec3 dir CO_ALPHA_PARAM) {
 
 /* One step down from a node whose lanes `mask` (not 0) the ray enters at `enter`: goes on with the
  * nearest child (*ref, *ref_t) and pushes the others, farthest first. */
-CO_INLINE void bvh4_descend(const Bvh4View* bvh, uint32_t mask, co_float4 enter, co_uint4 c, uint32_t* ref,
+CO_FORCE_INLINE void bvh4_descend(const Bvh4View* bvh, uint32_t mask, co_float4 enter, co_uint4 c, uint32_t* ref,
                             float* ref_t, uint32_t* stack_ref, float* stack_t, int* sp) {
   /* one or two lanes entered (most steps): no sorting network, and one branch on the count
    * instead of five data-dependent ones */

@@ -31,6 +31,13 @@ typedef ulong uint64_t;
 #define CO_LOCAL __local
 #define CO_SHARED __local
 #define CO_INLINE inline
+/* CO_FORCE_INLINE: for a hot helper the compiler would otherwise keep as a call (PoCL's Clang kept
+ * bvh4_descend one, with the walk's state passed through memory) */
+#if defined(__clang__)
+#define CO_FORCE_INLINE inline __attribute__((always_inline))
+#else
+#define CO_FORCE_INLINE inline
+#endif
 #define CO_ALIGN(n) __attribute__((aligned(n)))
 #define CO_STATIC_ASSERT(cond, msg)
 #define CO_KERNEL __kernel void
@@ -72,6 +79,7 @@ typedef unsigned long uint64_t;
 #define CO_LOCAL
 #define CO_SHARED __shared__
 #define CO_INLINE __device__ inline
+#define CO_FORCE_INLINE __device__ __forceinline__
 #define CO_ALIGN(n) __align__(n)
 #define CO_STATIC_ASSERT(cond, msg) static_assert(cond, msg)
 #define CO_KERNEL extern "C" __global__ void
@@ -114,6 +122,7 @@ using std::sqrt;
 #define CO_LOCAL
 #define CO_SHARED
 #define CO_INLINE inline
+#define CO_FORCE_INLINE inline
 #define CO_ALIGN(n) alignas(n)
 #define CO_STATIC_ASSERT(cond, msg) static_assert(cond, msg)
 /* Same size and alignment as OpenCL's float4 (cl_float4). */
