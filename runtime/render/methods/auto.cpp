@@ -29,8 +29,8 @@
 // each screened sample of a slow method costs two to four of the default's: the probe cost 3 % of
 // the render with the screen at an eighth (256x256, 256 spp) and 2.6-3.7 % at a 64th (128x128,
 // 1024 spp); at a 256th its share is about 1 %. On the H200 no method ever beat sc+rg by the
-// margin (0.87-1.00x its rate on every scene measured, 2026-12-05), while the probe cost about 4 % of a
-// 64-spp render at 1024x1024 (0.27 s): a GPU probes where the screen takes at most a 32nd.
+// margin (0.87-1.00x its rate on every scene measured, 2026-12-05), while the probe's launches took
+// 0.09 s of a 64-spp render at 1024x1024 (0.27 s): a GPU probes where the screen takes at most a 32nd.
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
