@@ -6,8 +6,14 @@
  * the highest bit is the slot that matches the ray's direction), the leaf children's triangles in
  * bits 0-23. The walk keeps two groups in registers: the node group (the children's first index,
  * the inner hits and the node's imask) and the triangle group (the first triangle and the triangle
- * hits). It takes the highest inner bit, pushes the rest of the group (one stack entry per node, not
- * per child), tests the group's triangles and goes on into the child; an empty node group pops.
+ * hits). It takes an inner child, pushes the rest of the group (one stack entry per node, not per
+ * child), tests the group's triangles and goes on into the child; an empty node group pops. Two
+ * additions to the paper's walk, both from the entry distances the node test has anyway: a group
+ * just made takes its nearest inner child first (the octant order, the highest bit, from then on),
+ * and a pushed group carries the least entry distance of its other children, so a popped group that
+ * lies wholly beyond the best hit is dropped without a node visit. On the Sponza interior (host
+ * build) they cut node visits from 30.3 to 26.2 per primary-like and from 20.4 to 16.0 per diffuse
+ * ray (the 4-wide BVH: 28.4 and 22.9 nodes and leaves).
  *
  * The hit is the one every other tree gives, bit for bit (docs/design.md, "The closest hit does not
  * depend on the tree"): the same watertight test (consider_triangle) on the same kept triangles,
@@ -17,16 +23,18 @@
  * lower planes down and upper planes up onto the node's grid, and a decoded plane, origin + q * 2^e,
  * is exact in float with or without fma (the builder checks it). The slab arithmetic after the
  * decode is bvh4_traverse.h's: (plane - origin) * inverse, a zero direction component taken as
- * 1e-18, the exit widened by a few ulps. A pushed group is not culled by distance when it is popped
- * (the paper's choice: it keeps no per-child distances); its nodes are tested against the best t
- * then, which changes visits, never the hit. */
+ * 1e-18, the exit widened by a few ulps. A popped group is dropped only when its least entry
+ * distance is beyond the best t by more than KD_TERMINATION_SLACK, as a box would be; its other
+ * children are tested against the best t when entered. The order of the children changes visits,
+ * never the hit. */
 #ifndef COHORT_BVH8_TRAVERSE_H
 #define COHORT_BVH8_TRAVERSE_H
 
 #include "common/accel/bvh4_traverse.h"
 
-/* Node groups on the stack: at most one per level of the tree (a group holds one node's remaining
- * children), and the builder keeps the tree within BVH4_MAX_DEPTH levels. */
+/* Node groups on the stack (12 bytes each: first child, hits and imask, least entry distance): at
+ * most one per level of the tree (a group holds one node's remaining children), and the builder
+ * keeps the tree within BVH4_MAX_DEPTH levels. */
 #define BVH8_STACK BVH4_MAX_DEPTH
 
 typedef struct Bvh8View {
@@ -89,7 +97,7 @@ CO_INLINE co_float4 bvh8_plane_t(uint32_t q, float origin, float scale, co_float
  * a lane: entered at least at tmin, before `limit`, the exit widened by a few ulps. */
 CO_INLINE uint32_t bvh8_half_hits(const Bvh8Ray* r, co_uint4 h, uint32_t meta, uint32_t lo_x, uint32_t lo_y,
                                   uint32_t lo_z, uint32_t hi_x, uint32_t hi_y, uint32_t hi_z, float tmin,
-                                  float limit) {
+                                  float limit, co_float4* inner_enter) {
   float sx = co_as_float((h.w & 255u) << 23), sy = co_as_float(((h.w >> 8) & 255u) << 23);
   float sz = co_as_float(((h.w >> 16) & 255u) << 23);
   float px = co_as_float(h.x), py = co_as_float(h.y), pz = co_as_float(h.z);
@@ -102,23 +110,49 @@ CO_INLINE uint32_t bvh8_half_hits(const Bvh8Ray* r, co_uint4 h, uint32_t meta, u
   co_float4 enter = co_f4_max(co_f4_max(near_x, near_y), co_f4_max(near_z, co_f4_splat(tmin)));
   co_float4 leave = co_f4_min(co_f4_min(far_x, far_y), co_f4_min(far_z, co_f4_splat(limit)));
   uint32_t mask = co_f4_less(enter, co_f4_scale(leave, 1.0000004f));
-  uint32_t bits = 0u;
+  uint32_t bits = 0u, inner = 0u;
   for (uint32_t j = 0u; j < 4u; ++j) {
     uint32_t m = (meta >> (8u * j)) & 255u;
     /* an inner child's bit (24 + slot) goes to its place in the ray's octant order; an unused slot
      * (meta 0) sets nothing */
-    uint32_t at = (m & 31u) ^ ((m & 0x18u) == 0x18u ? r->oct_inv : 0u);
+    uint32_t is_inner = (m & 0x18u) == 0x18u;
+    uint32_t at = (m & 31u) ^ (is_inner ? r->oct_inv : 0u);
     bits |= ((mask >> j) & 1u) ? (m >> 5) << at : 0u;
+    inner |= is_inner << j;
   }
+  inner &= mask;
+  *inner_enter = co_make_float4((inner & 1u) ? enter.x : INFINITY, (inner & 2u) ? enter.y : INFINITY,
+                                (inner & 4u) ? enter.z : INFINITY, (inner & 8u) ? enter.w : INFINITY);
   return bits;
 }
 
 /* The hit mask of a node (its five words, loaded once): inner children in bits 24-31, leaf triangles
- * in bits 0-23. */
+ * in bits 0-23. *rest_t: the least entry distance of the inner children entered, but the one the
+ * walk takes first (the highest bit); +infinity without another. */
 CO_INLINE uint32_t bvh8_node_hits(const Bvh8Ray* r, co_uint4 h, co_uint4 ix, co_uint4 q0, co_uint4 q1, co_uint4 q2,
-                                  float tmin, float limit) {
-  return bvh8_half_hits(r, h, ix.z, q0.x, q0.z, q1.x, q1.z, q2.x, q2.z, tmin, limit) |
-         bvh8_half_hits(r, h, ix.w, q0.y, q0.w, q1.y, q1.w, q2.y, q2.w, tmin, limit);
+                                  float tmin, float limit, float* rest_t, uint32_t* first_bit) {
+  co_float4 e0, e1;
+  uint32_t hits = bvh8_half_hits(r, h, ix.z, q0.x, q0.z, q1.x, q1.z, q2.x, q2.z, tmin, limit, &e0) |
+                  bvh8_half_hits(r, h, ix.w, q0.y, q0.w, q1.y, q1.w, q2.y, q2.w, tmin, limit, &e1);
+  /* the nearest inner child entered */
+  float best = e0.x;
+  uint32_t first = 0u;
+  if (e0.y < best) { best = e0.y; first = 1u; }
+  if (e0.z < best) { best = e0.z; first = 2u; }
+  if (e0.w < best) { best = e0.w; first = 3u; }
+  if (e1.x < best) { best = e1.x; first = 4u; }
+  if (e1.y < best) { best = e1.y; first = 5u; }
+  if (e1.z < best) { best = e1.z; first = 6u; }
+  if (e1.w < best) { best = e1.w; first = 7u; }
+  *first_bit = 24u + (first ^ r->oct_inv);
+  e0 = co_make_float4(first == 0u ? INFINITY : e0.x, first == 1u ? INFINITY : e0.y, first == 2u ? INFINITY : e0.z,
+                      first == 3u ? INFINITY : e0.w);
+  e1 = co_make_float4(first == 4u ? INFINITY : e1.x, first == 5u ? INFINITY : e1.y, first == 6u ? INFINITY : e1.z,
+                      first == 7u ? INFINITY : e1.w);
+  co_float4 e = co_f4_min(e0, e1);
+  float a = e.x < e.y ? e.x : e.y, b = e.z < e.w ? e.z : e.w;
+  *rest_t = a < b ? a : b;
+  return hits;
 }
 
 /* Closest hit (any_hit = 0) or any hit (any_hit = 1) in (tmin, tmax), as kd_trace_steps (with its
@@ -133,24 +167,30 @@ CO_INLINE HitOut bvh8_trace_steps(const Bvh8View* bvh, co_vec3 org, co_vec3 dir,
   r.wr.alpha = &bvh->alpha;
 #endif
   uint32_t stack_base[BVH8_STACK], stack_hits[BVH8_STACK];
+  float stack_t[BVH8_STACK];
   int sp = 0;
   /* the root: the one inner child of a parent with no inner slots before it */
   uint32_t node_base = 0u, node_hits = 0x80000000u;
+  float node_t = tmin; /* no child of the group but the one taken first is entered before it */
+  uint32_t first_bit = 31u; /* the child to take first from a group just made */
+  int fresh = 1;
   uint32_t tri_base = 0u, tri_hits = 0u;
   uint32_t count = 0u;
   for (;;) {
     if (node_hits > 0x00ffffffu) {
-      uint32_t bit = 31u - co_clz(node_hits);
+      uint32_t bit = fresh ? first_bit : 31u - co_clz(node_hits);
       node_hits &= ~(1u << bit);
       uint32_t slot = (bit - 24u) ^ r.oct_inv;
       /* inner children are stored in slot order: this one follows those of the slots before it */
       uint32_t index = node_base + co_popcount(node_hits & ((1u << slot) - 1u));
       if (node_hits > 0x00ffffffu) {
-        stack_base[sp] = node_base; stack_hits[sp] = node_hits; ++sp;
+        stack_base[sp] = node_base; stack_hits[sp] = node_hits; stack_t[sp] = node_t; ++sp;
       }
       const CO_GLOBAL Bvh8Node* n = &bvh->nodes[index];
       co_uint4 h = n->header, ix = n->index;
-      uint32_t hits = bvh8_node_hits(&r, h, ix, n->q[0], n->q[1], n->q[2], tmin, hit.t * KD_TERMINATION_SLACK);
+      uint32_t hits =
+          bvh8_node_hits(&r, h, ix, n->q[0], n->q[1], n->q[2], tmin, hit.t * KD_TERMINATION_SLACK, &node_t, &first_bit);
+      fresh = 1;
       ++count;
       node_base = ix.x;
       node_hits = (hits & 0xff000000u) | (h.w >> 24);
@@ -169,11 +209,14 @@ CO_INLINE HitOut bvh8_trace_steps(const Bvh8View* bvh, co_vec3 org, co_vec3 dir,
       }
     }
     if (answered) break;
-    if (node_hits <= 0x00ffffffu) {
-      if (sp == 0) break;
+    /* a group whose children are all entered beyond the best hit is dropped */
+    while (node_hits <= 0x00ffffffu && sp > 0) {
       --sp;
-      node_base = stack_base[sp]; node_hits = stack_hits[sp];
+      node_base = stack_base[sp]; node_hits = stack_hits[sp]; node_t = stack_t[sp];
+      fresh = 0;
+      if (kd_beyond_hit(hit.t, node_t)) node_hits = 0u;
     }
+    if (node_hits <= 0x00ffffffu) break;
   }
   if (steps) *steps = count;
   return hit;
