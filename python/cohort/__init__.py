@@ -61,7 +61,7 @@ class Scene:
     reuse all of it and the compiled kernels.
 
     device: an index or a name substring, "all", or a comma list, as `--device`; backend: "opencl"
-    or "cuda"; tree: "auto", "bvh4", "deep" or "compact"; tree_budget and memory_limit in MiB;
+    or "cuda"; tree: "auto", "bvh4", "bvh8", "deep" or "compact"; tree_budget and memory_limit in MiB;
     cache=False does not read or write the kernel binary cache."""
 
     def __init__(self, path, device=None, backend="opencl", tree="auto", tree_budget=None, memory_limit=None,

@@ -3,8 +3,10 @@
 #pragma once
 
 #include "kernels/common/accel/bvh4_traverse.h"
+#include "kernels/common/accel/bvh8_traverse.h"
 #include "kernels/common/accel/kdtree_traverse.h"
 #include "runtime/accel/bvh4.h"
+#include "runtime/accel/bvh8.h"
 #include "runtime/accel/kdtree/kdtree.h"
 
 namespace cohort {
@@ -22,6 +24,14 @@ inline KdTreeView host_view(const KdTree& tree) {
 // The 4-wide BVH (its leaves carry their own copies of the triangles).
 inline Bvh4View host_view(const Bvh4& bvh) {
   Bvh4View view;
+  view.nodes = bvh.nodes.data();
+  view.leaf_triangles = bvh.leaf_vertices.data();
+  return view;
+}
+
+// The compressed 8-wide BVH (its leaves carry their own copies of the triangles too).
+inline Bvh8View host_view(const Bvh8& bvh) {
+  Bvh8View view;
   view.nodes = bvh.nodes.data();
   view.leaf_triangles = bvh.leaf_vertices.data();
   return view;

@@ -91,6 +91,7 @@ nlohmann::json scenes_json(const std::vector<SceneFigures>& scenes, const std::s
                                                      {"dropped_triangles", t.dropped_triangles}}},
                     {"views", views}});
     if (s.bvh4 && accel_key == "kdtree") list.back()[accel_key]["bvh4"] = bvh4_json(*s.bvh4);
+    if (s.bvh8 && accel_key == "kdtree") list.back()[accel_key]["bvh8"] = bvh4_json(*s.bvh8);
   }
   return list;
 }

@@ -12,6 +12,7 @@
 #include "runtime/bench/trace_bench.h"
 #include "runtime/render/pth/coherence.h"
 #include "runtime/sort/radix_sort.h"
+#include "runtime/util/error.h"
 
 namespace cohort {
 namespace {
@@ -32,6 +33,7 @@ std::vector<std::uint64_t> layout_keys(const std::string& layout, const Prepared
   const KdTree& tree = scene.tree;
   const CodeParams c = parse_code_layout(layout, 10, tree.bounds);
   const KdTreeView view = host_view(tree);
+  if (scene.bvh8) throw InputError("--tree bvh8: the PTH gate's walk runs on the KD-tree or the 4-wide BVH");
   std::optional<Bvh4View> bvh;
   if (scene.bvh4) bvh = host_view(*scene.bvh4);
   std::vector<std::uint64_t> keys(rays.size());

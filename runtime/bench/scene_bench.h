@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "runtime/accel/bvh4.h"
+#include "runtime/accel/bvh8.h"
 #include "runtime/accel/kdtree/kdtree.h"
 #include "runtime/bench/figures.h"
 #include "runtime/backend/device.h"
@@ -78,6 +79,7 @@ struct SceneFigures {
   std::string tree_kind;             // PreparedScene::tree_kind(): deep, compact or bvh4
   double build_seconds = 0;          // PreparedScene::build_seconds(): the tree, or the BVH and its one leaf
   std::optional<Bvh4Stats> bvh4;     // with --tree bvh4 (the KD-tree is then one leaf)
+  std::optional<Bvh8Stats> bvh8;     // with --tree bvh8 (likewise)
   Bounds bounds;
   std::vector<ViewFigures> views;
 };

@@ -27,7 +27,7 @@ void set_trace_rays_args(DeviceKernel& k, const DeviceBuffer& nodes, const Devic
   args.bind(k);
 }
 
-TraceBench::TraceBench(const Device& device, const ProgramCache& cache, const KdTree& tree, const Bvh4* bvh)
+TraceBench::TraceBench(const Device& device, const ProgramCache& cache, const KdTree& tree, WideBvh bvh)
     : device_(device), tree_(tree) {
   const TraversalArrays arrays = traversal_arrays(tree, bvh);
   program_ = device.build_program(cache, "trace", arrays.build_option);

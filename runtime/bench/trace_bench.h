@@ -5,7 +5,7 @@
 #include <span>
 #include <vector>
 
-#include "runtime/accel/bvh4.h"
+#include "runtime/accel/wide_bvh.h"
 #include "runtime/accel/kdtree/kdtree.h"
 #include "runtime/bench/figures.h"
 #include "runtime/bench/protocol_rays.h"
@@ -24,7 +24,7 @@ class TraceBench {
  public:
   // The tree's buffers go to the device once; every trace() reuses them.
   // With `bvh`, the rays trace through it (the KD-tree then gives the kept triangles only).
-  TraceBench(const Device& device, const ProgramCache& cache, const KdTree& tree, const Bvh4* bvh = nullptr);
+  TraceBench(const Device& device, const ProgramCache& cache, const KdTree& tree, WideBvh bvh = {});
 
   // Traces `rays` `reps` times (reps >= 1); hits come from the last repetition.
   TraceFigures trace(std::span<const RayIn> rays, unsigned reps, std::size_t group_size = 0) const;

@@ -23,13 +23,16 @@ std::string describe(const Texture& t) {
                      wrap_name(t.sampler.wrap_t), uses.empty() ? "unused" : uses);
 }
 
-// The tree `p` holds and its device memory, then, for --tree all, the KD-trees built from the same
-// kept triangles: what each layout costs a scene in bytes per triangle.
+// The tree `p` holds and its device memory, then, for --tree all, the compressed 8-wide BVH and the
+// KD-trees built from the same kept triangles: what each layout costs a scene in bytes per triangle.
 void print_layouts(const PreparedScene& p, bool all) {
   const std::size_t triangles = p.tree.triangles.size();
   fmt::print("{}\n", describe_tree(p));
   fmt::print("device memory: {}\n", describe(scene_memory(p.tree, p.tables, p.bvh()), triangles));
   if (!all) return;
+  const Bvh8 bvh8 = build_bvh8(p.tree.triangles);
+  fmt::print("{}\n", describe_bvh("compressed 8-wide BVH", bvh8.stats, triangles, p.tree.stats.build_seconds));
+  fmt::print("device memory: {}\n", describe(scene_memory(p.tree, p.tables, &bvh8), triangles));
   for (const bool compact : {false, true}) {
     KdBuildOptions options;
     options.compact = compact;

@@ -93,7 +93,7 @@ nlohmann::json stats_json(const PreparedRender& render, const RenderOutcome& out
                  {"average_leaf_triangles", ts.average_leaf_triangles},
                  {"sah_cost", ts.sah_cost},
                  {"bytes", ts.bytes}};
-  if (const Bvh4* bvh = prepared.bvh()) j["kdtree"]["bvh4"] = bvh4_json(bvh->stats);
+  if (const Bvh4Stats* bvh = prepared.bvh_stats()) j["kdtree"][prepared.tree_kind()] = bvh4_json(*bvh);
   const SceneMemory memory = scene_memory(prepared.tree, prepared.tables, prepared.bvh());
   const double kept = static_cast<double>(std::max<std::size_t>(prepared.tree.triangles.size(), 1));
   j["device_memory"] = {{"nodes", memory.nodes}, {"leaf_lists", memory.leaf_lists},

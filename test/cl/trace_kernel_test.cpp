@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <span>
 
 #include <tbb/parallel_for.h>
 
@@ -23,9 +24,10 @@ using namespace cohort::test;
 
 namespace {
 
-// With `bvh`, through the 4-wide BVH (the program built with COHORT_ACCEL_BVH4), else the KD-tree.
+// With `bvh`, through that BVH (the program built with COHORT_ACCEL_BVH4 or COHORT_ACCEL_BVH8), else
+// the KD-tree.
 std::vector<HitOut> trace_on_device(const KdTree& tree, const std::vector<TestRay>& rays, bool any_hit,
-                                    const std::vector<float>& tmax, const Bvh4* bvh = nullptr) {
+                                    const std::vector<float>& tmax, WideBvh bvh = {}) {
   const ClContext cl(select_device(""));
   const ProgramCache cache(ProgramCache::default_directory());
   // the arrays and build option a render would use (traversal_arrays)
@@ -106,13 +108,14 @@ void check_scene(const fs::path& path, std::size_t ray_count) {
   EXPECT_GT(hits, rays.size() / 10);  // the rays must actually exercise the tree
 }
 
-// The BVH kernel on the device against the KD-tree kernel, bit for bit (t, u, v, triangle), on rays
-// aimed at shared vertices and edges and random ones, closest and any hit: what lets a CPU trace the
-// BVH and render the GPU's image.
-void check_bvh_against_kd(const fs::path& path) {
+// The BVH kernel (4- or 8-wide, `Bvh` and its builder) on the device against the KD-tree kernel, bit
+// for bit (t, u, v, triangle), on rays aimed at shared vertices and edges and random ones, closest
+// and any hit: what lets a CPU trace the BVH and render the GPU's image.
+template <class Bvh>
+void check_bvh_against_kd(const fs::path& path, Bvh (*build)(std::span<const Triangle>)) {
   const Scene scene = load_scene(path);
   const KdTree tree = build_kdtree(scene.positions);
-  const Bvh4 bvh = build_bvh4(tree.triangles);
+  const Bvh bvh = build(tree.triangles);
   auto rays = make_feature_rays(tree, 20000, 99);
   const auto random = make_rays(tree.bounds, 20000, 98);
   rays.insert(rays.end(), random.begin(), random.end());
@@ -140,12 +143,25 @@ void check_bvh_against_kd(const fs::path& path) {
 }  // namespace
 
 TEST(TraceKernel, Bvh4GivesTheKdTreesHitsOnTheCornellBox) {
-  check_bvh_against_kd(fs::path(COHORT_SOURCE_DIR) / "scenes/cornell-box.gltf");
+  check_bvh_against_kd(fs::path(COHORT_SOURCE_DIR) / "scenes/cornell-box.gltf", build_bvh4);
+}
+
+TEST(TraceKernel, Bvh8GivesTheKdTreesHitsOnTheCornellBox) {
+  check_bvh_against_kd(fs::path(COHORT_SOURCE_DIR) / "scenes/cornell-box.gltf", build_bvh8);
+}
+
+TEST(TraceKernel, Bvh8GivesTheKdTreesHitsOnTheVoxelTerrain) {
+  check_bvh_against_kd(fs::path(COHORT_SOURCE_DIR) / "scenes/voxel-terrain.gltf", build_bvh8);
 }
 
 TEST(TraceKernel, Bvh4GivesTheKdTreesHitsOnTheBunny) {
   if (!fs::exists(shared("bunny"))) GTEST_SKIP() << "the external models (scenes/external.json) are missing";
-  check_bvh_against_kd(shared("bunny/bun_zipper_res2.ply"));
+  check_bvh_against_kd(shared("bunny/bun_zipper_res2.ply"), build_bvh4);
+}
+
+TEST(TraceKernel, Bvh8GivesTheKdTreesHitsOnTheBunny) {
+  if (!fs::exists(shared("bunny"))) GTEST_SKIP() << "the external models (scenes/external.json) are missing";
+  check_bvh_against_kd(shared("bunny/bun_zipper_res2.ply"), build_bvh8);
 }
 
 TEST(TraceKernel, CornellBoxMatchesBruteForce) {

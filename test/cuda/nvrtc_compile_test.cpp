@@ -45,6 +45,13 @@ TEST(NvrtcCompile, ProgramsTracingTheBvh4) {
   compile("naive", std::string(kAllFeatures) + " -DCOHORT_ACCEL_BVH4");
 }
 
+// The compressed 8-wide BVH (--tree bvh8) likewise, in every program but pth (hash and pth walk the
+// KD-tree or the 4-wide BVH; pth_kernels.h stops a build with COHORT_ACCEL_BVH8).
+TEST(NvrtcCompile, ProgramsTracingTheBvh8) {
+  for (const char* name : {"naive", "wavefront", "trace", "aov"}) compile(name, "-DCOHORT_ACCEL_BVH8");
+  compile("naive", std::string(kAllFeatures) + " -DCOHORT_ACCEL_BVH8");
+}
+
 TEST(NvrtcCompile, TracingAndTestPrograms) {
   compile("trace", "");
   compile("film", "");

@@ -446,6 +446,7 @@ void expect_every_tree_and_method_agrees(const std::filesystem::path& path, std:
     for (std::size_t t = 0; t < scenes.size(); ++t) {
       for (const char* method : {"naive", "sc+rg", "hash", "pth"}) {
         if (device_cannot_sort(method)) continue;
+        if (!every_tree()[t].sorts && (std::string(method) == "hash" || std::string(method) == "pth")) continue;
         s.method = method;
         const RenderResult other = render(cl, cache, scenes[t], prepared[t].camera, s);
         const std::string what =

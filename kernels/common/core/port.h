@@ -106,6 +106,7 @@ typedef uint4 co_uint4;
 #define co_atomic_load(p) atomicOr((p), 0u)
 
 #else
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -165,6 +166,7 @@ inline uint32_t co_atomic_load(const uint32_t* p) { return *p; }
  * fmax: their callers never pass NaN. co_f4_less gives a 4-bit mask, lane x in bit 0. */
 #if defined(__OPENCL_VERSION__)
 #define co_f4_splat(s) ((float4)(s))
+#define co_f4_add(a, b) ((a) + (b))
 #define co_f4_sub(a, b) ((a) - (b))
 #define co_f4_mul(a, b) ((a) * (b))
 #define co_f4_scale(a, s) ((a) * (s))
@@ -176,6 +178,7 @@ CO_INLINE uint32_t co_f4_less(float4 a, float4 b) {
 }
 #else
 CO_INLINE co_float4 co_f4_splat(float s) { return co_make_float4(s, s, s, s); }
+CO_INLINE co_float4 co_f4_add(co_float4 a, co_float4 b) { return co_make_float4(a.x + b.x, a.y + b.y, a.z + b.z, a.w + b.w); }
 CO_INLINE co_float4 co_f4_sub(co_float4 a, co_float4 b) { return co_make_float4(a.x - b.x, a.y - b.y, a.z - b.z, a.w - b.w); }
 CO_INLINE co_float4 co_f4_mul(co_float4 a, co_float4 b) { return co_make_float4(a.x * b.x, a.y * b.y, a.z * b.z, a.w * b.w); }
 CO_INLINE co_float4 co_f4_scale(co_float4 a, float s) { return co_make_float4(a.x * s, a.y * s, a.z * s, a.w * s); }
@@ -212,6 +215,19 @@ CO_INLINE uint32_t co_f4_less(co_float4 a, co_float4 b) {
 #define co_prefetch(p) ((void)(p))
 #else
 #define co_prefetch(p) __builtin_prefetch(p)
+#endif
+
+/* Bit counts on 32-bit words (the 8-wide BVH's hit masks): OpenCL C 1.2's popcount and clz, CUDA's
+ * __popc and __clz, C++20's <bit> on the host. co_clz(0) is 32 on every side. */
+#if defined(__OPENCL_VERSION__)
+#define co_popcount(x) ((uint32_t)popcount((uint32_t)(x)))
+#define co_clz(x) ((uint32_t)clz((uint32_t)(x)))
+#elif defined(__CUDACC__)
+#define co_popcount(x) ((uint32_t)__popc((unsigned int)(x)))
+#define co_clz(x) ((uint32_t)__clz((int)(x)))
+#else
+#define co_popcount(x) ((uint32_t)std::popcount((uint32_t)(x)))
+#define co_clz(x) ((uint32_t)std::countl_zero((uint32_t)(x)))
 #endif
 
 CO_INLINE uint32_t co_umin(uint32_t a, uint32_t b) { return a < b ? a : b; }

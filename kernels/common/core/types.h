@@ -50,6 +50,28 @@ CO_INLINE uint32_t bvh4_leaf_first(uint32_t ref) { return ref & BVH4_LEAF_FIRST_
 CO_INLINE uint32_t bvh4_leaf_count(uint32_t ref) { return ((ref >> 27) & 15u) + 1u; }
 CO_INLINE uint32_t bvh4_leaf_ref(uint32_t first, uint32_t count) { return BVH4_LEAF | ((count - 1u) << 27) | first; }
 
+/* ---- Compressed 8-wide BVH, 80 bytes per node (--tree bvh8) -----------------------------------
+ * Ylitie, Karras & Laine, "Efficient Incoherent Ray Traversal on GPUs Through Compressed Wide BVHs"
+ * (HPG 2017). A node holds up to eight children in slots 0-7; each child box is quantised to 8 bits
+ * per plane against the node's origin and a power-of-two scale per axis: plane = origin + q * 2^e,
+ * exact in float (the builder keeps every such value a float). Words:
+ *   header: x y z the origin's bits; w the biased exponents e + 127 of x, y, z in bytes 0-2 and
+ *           imask in byte 3 (bit s: slot s holds an inner node)
+ *   index:  x the first child node (the inner children are consecutive, in slot order), y the first
+ *           leaf triangle (the leaf children's triangles are consecutive), z w the meta bytes of
+ *           slots 0-3 and 4-7: 0 for an unused slot; an inner node's 0x20 | (24 + s); a leaf's
+ *           triangle count in unary in bits 5-7 (1, 3 or 7) and its first triangle's offset from
+ *           index.y (0-23) in bits 0-4
+ *   q:      the quantised planes, plane p (lo x, lo y, lo z, hi x, hi y, hi z) of slot s in byte
+ *           s % 4 of word 2p + s / 4 (q[0].x is lo x of slots 0-3). */
+#define BVH8_LEAF_MAX 3u
+typedef struct Bvh8Node {
+  co_uint4 header;
+  co_uint4 index;
+  co_uint4 q[3];
+} Bvh8Node;
+CO_STATIC_ASSERT(sizeof(Bvh8Node) == 80, "Bvh8Node must stay 80 bytes");
+
 /* ---- Triangles, stored for the watertight test of Woop, Benthin & Wald (JCGT 2013) -----------
  * The watertight test needs the vertices themselves; w components are padding. 48 bytes. */
 typedef struct Triangle {

@@ -33,7 +33,7 @@ CO_KERNEL trace_rays_steps(CO_PARAMS(TRACE_RAYS_STEPS_PARAMS)) {
 }
 
 /* The rest walks the KD-tree itself (partial traversal, resume, speculation). */
-#if !defined(COHORT_ACCEL_BVH4)
+#if !defined(COHORT_ACCEL_BVH4) && !defined(COHORT_ACCEL_BVH8)
 #include "common/pth/coherence.h"
 
 /* Partial traversal of the top `levels` (subtree in local memory) then resumed traversal, for a
@@ -88,6 +88,6 @@ CO_KERNEL trace_rays_speculative(CO_PARAMS(TRACE_RAYS_SPECULATIVE_PARAMS)) {
   steps[i] = ray.visited;
 }
 
-#endif /* !COHORT_ACCEL_BVH4 */
+#endif /* neither BVH */
 
 #endif

@@ -356,15 +356,18 @@ SceneBuffers DeviceScene::kernel_buffers() const {
   return b;
 }
 
-TraversalArrays traversal_arrays(const KdTree& tree, const Bvh4* bvh) {
-  if (bvh)
-    return {"BVH", bvh->nodes.data(), bytes_of(bvh->nodes), bvh->leaf_vertices.data(), bytes_of(bvh->leaf_vertices),
+TraversalArrays traversal_arrays(const KdTree& tree, WideBvh bvh) {
+  if (const Bvh4* b = bvh.bvh4)
+    return {"BVH", b->nodes.data(), bytes_of(b->nodes), b->leaf_vertices.data(), bytes_of(b->leaf_vertices),
             "-DCOHORT_ACCEL_BVH4"};
+  if (const Bvh8* b = bvh.bvh8)
+    return {"BVH", b->nodes.data(), bytes_of(b->nodes), b->leaf_vertices.data(), bytes_of(b->leaf_vertices),
+            "-DCOHORT_ACCEL_BVH8"};
   return {"KD-tree", tree.nodes.data(), bytes_of(tree.nodes), tree.leaf_triangles.data(), bytes_of(tree.leaf_triangles),
           ""};
 }
 
-DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables& tables, const Bvh4* bvh) {
+DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables& tables, WideBvh bvh) {
   DeviceScene d;
   const SceneMemory memory = scene_memory(tree, tables, bvh);
   d.bytes = memory.total();
@@ -405,7 +408,8 @@ DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables
   d.pick = light_pick(tables, 0.5f * tree.bounds.diagonal());
   d.features = tables.features;
   d.build_options = tables.features.build_options();
-  d.bvh4 = bvh != nullptr;
+  d.bvh4 = bvh.bvh4 != nullptr;
+  d.bvh8 = bvh.bvh8 != nullptr;
   if (*arrays.build_option) {
     if (!d.build_options.empty()) d.build_options += ' ';
     d.build_options += arrays.build_option;
@@ -413,7 +417,8 @@ DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables
   d.emitter_count = static_cast<std::uint32_t>(tables.emitters.entries.size());
   d.emitter_power_total = tables.emitters.total_power;
   d.bounds = tree.bounds;
-  d.level_starts = bvh ? bvh->top_level_starts : level_starts(tree);
+  // the 8-wide BVH has no breadth-first top (the PTH walk does not run on it)
+  d.level_starts = bvh.bvh4 ? bvh.bvh4->top_level_starts : bvh.bvh8 ? std::vector<std::uint32_t>{} : level_starts(tree);
   d.centroid_samples = centroid_samples(tree);
   return d;
 }

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "kernels/common/core/types.h"
-#include "runtime/accel/bvh4.h"
+#include "runtime/accel/wide_bvh.h"
 #include "runtime/accel/kdtree/kdtree.h"
 #include "runtime/backend/device.h"
 #include "runtime/backend/kernel_args.h"
@@ -92,6 +92,7 @@ struct DeviceScene {
   SceneFeatures features;
   std::string build_options;  // features.build_options() (and the BVH's): every rendering program gets them
   bool bvh4 = false;          // nodes and leaf lists are a 4-wide BVH's (programs built with COHORT_ACCEL_BVH4)
+  bool bvh8 = false;          // nodes and leaf lists are an 8-wide BVH's (programs built with COHORT_ACCEL_BVH8)
   std::uint32_t emitter_count = 0;
   float emitter_power_total = 0;
   std::uint32_t env_width = 0, env_height = 0;  // 0 x 0 without an environment map
@@ -116,12 +117,12 @@ struct TraversalArrays {
   std::size_t node_bytes;
   const void* leaf_lists;
   std::size_t leaf_list_bytes;
-  const char* build_option;  // "-DCOHORT_ACCEL_BVH4" or empty
+  const char* build_option;  // "-DCOHORT_ACCEL_BVH4", "-DCOHORT_ACCEL_BVH8" or empty
 };
-TraversalArrays traversal_arrays(const KdTree& tree, const Bvh4* bvh);
+TraversalArrays traversal_arrays(const KdTree& tree, WideBvh bvh);
 
 // With `bvh`, its nodes and leaf lists go where the KD-tree's would, and every rendering program is
-// built with COHORT_ACCEL_BVH4 to trace them (traversal_arrays).
-DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables& tables, const Bvh4* bvh = nullptr);
+// built with COHORT_ACCEL_BVH4 or COHORT_ACCEL_BVH8 to trace them (traversal_arrays).
+DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables& tables, WideBvh bvh = {});
 
 }  // namespace cohort

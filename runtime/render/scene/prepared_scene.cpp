@@ -13,7 +13,7 @@
 namespace cohort {
 
 const std::vector<std::string>& tree_choices() {
-  static const std::vector<std::string> names{"auto", "deep", "compact", "bvh4"};
+  static const std::vector<std::string> names{"auto", "deep", "compact", "bvh4", "bvh8"};
   return names;
 }
 
@@ -25,11 +25,13 @@ TreeChoice tree_options(const std::string& choice, std::span<const DeviceInfo> d
   } else if (choice == "auto") {
     options.kd.compact = no_gpu;
     options.bvh4 = !needs_kd;
-  } else if (choice == "bvh4") {
+  } else if (choice == "bvh4" || choice == "bvh8") {
     if (needs_kd)
-      throw InputError("--tree bvh4: --tree-budget and --speculative need the KD-tree; give --tree auto, deep or "
-                       "compact with them");
-    options.bvh4 = true;
+      throw InputError(fmt::format("--tree {}: --tree-budget and --speculative need the KD-tree; give --tree auto, "
+                                   "deep or compact with them",
+                                   choice));
+    options.bvh4 = choice == "bvh4";
+    options.bvh8 = choice == "bvh8";
   } else if (choice != "deep") {
     throw InputError(
         fmt::format("--tree {}: unknown tree (choose from {})", choice, fmt::join(tree_choices(), ", ")));
@@ -38,14 +40,17 @@ TreeChoice tree_options(const std::string& choice, std::span<const DeviceInfo> d
 }
 
 std::string describe_tree(const PreparedScene& p) {
-  if (const Bvh4* bvh = p.bvh()) {
-    const Bvh4Stats& b = bvh->stats;
-    return fmt::format("4-wide BVH: depth {}, {} nodes, {} leaves, {} references to {} triangles, {:.2f} per leaf, "
-                       "SAH cost {:.2f}, built in {:.3f}s (triangles kept in {:.3f}s)",
-                       b.depth, b.node_count, b.leaf_count, b.references, p.tree.triangles.size(),
-                       b.average_leaf_triangles, b.sah_cost, b.build_seconds, p.tree.stats.build_seconds);
-  }
+  if (const Bvh4Stats* bvh = p.bvh_stats())
+    return describe_bvh(p.bvh8 ? "compressed 8-wide BVH" : "4-wide BVH", *bvh, p.tree.triangles.size(),
+                        p.tree.stats.build_seconds);
   return describe_kdtree(p.tree.stats);
+}
+
+std::string describe_bvh(const char* name, const Bvh4Stats& b, std::size_t triangles, double kept_seconds) {
+  return fmt::format("{}: depth {}, {} nodes, {} leaves, {} references to {} triangles, {:.2f} per leaf, "
+                     "SAH cost {:.2f}, built in {:.3f}s (triangles kept in {:.3f}s)",
+                     name, b.depth, b.node_count, b.leaf_count, b.references, triangles, b.average_leaf_triangles,
+                     b.sah_cost, b.build_seconds, kept_seconds);
 }
 
 std::string describe_kdtree(const KdTreeStats& ts) {
@@ -69,7 +74,7 @@ PreparedScene prepare_loaded_scene(const std::filesystem::path& path, Scene scen
   p.scene = std::move(scene);
   KdBuildOptions one_leaf = choice.kd;
   one_leaf.leaf_triangles = INT_MAX;  // with the BVH the KD-tree only keeps the triangles
-  p.tree = build_kdtree(p.scene.positions, choice.bvh4 ? one_leaf : choice.kd);
+  p.tree = build_kdtree(p.scene.positions, choice.bvh() ? one_leaf : choice.kd);
   // The loaders reject a file without triangles; this catches one whose triangles all go, so that
   // no command renders an image of nothing.
   if (p.tree.triangles.empty())
@@ -77,6 +82,7 @@ PreparedScene prepare_loaded_scene(const std::filesystem::path& path, Scene scen
                                  "non-finite corners",
                                  path.string(), p.scene.triangle_count()));
   if (choice.bvh4) p.bvh4 = build_bvh4(p.tree.triangles);
+  if (choice.bvh8) p.bvh8 = build_bvh8(p.tree.triangles);
   p.tables = make_scene_tables(p.scene, p.tree);
   p.camera = p.scene.camera ? *p.scene.camera : framing_camera(p.scene.bounds());
   return p;
@@ -85,10 +91,10 @@ PreparedScene prepare_loaded_scene(const std::filesystem::path& path, Scene scen
 void fit_scene_to(PreparedScene& p, std::size_t device_bytes, const KdBuildOptions& options) {
   const SceneMemory memory = scene_memory(p.tree, p.tables, p.bvh());
   if (memory.total() <= device_bytes) return;
-  if (p.bvh4)
-    throw InputError(fmt::format("the scene needs {:.2f} MiB of device memory with the 4-wide BVH; the limit is {:.2f} "
-                                 "MiB (a KD-tree can trade depth for bytes: --tree deep or compact)",
-                                 memory.total() / 1048576.0, device_bytes / 1048576.0));
+  if (p.bvh())
+    throw InputError(fmt::format("the scene needs {:.2f} MiB of device memory with the {}-wide BVH; the limit is "
+                                 "{:.2f} MiB (a KD-tree can trade depth for bytes: --tree deep or compact)",
+                                 memory.total() / 1048576.0, p.bvh8 ? 8 : 4, device_bytes / 1048576.0));
   // The smallest tree is one leaf: a node and one list entry and the vertices per triangle.
   const std::size_t smallest = sizeof(KdNode) + p.tree.triangles.size() * (sizeof(std::uint32_t) + sizeof(Triangle));
   if (memory.shading + smallest > device_bytes) {

@@ -11,6 +11,8 @@
 #include <optional>
 
 #include "runtime/accel/bvh4.h"
+#include "runtime/accel/bvh8.h"
+#include "runtime/accel/wide_bvh.h"
 #include "runtime/accel/kdtree/kdtree.h"
 #include "runtime/backend/device_info.h"
 #include "runtime/render/scene/device_scene.h"
@@ -22,27 +24,42 @@ struct PreparedScene {
   Scene scene;
   KdTree tree;                // with a BVH: one leaf, for the kept triangles and their indices
   std::optional<Bvh4> bvh4;   // what the kernels trace with --tree bvh4 (tree_options)
+  std::optional<Bvh8> bvh8;   // what the kernels trace with --tree bvh8
   SceneTables tables;
   SceneCamera camera;  // the file's camera, else the framing camera of docs/bench-protocol.md
   double load_seconds = 0;
 
-  const Bvh4* bvh() const { return bvh4 ? &*bvh4 : nullptr; }
-  // "deep", "compact" or "bvh4": what --stats, info and the bench JSON name as the tree
-  const char* tree_kind() const { return bvh4 ? "bvh4" : cohort::tree_kind(tree.stats); }
-  double build_seconds() const { return tree.stats.build_seconds + (bvh4 ? bvh4->stats.build_seconds : 0.0); }
+  // the BVH the kernels trace, if any
+  WideBvh bvh() const {
+    if (bvh4) return &*bvh4;
+    if (bvh8) return &*bvh8;
+    return {};
+  }
+  // the BVH's figures, if there is one
+  const Bvh4Stats* bvh_stats() const { return bvh4 ? &bvh4->stats : bvh8 ? &bvh8->stats : nullptr; }
+  // "deep", "compact", "bvh4" or "bvh8": what --stats, info and the bench JSON name as the tree
+  const char* tree_kind() const { return bvh4 ? "bvh4" : bvh8 ? "bvh8" : cohort::tree_kind(tree.stats); }
+  double build_seconds() const {
+    const Bvh4Stats* b = bvh_stats();
+    return tree.stats.build_seconds + (b ? b->build_seconds : 0.0);
+  }
 };
 
 // One line on what the scene is traced with, as `info` and `render -v` print it: "kd-tree (deep):
 // depth 21, ..., built in 0.12s" or "4-wide BVH: depth 9, ...".
 std::string describe_tree(const PreparedScene& scene);
+// The same line for a BVH's figures: "4-wide BVH: depth 9, ..." (`name` first).
+std::string describe_bvh(const char* name, const Bvh4Stats& stats, std::size_t triangles, double kept_seconds);
 std::string describe_kdtree(const KdTreeStats& stats);
 
-// What a scene is traced with: a KD-tree built with `kd`, or with `bvh4` a 4-wide BVH over the
-// kept triangles (the KD-tree then one leaf; `kd` is still the KD-tree the choice would build without
-// the BVH, what a memory limit falls back to).
+// What a scene is traced with: a KD-tree built with `kd`, or with `bvh4` a 4-wide BVH, with `bvh8`
+// the compressed 8-wide BVH, over the kept triangles (the KD-tree then one leaf; `kd` is still the
+// KD-tree the choice would build without the BVH, what a memory limit falls back to).
 struct TreeChoice {
   KdBuildOptions kd;
   bool bvh4 = false;
+  bool bvh8 = false;
+  bool bvh() const { return bvh4 || bvh8; }
 };
 
 // The structure a render traces with (`--tree`): "bvh4" (a 4-wide BVH: 1.6-2.3x the KD-tree's
@@ -50,9 +67,11 @@ struct TreeChoice {
 // conference; docs/results.md), "deep" (the KD-tree built for GPUs), "compact" (KdBuildOptions::compact:
 // 0.55-0.67x the nodes and 0.74-0.83x the bytes) or "auto": bvh4 unless a KD-tree is asked for
 // (`needs_kd`: --tree-budget, --speculative), then compact when no device is a GPU and deep when one is. Every
-// method walks either; pth's partial traversal walks the top of whichever is built. Every structure gives every ray the same hit (kernels/common/accel/bvh4_traverse.h), so
+// method walks either; pth's partial traversal walks the top of whichever is built. "bvh8" (the
+// compressed 8-wide BVH of Ylitie, Karras & Laine, for GPUs' incoherent rays; docs/design.md) is
+// never chosen by auto; hash and pth do not run on it yet (SortedTraversal refuses them). Every structure gives every ray the same hit (kernels/common/accel/bvh4_traverse.h), so
 // the choice changes speed and memory, never the image. Throws InputError for another name, and for
-// bvh4 with `needs_kd`.
+// bvh4 or bvh8 with `needs_kd`.
 TreeChoice tree_options(const std::string& choice, std::span<const DeviceInfo> devices = {}, bool needs_kd = false);
 inline TreeChoice tree_options(const std::string& choice, const DeviceInfo& device, bool needs_kd = false) {
   return tree_options(choice, {&device, 1}, needs_kd);

@@ -6,12 +6,12 @@
 
 namespace cohort {
 
-SceneMemory scene_memory(const KdTree& tree, const SceneTables& tables, const Bvh4* bvh) {
+SceneMemory scene_memory(const KdTree& tree, const SceneTables& tables, WideBvh bvh) {
   SceneMemory m;
   const TraversalArrays arrays = traversal_arrays(tree, bvh);
   m.nodes = arrays.node_bytes;
   m.leaf_lists = arrays.leaf_list_bytes;
-  m.leaves_hold_triangles = bvh != nullptr;
+  m.leaves_hold_triangles = bool(bvh);
   m.triangles = bytes_of(tree.triangles);
   m.shading = bytes_of(tables.triangle_material) + bytes_of(tables.materials) +
               bytes_of(tables.emitters.entries) + bytes_of(tables.triangle_uvs) + bytes_of(tables.triangle_colors) + bytes_of(tables.triangle_frames) +

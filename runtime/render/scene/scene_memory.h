@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <string>
 
-#include "runtime/accel/bvh4.h"
+#include "runtime/accel/wide_bvh.h"
 #include "runtime/accel/kdtree/kdtree.h"
 #include "runtime/render/scene/device_scene.h"
 
@@ -23,7 +23,7 @@ struct SceneMemory {
 };
 
 // With `bvh`, its nodes and leaf lists stand for the tree's (what upload_scene uploads then).
-SceneMemory scene_memory(const KdTree& tree, const SceneTables& tables, const Bvh4* bvh = nullptr);
+SceneMemory scene_memory(const KdTree& tree, const SceneTables& tables, WideBvh bvh = {});
 
 // "123.4 MiB: 150.2 bytes per triangle (nodes 60.1, leaf lists 30.0, triangles 48.0, shading
 // 12.1)", "leaf triangles" for the BVH's; `triangles` is the kept triangle count.
