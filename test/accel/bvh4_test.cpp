@@ -212,6 +212,22 @@ TEST(Bvh4, DegenerateInputsStayShallowAndFindTheLowestIndex) {
   EXPECT_EQ(hit.t, 1.0f);
 }
 
+// A ray whose direction has a NaN component (nothing the renderer should make, but a degenerate
+// input can) misses on every tree instead of walking out of the arrays.
+TEST(Bvh4, ARayWithANanDirectionMisses) {
+  const KdTree kept = kept_triangles(random_soup(4000, 7));  // a soup around the origin
+  const Bvh4 bvh = build_bvh4(kept.triangles);
+  const Bvh4View view = host_view(bvh);
+  EXPECT_NE(bvh4_trace_steps(&view, v3(0.f, 0.f, 0.f), v3(0.f, 0.f, 1.f), 0.f, kInf, 0, nullptr).triangle, HIT_NONE);
+  const float nan = std::nanf("");
+  for (const co_vec3 dir : {v3(nan, 0.f, 1.f), v3(0.f, nan, 0.f), v3(nan, nan, nan), v3(0.3f, -0.2f, nan)}) {
+    for (const int any_hit : {0, 1}) {
+      const HitOut hit = bvh4_trace_steps(&view, v3(0.f, 0.f, 0.f), dir, 0.f, kInf, any_hit, nullptr);
+      EXPECT_EQ(hit.triangle, HIT_NONE);
+    }
+  }
+}
+
 TEST(Bvh4, RejectsAnEmptyInput) {
   EXPECT_THROW(build_bvh4({}), InputError);
 }

@@ -265,6 +265,19 @@ TEST(Bvh8, DegenerateInputsStayShallowAndFindTheLowestIndex) {
   EXPECT_EQ(hit.t, 1.0f);
 }
 
+// As Bvh4.ARayWithANanDirectionMisses: a NaN direction component misses instead of walking out of
+// the arrays (the two trees share bvh4_inverse).
+TEST(Bvh8, ARayWithANanDirectionMisses) {
+  const KdTree kept = kept_triangles(random_soup(4000, 7));
+  const Bvh8 bvh = build_bvh8(kept.triangles);
+  const Bvh8View view = host_view(bvh);
+  EXPECT_NE(bvh8_trace_steps(&view, v3(0.f, 0.f, 0.f), v3(0.f, 0.f, 1.f), 0.f, kInf, 0, nullptr).triangle, HIT_NONE);
+  const float nan = std::nanf("");
+  for (const co_vec3 dir : {v3(nan, 0.f, 1.f), v3(0.f, nan, 0.f), v3(nan, nan, nan), v3(0.3f, -0.2f, nan)})
+    for (const int any_hit : {0, 1})
+      EXPECT_EQ(bvh8_trace_steps(&view, v3(0.f, 0.f, 0.f), dir, 0.f, kInf, any_hit, nullptr).triangle, HIT_NONE);
+}
+
 TEST(Bvh8, RejectsAnEmptyInput) {
   EXPECT_THROW(build_bvh8({}), InputError);
 }

@@ -54,10 +54,13 @@ CO_INLINE int bvh4_intersect_leaf(const CO_GLOBAL Triangle* leaf, uint32_t count
 }
 
 /* 1 / d for the box tests, with |d| below 1e-18 taken as 1e-18 of its sign: the slabs stay finite
- * and a box is only ever entered more often than exactly. */
+ * and a box is only ever entered more often than exactly. A NaN component is taken as 1e-18 too:
+ * a NaN inverse made every slab NaN, which min and max drop, so the unused lanes of a node were
+ * entered and the walk followed their invalid references out of the arrays; now the walk stays in
+ * the tree and the triangle test, whose comparisons are false for NaN, reports no hit. */
 CO_INLINE float bvh4_inverse(float d) {
   float tiny = d < 0.0f ? -1e-18f : 1e-18f;
-  return 1.0f / (fabs(d) < 1e-18f ? tiny : d);
+  return 1.0f / (fabs(d) >= 1e-18f ? d : tiny);
 }
 
 /* Starts loading a pushed child's cache lines, for when it is popped: an inner node's two, or a
