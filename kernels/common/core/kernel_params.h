@@ -24,6 +24,7 @@
 #endif
 #define CO_PARAM(kind, T, name) CO_PARAM_##kind(T, name)
 #define CO_PARAM_IN(T, name) CO_MAYBE_UNUSED CO_GLOBAL const T* name,
+#define CO_PARAM_FEATURE_IN(T, name) CO_PARAM_IN(T, name)
 #define CO_PARAM_IO(T, name) CO_MAYBE_UNUSED CO_GLOBAL T* name,
 #define CO_PARAM_UNIFORM(T, name) CO_MAYBE_UNUSED CO_CONSTANT T* name,
 #define CO_PARAM_VALUE(T, name) CO_MAYBE_UNUSED T name,
@@ -45,13 +46,23 @@
 
 /* ---- Groups -------------------------------------------------------------------------------- */
 
+/* A feature's table that only the programs built for it take (kind FEATURE_IN: IN on the device;
+ * the host binds it only when it holds a buffer, kernel_args.h), so the programs of a scene without
+ * the feature have the parameter lists they had before it. The host's argument structs (and host
+ * C++ compiles of the kernels) always list it. */
+#if defined(COHORT_FEATURE_CLEARCOAT) || !(defined(__OPENCL_VERSION__) || defined(__CUDACC__))
+#define SCENE_CLEARCOAT_BUFFERS(P) P(FEATURE_IN, MaterialCoat, material_coats)
+#else
+#define SCENE_CLEARCOAT_BUFFERS(P)
+#endif
+
 /* The scene's buffers (scene_view.h makes them a SceneView with the RenderParams). */
 #define SCENE_BUFFERS(P, G)                                                                                   \
   P(IN, KdNode, nodes) P(IN, uint32_t, leaf_triangles) P(IN, Triangle, triangles)                            \
   P(IN, uint32_t, triangle_material) P(IN, Material, materials) P(IN, EmitterEntry, emitters)                \
   P(IN, TriangleUv, triangle_uvs) P(IN, TextureDesc, textures) P(IN, uint32_t, texels)                       \
   P(IN, TriangleColor, triangle_colors) P(IN, TriangleFrame, triangle_frames) P(IN, co_float4, env_texels) P(IN, float, env_tables)               \
-  P(IN, PunctualLight, punctual_lights)
+  P(IN, PunctualLight, punctual_lights) SCENE_CLEARCOAT_BUFFERS(P)
 
 /* What every rendering kernel takes: the render's parameters and the scene. */
 #define SCENE_PARAMS(P, G) P(UNIFORM, RenderParams, params) G(SceneBuffers, scene, SCENE_BUFFERS)
