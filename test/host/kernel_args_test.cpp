@@ -5,6 +5,7 @@
 #define COHORT_FEATURE_CONDUCTOR
 #define COHORT_FEATURE_DIELECTRIC
 #define COHORT_FEATURE_PLASTIC
+#define COHORT_FEATURE_CLEARCOAT  // the clearcoat table is a parameter only with its option
 #include "kernels/common/wavefront/aov_kernel.h"
 #include "kernels/common/film/film_kernels.h"
 #include "kernels/common/wavefront/naive_kernel.h"
@@ -57,8 +58,8 @@ TEST(KernelArgs, OneArgumentPerKernelParameter) {
   EXPECT_EQ(TraceRaysPthArgs::arg_count + 1, arity(&trace_rays_pth));
   EXPECT_EQ(TraceRaysSpeculativeArgs::arg_count + 1, arity(&trace_rays_speculative));
   EXPECT_EQ(FilmAddArgs::arg_count + 1, arity(&film_add));
-  // the groups stand for their parameters: 14 scene buffers and the clearcoat table (host C++ compiles
-  // of the kernels always declare it), 8 path buffers, 4 shadow buffers
+  // the groups stand for their parameters: 14 scene buffers and the clearcoat table (declared here, where
+  // the kernels are built with its option), 8 path buffers, 4 shadow buffers
   EXPECT_EQ(SceneBuffers::arg_count, 15u);
   EXPECT_EQ(PathBuffers::arg_count, 8u);
   EXPECT_EQ(ShadowBuffers::arg_count, 4u);
