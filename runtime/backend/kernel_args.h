@@ -23,6 +23,11 @@ inline void bind_arg(DeviceKernel& kernel, std::size_t& index, const DeviceBuffe
 inline void bind_arg(DeviceKernel& kernel, std::size_t& index, const LocalMemory& local, const char*) {
   kernel.set_arg(index++, local);
 }
+// A feature's table (FEATURE_IN or FEATURE_ABSENT, kernel_params.h): a parameter only of programs
+// built with the feature, whose scenes have the buffer; without it there is no parameter to set.
+inline void bind_feature_arg(DeviceKernel& kernel, std::size_t& index, const DeviceBuffer& buffer) {
+  if (buffer) kernel.set_arg(index++, buffer);
+}
 template <class T>
 void bind_arg(DeviceKernel& kernel, std::size_t& index, const T& value, const char*) {
   kernel.set_arg(index++, value);
@@ -32,12 +37,21 @@ void bind_arg(DeviceKernel& kernel, std::size_t& index, const T& value, const ch
 
 #define CO_HOST_FIELD(kind, T, name) CO_HOST_FIELD_##kind(T, name)
 #define CO_HOST_FIELD_IN(T, name) DeviceBuffer name;
+#define CO_HOST_FIELD_FEATURE_IN(T, name) DeviceBuffer name;
+#define CO_HOST_FIELD_FEATURE_ABSENT(T, name) DeviceBuffer name;
 #define CO_HOST_FIELD_IO(T, name) DeviceBuffer name;
 #define CO_HOST_FIELD_UNIFORM(T, name) DeviceBuffer name;
 #define CO_HOST_FIELD_LOCAL(T, name) LocalMemory name;
 #define CO_HOST_FIELD_VALUE(T, name) T name{};
 #define CO_HOST_GROUP_FIELD(Group, member, LIST) Group member;
-#define CO_HOST_BIND(kind, T, name) kernel_args_detail::bind_arg(kernel, index, name, #name);
+#define CO_HOST_BIND(kind, T, name) CO_HOST_BIND_##kind(name)
+#define CO_HOST_BIND_IN(name) kernel_args_detail::bind_arg(kernel, index, name, #name);
+#define CO_HOST_BIND_FEATURE_IN(name) kernel_args_detail::bind_feature_arg(kernel, index, name);
+#define CO_HOST_BIND_FEATURE_ABSENT(name) CO_HOST_BIND_FEATURE_IN(name)
+#define CO_HOST_BIND_IO(name) CO_HOST_BIND_IN(name)
+#define CO_HOST_BIND_UNIFORM(name) CO_HOST_BIND_IN(name)
+#define CO_HOST_BIND_LOCAL(name) CO_HOST_BIND_IN(name)
+#define CO_HOST_BIND_VALUE(name) CO_HOST_BIND_IN(name)
 #define CO_HOST_GROUP_BIND(Group, member, LIST) member.bind(kernel, index);
 #define CO_HOST_COUNT(kind, T, name) 1 +
 #define CO_HOST_GROUP_COUNT(Group, member, LIST) Group::arg_count +

@@ -63,11 +63,14 @@ int run_info(const std::filesystem::path& path, const std::string& tree) {
             ? std::string()
             : fmt::format(", volume absorbing ({:.3g}, {:.3g}, {:.3g}) per unit length{}", m.absorption.x, m.absorption.y,
                           m.absorption.z, m.transmission > 0.f ? "" : " (not reached: no transmission)");
+    const std::string coat = m.clearcoat.factor > 0.f ? fmt::format(", clearcoat {:.3g} (roughness {:.3g})",
+                                                                     m.clearcoat.factor, m.clearcoat.roughness)
+                                                         : std::string();
     fmt::print("  [{}] {}: base colour ({:.3g}, {:.3g}, {:.3g}), metallic {:.3g}, roughness {:.3g}, emission ({:.3g}, "
-               "{:.3g}, {:.3g}){}{}{}\n",
+               "{:.3g}, {:.3g}){}{}{}{}\n",
                i, m.name.empty() ? "(unnamed)" : m.name, m.base_color.x, m.base_color.y, m.base_color.z, m.metallic,
                m.roughness, m.emission.x, m.emission.y, m.emission.z, m.base_color_texture >= 0 ? ", textured" : "",
-               alpha, volume);
+               alpha, volume, coat);
   }
   const std::size_t unread = p.scene.unread_textures.size();
   fmt::print("textures: {}{}\n", p.scene.textures.size(),

@@ -253,6 +253,63 @@ glm::vec3 read_volume(const tinygltf::Material& m, std::size_t texture_count, co
 // TEXCOORD_0 and _1 are read; a higher set is named by report_unhonoured, and set 0 stands in.
 int texcoord_set(int tex_coord) { return tex_coord == 1 ? 1 : 0; }
 
+// KHR_materials_clearcoat (docs/bsdf.md, "Clearcoat"): clearcoatFactor and clearcoatRoughnessFactor
+// in [0, 1]; clearcoatTexture (R), clearcoatRoughnessTexture (G) and clearcoatNormalTexture (with its
+// scale), each a textureInfo naming an existing texture, with texCoord and KHR_texture_transform as
+// the core textures. Wrong types and values outside the schema's ranges are a broken file.
+SceneClearcoat read_clearcoat(const tinygltf::Material& m, TextureTable& textures, std::size_t texture_count,
+                              const std::string& where) {
+  SceneClearcoat out;
+  const auto it = m.extensions.find("KHR_materials_clearcoat");
+  if (it == m.extensions.end()) return out;
+  const ExtensionReader r(it->second, fmt::format("{}: KHR_materials_clearcoat", where));
+  const tinygltf::Value& e = r.value();
+  const auto unit = [&](const std::string& name, float& value) {
+    if (!e.Has(name)) return;
+    const double v = r.number(e.Get(name), name);
+    if (!(v >= 0.0 && v <= 1.0)) r.fail(fmt::format("{} {} is outside [0, 1]", name, v));
+    value = static_cast<float>(v);
+  };
+  unit("clearcoatFactor", out.factor);
+  unit("clearcoatRoughnessFactor", out.roughness);
+  const std::string of = fmt::format(" of '{}'", m.name);
+  // a textureInfo: its scene texture (what it drives in `use`), coordinate set and transform
+  const auto texture = [&](const std::string& name, const std::string& use, int& index, int& set, UvTransform& x,
+                           float* scale) {
+    if (!e.Has(name)) return;
+    const tinygltf::Value& t = e.Get(name);
+    if (!t.IsObject() || !t.Has("index") || !t.Get("index").IsInt() || t.Get("index").GetNumberAsInt() < 0 ||
+        static_cast<std::size_t>(t.Get("index").GetNumberAsInt()) >= texture_count)
+      r.fail(fmt::format("{} does not name an existing texture", name));
+    int tex_coord = 0;
+    if (t.Has("texCoord")) {
+      if (!t.Get("texCoord").IsInt() || t.Get("texCoord").GetNumberAsInt() < 0)
+        r.fail(fmt::format("{}.texCoord is not an integer >= 0", name));
+      tex_coord = t.Get("texCoord").GetNumberAsInt();
+    }
+    std::string described = use;
+    if (scale) {
+      if (t.Has("scale")) *scale = static_cast<float>(r.number(t.Get("scale"), name + ".scale"));
+      described = fmt::format("{} (scale {:.3g})", use, *scale);
+    }
+    tinygltf::ExtensionMap extensions;
+    if (t.Has("extensions")) {
+      const tinygltf::Value& ext = t.Get("extensions");
+      if (!ext.IsObject()) r.fail(fmt::format("{}.extensions is not an object", name));
+      for (const std::string& key : ext.Keys()) extensions[key] = ext.Get(key);
+    }
+    x = read_transform(extensions, tex_coord, fmt::format("{}: {}", where, name));
+    set = texcoord_set(tex_coord);
+    index = textures.index_of(t.Get("index").GetNumberAsInt(), false, described + of);
+  };
+  texture("clearcoatTexture", "clearcoat factor (R)", out.texture, out.texcoord, out.transform, nullptr);
+  texture("clearcoatRoughnessTexture", "clearcoat roughness (G)", out.roughness_texture, out.roughness_texcoord,
+          out.roughness_transform, nullptr);
+  texture("clearcoatNormalTexture", "clearcoat normals", out.normal_texture, out.normal_texcoord,
+          out.normal_transform, &out.normal_scale);
+  return out;
+}
+
 SceneMaterial convert(const tinygltf::Material& m, TextureTable& textures) {
   const auto& pbr = m.pbrMetallicRoughness;
   SceneMaterial out;
@@ -300,6 +357,7 @@ void convert_materials(const tinygltf::Model& model, const std::string& file, Sc
     const std::string where =
         fmt::format("{}: material {}{}", file, i, m.name.empty() ? "" : fmt::format(" '{}'", m.name));
     out.absorption = read_volume(m, model.textures.size(), where);
+    out.clearcoat = read_clearcoat(m, textures, model.textures.size(), where);
     const auto transform = [&](const tinygltf::ExtensionMap& extensions, int tex_coord, const char* slot,
                                UvTransform& x, int& set) {
       x = read_transform(extensions, tex_coord, fmt::format("{}: {}", where, slot));

@@ -109,13 +109,15 @@ std::vector<std::uint32_t> vertex_indices(const tinygltf::Model& model, const ti
   return idx;
 }
 
-// A normal-mapped material on a primitive without TANGENT: tangents from its normals and the
+// A normal-mapped material (or clearcoat) on a primitive without TANGENT: tangents from its normals and the
 // coordinates the map reads (scene/tangents.h), as the glTF specification asks.
 void add_generated_tangents(Vertices& v, const Scene& scene, std::uint32_t material, const std::vector<Triple>& triangles) {
   if (!v.tangents.empty() || material >= scene.materials.size()) return;
   const SceneMaterial& m = scene.materials[material];
-  if (m.normal_texture < 0) return;
-  const std::vector<glm::vec2>& uvs = m.normal_texcoord == 1 ? v.uvs1 : v.uvs;
+  if (m.normal_texture < 0 && m.clearcoat.normal_texture < 0) return;
+  // the base's map decides the coordinate set where both the base and the clearcoat have one
+  const int set = m.normal_texture >= 0 ? m.normal_texcoord : m.clearcoat.normal_texcoord;
+  const std::vector<glm::vec2>& uvs = set == 1 ? v.uvs1 : v.uvs;
   if (uvs.empty()) return;
   v.tangents = generate_tangents(v.positions, v.normals, uvs, triangles);
 }

@@ -21,7 +21,7 @@ constexpr std::array kImplemented = {
     std::string_view("KHR_materials_emissive_strength"), std::string_view("KHR_materials_transmission"),
     std::string_view("KHR_materials_ior"), std::string_view("KHR_mesh_quantization"),
     std::string_view("KHR_lights_punctual"), std::string_view("KHR_texture_transform"),
-    std::string_view("KHR_materials_volume")};
+    std::string_view("KHR_materials_volume"), std::string_view("KHR_materials_clearcoat")};
 
 // A texture reference of a material (glTF's textureInfo and its normal and occlusion variants), with
 // the coordinate set it reads (KHR_texture_transform's texCoord replaces the reference's own).
@@ -47,6 +47,18 @@ std::vector<TextureRef> honoured_textures(const tinygltf::Material& m) {
     if (t->index >= 0) out.push_back(texture_ref(t->index, t->texCoord, t->extensions));
   if (m.normalTexture.index >= 0)
     out.push_back(texture_ref(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions));
+  // KHR_materials_clearcoat's textureInfos (the loader has checked their types)
+  const auto coat = m.extensions.find("KHR_materials_clearcoat");
+  if (coat != m.extensions.end() && coat->second.IsObject())
+    for (const char* name : {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}) {
+      const tinygltf::Value& t = coat->second.Get(name);
+      if (!t.IsObject() || !t.Get("index").IsInt()) continue;
+      tinygltf::ExtensionMap extensions;
+      if (t.Get("extensions").IsObject())
+        for (const std::string& key : t.Get("extensions").Keys()) extensions[key] = t.Get("extensions").Get(key);
+      const int tex_coord = t.Get("texCoord").IsInt() ? t.Get("texCoord").GetNumberAsInt() : 0;
+      out.push_back(texture_ref(t.Get("index").GetNumberAsInt(), tex_coord, extensions));
+    }
   return out;
 }
 
@@ -146,7 +158,10 @@ void report_missing_coordinates(const std::string& file, Scene& scene) {
       return (m.base_color_texture >= 0 && m.base_color_texcoord == set) ||
              (m.emission_texture >= 0 && m.emission_texcoord == set) ||
              (m.metallic_roughness_texture >= 0 && m.metallic_roughness_texcoord == set) ||
-             (m.normal_texture >= 0 && m.normal_texcoord == set);
+             (m.normal_texture >= 0 && m.normal_texcoord == set) ||
+             (m.clearcoat.texture >= 0 && m.clearcoat.texcoord == set) ||
+             (m.clearcoat.roughness_texture >= 0 && m.clearcoat.roughness_texcoord == set) ||
+             (m.clearcoat.normal_texture >= 0 && m.clearcoat.normal_texcoord == set);
     }));
   };
   for (int set : {0, 1})

@@ -65,6 +65,11 @@ void check_material(const SceneMaterial& m, std::size_t index, const std::filesy
                                     std::pair{"roughness", m.roughness}, std::pair{"transmission", m.transmission},
                                     std::pair{"ior", m.ior}})
     if (!std::isfinite(value) || value < 0.f) fail(fmt::format("{} {} is negative or not finite", name, value));
+  for (const auto& [name, value] : {std::pair{"clearcoat factor", m.clearcoat.factor},
+                                    std::pair{"clearcoat roughness", m.clearcoat.roughness}})
+    if (!std::isfinite(value) || value < 0.f) fail(fmt::format("{} {} is negative or not finite", name, value));
+  if (!std::isfinite(m.clearcoat.normal_scale))
+    fail(fmt::format("clearcoat normal scale {} is not finite", m.clearcoat.normal_scale));
 }
 
 void check_loaded(const Scene& scene, const std::filesystem::path& path) {

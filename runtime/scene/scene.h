@@ -29,6 +29,19 @@ struct UvTransform {
   bool operator==(const UvTransform&) const = default;
 };
 
+// glTF KHR_materials_clearcoat: a dielectric layer (IOR 1.5) over the material (docs/bsdf.md,
+// "Clearcoat"); factor 0 is no coat. Textures index Scene::textures (linear data).
+struct SceneClearcoat {
+  float factor = 0.f;     // clearcoatFactor
+  float roughness = 0.f;  // clearcoatRoughnessFactor
+  int texture = -1;            // clearcoatTexture: R multiplies the factor
+  int roughness_texture = -1;  // clearcoatRoughnessTexture: G multiplies the roughness
+  int normal_texture = -1;     // clearcoatNormalTexture: the coat's tangent-space normal map
+  float normal_scale = 1.f;    // its scale
+  int texcoord = 0, roughness_texcoord = 0, normal_texcoord = 0;  // the coordinate set each reads
+  UvTransform transform, roughness_transform, normal_transform;   // each texture's KHR_texture_transform
+};
+
 struct SceneMaterial {
   std::string name;
   glm::vec3 base_color{0.8f};
@@ -56,6 +69,7 @@ struct SceneMaterial {
   UvTransform emission_transform;
   UvTransform metallic_roughness_transform;
   UvTransform normal_transform;
+  SceneClearcoat clearcoat;     // KHR_materials_clearcoat
   bool double_sided = false;    // glTF doubleSided; emission leaves both faces when set
   AlphaMode alpha_mode = AlphaMode::opaque;
   float alpha_cutoff = 0.5f;    // glTF alphaCutoff, read with MASK only

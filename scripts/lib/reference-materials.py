@@ -4,8 +4,8 @@
 
 The sibling of scripts/reference-scenes.py (same room, camera, light, film and passes; its geometry and
 glTF camera helpers are reused): each scene goes to scenes/reference/NAME.gltf with its textures as
-PNG data URIs, and the same triangles, with texture coordinates, to Mitsuba 3 (scalar_rgb) with the
-matching plugins. Texels reach Mitsuba already decoded to linear floats (raw bitmaps), as Cohort
+PNG data URIs, and the same triangles, with texture coordinates, to Mitsuba 3 (scalar_rgb; the clearcoat
+scene llvm_ad_rgb, with DRJIT_LIBLLVM_PATH found below) with the matching plugins. Texels reach Mitsuba already decoded to linear floats (raw bitmaps), as Cohort
 decodes them (sRGB for colour, byte / 255 for data), so the filters and wrap modes compare alone.
 
   textured-mr    a panel whose metallic-roughness texture (NEAREST) makes a checker of rough metal
@@ -25,6 +25,12 @@ decodes them (sRGB for colour, byte / 255 for data), so the filters and wrap mod
   glass-volume   a closed block of smooth glass (IOR 1.5) whose interior absorbs a colour
                  (KHR_materials_volume attenuationColor and attenuationDistance); Mitsuba: volpath with
                  a dielectric and an interior homogeneous medium of albedo 0 and sigma_t = sigma_a
+  clearcoat      three panels under KHR_materials_clearcoat: a smooth coat over a red Lambertian, a coat of
+                 clearcoatRoughness 0.3 over a white rough metal, and a smooth coat whose factor comes from a
+                 NEAREST texture's R channel over a green Lambertian; Mitsuba (llvm_ad_rgb, where a Python BSDF
+                 is traced into the JIT): ClearcoatBSDF below, which mixes Mitsuba's own lobes as Cohort
+                 does, (1 - c F(cos_i)) base + c coat, with the coat plastic / roughplastic (GGX) of
+                 diffuse_reflectance 0 and int_ior 1.5
   (Mitsuba's path integrator counts a pass through a mask as a path segment where Cohort's does not,
   and its shadow rays stop at masks: the alpha scenes use max_depth 24, where both have converged to
   the unbounded answer of this open room)
@@ -50,6 +56,15 @@ from reference_common import reference_arguments  # noqa: E402
 # --help answers before the imports below, which need the venv's packages
 ARGS = reference_arguments(__doc__, "the glTF files") if __name__ == "__main__" else None
 
+# llvm_ad_rgb (the clearcoat scene) needs Dr.Jit to find libLLVM: the newest libLLVM-N.so installed
+if "DRJIT_LIBLLVM_PATH" not in os.environ:
+    import glob
+    import re
+    found = glob.glob("/usr/lib/*/libLLVM-*.so")
+    if found:
+        os.environ["DRJIT_LIBLLVM_PATH"] = max(found, key=lambda f: int(re.search(r"libLLVM-(\d+)", f).group(1)))
+
+import drjit as dr  # noqa: E402
 import mitsuba as mi  # noqa: E402
 import numpy as np  # noqa: E402
 
@@ -92,6 +107,15 @@ def checker_mr(n=4):
             base[y, x] = (255, 255, 255, 255) if metal else (*colours[(x + 2 * y) % 4], 255)
             mr[y, x] = (0, 77, 255, 255) if metal else (0, 255, 0, 255)
     return base, mr
+
+
+def coat_checker(n=4):
+    """Clearcoat factor texels (R, linear data): a checker of 255 and 64 (full and a quarter coat)."""
+    t = np.zeros((n, n, 4), dtype=np.uint8)
+    for y in range(n):
+        for x in range(n):
+            t[y, x] = (255 if (x + y) % 2 == 0 else 64, 0, 0, 255)
+    return t
 
 
 def wrap_texture():
@@ -164,6 +188,23 @@ def glass_volume(colour, distance, ior):
                          "scale": max(sigma)}}
 
 
+def clearcoat(base, factor, roughness, texture=None):
+    """glTF KHR_materials_clearcoat over a base material of reference-scenes.py (its gltf and its mitsuba
+    BSDF without the twosided wrapper); `texture` (texels, sampler) multiplies the factor by its R channel."""
+    coat = {"clearcoatFactor": factor, "clearcoatRoughnessFactor": roughness}
+    mi_base = base["mitsuba"]["bsdf"]
+    if roughness > 0:
+        mi_coat = {"type": "roughplastic", "diffuse_reflectance": rs.rgb_value([0.0, 0.0, 0.0]), "int_ior": 1.5,
+                   "ext_ior": 1.0, "distribution": "ggx", "alpha": roughness ** 2, "nonlinear": False}
+    else:
+        mi_coat = {"type": "plastic", "diffuse_reflectance": rs.rgb_value([0.0, 0.0, 0.0]), "int_ior": 1.5,
+                   "ext_ior": 1.0, "nonlinear": False}
+    out = {"kind": "clearcoat", "gltf": base["gltf"], "coat": coat, "mi_base": mi_base, "mi_coat": mi_coat}
+    if texture:
+        out["texels"], out["sampler"] = texture
+    return out
+
+
 def room_with(panels, light=True):
     shapes = [("ground", (*rs.quad([-4, 0, 4], [8, 0, 0], [0, 0, -8]), None), rs.diffuse([0.5, 0.5, 0.5])),
               ("wall", (*rs.quad([-4, 0, -3], [8, 0, 0], [0, 5, 0]), None), rs.diffuse([0.2, 0.4, 0.7]))]
@@ -180,6 +221,14 @@ def scene_list():
     base, mr = checker_mr()
     wrap = wrap_texture()
     return {
+        "clearcoat": {"environment": [0.1, 0.1, 0.1], "llvm": True, "shapes": room_with([
+            ("smooth", panel([-2.1, 0.3, 0.0], [1.3, 0, 0], [0, 1.3, -0.3]),
+             clearcoat(rs.diffuse([0.8, 0.1, 0.1]), 1.0, 0.0)),
+            ("rough", panel([-0.65, 0.3, 0.0], [1.3, 0, 0], [0, 1.3, -0.3]),
+             clearcoat(rs.rough_conductor(0.3), 1.0, 0.3)),
+            ("textured", panel([0.8, 0.3, 0.0], [1.3, 0, 0], [0, 1.3, -0.3]),
+             clearcoat(rs.diffuse([0.1, 0.6, 0.2]), 1.0, 0.0,
+                       (coat_checker(), {"magFilter": NEAREST, "minFilter": NEAREST})))])},
         "glass-volume": {"environment": [0.1, 0.1, 0.1], "integrator": "volpath", "shapes": room_with([
             ("block", (*rs.cuboid([-0.9, 0.02, -0.5], [0.9, 1.3, 0.5]), None),
              glass_volume([0.85, 0.55, 0.25], 0.6, 1.5))])},
@@ -275,6 +324,13 @@ def write_gltf(path, desc):
             t = e1 / np.linalg.norm(e1)
             attributes["NORMAL"] = add_accessor(np.tile(n, (len(p), 1)), "VEC3")
             attributes["TANGENT"] = add_accessor(np.tile(np.append(t, 1.0), (len(p), 1)), "VEC4")
+        elif kind == "clearcoat":
+            coat = dict(mat["coat"])
+            if "texels" in mat:
+                coat["clearcoatTexture"] = add_texture(mat["texels"], mat["sampler"])
+            m = {"pbrMetallicRoughness": mat["gltf"], "extensions": {"KHR_materials_clearcoat": coat}}
+            if "KHR_materials_clearcoat" not in doc["extensionsUsed"]:
+                doc["extensionsUsed"].append("KHR_materials_clearcoat")
         else:
             m = {"pbrMetallicRoughness": mat["gltf"]}
             if "extensions" in mat:
@@ -329,8 +385,80 @@ def bitmap(values, sampler, transform=None):
     return out
 
 
+def register_clearcoat():
+    """Registers the BSDF "clearcoat" with the variant set now (a Python BSDF derives from its mi.BSDF)."""
+
+    class ClearcoatBSDF(mi.BSDF):
+        """glTF's clearcoat layering as Cohort renders it, from Mitsuba's own lobes (docs/bsdf.md, "Clearcoat"):
+        eval = (1 - c F(cos_i)) base + c coat, with F the exact dielectric Fresnel of IOR 1.5 about the
+        normal and the coat a plastic / roughplastic of diffuse_reflectance 0 (its value is F(wi.m) D G /
+        (4 cos_i), or the delta mirror of weight F). Sampling picks the coat with probability q = c F(cos_i);
+        a delta coat sample weighs c / q times the coat's weight, any other sample the mixture's eval over
+        its pdf (one-sample MIS). One-sided: twosided wraps it."""
+
+        def __init__(self, props):
+            mi.BSDF.__init__(self, props)
+            self.base = props["base"]
+            self.coat = props["coat"]
+            self.factor = props["factor"]
+            self.m_components = [self.base.flags(), self.coat.flags()]
+            self.m_flags = self.base.flags() | self.coat.flags()
+
+        def _weight(self, si, active):
+            f = mi.fresnel(mi.Frame3f.cos_theta(si.wi), 1.5)[0]
+            c = self.factor.eval_1(si, active)
+            return c, c * f
+
+        def eval_pdf(self, ctx, si, wo, active=True):
+            c, q = self._weight(si, active)
+            vb, pb = self.base.eval_pdf(ctx, si, wo, active)
+            vc, pc = self.coat.eval_pdf(ctx, si, wo, active)
+            return vb * (1 - q) + vc * c, pb * (1 - q) + pc * q
+
+        def eval(self, ctx, si, wo, active=True):
+            return self.eval_pdf(ctx, si, wo, active)[0]
+
+        def pdf(self, ctx, si, wo, active=True):
+            return self.eval_pdf(ctx, si, wo, active)[1]
+
+        def sample(self, ctx, si, sample1, sample2, active=True):
+            c, q = self._weight(si, active)
+            coat = active & (sample1 < q)
+            base = active & ~coat
+            bs_c, w_c = self.coat.sample(ctx, si, dr.minimum(sample1 / q, 0.99999994), sample2, coat)
+            bs_b, w_b = self.base.sample(ctx, si, dr.minimum((sample1 - q) / (1 - q), 0.99999994), sample2, base)
+            bs = mi.BSDFSample3f(bs_b)
+            bs.wo = dr.select(coat, bs_c.wo, bs_b.wo)
+            bs.eta = dr.select(coat, bs_c.eta, bs_b.eta)
+            bs.sampled_type = dr.select(coat, bs_c.sampled_type, bs_b.sampled_type)
+            bs.sampled_component = dr.select(coat, mi.UInt32(1), mi.UInt32(0))
+            delta = mi.has_flag(bs.sampled_type, mi.BSDFFlags.Delta)
+            value, pdf = self.eval_pdf(ctx, si, bs.wo, active & ~delta)
+            delta_pdf = dr.select(coat, q * bs_c.pdf, (1 - q) * bs_b.pdf)
+            delta_weight = dr.select(coat, w_c * c / q, w_b)
+            bs.pdf = dr.select(delta, delta_pdf, pdf)
+            weight = dr.select(delta, delta_weight, value / dr.maximum(pdf, 1e-30))
+            ok = active & (bs.pdf > 0) & dr.select(coat, bs_c.pdf > 0, bs_b.pdf > 0)
+            bs.pdf = dr.select(ok, bs.pdf, 0)
+            return bs, dr.select(ok, weight, 0)
+
+        def traverse(self, callback):
+            pass
+
+        def to_string(self):
+            return "ClearcoatBSDF"
+
+    mi.register_bsdf("clearcoat", lambda props: ClearcoatBSDF(props))
+
+
 def mitsuba_bsdf(mat):
     kind = mat.get("kind")
+    if kind == "clearcoat":
+        factor = {"type": "uniform", "value": mat["coat"]["clearcoatFactor"]}
+        if "texels" in mat:
+            factor = bitmap(mat["coat"]["clearcoatFactor"] * mat["texels"][:, :, 0:1] / 255.0, mat["sampler"])
+        return {"type": "twosided", "bsdf": {"type": "clearcoat", "base": mat["mi_base"], "coat": mat["mi_coat"],
+                                             "factor": factor}}
     if kind == "textured_mr":
         colour = srgb_to_linear(mat["base"][:, :, :3])
         metal = mat["mr"][:, :, 2:3] / 255.0
@@ -380,6 +508,10 @@ def mitsuba_scene(desc, tmp):
 
 
 def render(name, desc, args):
+    # Python BSDFs run fast only where they are traced into the JIT (llvm_ad_rgb); in scalar_rgb, far too slow
+    mi.set_variant("llvm_ad_rgb" if desc.get("llvm") else "scalar_rgb")
+    if desc.get("llvm"):
+        register_clearcoat()
     with tempfile.TemporaryDirectory() as tmp:
         rs.render_reference(name, mitsuba_scene(desc, tmp), args, desc.get("integrator", "path"),
                             desc.get("max_depth", rs.MAX_DEPTH),

@@ -57,6 +57,13 @@ std::vector<Config> standard_configs(bool white) {
       out.push_back(make_config("plastic", bsdf_plastic(base, eta, static_cast<float>(r * r)), r, a));
   for (double a : angles) out.push_back(make_config("smooth_plastic", bsdf_plastic(base, eta, 0.0f), -1, a));
   out.push_back(make_config("smooth_plastic", bsdf_plastic(base, eta, 0.0f), -1, 45, true));
+  // glTF's clearcoat layer alone, with the scale c / q its selection gives it (1 in the furnace)
+  const float coat_scale = white ? 1.0f : 0.7f;
+  for (double r : roughness)
+    for (double a : angles)
+      out.push_back(make_config("coat", bsdf_coat(eta, static_cast<float>(r * r), coat_scale), r, a));
+  out.push_back(make_config("coat", bsdf_coat(eta, 0.3f * 0.3f, coat_scale), 0.3, 45, true));
+  for (double a : angles) out.push_back(make_config("smooth_coat", bsdf_coat(eta, 0.0f, coat_scale), -1, a));
   return out;
 }
 
@@ -261,6 +268,8 @@ void delta_probabilities(const Config& c, double* reflect, double* transmit) {
     *transmit = 1.0 - *reflect;
   } else if (b.type == BSDF_PLASTIC) {
     *reflect = plastic_coat_probability_ref(b, c.wi.z);
+  } else if (b.type == BSDF_COAT) {
+    *reflect = 1.0;
   }
 }
 

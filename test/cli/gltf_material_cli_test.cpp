@@ -74,6 +74,23 @@ TEST(GltfMaterialCli, AlphaModesAreListedCompiledAndChecked) {
       << rejected.output;
 }
 
+// The clearcoat reference scene: info lists each coat and the texture that drives one, warns of
+// nothing, and render compiles the coat.
+TEST(GltfMaterialCli, ClearcoatIsListedAndCompiled) {
+  const std::string scene = (fs::path(COHORT_SOURCE_DIR) / "scenes/reference/clearcoat.gltf").string();
+  const CommandResult info = run("info " + scene);
+  ASSERT_EQ(info.code, 0) << info.output;
+  EXPECT_EQ(count(info.output, ", clearcoat 1 (roughness 0)"), 2u) << info.output;
+  EXPECT_EQ(count(info.output, ", clearcoat 1 (roughness 0.3)"), 1u) << info.output;
+  EXPECT_EQ(count(info.output, "image 0 4x4, linear, nearest, wrap repeat/repeat: clearcoat factor (R) of 'textured'"),
+            1u) << info.output;
+  EXPECT_EQ(count(info.output, "warning: "), 0u) << info.output;
+  cohort_test::TempDir dir;
+  const CommandResult render = run("render " + scene + " --res 8x8 --spp 1 -v -o " + (dir.path / "c.exr").string());
+  ASSERT_EQ(render.code, 0) << render.output;
+  EXPECT_NE(render.output.find("kernel features: textures conductor clearcoat\n"), std::string::npos) << render.output;
+}
+
 // A triangle whose material asks for BLEND and a sheen: one warning each, from info and from render.
 TEST(GltfMaterialCli, InfoAndRenderWarnOnceForEachUnhonouredFeature) {
   cohort_test::TempDir dir;

@@ -27,7 +27,8 @@ void compile(const std::string& name, const std::string& defines) {
 }
 
 const char* kAllFeatures =
-    "-DCOHORT_FEATURE_TEXTURES -DCOHORT_FEATURE_CONDUCTOR -DCOHORT_FEATURE_DIELECTRIC -DCOHORT_FEATURE_PLASTIC -DCOHORT_FEATURE_VOLUME";
+    "-DCOHORT_FEATURE_TEXTURES -DCOHORT_FEATURE_CONDUCTOR -DCOHORT_FEATURE_DIELECTRIC -DCOHORT_FEATURE_PLASTIC -DCOHORT_FEATURE_VOLUME "
+    "-DCOHORT_FEATURE_CLEARCOAT";
 
 }  // namespace
 
@@ -36,6 +37,8 @@ TEST(NvrtcCompile, RenderingProgramsWithEveryFeatureSet) {
     compile(name, "");  // a diffuse-only scene
     compile(name, kAllFeatures);
   }
+  // the clearcoat's own normal map and TEXCOORD_1 lookups
+  compile("naive", std::string(kAllFeatures) + " -DCOHORT_FEATURE_NORMAL_MAP -DCOHORT_FEATURE_TEXCOORD1");
 }
 
 // The 4-wide BVH (--tree bvh4) is written once too: every program that traces through it compiles

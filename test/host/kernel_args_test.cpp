@@ -5,6 +5,7 @@
 #define COHORT_FEATURE_CONDUCTOR
 #define COHORT_FEATURE_DIELECTRIC
 #define COHORT_FEATURE_PLASTIC
+#define COHORT_FEATURE_CLEARCOAT  // the clearcoat table is a parameter only with its option
 #include "kernels/common/wavefront/aov_kernel.h"
 #include "kernels/common/film/film_kernels.h"
 #include "kernels/common/wavefront/naive_kernel.h"
@@ -57,8 +58,9 @@ TEST(KernelArgs, OneArgumentPerKernelParameter) {
   EXPECT_EQ(TraceRaysPthArgs::arg_count + 1, arity(&trace_rays_pth));
   EXPECT_EQ(TraceRaysSpeculativeArgs::arg_count + 1, arity(&trace_rays_speculative));
   EXPECT_EQ(FilmAddArgs::arg_count + 1, arity(&film_add));
-  // the groups stand for their parameters: 14 scene buffers, 8 path buffers, 4 shadow buffers
-  EXPECT_EQ(SceneBuffers::arg_count, 14u);
+  // the groups stand for their parameters: 14 scene buffers and the clearcoat table (declared here, where
+  // the kernels are built with its option), 8 path buffers, 4 shadow buffers
+  EXPECT_EQ(SceneBuffers::arg_count, 15u);
   EXPECT_EQ(PathBuffers::arg_count, 8u);
   EXPECT_EQ(ShadowBuffers::arg_count, 4u);
 }
@@ -83,6 +85,26 @@ TEST(KernelArgs, BindSetsFieldsInSignatureOrder) {
   ASSERT_EQ(count->bytes.size(), sizeof(value));
   std::memcpy(&value, count->bytes.data(), sizeof(value));
   EXPECT_EQ(value, 77u);
+}
+
+// A feature's table (FEATURE_IN) is an argument only where it is set: the programs of a scene
+// without clearcoat do not declare it, and the host sets one argument fewer.
+TEST(KernelArgs, AFeatureTableIsBoundOnlyWhenSet) {
+  SceneBuffers b;
+  for (DeviceBuffer* d : {&b.nodes, &b.leaf_triangles, &b.triangles, &b.triangle_material, &b.materials, &b.emitters,
+                          &b.triangle_uvs, &b.textures, &b.texels, &b.triangle_colors, &b.triangle_frames, &b.env_texels,
+                          &b.env_tables, &b.punctual_lights})
+    *d = some_buffer();
+  DeviceKernel without(nullptr, "render_naive");
+  b.bind(without);
+  EXPECT_EQ(without.args().size(), SceneBuffers::arg_count - 1 + 1);  // and co_params_end
+  b.material_coats = some_buffer();
+  DeviceKernel with(nullptr, "render_naive");
+  b.bind(with);
+  ASSERT_EQ(with.args().size(), SceneBuffers::arg_count + 1);
+  const auto* coats = std::get_if<DeviceBuffer>(&with.args()[SceneBuffers::arg_count - 1]);
+  ASSERT_TRUE(coats);
+  EXPECT_EQ(coats->object(), b.material_coats.object());
 }
 
 TEST(KernelArgs, UnsetBufferIsAnErrorNamingIt) {

@@ -210,5 +210,57 @@ TEST(GltfVolume, AbsorptionIsReadAndChecked) {
   test::expect_input_error(with({{"thicknessTexture", {{"index", 3}}}}), "thicknessTexture does not name an existing texture");
 }
 
+TEST(GltfClearcoat, FactorsAndTexturesAreReadAndChecked) {
+  TempDir dir;
+  const auto with = [&](const json& coat) {
+    const json material = {{"name", "coated"}, {"extensions", {{"KHR_materials_clearcoat", coat}}}};
+    GltfWriter g = textured_triangle(dir, material, json::array({{{"source", 0}}, {{"source", 0}}}), nullptr);
+    const std::vector<glm::vec2> uv = {{0, 0}, {1, 0}, {0, 1}};
+    g.doc()["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] =
+        g.accessor(g.view(uv.data(), uv.size() * sizeof(glm::vec2)), 5126, uv.size(), "VEC2");
+    g.doc()["extensionsUsed"] = g.doc()["extensionsRequired"] = {"KHR_materials_clearcoat", "KHR_texture_transform"};
+    return g.write_gltf(dir.path(), "coat");
+  };
+  // no extension, or an empty one: no coat (glTF's defaults are factor 0 and roughness 0)
+  EXPECT_EQ(load_scene(with(json::object())).materials.at(0).clearcoat.factor, 0.f);
+  const Scene s = load_scene(with(
+      {{"clearcoatFactor", 0.75},
+       {"clearcoatRoughnessFactor", 0.25},
+       {"clearcoatTexture", {{"index", 0}, {"texCoord", 1}}},
+       {"clearcoatRoughnessTexture",
+        {{"index", 1}, {"extensions", {{"KHR_texture_transform", {{"offset", {0.5, 0}}}}}}}},
+       {"clearcoatNormalTexture", {{"index", 0}, {"scale", 0.5}}}}));
+  const SceneClearcoat& c = s.materials.at(0).clearcoat;
+  EXPECT_EQ(c.factor, 0.75f);
+  EXPECT_EQ(c.roughness, 0.25f);
+  ASSERT_GE(c.texture, 0);
+  ASSERT_GE(c.roughness_texture, 0);
+  ASSERT_GE(c.normal_texture, 0);
+  EXPECT_EQ(c.texcoord, 1);
+  EXPECT_EQ(c.roughness_texcoord, 0);
+  EXPECT_EQ(c.roughness_transform.offset, glm::vec2(0.5f, 0.f));
+  EXPECT_TRUE(c.transform.identity());
+  EXPECT_EQ(c.normal_scale, 0.5f);
+  // linear data, each named by what it drives
+  const Texture& factor = s.textures.at(static_cast<std::size_t>(c.texture));
+  EXPECT_FALSE(factor.srgb);
+  std::string uses;
+  for (const Texture& t : s.textures)
+    for (const std::string& u : t.uses) uses += u + "\n";
+  EXPECT_NE(uses.find("clearcoat factor (R) of 'coated'"), std::string::npos) << uses;
+  EXPECT_NE(uses.find("clearcoat roughness (G) of 'coated'"), std::string::npos) << uses;
+  EXPECT_NE(uses.find("clearcoat normals (scale 0.5) of 'coated'"), std::string::npos) << uses;
+  EXPECT_EQ(material_warnings(s), "") << "honoured, and accepted as required";
+  test::expect_input_error(with({{"clearcoatFactor", -0.5}}),
+                           "material 0 'coated': KHR_materials_clearcoat clearcoatFactor -0.5 is outside [0, 1]");
+  test::expect_input_error(with({{"clearcoatRoughnessFactor", 1.5}}), "clearcoatRoughnessFactor 1.5 is outside [0, 1]");
+  test::expect_input_error(with({{"clearcoatFactor", "thick"}}), "clearcoatFactor is not a finite number");
+  test::expect_input_error(with({{"clearcoatTexture", {{"index", 5}}}}), "clearcoatTexture does not name an existing texture");
+  test::expect_input_error(with({{"clearcoatRoughnessTexture", {{"index", 0}, {"texCoord", -1}}}}),
+                           "clearcoatRoughnessTexture.texCoord is not an integer >= 0");
+  test::expect_input_error(with({{"clearcoatNormalTexture", {{"index", 0}, {"scale", "big"}}}}),
+                           "clearcoatNormalTexture.scale is not a finite number");
+}
+
 }  // namespace
 }  // namespace cohort

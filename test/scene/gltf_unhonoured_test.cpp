@@ -87,9 +87,22 @@ TEST(GltfUnhonoured, ASceneOfHonouredFeaturesWarnsNothing) {
 
 TEST(GltfUnhonoured, RequiredExtensionsBeyondTheLoaderAreStillRefused) {
   TempDir dir;
-  GltfWriter g = triangles_with(dir, {{{"extensions", {{"KHR_materials_clearcoat", json::object()}}}}});
+  GltfWriter g = triangles_with(dir, {{{"extensions", {{"KHR_materials_iridescence", json::object()}}}}});
+  g.doc()["extensionsUsed"] = g.doc()["extensionsRequired"] = {"KHR_materials_iridescence"};
+  test::expect_input_error(g.write_gltf(dir.path(), "required"), "KHR_materials_iridescence");
+}
+
+TEST(GltfUnhonoured, ClearcoatIsHonouredAndMayBeRequired) {
+  TempDir dir;
+  GltfWriter g = triangles_with(dir, {{{"extensions", {{"KHR_materials_clearcoat",
+                                                        {{"clearcoatFactor", 1}, {"clearcoatTexture", {{"index", 0}}},
+                                                         {"clearcoatNormalTexture", {{"index", 0}, {"texCoord", 2}}}}}}}}});
   g.doc()["extensionsUsed"] = g.doc()["extensionsRequired"] = {"KHR_materials_clearcoat"};
-  test::expect_input_error(g.write_gltf(dir.path(), "required"), "KHR_materials_clearcoat");
+  const Scene s = load_scene(g.write_gltf(dir.path(), "coat"));
+  EXPECT_EQ(lines_containing(s.warnings, "KHR_materials_clearcoat"), 0u);
+  // the coat's textures count among the material's: its normal map's set 2 is named
+  EXPECT_EQ(lines_containing(s.warnings, "TEXCOORD_2 or above (TEXCOORD_0 used): 1 material"), 1u);
+  EXPECT_EQ(s.materials.at(0).clearcoat.factor, 1.f);
 }
 
 TEST(GltfUnhonoured, HigherCoordinateSetsAreCountedByMaterial) {

@@ -30,6 +30,9 @@ typedef struct SceneView {
 #ifdef COHORT_FEATURE_NORMAL_MAP
   const CO_GLOBAL TriangleFrame* triangle_frames; /* per kept triangle */
 #endif
+#ifdef COHORT_FEATURE_CLEARCOAT
+  const CO_GLOBAL MaterialCoat* material_coats; /* per material (shading/clearcoat.h) */
+#endif
   EnvironmentView env;
   const CO_GLOBAL PunctualLight* punctual_lights;
   uint32_t emitter_count;
@@ -37,6 +40,16 @@ typedef struct SceneView {
   uint32_t punctual_count;
   float pick_triangles, pick_environment, pick_punctual; /* NEE's choice of a kind of light */
 } SceneView;
+
+/* The clearcoat table, a parameter of the programs built with COHORT_FEATURE_CLEARCOAT only
+ * (SCENE_CLEARCOAT_BUFFERS, kernel_params.h) */
+#ifdef COHORT_FEATURE_CLEARCOAT
+#define CO_CLEARCOAT_PARAM , const CO_GLOBAL MaterialCoat* material_coats
+#define CO_CLEARCOAT_ARG(coats) , (coats)
+#else
+#define CO_CLEARCOAT_PARAM
+#define CO_CLEARCOAT_ARG(coats)
+#endif
 
 /* The view of the scene that a rendering kernel's SCENE_PARAMS (kernel_params.h) make. */
 CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNode* nodes,
@@ -47,7 +60,7 @@ CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNod
                                     const CO_GLOBAL TriangleColor* triangle_colors,
                                     const CO_GLOBAL TriangleFrame* triangle_frames,
                                     const CO_GLOBAL co_float4* env_texels, const CO_GLOBAL float* env_tables,
-                                    const CO_GLOBAL PunctualLight* punctual_lights) {
+                                    const CO_GLOBAL PunctualLight* punctual_lights CO_CLEARCOAT_PARAM) {
   SceneView s;
   s.tree = make_scene_accel(nodes, leaf_triangles, triangles, p->scene_min, p->scene_max);
 #if defined(COHORT_FEATURE_ALPHA)
@@ -83,6 +96,9 @@ CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNod
   s.env.width = p->env_width;
   s.env.height = p->env_height;
   s.punctual_lights = punctual_lights;
+#ifdef COHORT_FEATURE_CLEARCOAT
+  s.material_coats = material_coats;
+#endif
   s.emitter_count = p->emitter_count;
   s.emitter_power_total = p->emitter_power_total;
   s.punctual_count = p->punctual_count;
@@ -93,7 +109,8 @@ CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNod
 }
 #define SCENE_VIEW(p)                                                                                \
   make_scene_view(&(p), nodes, leaf_triangles, triangles, triangle_material, materials, emitters, triangle_uvs, \
-                  textures, texels, triangle_colors, triangle_frames, env_texels, env_tables, punctual_lights)
+                  textures, texels, triangle_colors, triangle_frames, env_texels, env_tables,       \
+                  punctual_lights CO_CLEARCOAT_ARG(material_coats))
 
 CO_INLINE float luminance(co_vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
@@ -182,13 +199,11 @@ CO_INLINE SurfaceParams surface_params(const SceneView* s, const CO_GLOBAL Mater
 }
 
 #ifdef COHORT_FEATURE_NORMAL_MAP
-/* The normal a normal-mapped material shades with at (b1, b2): the map's texel as a tangent-space
- * vector ((c * 2 - 1) with x and y times the material's scale) in the frame of the interpolated
- * vertex normal and tangent (glTF's rule: bitangent = cross(n, t) * w). n_geo where the material
- * has no map, or where the frame or the result is degenerate. */
-CO_INLINE co_vec3 mapped_normal(const SceneView* s, const CO_GLOBAL Material* m, uint32_t triangle, float b1, float b2,
-                                co_vec3 n_geo) {
-  if (m->normal_texture < 0) return n_geo;
+/* A tangent-space normal map's texel c at (b1, b2) as a world normal: (c * 2 - 1) with x and y times
+ * `scale`, in the frame of the interpolated vertex normal and tangent (glTF's rule: bitangent =
+ * cross(n, t) * w). n_geo where the frame or the result is degenerate. */
+CO_INLINE co_vec3 tangent_space_normal(const SceneView* s, uint32_t triangle, float b1, float b2, co_vec3 n_geo,
+                                       co_vec3 c, float scale) {
   TriangleFrame f = s->triangle_frames[triangle];
   float b0 = 1.0f - b1 - b2;
   co_vec3 n = v3_add(v3_add(v3_scale(v3_from4(f.n0), b0), v3_scale(v3_from4(f.n1), b1)), v3_scale(v3_from4(f.n2), b2));
@@ -200,12 +215,19 @@ CO_INLINE co_vec3 mapped_normal(const SceneView* s, const CO_GLOBAL Material* m,
   if (!(t_len > 0.0f)) return n_geo;
   t = v3_scale(t, 1.0f / t_len);
   co_vec3 b = v3_scale(v3_cross(n, t), f.t0.w < 0.0f ? -1.0f : 1.0f);
-  co_vec3 c = material_texture(s, m, m->normal_texture, MAT_UV1_NORMAL, triangle, b1, b2);
-  float x = (2.0f * c.x - 1.0f) * m->normal_scale, y = (2.0f * c.y - 1.0f) * m->normal_scale, z = 2.0f * c.z - 1.0f;
+  float x = (2.0f * c.x - 1.0f) * scale, y = (2.0f * c.y - 1.0f) * scale, z = 2.0f * c.z - 1.0f;
   co_vec3 ns = v3_add(v3_add(v3_scale(t, x), v3_scale(b, y)), v3_scale(n, z));
   float len = v3_length(ns);
   if (!(len > 0.0f) || !v3_is_finite(ns)) return n_geo;
   return v3_scale(ns, 1.0f / len);
+}
+
+/* The normal a normal-mapped material shades with at (b1, b2); n_geo where the material has no map. */
+CO_INLINE co_vec3 mapped_normal(const SceneView* s, const CO_GLOBAL Material* m, uint32_t triangle, float b1, float b2,
+                                co_vec3 n_geo) {
+  if (m->normal_texture < 0) return n_geo;
+  co_vec3 c = material_texture(s, m, m->normal_texture, MAT_UV1_NORMAL, triangle, b1, b2);
+  return tangent_space_normal(s, triangle, b1, b2, n_geo, c, m->normal_scale);
 }
 #endif
 

@@ -24,6 +24,8 @@
 #endif
 #define CO_PARAM(kind, T, name) CO_PARAM_##kind(T, name)
 #define CO_PARAM_IN(T, name) CO_MAYBE_UNUSED CO_GLOBAL const T* name,
+#define CO_PARAM_FEATURE_IN(T, name) CO_PARAM_IN(T, name)
+#define CO_PARAM_FEATURE_ABSENT(T, name) /* the program is built without the feature */
 #define CO_PARAM_IO(T, name) CO_MAYBE_UNUSED CO_GLOBAL T* name,
 #define CO_PARAM_UNIFORM(T, name) CO_MAYBE_UNUSED CO_CONSTANT T* name,
 #define CO_PARAM_VALUE(T, name) CO_MAYBE_UNUSED T name,
@@ -38,12 +40,29 @@
 
 /* The names of a list, as the arguments of a call to a helper declared with CO_PARAMS(LIST) (a
  * list without a LOCAL parameter: CUDA has none to pass). */
-#define CO_ARG(kind, T, name) name,
+#define CO_ARG(kind, T, name) CO_ARG_##kind(name)
+#define CO_ARG_IN(name) name,
+#define CO_ARG_IO(name) name,
+#define CO_ARG_UNIFORM(name) name,
+#define CO_ARG_VALUE(name) name,
+#define CO_ARG_LOCAL(name) name,
+#define CO_ARG_FEATURE_IN(name) name,
+#define CO_ARG_FEATURE_ABSENT(name)
 #define CO_ARG_GROUP(Group, member, LIST) LIST(CO_ARG, CO_ARG_GROUP_NESTED)
 #define CO_ARG_GROUP_NESTED(Group, member, LIST) LIST(CO_ARG, CO_ARG_GROUP_NESTED)
 #define CO_ARGS(LIST) LIST(CO_ARG, CO_ARG_GROUP) 0u
 
 /* ---- Groups -------------------------------------------------------------------------------- */
+
+/* A feature's table that only the programs built for it take: kind FEATURE_IN with the feature's
+ * option (an IN parameter), FEATURE_ABSENT without it (no parameter, no argument), so the programs
+ * of a scene without the feature have the parameter lists they had before it. The host's argument
+ * structs have the field either way and bind it only when it holds a buffer (kernel_args.h). */
+#if defined(COHORT_FEATURE_CLEARCOAT)
+#define SCENE_CLEARCOAT_BUFFERS(P) P(FEATURE_IN, MaterialCoat, material_coats)
+#else
+#define SCENE_CLEARCOAT_BUFFERS(P) P(FEATURE_ABSENT, MaterialCoat, material_coats)
+#endif
 
 /* The scene's buffers (scene_view.h makes them a SceneView with the RenderParams). */
 #define SCENE_BUFFERS(P, G)                                                                                   \
@@ -51,7 +70,7 @@
   P(IN, uint32_t, triangle_material) P(IN, Material, materials) P(IN, EmitterEntry, emitters)                \
   P(IN, TriangleUv, triangle_uvs) P(IN, TextureDesc, textures) P(IN, uint32_t, texels)                       \
   P(IN, TriangleColor, triangle_colors) P(IN, TriangleFrame, triangle_frames) P(IN, co_float4, env_texels) P(IN, float, env_tables)               \
-  P(IN, PunctualLight, punctual_lights)
+  P(IN, PunctualLight, punctual_lights) SCENE_CLEARCOAT_BUFFERS(P)
 
 /* What every rendering kernel takes: the render's parameters and the scene. */
 #define SCENE_PARAMS(P, G) P(UNIFORM, RenderParams, params) G(SceneBuffers, scene, SCENE_BUFFERS)

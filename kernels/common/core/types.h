@@ -115,6 +115,27 @@ typedef struct Material {
 } Material;
 CO_STATIC_ASSERT(sizeof(Material) == 96, "Material must stay 96 bytes");
 
+/* KHR_materials_clearcoat of one material, in a table of its own beside the materials (uploaded
+ * and passed to the kernels only with COHORT_FEATURE_CLEARCOAT, so a scene without a coat neither
+ * stores nor reads it, and its programs do not even declare it; shading/clearcoat.h). factor 0: no
+ * coat. Texture indices as Material's. */
+#define COAT_UV1_FACTOR 1u    /* the factor texture reads TEXCOORD_1 */
+#define COAT_UV1_ROUGHNESS 2u /* the roughness texture reads TEXCOORD_1 */
+#define COAT_UV1_NORMAL 4u    /* the normal texture reads TEXCOORD_1 */
+#if defined(COHORT_FEATURE_CLEARCOAT) || !(defined(__OPENCL_VERSION__) || defined(__CUDACC__))
+typedef struct MaterialCoat {
+  float factor;              /* clearcoatFactor */
+  float roughness;           /* clearcoatRoughnessFactor */
+  int32_t factor_texture;    /* -1: none; R multiplies factor (linear data) */
+  int32_t roughness_texture; /* -1: none; G multiplies roughness (linear data) */
+  int32_t normal_texture;    /* -1: none; the coat's tangent-space normal map (COHORT_FEATURE_NORMAL_MAP) */
+  float normal_scale;        /* scales the map's x and y */
+  uint32_t flags;            /* COAT_UV1_* */
+  uint32_t pad0;
+} MaterialCoat;
+CO_STATIC_ASSERT(sizeof(MaterialCoat) == 32, "MaterialCoat must stay 32 bytes");
+#endif
+
 /* ---- Textures ---------------------------------------------------------------------------------
  * Every texture's texels live in one buffer of RGBA8 words (r in the low byte, as glTF stores
  * them, rows from the top: texture coordinate v = 0 is the first row); a descriptor per texture

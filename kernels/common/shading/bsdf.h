@@ -44,6 +44,13 @@
 #define BSDF_WITH_PLASTIC 1
 #endif
 
+/* glTF's clearcoat layer (BSDF_COAT) only with COHORT_FEATURE_CLEARCOAT (shading/clearcoat.h) */
+#if defined(COHORT_BSDF_SPECIALISED) && !defined(COHORT_FEATURE_CLEARCOAT)
+#define BSDF_WITH_COAT 0
+#else
+#define BSDF_WITH_COAT 1
+#endif
+
 /* ---- Shading frame --------------------------------------------------------------------------- */
 
 /* n is the shading normal. With normal maps (COHORT_FEATURE_NORMAL_MAP) ng is the geometric one,
@@ -83,6 +90,7 @@ CO_INLINE co_vec3 frame_to_world(const ShadingFrame* f, co_vec3 v) {
 #define BSDF_CONDUCTOR 1u  /* GGX conductor, Schlick Fresnel with F0 = color; smooth when alpha = 0 */
 #define BSDF_DIELECTRIC 2u /* smooth or GGX (Walter 2007) dielectric; color tints transmission */
 #define BSDF_PLASTIC 3u    /* diffuse color under a dielectric coat (Mitsuba's plastic, nonlinear=false) */
+#define BSDF_COAT 4u       /* the plastic's coat alone, times spec_weight: glTF's clearcoat layer */
 
 /* GGX alpha below which a surface is smooth (delta lobes): the GGX lobe would be narrower than
  * float sampling resolves well, and its peak D = 1/(pi alpha^2) would pass 3e5. */
@@ -99,7 +107,8 @@ typedef struct Bsdf {
   uint32_t type;
   float alpha;       /* GGX alpha = roughness^2; 0 = smooth */
   float eta;         /* dielectric and plastic: interior IOR / exterior IOR */
-  float spec_weight; /* plastic: Mitsuba's specular_sampling_weight = 1 / (1 + mean(color)) */
+  float spec_weight; /* plastic: Mitsuba's specular_sampling_weight = 1 / (1 + mean(color));
+                      * coat: the scale of the layer (clearcoat factor over its selection probability) */
   co_vec3 color;     /* see the types above */
   float fdr_int;     /* plastic: F_dr(1/eta), diffuse reflectance of the coat seen from inside */
 } Bsdf;
@@ -138,7 +147,11 @@ CO_INLINE Bsdf bsdf_plastic(co_vec3 diffuse, float eta, float alpha) {
 CO_INLINE int bsdf_has_transmission(const Bsdf* b) { return b->type == BSDF_DIELECTRIC; }
 /* True when every lobe is a delta: NEE cannot help, and MIS must not weigh the hit. */
 CO_INLINE int bsdf_is_delta(const Bsdf* b) {
-  return (b->type == BSDF_CONDUCTOR || b->type == BSDF_DIELECTRIC) && b->alpha < BSDF_SMOOTH_ALPHA;
+  return (b->type == BSDF_CONDUCTOR || b->type == BSDF_DIELECTRIC
+#if BSDF_WITH_COAT
+          || b->type == BSDF_COAT
+#endif
+          ) && b->alpha < BSDF_SMOOTH_ALPHA;
 }
 
 CO_INLINE BsdfSample bsdf_no_sample(void) {
@@ -411,6 +424,51 @@ CO_INLINE BsdfSample plastic_sample(const Bsdf* b, co_vec3 wi, float u_lobe, flo
   return s;
 }
 
+/* ---- Coat ---------------------------------------------------------------------------------------
+ * glTF's clearcoat layer on its own (docs/bsdf.md, "Clearcoat"): the plastic's coat, a GGX reflection
+ * F(wi.m) D G2 / (4 cos_i cos_o) of a dielectric of IOR eta with the exact Fresnel, or its delta
+ * mirror of value F(cos_i) when smooth, times `scale` (spec_weight). The caller picks the layer with
+ * probability q = c F(cos_i) and scales it by c / q, so the estimate is c times the layer; a smooth
+ * coat's sample then weighs exactly c F / q = 1. */
+#if BSDF_WITH_COAT
+CO_INLINE Bsdf bsdf_coat(float eta, float alpha, float scale) {
+  Bsdf b = bsdf_make(BSDF_COAT, v3_splat(0.0f), alpha, eta);
+  b.spec_weight = scale;
+  return b;
+}
+CO_INLINE co_vec3 coat_eval(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
+  if (b->alpha < BSDF_SMOOTH_ALPHA || !(wi.z > 0.0f) || !(wo.z > 0.0f)) return v3_splat(0.0f);
+  return v3_splat(b->spec_weight * plastic_coat_eval(b, wi, wo));
+}
+CO_INLINE float coat_pdf(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
+  if (b->alpha < BSDF_SMOOTH_ALPHA) return 0.0f;
+  return microfacet_reflection_pdf(wi, wo, b->alpha);
+}
+CO_INLINE BsdfSample coat_sample(const Bsdf* b, co_vec3 wi, float u1, float u2) {
+  BsdfSample s = bsdf_no_sample();
+  if (!(wi.z > 0.0f)) return s;
+  if (b->alpha < BSDF_SMOOTH_ALPHA) {
+    s.wo = v3(-wi.x, -wi.y, wi.z);
+    s.weight = v3_splat(b->spec_weight * fresnel_dielectric_r(wi.z, b->eta));
+    s.pdf = 1.0f;
+    s.flags = BSDF_REFLECTION | BSDF_DELTA;
+    return s;
+  }
+  co_vec3 m = ggx_sample_vndf(wi, b->alpha, u1, u2);
+  co_vec3 wo = v3_reflect(wi, m);
+  if (!(wo.z > 0.0f)) return s; /* below the surface: the single-scattering energy loss */
+  float dwi = v3_dot(wi, m);
+  float pdf = ggx_vndf_pdf(wi, m, b->alpha) / (4.0f * dwi);
+  float g1 = ggx_g1(wi, m, b->alpha);
+  if (!(pdf > 0.0f) || !(g1 > 0.0f)) return s;
+  s.wo = wo;
+  s.pdf = pdf;
+  s.weight = v3_splat(b->spec_weight * fresnel_dielectric_r(dwi, b->eta) * (ggx_g2(wi, wo, m, b->alpha) / g1));
+  s.flags = BSDF_REFLECTION | BSDF_GLOSSY;
+  return s;
+}
+#endif
+
 /* ---- Dispatch ---------------------------------------------------------------------------------- */
 
 /* Two-sidedness of the reflection-only BSDFs: mirror both directions through the surface when wi
@@ -433,6 +491,9 @@ CO_INLINE co_vec3 bsdf_eval(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
 #if BSDF_WITH_PLASTIC
   if (b->type == BSDF_PLASTIC) return plastic_eval(b, wi, wo);
 #endif
+#if BSDF_WITH_COAT
+  if (b->type == BSDF_COAT) return coat_eval(b, wi, wo);
+#endif
   return v3_splat(0.0f);
 }
 
@@ -449,6 +510,9 @@ CO_INLINE float bsdf_pdf(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
 #endif
 #if BSDF_WITH_PLASTIC
   if (b->type == BSDF_PLASTIC) return plastic_pdf(b, wi, wo);
+#endif
+#if BSDF_WITH_COAT
+  if (b->type == BSDF_COAT) return coat_pdf(b, wi, wo);
 #endif
   return 0.0f;
 }
@@ -467,6 +531,9 @@ CO_INLINE BsdfSample bsdf_sample(const Bsdf* b, co_vec3 wi, float u_lobe, float 
 #endif
 #if BSDF_WITH_PLASTIC
   else if (b->type == BSDF_PLASTIC) s = plastic_sample(b, wi, u_lobe, u1, u2);
+#endif
+#if BSDF_WITH_COAT
+  else if (b->type == BSDF_COAT) s = coat_sample(b, wi, u1, u2);
 #endif
   else s = bsdf_no_sample();
   s.wo.z *= side;

@@ -20,6 +20,9 @@
 #if defined(COHORT_FEATURE_VOLUME)
 #include "common/shading/medium.h"
 #endif
+#if defined(COHORT_FEATURE_CLEARCOAT)
+#include "common/shading/clearcoat.h"
+#endif
 
 /* A path between stages: what the megakernel keeps in registers and the wavefront kernels keep
  * in structure-of-arrays buffers. Every method runs these same functions in the same order per
@@ -354,6 +357,12 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
   float u_select = rng_next(&bsdf_rng), u_lobe = rng_next(&bsdf_rng);
   float u1 = rng_next(&bsdf_rng), u2 = rng_next(&bsdf_rng);
   SurfaceParams sp = surface_params(s, m, hit.triangle, hit.u, hit.v);
+#if defined(COHORT_FEATURE_CLEARCOAT)
+  /* glTF's clearcoat lies over the base: it is chosen first, and the base from the rest of u_select */
+  CoatChoice coat = coat_choose(s, s->triangle_material[hit.triangle], hit.triangle, hit.u, hit.v, n_geo, st->dir,
+                                u_select);
+  u_select = coat.u_rest;
+#endif
   Bsdf b = bsdf_from_gltf(sp.base_color, sp.metallic, sp.roughness, m->transmission, m->ior, u_select);
   ShadingFrame frame = frame_from_normal(n_geo);
 #ifdef COHORT_FEATURE_NORMAL_MAP
@@ -368,6 +377,13 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
   }
 #endif
   co_vec3 wi = frame_to_local(&frame, v3_neg(st->dir));
+#if defined(COHORT_FEATURE_CLEARCOAT)
+  if (coat.chosen) {
+    b = coat.bsdf;
+    frame = coat.frame;
+    wi = coat.wi;
+  }
+#endif
 
   ShadowRay shadow = none;
   if (nee && !bsdf_is_delta(&b)) {

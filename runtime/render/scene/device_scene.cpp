@@ -72,6 +72,20 @@ Material to_device_material(const SceneMaterial& m) {
   return d;
 }
 
+MaterialCoat to_device_coat(const SceneClearcoat& c) {
+  MaterialCoat d{};
+  d.factor = c.factor;
+  d.roughness = c.roughness;
+  d.factor_texture = c.texture;
+  d.roughness_texture = c.roughness_texture;
+  d.normal_texture = c.normal_texture;
+  d.normal_scale = c.normal_scale;
+  if (c.texcoord == 1) d.flags |= COAT_UV1_FACTOR;
+  if (c.roughness_texcoord == 1) d.flags |= COAT_UV1_ROUGHNESS;
+  if (c.normal_texcoord == 1) d.flags |= COAT_UV1_NORMAL;
+  return d;
+}
+
 std::vector<std::string> SceneFeatures::names() const {
   std::vector<std::string> out;
   if (textures) out.push_back("textures");
@@ -86,6 +100,7 @@ std::vector<std::string> SceneFeatures::names() const {
   if (alpha) out.push_back("alpha");
   if (texture_transform) out.push_back("texture_transform");
   if (volume) out.push_back("volume");
+  if (clearcoat) out.push_back("clearcoat");
   return out;
 }
 
@@ -206,6 +221,15 @@ void add_textures(const Scene& scene, const KdTree& tree, const std::vector<bool
     slot(m.metallic_roughness_texture, used[i], sm.metallic_roughness_texcoord, sm.metallic_roughness_transform);
     slot(m.normal_texture, used[i], sm.normal_texcoord, sm.normal_transform);
     t.features.normal_map |= m.normal_texture >= 0;
+    if (!t.features.clearcoat) continue;
+    // a coat's textures only where the coat is there (factor > 0): a scene without one uploads none
+    MaterialCoat& c = t.material_coats[i];
+    const SceneClearcoat& sc = sm.clearcoat;
+    const bool coat = used[i] && c.factor > 0.f;
+    slot(c.factor_texture, coat, sc.texcoord, sc.transform);
+    slot(c.roughness_texture, coat, sc.roughness_texcoord, sc.roughness_transform);
+    slot(c.normal_texture, coat, sc.normal_texcoord, sc.normal_transform);
+    t.features.normal_map |= c.normal_texture >= 0;
   }
   if (t.textures.empty()) return;
   t.features.textures = true;
@@ -288,6 +312,10 @@ SceneTables make_scene_tables(const Scene& scene, const KdTree& tree) {
   for (std::uint32_t src : tree.source_index) t.triangle_material.push_back(scene.material_ids.at(src));
   std::vector<bool> used(t.materials.size(), false);
   for (std::uint32_t id : t.triangle_material) used.at(id) = true;
+  for (std::size_t i = 0; i < t.materials.size(); ++i)
+    t.features.clearcoat |= used[i] && scene.materials[i].clearcoat.factor > 0.f;
+  if (t.features.clearcoat)
+    for (const auto& m : scene.materials) t.material_coats.push_back(to_device_coat(m.clearcoat));
   add_textures(scene, tree, used, t);  // first: a texture left out selects no more families
   add_vertex_colors(scene, tree, t);
   add_frames(scene, tree, t);
@@ -353,6 +381,7 @@ SceneBuffers DeviceScene::kernel_buffers() const {
   b.env_texels = env_texels;
   b.env_tables = env_tables;
   b.punctual_lights = punctual_lights;
+  b.material_coats = material_coats;
   return b;
 }
 
@@ -395,6 +424,7 @@ DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables
   d.triangle_colors = upload("vertex colours", tables.triangle_colors);
   d.triangle_frames = upload("tangent frames", tables.triangle_frames);
   d.punctual_lights = upload("punctual lights", tables.punctual.lights);
+  if (tables.features.clearcoat) d.material_coats = upload("clearcoat", tables.material_coats);
   d.punctual_count = static_cast<std::uint32_t>(tables.punctual.lights.size());
   if (tables.environment) {
     d.env_texels = upload("environment map", tables.environment->texels);
