@@ -60,11 +60,16 @@ int run_info(const std::filesystem::path& path, const std::string& tree) {
             ? std::string()
             : fmt::format(", volume absorbing ({:.3g}, {:.3g}, {:.3g}) per unit length{}", m.absorption.x, m.absorption.y,
                           m.absorption.z, m.transmission > 0.f ? "" : " (not reached: no transmission)");
+    const std::string sheen =
+        m.sheen.present() ? fmt::format(", sheen ({:.3g}, {:.3g}, {:.3g}) roughness {:.3g}{}", m.sheen.color.x,
+                                        m.sheen.color.y, m.sheen.color.z, m.sheen.roughness,
+                                        m.sheen.color_texture >= 0 || m.sheen.roughness_texture >= 0 ? ", textured" : "")
+                          : std::string();
     fmt::print("  [{}] {}: base colour ({:.3g}, {:.3g}, {:.3g}), metallic {:.3g}, roughness {:.3g}, emission ({:.3g}, "
-               "{:.3g}, {:.3g}){}{}{}\n",
+               "{:.3g}, {:.3g}){}{}{}{}\n",
                i, m.name.empty() ? "(unnamed)" : m.name, m.base_color.x, m.base_color.y, m.base_color.z, m.metallic,
                m.roughness, m.emission.x, m.emission.y, m.emission.z, m.base_color_texture >= 0 ? ", textured" : "",
-               alpha, volume);
+               alpha, volume, sheen);
   }
   fmt::print("textures: {}\n", p.scene.textures.size());
   for (std::size_t i = 0; i < p.scene.textures.size(); ++i) fmt::print("  [{}] {}\n", i, describe(p.scene.textures[i]));

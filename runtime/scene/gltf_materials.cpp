@@ -255,6 +255,64 @@ glm::vec3 read_volume(const tinygltf::Material& m, std::size_t texture_count, co
 // TEXCOORD_0 and _1 are read; a higher set is named by report_unhonoured, and set 0 stands in.
 int texcoord_set(int tex_coord) { return tex_coord == 1 ? 1 : 0; }
 
+// KHR_materials_sheen: sheenColorFactor (three numbers in [0, 1], linear), sheenRoughnessFactor (a
+// number in [0, 1]), sheenColorTexture (RGB, sRGB colour) and sheenRoughnessTexture (A, linear data),
+// each texture with its texCoord and KHR_texture_transform as the core slots have. Wrong types, values
+// outside the schema's ranges and textures that do not exist are a broken file.
+SceneSheen read_sheen(const tinygltf::Material& m, std::size_t texture_count, const std::string& where,
+                      TextureTable& textures) {
+  SceneSheen out;
+  const auto it = m.extensions.find("KHR_materials_sheen");
+  if (it == m.extensions.end()) return out;
+  const ExtensionReader r(it->second, fmt::format("{}: KHR_materials_sheen", where));
+  const tinygltf::Value& e = r.value();
+  if (e.Has("sheenColorFactor")) {
+    const tinygltf::Value& c = e.Get("sheenColorFactor");
+    if (!c.IsArray() || c.ArrayLen() != 3) r.fail("sheenColorFactor is not an array of three numbers");
+    for (int i = 0; i < 3; ++i) {
+      const double v = r.number(c.Get(i), "sheenColorFactor");
+      if (!(v >= 0.0 && v <= 1.0))
+        r.fail(fmt::format("sheenColorFactor ({}, {}, {}) is outside [0, 1]", c.Get(0).GetNumberAsDouble(),
+                           c.Get(1).GetNumberAsDouble(), c.Get(2).GetNumberAsDouble()));
+      out.color[i] = static_cast<float>(v);
+    }
+  }
+  if (e.Has("sheenRoughnessFactor")) {
+    const double v = r.number(e.Get("sheenRoughnessFactor"), "sheenRoughnessFactor");
+    if (!(v >= 0.0 && v <= 1.0)) r.fail(fmt::format("sheenRoughnessFactor {} is outside [0, 1]", v));
+    out.roughness = static_cast<float>(v);
+  }
+  const std::string of = m.name.empty() ? "" : fmt::format(" of '{}'", m.name);
+  const auto texture = [&](const char* slot, bool srgb, const std::string& use, int& index, int& set,
+                           UvTransform& transform) {
+    if (!e.Has(slot)) return;
+    const tinygltf::Value& t = e.Get(slot);
+    if (!t.IsObject() || !t.Has("index") || !t.Get("index").IsInt() || t.Get("index").GetNumberAsInt() < 0 ||
+        static_cast<std::size_t>(t.Get("index").GetNumberAsInt()) >= texture_count)
+      r.fail(fmt::format("{} does not name an existing texture", slot));
+    int tex_coord = 0;
+    if (t.Has("texCoord")) {
+      if (!t.Get("texCoord").IsInt() || t.Get("texCoord").GetNumberAsInt() < 0)
+        r.fail(fmt::format("{}.texCoord is not an integer >= 0", slot));
+      tex_coord = t.Get("texCoord").GetNumberAsInt();
+    }
+    tinygltf::ExtensionMap extensions;
+    if (t.Has("extensions")) {
+      const tinygltf::Value& x = t.Get("extensions");
+      if (!x.IsObject()) r.fail(fmt::format("{}.extensions is not an object", slot));
+      for (const std::string& key : x.Keys()) extensions[key] = x.Get(key);
+    }
+    transform = read_transform(extensions, tex_coord, fmt::format("{}: KHR_materials_sheen.{}", where, slot));
+    set = texcoord_set(tex_coord);
+    index = textures.index_of(t.Get("index").GetNumberAsInt(), srgb, use + of);
+  };
+  texture("sheenColorTexture", true, "sheen colour (RGB)", out.color_texture, out.color_texcoord,
+          out.color_transform);
+  texture("sheenRoughnessTexture", false, "sheen roughness (A)", out.roughness_texture, out.roughness_texcoord,
+          out.roughness_transform);
+  return out;
+}
+
 SceneMaterial convert(const tinygltf::Material& m, TextureTable& textures) {
   const auto& pbr = m.pbrMetallicRoughness;
   SceneMaterial out;
@@ -297,6 +355,7 @@ void convert_materials(const tinygltf::Model& model, const std::string& file, Sc
     const std::string where =
         fmt::format("{}: material {}{}", file, i, m.name.empty() ? "" : fmt::format(" '{}'", m.name));
     out.absorption = read_volume(m, model.textures.size(), where);
+    out.sheen = read_sheen(m, model.textures.size(), where, textures);
     const auto transform = [&](const tinygltf::ExtensionMap& extensions, int tex_coord, const char* slot,
                                UvTransform& x, int& set) {
       x = read_transform(extensions, tex_coord, fmt::format("{}: {}", where, slot));

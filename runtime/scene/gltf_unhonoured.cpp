@@ -20,7 +20,7 @@ constexpr std::array kImplemented = {
     std::string_view("KHR_materials_emissive_strength"), std::string_view("KHR_materials_transmission"),
     std::string_view("KHR_materials_ior"), std::string_view("KHR_mesh_quantization"),
     std::string_view("KHR_lights_punctual"), std::string_view("KHR_texture_transform"),
-    std::string_view("KHR_materials_volume")};
+    std::string_view("KHR_materials_volume"), std::string_view("KHR_materials_sheen")};
 
 // A texture reference of a material (glTF's textureInfo and its normal and occlusion variants), with
 // the coordinate set it reads (KHR_texture_transform's texCoord replaces the reference's own).
@@ -46,6 +46,18 @@ std::vector<TextureRef> honoured_textures(const tinygltf::Material& m) {
     if (t->index >= 0) out.push_back(texture_ref(t->index, t->texCoord, t->extensions));
   if (m.normalTexture.index >= 0)
     out.push_back(texture_ref(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions));
+  // KHR_materials_sheen's textures (the loader has checked their shape)
+  const auto sheen = m.extensions.find("KHR_materials_sheen");
+  if (sheen != m.extensions.end() && sheen->second.IsObject())
+    for (const char* slot : {"sheenColorTexture", "sheenRoughnessTexture"}) {
+      if (!sheen->second.Has(slot)) continue;
+      const tinygltf::Value& t = sheen->second.Get(slot);
+      tinygltf::ExtensionMap extensions;
+      if (t.Has("extensions") && t.Get("extensions").IsObject())
+        for (const std::string& key : t.Get("extensions").Keys()) extensions[key] = t.Get("extensions").Get(key);
+      out.push_back(texture_ref(t.Get("index").GetNumberAsInt(),
+                                t.Has("texCoord") ? t.Get("texCoord").GetNumberAsInt() : 0, extensions));
+    }
   return out;
 }
 
@@ -131,7 +143,9 @@ void report_missing_coordinates(const std::string& file, Scene& scene) {
       return (m.base_color_texture >= 0 && m.base_color_texcoord == set) ||
              (m.emission_texture >= 0 && m.emission_texcoord == set) ||
              (m.metallic_roughness_texture >= 0 && m.metallic_roughness_texcoord == set) ||
-             (m.normal_texture >= 0 && m.normal_texcoord == set);
+             (m.normal_texture >= 0 && m.normal_texcoord == set) ||
+             (m.sheen.color_texture >= 0 && m.sheen.color_texcoord == set) ||
+             (m.sheen.roughness_texture >= 0 && m.sheen.roughness_texcoord == set);
     }));
   };
   for (int set : {0, 1})

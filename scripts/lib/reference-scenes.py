@@ -355,7 +355,7 @@ def render_reference(name, scene, args, integrator, max_depth, extra):
     mean = mean.astype(np.float32)
     out = os.path.join(REFERENCES, f"reference-{name}.exr")
     mi.Bitmap(mean, pixel_format=mi.Bitmap.PixelFormat.RGB).write(out)
-    meta = {"scene": f"scenes/reference/{name}.gltf", "mitsuba_version": mi.__version__, "variant": "scalar_rgb",
+    meta = {"scene": f"scenes/reference/{name}.gltf", "mitsuba_version": mi.__version__, "variant": mi.variant(),
             "integrator": integrator, "max_depth": max_depth, "resolution": [RES, RES], "spp": spp, "passes": passes,
             "seeds": f"0..{passes - 1} (one per pass of {args.pass_spp} spp)", "sampler": "independent",
             "reconstruction_filter": "box", "render_seconds": round(elapsed, 1),

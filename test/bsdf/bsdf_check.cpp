@@ -57,6 +57,11 @@ std::vector<Config> standard_configs(bool white) {
       out.push_back(make_config("plastic", bsdf_plastic(base, eta, static_cast<float>(r * r)), r, a));
   for (double a : angles) out.push_back(make_config("smooth_plastic", bsdf_plastic(base, eta, 0.0f), -1, a));
   out.push_back(make_config("smooth_plastic", bsdf_plastic(base, eta, 0.0f), -1, 45, true));
+  // the sheen lobe alone (KHR_materials_sheen), its colour not divided by a selection probability
+  const co_vec3 sheen = white ? one : v3(0.9f, 0.5f, 0.3f);
+  for (double r : roughness)
+    for (double a : angles) out.push_back(make_config("sheen", bsdf_sheen(sheen, static_cast<float>(r)), r, a));
+  out.push_back(make_config("sheen", bsdf_sheen(sheen, 0.5f), 0.5, 45, true));
   return out;
 }
 

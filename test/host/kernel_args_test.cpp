@@ -58,7 +58,7 @@ TEST(KernelArgs, OneArgumentPerKernelParameter) {
   EXPECT_EQ(TraceRaysSpeculativeArgs::arg_count + 1, arity(&trace_rays_speculative));
   EXPECT_EQ(FilmAddArgs::arg_count + 1, arity(&film_add));
   // the groups stand for their parameters: 14 scene buffers, 8 path buffers, 4 shadow buffers
-  EXPECT_EQ(SceneBuffers::arg_count, 14u);
+  EXPECT_EQ(SceneBuffers::arg_count, 15u);
   EXPECT_EQ(PathBuffers::arg_count, 8u);
   EXPECT_EQ(ShadowBuffers::arg_count, 4u);
 }

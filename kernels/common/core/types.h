@@ -93,6 +93,20 @@ typedef struct Material {
 } Material;
 CO_STATIC_ASSERT(sizeof(Material) == 96, "Material must stay 96 bytes");
 
+/* glTF KHR_materials_sheen of each material, a table indexed like the materials; uploaded and read only
+ * with COHORT_FEATURE_SHEEN (a one-element placeholder otherwise), so Material keeps its size and a
+ * scene without sheen reads none of it (shading/sheen.h). */
+#define MAT_SHEEN_UV1_COLOR 1u     /* the colour texture reads TEXCOORD_1 */
+#define MAT_SHEEN_UV1_ROUGHNESS 2u /* the roughness texture reads TEXCOORD_1 */
+typedef struct MaterialSheen {
+  co_float4 color_roughness; /* rgb sheenColorFactor (linear); w sheenRoughnessFactor; rgb 0: no sheen */
+  int32_t color_texture;     /* -1: none; its RGB (sRGB colour) multiplies the colour */
+  int32_t roughness_texture; /* -1: none; its A (linear data) multiplies the roughness */
+  uint32_t flags;            /* MAT_SHEEN_UV1_* */
+  uint32_t pad0;
+} MaterialSheen;
+CO_STATIC_ASSERT(sizeof(MaterialSheen) == 32, "MaterialSheen must stay 32 bytes");
+
 /* ---- Textures ---------------------------------------------------------------------------------
  * Every texture's texels live in one buffer of RGBA8 words (r in the low byte, as glTF stores
  * them, rows from the top: texture coordinate v = 0 is the first row); a descriptor per texture

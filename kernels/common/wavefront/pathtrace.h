@@ -354,7 +354,9 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
   float u_select = rng_next(&bsdf_rng), u_lobe = rng_next(&bsdf_rng);
   float u1 = rng_next(&bsdf_rng), u2 = rng_next(&bsdf_rng);
   SurfaceParams sp = surface_params(s, m, hit.triangle, hit.u, hit.v);
+#ifndef COHORT_FEATURE_SHEEN
   Bsdf b = bsdf_from_gltf(sp.base_color, sp.metallic, sp.roughness, m->transmission, m->ior, u_select);
+#endif
   ShadingFrame frame = frame_from_normal(n_geo);
 #ifdef COHORT_FEATURE_NORMAL_MAP
   {
@@ -368,6 +370,16 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
   }
 #endif
   co_vec3 wi = frame_to_local(&frame, v3_neg(st->dir));
+#ifdef COHORT_FEATURE_SHEEN
+  /* the sheen layer above the base, taken with a probability that depends on wi (bsdf_sheen_select;
+   * docs/bsdf.md, "Sheen"); otherwise the base's choice with the remapped u_select */
+  Bsdf b;
+  {
+    SheenParams sh = sheen_params(s, s->triangle_material[hit.triangle], hit.triangle, hit.u, hit.v);
+    if (!bsdf_sheen_select(sh.color, sh.roughness, wi, &u_select, &b))
+      b = bsdf_from_gltf(sp.base_color, sp.metallic, sp.roughness, m->transmission, m->ior, u_select);
+  }
+#endif
 
   ShadowRay shadow = none;
   if (nee && !bsdf_is_delta(&b)) {

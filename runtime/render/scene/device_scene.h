@@ -42,6 +42,7 @@ struct SceneFeatures {
   bool alpha = false;     // some used material is alphaMode MASK or BLEND: every traversal tests alpha
   bool texture_transform = false;  // some uploaded texture slot has a KHR_texture_transform
   bool volume = false;  // some used material can refract into an absorbing interior (KHR_materials_volume)
+  bool sheen = false;   // some used material has a non-zero sheen colour (KHR_materials_sheen)
 
   std::vector<std::string> names() const;  // "textures", "conductor", ...; empty for diffuse only
   std::string build_options() const;       // "-DCOHORT_FEATURE_TEXTURES ..."; empty for diffuse only
@@ -65,12 +66,15 @@ struct SceneTables {
   std::vector<std::uint32_t> texels;     // RGBA8 words, r in the low byte
   std::vector<TriangleColor> triangle_colors;  // per kept triangle, only with features.vertex_colors
   std::vector<TriangleFrame> triangle_frames;  // per kept triangle, only with features.normal_map
+  std::vector<MaterialSheen> material_sheen;   // per material, only with features.sheen
   PunctualTable punctual;                // point and spot lights
   std::optional<EnvironmentMap> environment;
   SceneFeatures features;                // of the materials the kept triangles use, and the lights
 };
 
 Material to_device_material(const SceneMaterial& m);
+// The sheen of a material as the kernels read it (texture indices as in the scene, before upload).
+MaterialSheen to_device_sheen(const SceneMaterial& m);
 SceneTables make_scene_tables(const Scene& scene, const KdTree& tree);
 // Lights the scene with an environment map (it replaces any constant environment).
 void set_environment_map(SceneTables& tables, EnvironmentMap map);
@@ -88,6 +92,7 @@ struct DeviceScene {
   DeviceBuffer triangle_uvs, textures, texels;  // one-element placeholders without textures
   DeviceBuffer triangle_colors;                 // a one-element placeholder without vertex colours
   DeviceBuffer triangle_frames;                 // a one-element placeholder without normal maps
+  DeviceBuffer material_sheen;                  // a one-element placeholder without sheen
   DeviceBuffer env_texels, env_tables, punctual_lights;  // placeholders without those lights
   SceneFeatures features;
   std::string build_options;  // features.build_options() (and the BVH's): every rendering program gets them
