@@ -15,6 +15,7 @@
 
 #include "common/core/types.h"
 #include "common/core/vec.h"
+#include "common/shading/bsdf.h"
 #include "common/shading/medium.h"
 #include "common/shading/sheen_albedo.h"
 
@@ -115,6 +116,52 @@ CO_INLINE float sheen_albedo(float cos_i, float roughness) {
 CO_INLINE float sheen_probability(co_vec3 color, float roughness, float cos_i) {
   float q = v3_max_component(color) * sheen_albedo(fabs(cos_i), roughness);
   return fmin(q, 1.0f);
+}
+
+/* ---- Sheen (KHR_materials_sheen, sheen.h) ----------------------------------------------------------
+ * The sheen lobe alone: eval = color D V cos_o (color: the sheen colour over the probability with
+ * which bsdf_sheen_select took the lobe), sampled cosine-weighted, the lobe being broad: pdf = cos_o /
+ * pi, weight = color D V pi. alpha = max(sheenRoughness^2, SHEEN_ALPHA_MIN); two-sided. */
+CO_INLINE Bsdf bsdf_sheen(co_vec3 color, float roughness) {
+  Bsdf b;
+  b.type = BSDF_SHEEN;
+  b.alpha = sheen_alpha(roughness);
+  b.eta = 1.0f;
+  b.spec_weight = 0.0f;
+  b.color = color;
+  b.fdr_int = 0.0f;
+  return b;
+}
+CO_INLINE co_vec3 sheen_eval(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
+  return v3_scale(b->color, sheen_lobe(wi, wo, b->alpha));
+}
+CO_INLINE BsdfSample sheen_sample(const Bsdf* b, co_vec3 wi, float u1, float u2) {
+  BsdfSample s = bsdf_no_sample();
+  if (!(wi.z > 0.0f)) return s;
+  s.wo = sample_cosine_local(u1, u2);
+  s.pdf = s.wo.z * CO_INV_PI;
+  if (!(s.pdf > 0.0f)) return bsdf_no_sample();
+  s.weight = v3_scale(sheen_eval(b, wi, s.wo), 1.0f / s.pdf);
+  s.flags = BSDF_REFLECTION | BSDF_GLOSSY;
+  return s;
+}
+
+/* glTF puts the sheen above the base: material = f_sheen + base (1 - max3(sheenColor) E(cos_i)). The
+ * sheen lobe is taken with probability q = max3(sheenColor) E(|cos_i|) (at most 1, sheen_probability),
+ * its colour divided by q; otherwise *u_select is remapped to [0, 1) given "not sheen" for the base's
+ * own choice (bsdf_from_gltf), whose weight (1 - max3 E) / (1 - q) is then exactly 1. Returns 1 when
+ * the sheen lobe is taken (*b set). wi: the local incoming direction, as bsdf_eval takes it. */
+CO_INLINE int bsdf_sheen_select(co_vec3 sheen_color, float sheen_roughness, co_vec3 wi, float* u_select, Bsdf* b) {
+  co_vec3 color = v3(fmin(fmax(sheen_color.x, 0.0f), 1.0f), fmin(fmax(sheen_color.y, 0.0f), 1.0f),
+                     fmin(fmax(sheen_color.z, 0.0f), 1.0f));
+  if (!(v3_max_component(color) > 0.0f)) return 0; /* no sheen: u_select stays as it is */
+  float q = sheen_probability(color, sheen_roughness, wi.z);
+  if (*u_select < q) {
+    *b = bsdf_sheen(v3_scale(color, 1.0f / q), sheen_roughness);
+    return 1;
+  }
+  if (q > 0.0f) *u_select = fmin((*u_select - q) / (1.0f - q), 0x1.fffffep-1f);
+  return 0;
 }
 
 #endif

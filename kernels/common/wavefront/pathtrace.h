@@ -17,8 +17,11 @@
 #include "common/accel/ray_offset.h"
 #include "common/core/rng.h"
 #include "common/accel/scene_view.h"
-#if defined(COHORT_FEATURE_VOLUME)
+#if defined(COHORT_FEATURE_VOLUME) || defined(COHORT_FEATURE_SHEEN)
 #include "common/shading/medium.h"
+#endif
+#if defined(COHORT_FEATURE_SHEEN)
+#include "common/shading/sheen.h"
 #endif
 
 /* A path between stages: what the megakernel keeps in registers and the wavefront kernels keep
