@@ -66,11 +66,16 @@ int run_info(const std::filesystem::path& path, const std::string& tree) {
     const std::string coat = m.clearcoat.factor > 0.f ? fmt::format(", clearcoat {:.3g} (roughness {:.3g})",
                                                                      m.clearcoat.factor, m.clearcoat.roughness)
                                                          : std::string();
+    const std::string sheen =
+        m.sheen.present() ? fmt::format(", sheen ({:.3g}, {:.3g}, {:.3g}) roughness {:.3g}{}", m.sheen.color.x,
+                                        m.sheen.color.y, m.sheen.color.z, m.sheen.roughness,
+                                        m.sheen.color_texture >= 0 || m.sheen.roughness_texture >= 0 ? ", textured" : "")
+                          : std::string();
     fmt::print("  [{}] {}: base colour ({:.3g}, {:.3g}, {:.3g}), metallic {:.3g}, roughness {:.3g}, emission ({:.3g}, "
-               "{:.3g}, {:.3g}){}{}{}{}\n",
+               "{:.3g}, {:.3g}){}{}{}{}{}\n",
                i, m.name.empty() ? "(unnamed)" : m.name, m.base_color.x, m.base_color.y, m.base_color.z, m.metallic,
                m.roughness, m.emission.x, m.emission.y, m.emission.z, m.base_color_texture >= 0 ? ", textured" : "",
-               alpha, volume, coat);
+               alpha, volume, coat, sheen);
   }
   const std::size_t unread = p.scene.unread_textures.size();
   fmt::print("textures: {}{}\n", p.scene.textures.size(),

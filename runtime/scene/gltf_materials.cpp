@@ -166,10 +166,18 @@ class ExtensionReader {
     if (!value_.IsObject()) fail("is not an object");
   }
   const tinygltf::Value& value() const { return value_; }
+  const std::string& context() const { return context_; }  // "FILE: material N 'name': EXTENSION"
   [[noreturn]] void fail(const std::string& what) const { throw InputError(fmt::format("{} {}", context_, what)); }
   double number(const tinygltf::Value& v, const std::string& name) const {
     if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble())) fail(fmt::format("{} is not a finite number", name));
     return v.GetNumberAsDouble();
+  }
+  // An optional factor in [0, 1] of the extension's object: `value` keeps its default when absent.
+  void unit(const std::string& name, float& value) const {
+    if (!value_.Has(name)) return;
+    const double v = number(value_.Get(name), name);
+    if (!(v >= 0.0 && v <= 1.0)) fail(fmt::format("{} {} is outside [0, 1]", name, v));
+    value = static_cast<float>(v);
   }
 
  private:
@@ -253,6 +261,41 @@ glm::vec3 read_volume(const tinygltf::Material& m, std::size_t texture_count, co
 // TEXCOORD_0 and _1 are read; a higher set is named by report_unhonoured, and set 0 stands in.
 int texcoord_set(int tex_coord) { return tex_coord == 1 ? 1 : 0; }
 
+// A textureInfo inside a material extension (clearcoat's and sheen's slots), read as the core slots
+// are: an existing texture, its texCoord and KHR_texture_transform, and for a normal texture its
+// scale (`scale` not null). `info` lists it as `use` (with the scale) and `of` (the material). Wrong
+// types are a broken file.
+void read_extension_texture(const ExtensionReader& r, const char* slot, std::size_t texture_count,
+                            TextureTable& textures, bool srgb, const std::string& use, const std::string& of,
+                            int& index, int& set, UvTransform& transform, float* scale = nullptr) {
+  const tinygltf::Value& e = r.value();
+  if (!e.Has(slot)) return;
+  const tinygltf::Value& t = e.Get(slot);
+  if (!t.IsObject() || !t.Has("index") || !t.Get("index").IsInt() || t.Get("index").GetNumberAsInt() < 0 ||
+      static_cast<std::size_t>(t.Get("index").GetNumberAsInt()) >= texture_count)
+    r.fail(fmt::format("{} does not name an existing texture", slot));
+  int tex_coord = 0;
+  if (t.Has("texCoord")) {
+    if (!t.Get("texCoord").IsInt() || t.Get("texCoord").GetNumberAsInt() < 0)
+      r.fail(fmt::format("{}.texCoord is not an integer >= 0", slot));
+    tex_coord = t.Get("texCoord").GetNumberAsInt();
+  }
+  std::string described = use + of;
+  if (scale) {
+    if (t.Has("scale")) *scale = static_cast<float>(r.number(t.Get("scale"), fmt::format("{}.scale", slot)));
+    described = fmt::format("{} (scale {:.3g}){}", use, *scale, of);
+  }
+  tinygltf::ExtensionMap extensions;
+  if (t.Has("extensions")) {
+    const tinygltf::Value& x = t.Get("extensions");
+    if (!x.IsObject()) r.fail(fmt::format("{}.extensions is not an object", slot));
+    for (const std::string& key : x.Keys()) extensions[key] = x.Get(key);
+  }
+  transform = read_transform(extensions, tex_coord, fmt::format("{}.{}", r.context(), slot));
+  set = texcoord_set(tex_coord);
+  index = textures.index_of(t.Get("index").GetNumberAsInt(), srgb, described);
+}
+
 // KHR_materials_clearcoat (docs/bsdf.md, "Clearcoat"): clearcoatFactor and clearcoatRoughnessFactor
 // in [0, 1]; clearcoatTexture (R), clearcoatRoughnessTexture (G) and clearcoatNormalTexture (with its
 // scale), each a textureInfo naming an existing texture, with texCoord and KHR_texture_transform as
@@ -263,50 +306,47 @@ SceneClearcoat read_clearcoat(const tinygltf::Material& m, TextureTable& texture
   const auto it = m.extensions.find("KHR_materials_clearcoat");
   if (it == m.extensions.end()) return out;
   const ExtensionReader r(it->second, fmt::format("{}: KHR_materials_clearcoat", where));
+  r.unit("clearcoatFactor", out.factor);
+  r.unit("clearcoatRoughnessFactor", out.roughness);
+  const std::string of = m.name.empty() ? "" : fmt::format(" of '{}'", m.name);
+  read_extension_texture(r, "clearcoatTexture", texture_count, textures, false, "clearcoat factor (R)", of,
+                         out.texture, out.texcoord, out.transform);
+  read_extension_texture(r, "clearcoatRoughnessTexture", texture_count, textures, false,
+                         "clearcoat roughness (G)", of, out.roughness_texture, out.roughness_texcoord,
+                         out.roughness_transform);
+  read_extension_texture(r, "clearcoatNormalTexture", texture_count, textures, false, "clearcoat normals", of,
+                         out.normal_texture, out.normal_texcoord, out.normal_transform, &out.normal_scale);
+  return out;
+}
+
+// KHR_materials_sheen: sheenColorFactor (three numbers in [0, 1], linear), sheenRoughnessFactor (a
+// number in [0, 1]), sheenColorTexture (RGB, sRGB colour) and sheenRoughnessTexture (A, linear data),
+// each texture with its texCoord and KHR_texture_transform as the core slots have. Wrong types, values
+// outside the schema's ranges and textures that do not exist are a broken file.
+SceneSheen read_sheen(const tinygltf::Material& m, TextureTable& textures, std::size_t texture_count,
+                      const std::string& where) {
+  SceneSheen out;
+  const auto it = m.extensions.find("KHR_materials_sheen");
+  if (it == m.extensions.end()) return out;
+  const ExtensionReader r(it->second, fmt::format("{}: KHR_materials_sheen", where));
   const tinygltf::Value& e = r.value();
-  const auto unit = [&](const std::string& name, float& value) {
-    if (!e.Has(name)) return;
-    const double v = r.number(e.Get(name), name);
-    if (!(v >= 0.0 && v <= 1.0)) r.fail(fmt::format("{} {} is outside [0, 1]", name, v));
-    value = static_cast<float>(v);
-  };
-  unit("clearcoatFactor", out.factor);
-  unit("clearcoatRoughnessFactor", out.roughness);
-  const std::string of = fmt::format(" of '{}'", m.name);
-  // a textureInfo: its scene texture (what it drives in `use`), coordinate set and transform
-  const auto texture = [&](const std::string& name, const std::string& use, int& index, int& set, UvTransform& x,
-                           float* scale) {
-    if (!e.Has(name)) return;
-    const tinygltf::Value& t = e.Get(name);
-    if (!t.IsObject() || !t.Has("index") || !t.Get("index").IsInt() || t.Get("index").GetNumberAsInt() < 0 ||
-        static_cast<std::size_t>(t.Get("index").GetNumberAsInt()) >= texture_count)
-      r.fail(fmt::format("{} does not name an existing texture", name));
-    int tex_coord = 0;
-    if (t.Has("texCoord")) {
-      if (!t.Get("texCoord").IsInt() || t.Get("texCoord").GetNumberAsInt() < 0)
-        r.fail(fmt::format("{}.texCoord is not an integer >= 0", name));
-      tex_coord = t.Get("texCoord").GetNumberAsInt();
+  if (e.Has("sheenColorFactor")) {
+    const tinygltf::Value& c = e.Get("sheenColorFactor");
+    if (!c.IsArray() || c.ArrayLen() != 3) r.fail("sheenColorFactor is not an array of three numbers");
+    for (int i = 0; i < 3; ++i) {
+      const double v = r.number(c.Get(i), "sheenColorFactor");
+      if (!(v >= 0.0 && v <= 1.0))
+        r.fail(fmt::format("sheenColorFactor ({}, {}, {}) is outside [0, 1]", c.Get(0).GetNumberAsDouble(),
+                           c.Get(1).GetNumberAsDouble(), c.Get(2).GetNumberAsDouble()));
+      out.color[i] = static_cast<float>(v);
     }
-    std::string described = use;
-    if (scale) {
-      if (t.Has("scale")) *scale = static_cast<float>(r.number(t.Get("scale"), name + ".scale"));
-      described = fmt::format("{} (scale {:.3g})", use, *scale);
-    }
-    tinygltf::ExtensionMap extensions;
-    if (t.Has("extensions")) {
-      const tinygltf::Value& ext = t.Get("extensions");
-      if (!ext.IsObject()) r.fail(fmt::format("{}.extensions is not an object", name));
-      for (const std::string& key : ext.Keys()) extensions[key] = ext.Get(key);
-    }
-    x = read_transform(extensions, tex_coord, fmt::format("{}: {}", where, name));
-    set = texcoord_set(tex_coord);
-    index = textures.index_of(t.Get("index").GetNumberAsInt(), false, described + of);
-  };
-  texture("clearcoatTexture", "clearcoat factor (R)", out.texture, out.texcoord, out.transform, nullptr);
-  texture("clearcoatRoughnessTexture", "clearcoat roughness (G)", out.roughness_texture, out.roughness_texcoord,
-          out.roughness_transform, nullptr);
-  texture("clearcoatNormalTexture", "clearcoat normals", out.normal_texture, out.normal_texcoord,
-          out.normal_transform, &out.normal_scale);
+  }
+  r.unit("sheenRoughnessFactor", out.roughness);
+  const std::string of = m.name.empty() ? "" : fmt::format(" of '{}'", m.name);
+  read_extension_texture(r, "sheenColorTexture", texture_count, textures, true, "sheen colour (RGB)", of,
+                         out.color_texture, out.color_texcoord, out.color_transform);
+  read_extension_texture(r, "sheenRoughnessTexture", texture_count, textures, false, "sheen roughness (A)", of,
+                         out.roughness_texture, out.roughness_texcoord, out.roughness_transform);
   return out;
 }
 
@@ -358,6 +398,7 @@ void convert_materials(const tinygltf::Model& model, const std::string& file, Sc
         fmt::format("{}: material {}{}", file, i, m.name.empty() ? "" : fmt::format(" '{}'", m.name));
     out.absorption = read_volume(m, model.textures.size(), where);
     out.clearcoat = read_clearcoat(m, textures, model.textures.size(), where);
+    out.sheen = read_sheen(m, textures, model.textures.size(), where);
     const auto transform = [&](const tinygltf::ExtensionMap& extensions, int tex_coord, const char* slot,
                                UvTransform& x, int& set) {
       x = read_transform(extensions, tex_coord, fmt::format("{}: {}", where, slot));

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <utility>
 #include <functional>
 #include <map>
 #include <set>
@@ -21,7 +22,8 @@ constexpr std::array kImplemented = {
     std::string_view("KHR_materials_emissive_strength"), std::string_view("KHR_materials_transmission"),
     std::string_view("KHR_materials_ior"), std::string_view("KHR_mesh_quantization"),
     std::string_view("KHR_lights_punctual"), std::string_view("KHR_texture_transform"),
-    std::string_view("KHR_materials_volume"), std::string_view("KHR_materials_clearcoat")};
+    std::string_view("KHR_materials_volume"), std::string_view("KHR_materials_clearcoat"),
+    std::string_view("KHR_materials_sheen")};
 
 // A texture reference of a material (glTF's textureInfo and its normal and occlusion variants), with
 // the coordinate set it reads (KHR_texture_transform's texCoord replaces the reference's own).
@@ -47,11 +49,17 @@ std::vector<TextureRef> honoured_textures(const tinygltf::Material& m) {
     if (t->index >= 0) out.push_back(texture_ref(t->index, t->texCoord, t->extensions));
   if (m.normalTexture.index >= 0)
     out.push_back(texture_ref(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions));
-  // KHR_materials_clearcoat's textureInfos (the loader has checked their types)
-  const auto coat = m.extensions.find("KHR_materials_clearcoat");
-  if (coat != m.extensions.end() && coat->second.IsObject())
-    for (const char* name : {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}) {
-      const tinygltf::Value& t = coat->second.Get(name);
+  // the textureInfos of the material extensions the loader reads (it has checked their types)
+  constexpr std::array<std::pair<const char*, std::array<const char*, 3>>, 2> kExtensionSlots = {{
+      {"KHR_materials_clearcoat", {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}},
+      {"KHR_materials_sheen", {"sheenColorTexture", "sheenRoughnessTexture", nullptr}},
+  }};
+  for (const auto& [extension, slots] : kExtensionSlots) {
+    const auto it = m.extensions.find(extension);
+    if (it == m.extensions.end() || !it->second.IsObject()) continue;
+    for (const char* slot : slots) {
+      if (!slot || !it->second.Has(slot)) continue;
+      const tinygltf::Value& t = it->second.Get(slot);
       if (!t.IsObject() || !t.Get("index").IsInt()) continue;
       tinygltf::ExtensionMap extensions;
       if (t.Get("extensions").IsObject())
@@ -59,6 +67,7 @@ std::vector<TextureRef> honoured_textures(const tinygltf::Material& m) {
       const int tex_coord = t.Get("texCoord").IsInt() ? t.Get("texCoord").GetNumberAsInt() : 0;
       out.push_back(texture_ref(t.Get("index").GetNumberAsInt(), tex_coord, extensions));
     }
+  }
   return out;
 }
 
@@ -161,7 +170,9 @@ void report_missing_coordinates(const std::string& file, Scene& scene) {
              (m.normal_texture >= 0 && m.normal_texcoord == set) ||
              (m.clearcoat.texture >= 0 && m.clearcoat.texcoord == set) ||
              (m.clearcoat.roughness_texture >= 0 && m.clearcoat.roughness_texcoord == set) ||
-             (m.clearcoat.normal_texture >= 0 && m.clearcoat.normal_texcoord == set);
+             (m.clearcoat.normal_texture >= 0 && m.clearcoat.normal_texcoord == set) ||
+             (m.sheen.color_texture >= 0 && m.sheen.color_texcoord == set) ||
+             (m.sheen.roughness_texture >= 0 && m.sheen.roughness_texcoord == set);
     }));
   };
   for (int set : {0, 1})

@@ -42,6 +42,19 @@ struct SceneClearcoat {
   UvTransform transform, roughness_transform, normal_transform;   // each texture's KHR_texture_transform
 };
 
+// glTF KHR_materials_sheen of a material (docs/bsdf.md, "Sheen"): a colour of 0 is no sheen.
+struct SceneSheen {
+  glm::vec3 color{0.f};   // sheenColorFactor, linear
+  float roughness = 0.f;  // sheenRoughnessFactor
+  int color_texture = -1;      // index into Scene::textures (sRGB colour); its RGB multiplies the colour
+  int roughness_texture = -1;  // index into Scene::textures (linear data); its A multiplies the roughness
+  int color_texcoord = 0;      // the coordinate set each texture reads
+  int roughness_texcoord = 0;
+  UvTransform color_transform;  // each texture's KHR_texture_transform
+  UvTransform roughness_transform;
+  bool present() const { return color.x > 0.f || color.y > 0.f || color.z > 0.f; }
+};
+
 struct SceneMaterial {
   std::string name;
   glm::vec3 base_color{0.8f};
@@ -73,6 +86,7 @@ struct SceneMaterial {
   bool double_sided = false;    // glTF doubleSided; emission leaves both faces when set
   AlphaMode alpha_mode = AlphaMode::opaque;
   float alpha_cutoff = 0.5f;    // glTF alphaCutoff, read with MASK only
+  SceneSheen sheen;             // KHR_materials_sheen
   bool is_emissive() const { return emission.x > 0.f || emission.y > 0.f || emission.z > 0.f; }
 };
 

@@ -31,6 +31,12 @@ decodes them (sRGB for colour, byte / 255 for data), so the filters and wrap mod
                  is traced into the JIT): ClearcoatBSDF below, which mixes Mitsuba's own lobes as Cohort
                  does, (1 - c F(cos_i)) base + c coat, with the coat plastic / roughplastic (GGX) of
                  diffuse_reflectance 0 and int_ior 1.5
+  sheen          three panels of a dark-blue Lambertian under glTF's KHR_materials_sheen: sheen colour
+                 (0.9, 0.5, 0.3) at sheenRoughness 0.3 (upright) and 0.8 (tilted back, seen at a grazing
+                 angle), and a sheenColorTexture (a NEAREST checker of two sRGB colours) at 0.5; Mitsuba has
+                 no Charlie sheen, so a Python BSDF (gltf_sheen below, llvm_ad_rgb) written from the
+                 specification's formulas, with its own albedo table integrated here, layers it over
+                 Mitsuba's own diffuse plugin
   (Mitsuba's path integrator counts a pass through a mask as a path segment where Cohort's does not,
   and its shadow rays stop at masks: the alpha scenes use max_depth 24, where both have converged to
   the unbounded answer of this open room)
@@ -56,7 +62,7 @@ from reference_common import reference_arguments  # noqa: E402
 # --help answers before the imports below, which need the venv's packages
 ARGS = reference_arguments(__doc__, "the glTF files") if __name__ == "__main__" else None
 
-# llvm_ad_rgb (the clearcoat scene) needs Dr.Jit to find libLLVM: the newest libLLVM-N.so installed
+# llvm_ad_rgb (the clearcoat and sheen scenes) needs Dr.Jit to find libLLVM: the newest libLLVM-N.so installed
 if "DRJIT_LIBLLVM_PATH" not in os.environ:
     import glob
     import re
@@ -205,6 +211,22 @@ def clearcoat(base, factor, roughness, texture=None):
     return out
 
 
+def sheen_checker(n=4):
+    """sRGB texels of a checker of two colours for the sheen colour texture."""
+    t = np.zeros((n, n, 4), dtype=np.uint8)
+    for y in range(n):
+        for x in range(n):
+            t[y, x] = (240, 200, 90, 255) if (x + y) % 2 == 0 else (90, 220, 230, 255)
+    return t
+
+
+def sheen(base, colour, roughness, texels=None, sampler=None):
+    """A Lambertian of colour `base` under KHR_materials_sheen (sheenColorFactor `colour` times the
+    texture's RGB, where there is one)."""
+    return {"kind": "sheen", "base": base, "colour": colour, "roughness": roughness, "texels": texels,
+            "sampler": sampler}
+
+
 def room_with(panels, light=True):
     shapes = [("ground", (*rs.quad([-4, 0, 4], [8, 0, 0], [0, 0, -8]), None), rs.diffuse([0.5, 0.5, 0.5])),
               ("wall", (*rs.quad([-4, 0, -3], [8, 0, 0], [0, 5, 0]), None), rs.diffuse([0.2, 0.4, 0.7]))]
@@ -220,6 +242,7 @@ ALPHA_PANEL = ([-1.3, 0.6, 1.2], [2.6, 0, 0], [0, 1.4, -2.2])  # between the lig
 def scene_list():
     base, mr = checker_mr()
     wrap = wrap_texture()
+    blue = [0.03, 0.05, 0.25]
     return {
         "clearcoat": {"environment": [0.1, 0.1, 0.1], "llvm": True, "shapes": room_with([
             ("smooth", panel([-2.1, 0.3, 0.0], [1.3, 0, 0], [0, 1.3, -0.3]),
@@ -229,6 +252,11 @@ def scene_list():
             ("textured", panel([0.8, 0.3, 0.0], [1.3, 0, 0], [0, 1.3, -0.3]),
              clearcoat(rs.diffuse([0.1, 0.6, 0.2]), 1.0, 0.0,
                        (coat_checker(), {"magFilter": NEAREST, "minFilter": NEAREST})))])},
+        "sheen": {"environment": [0.1, 0.1, 0.1], "llvm": True, "shapes": room_with([
+            ("sheen_03", panel([-2.2, 0.2, 0.2], [1.3, 0, 0], [0, 2.0, -0.3]), sheen(blue, [0.9, 0.5, 0.3], 0.3)),
+            ("sheen_08", panel([-0.65, 0.1, 0.9], [1.3, 0, 0], [0, 1.0, -2.2]), sheen(blue, [0.9, 0.5, 0.3], 0.8)),
+            ("sheen_tex", panel([0.9, 0.2, 0.2], [1.3, 0, 0], [0, 2.0, -0.3]),
+             sheen(blue, [1.0, 1.0, 1.0], 0.5, sheen_checker(), {"magFilter": NEAREST, "minFilter": NEAREST}))])},
         "glass-volume": {"environment": [0.1, 0.1, 0.1], "integrator": "volpath", "shapes": room_with([
             ("block", (*rs.cuboid([-0.9, 0.02, -0.5], [0.9, 1.3, 0.5]), None),
              glass_volume([0.85, 0.55, 0.25], 0.6, 1.5))])},
@@ -313,6 +341,15 @@ def write_gltf(path, desc):
                  "alphaMode": mat["mode"], "doubleSided": True}
             if "cutoff" in mat:
                 m["alphaCutoff"] = mat["cutoff"]
+        elif kind == "sheen":
+            ext = {"sheenColorFactor": mat["colour"], "sheenRoughnessFactor": mat["roughness"]}
+            if mat["texels"] is not None:
+                ext["sheenColorTexture"] = add_texture(mat["texels"], mat["sampler"])
+            m = {"pbrMetallicRoughness": {"baseColorFactor": mat["base"] + [1.0], "metallicFactor": 0.0,
+                                          "roughnessFactor": 1.0},
+                 "extensions": {"KHR_materials_sheen": ext}}
+            if "KHR_materials_sheen" not in doc["extensionsUsed"]:
+                doc["extensionsUsed"].append("KHR_materials_sheen")
         elif kind == "normal_map":
             m = {"pbrMetallicRoughness": {"baseColorFactor": mat["albedo"] + [1.0], "metallicFactor": 0.0,
                                           "roughnessFactor": 1.0},
@@ -451,6 +488,120 @@ def register_clearcoat():
     mi.register_bsdf("clearcoat", lambda props: ClearcoatBSDF(props))
 
 
+class SheenAlbedo:
+    """E(cos theta_i) of the sheen lobe at one alpha, integrated with NumPy independently of Cohort's
+    table (scripts/lib/sheen-albedo.py): the midpoint rule on N_Z x N_PHI cells of (cos theta_o, phi
+    in [0, pi]), 129 values of cos theta_i on [0, 1], read linearly."""
+    N_Z, N_PHI = 1024, 256
+
+    def __init__(self, alpha, n_mu=129):
+        z = (np.arange(self.N_Z) + 0.5) / self.N_Z
+        phi = (np.arange(self.N_PHI) + 0.5) / self.N_PHI * np.pi
+        zo, ph = np.meshgrid(z, phi, indexing="ij")
+        so = np.sqrt(1.0 - zo * zo)
+        cell = (1.0 / self.N_Z) * (np.pi / self.N_PHI) * 2.0
+        self.mu = np.linspace(0.0, 1.0, n_mu)
+        self.e = np.empty(n_mu)
+        for k, mu in enumerate(np.maximum(self.mu, 1e-3)):
+            si = math.sqrt(1.0 - mu * mu)
+            hx, hy, hz = so * np.cos(ph) + si, so * np.sin(ph), zo + mu
+            sin2 = (hx * hx + hy * hy) / (hx * hx + hy * hy + hz * hz)
+            f = sheen_d_np(sin2, alpha) / ((1.0 + sheen_lambda_np(zo, alpha) + sheen_lambda_np(mu, alpha)) * 4.0 * mu)
+            self.e[k] = float(np.sum(f) * cell)  # f already carries cos theta_o / (cos_i cos_o) cos_o
+
+
+def sheen_d_np(sin2, alpha):
+    """Charlie's D (Estevez & Kulla 2017, glTF KHR_materials_sheen)."""
+    return (2.0 + 1.0 / alpha) * np.power(sin2, 0.5 / alpha) / (2.0 * np.pi)
+
+
+def sheen_lambda_np(c, alpha):
+    """Lambda of Estevez & Kulla's fit, interpolated in (1 - alpha)^2 as the glTF specification does."""
+    t = (1.0 - alpha) ** 2
+    a, b, cc, d, e = [lo + (hi - lo) * t for lo, hi in ((21.5473, 25.3245), (3.82987, 3.32435), (0.19823, 0.16801),
+                                                          (-1.97760, -1.27393), (-4.32054, -4.85967))]
+
+    def l_fit(x):
+        return a / (1.0 + b * np.power(x, cc)) + d * x + e
+
+    c = np.asarray(c, dtype=np.float64)
+    return np.where(c < 0.5, np.exp(l_fit(np.minimum(c, 0.5))), np.exp(2.0 * l_fit(0.5) - l_fit(np.maximum(1.0 - c, 0.0))))
+
+
+def register_gltf_sheen():
+    """glTF's sheen over a nested BSDF (Mitsuba's diffuse here) as a Mitsuba Python BSDF, written from
+    the KHR_materials_sheen formulas: f = sheen D V + base (1 - max3(sheen colour) E(cos theta_i)), D
+    Charlie's, V = 1 / ((1 + Lambda(cos_i) + Lambda(cos_o)) 4 cos_i cos_o), alpha = max(r^2, 1e-3);
+    sampled cosine-weighted (both lobes are broad). Front side only: wrap it in twosided."""
+
+    class GltfSheen(mi.BSDF):
+        def __init__(self, props):
+            mi.BSDF.__init__(self, props)
+            self.base = props["base"]
+            self.factor = mi.Color3f(props["sheen_color"])
+            self.texture = props["sheen_texture"] if "sheen_texture" in props else None
+            self.alpha = max(float(props["sheen_roughness"]) ** 2, 1e-3)
+            table = SheenAlbedo(self.alpha)
+            self.e = mi.Float(table.e.astype(np.float32))
+            self.n = len(table.e)
+            flags = mi.BSDFFlags.DiffuseReflection | mi.BSDFFlags.FrontSide
+            self.m_components = [flags]
+            self.m_flags = flags
+
+        def albedo(self, mu):
+            x = dr.clip(mu, 0.0, 1.0) * (self.n - 1)
+            i = dr.minimum(mi.UInt32(dr.floor(x)), self.n - 2)
+            t = x - mi.Float(i)
+            return dr.gather(mi.Float, self.e, i) * (1.0 - t) + dr.gather(mi.Float, self.e, i + 1) * t
+
+        def lam(self, c):
+            t = (1.0 - self.alpha) ** 2
+            a, b, cc, d, e = [lo + (hi - lo) * t for lo, hi in ((21.5473, 25.3245), (3.82987, 3.32435),
+                                                                  (0.19823, 0.16801), (-1.97760, -1.27393),
+                                                                  (-4.32054, -4.85967))]
+
+            def l_fit(x):
+                return a / (1.0 + b * dr.power(x, cc)) + d * x + e
+
+            return dr.select(c < 0.5, dr.exp(l_fit(dr.minimum(c, 0.5))),
+                             dr.exp(2.0 * l_fit(0.5) - l_fit(dr.maximum(1.0 - c, 0.0))))
+
+        def eval(self, ctx, si, wo, active=True):
+            ci, co = mi.Frame3f.cos_theta(si.wi), mi.Frame3f.cos_theta(wo)
+            active = active & (ci > 0.0) & (co > 0.0)
+            h = dr.normalize(si.wi + wo)
+            sin2 = dr.maximum(h.x * h.x + h.y * h.y, 0.0)
+            d = (2.0 + 1.0 / self.alpha) * dr.power(sin2, 0.5 / self.alpha) / (2.0 * dr.pi)
+            v = 1.0 / ((1.0 + self.lam(ci) + self.lam(co)) * 4.0 * ci * co)
+            colour = self.factor * (self.texture.eval(si, active) if self.texture is not None else 1.0)
+            scale = 1.0 - dr.max(colour) * self.albedo(ci)
+            value = colour * (d * v * co) + self.base.eval(ctx, si, wo, active) * scale
+            return dr.select(active, value, 0.0)
+
+        def pdf(self, ctx, si, wo, active=True):
+            ci = mi.Frame3f.cos_theta(si.wi)
+            return dr.select(active & (ci > 0.0), mi.warp.square_to_cosine_hemisphere_pdf(wo), 0.0)
+
+        def eval_pdf(self, ctx, si, wo, active=True):
+            return self.eval(ctx, si, wo, active), self.pdf(ctx, si, wo, active)
+
+        def sample(self, ctx, si, sample1, sample2, active=True):
+            wo = mi.warp.square_to_cosine_hemisphere(sample2)
+            bs = mi.BSDFSample3f()
+            bs.wo = wo
+            bs.pdf = self.pdf(ctx, si, wo, active)
+            bs.eta = 1.0
+            bs.sampled_type = mi.UInt32(+mi.BSDFFlags.DiffuseReflection)
+            bs.sampled_component = mi.UInt32(0)
+            ok = active & (bs.pdf > 0.0)
+            return bs, dr.select(ok, self.eval(ctx, si, wo, ok) / bs.pdf, 0.0)
+
+        def to_string(self):
+            return f"GltfSheen[alpha={self.alpha}]"
+
+    mi.register_bsdf("gltf_sheen", lambda props: GltfSheen(props))
+
+
 def mitsuba_bsdf(mat):
     kind = mat.get("kind")
     if kind == "clearcoat":
@@ -459,6 +610,12 @@ def mitsuba_bsdf(mat):
             factor = bitmap(mat["coat"]["clearcoatFactor"] * mat["texels"][:, :, 0:1] / 255.0, mat["sampler"])
         return {"type": "twosided", "bsdf": {"type": "clearcoat", "base": mat["mi_base"], "coat": mat["mi_coat"],
                                              "factor": factor}}
+    if kind == "sheen":
+        bsdf = {"type": "gltf_sheen", "sheen_color": mi.ScalarColor3d(mat["colour"]),
+                "sheen_roughness": mat["roughness"], "base": {"type": "diffuse", "reflectance": rs.rgb_value(mat["base"])}}
+        if mat["texels"] is not None:
+            bsdf["sheen_texture"] = bitmap(srgb_to_linear(mat["texels"][:, :, :3]), mat["sampler"])
+        return {"type": "twosided", "bsdf": bsdf}
     if kind == "textured_mr":
         colour = srgb_to_linear(mat["base"][:, :, :3])
         metal = mat["mr"][:, :, 2:3] / 255.0
@@ -512,6 +669,7 @@ def render(name, desc, args):
     mi.set_variant("llvm_ad_rgb" if desc.get("llvm") else "scalar_rgb")
     if desc.get("llvm"):
         register_clearcoat()
+        register_gltf_sheen()
     with tempfile.TemporaryDirectory() as tmp:
         rs.render_reference(name, mitsuba_scene(desc, tmp), args, desc.get("integrator", "path"),
                             desc.get("max_depth", rs.MAX_DEPTH),
@@ -520,7 +678,6 @@ def render(name, desc, args):
 
 def main():
     args = ARGS
-    mi.set_variant("scalar_rgb")
     os.makedirs(rs.SCENES, exist_ok=True)
     os.makedirs(rs.REFERENCES, exist_ok=True)
     for name, desc in scene_list().items():

@@ -64,6 +64,11 @@ std::vector<Config> standard_configs(bool white) {
       out.push_back(make_config("coat", bsdf_coat(eta, static_cast<float>(r * r), coat_scale), r, a));
   out.push_back(make_config("coat", bsdf_coat(eta, 0.3f * 0.3f, coat_scale), 0.3, 45, true));
   for (double a : angles) out.push_back(make_config("smooth_coat", bsdf_coat(eta, 0.0f, coat_scale), -1, a));
+  // the sheen lobe alone (KHR_materials_sheen), its colour not divided by a selection probability
+  const co_vec3 sheen = white ? one : v3(0.9f, 0.5f, 0.3f);
+  for (double r : roughness)
+    for (double a : angles) out.push_back(make_config("sheen", bsdf_sheen(sheen, static_cast<float>(r)), r, a));
+  out.push_back(make_config("sheen", bsdf_sheen(sheen, 0.5f), 0.5, 45, true));
   return out;
 }
 

@@ -113,7 +113,9 @@ std::vector<Config> device_configs() {
           make_config("plastic", bsdf_plastic(c, 1.5f, 0.09f), 0.3, 45),
           make_config("smooth_plastic", bsdf_plastic(c, 1.5f, 0.0f), -1, 45),
           make_config("coat", bsdf_coat(1.5f, 0.09f, 0.7f), 0.3, 45),
-          make_config("smooth_coat", bsdf_coat(1.5f, 0.0f, 0.7f), -1, 45)};
+          make_config("smooth_coat", bsdf_coat(1.5f, 0.0f, 0.7f), -1, 45),
+          make_config("sheen", bsdf_sheen(c, 0.3f), 0.3, 45),
+          make_config("sheen", bsdf_sheen(c, 0.8f), 0.8, 75, true)};
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "common/shading/bsdf.h"
+#include "common/shading/sheen.h"
 
 namespace {
 

@@ -91,18 +91,18 @@ TEST(GltfMaterialCli, ClearcoatIsListedAndCompiled) {
   EXPECT_NE(render.output.find("kernel features: textures conductor clearcoat\n"), std::string::npos) << render.output;
 }
 
-// A triangle whose material asks for BLEND and a sheen: one warning each, from info and from render.
+// A triangle whose material asks for BLEND and an iridescence: one warning each, from info and from render.
 TEST(GltfMaterialCli, InfoAndRenderWarnOnceForEachUnhonouredFeature) {
   cohort_test::TempDir dir;
   const fs::path scene = dir.path / "unhonoured.gltf";
   {
     std::ofstream out(scene);
     // positions (0,0,0) (1,0,0) (0,1,0) as little-endian floats, base64
-    out << R"({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_materials_sheen"],
+    out << R"({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_materials_iridescence"],
       "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
       "bufferViews": [{"buffer": 0, "byteLength": 36}],
       "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
-      "materials": [{"alphaMode": "BLEND", "emissiveFactor": [1, 1, 1], "extensions": {"KHR_materials_sheen": {}}}],
+      "materials": [{"alphaMode": "BLEND", "emissiveFactor": [1, 1, 1], "extensions": {"KHR_materials_iridescence": {}}}],
       "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
       "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0})";
   }
@@ -111,7 +111,32 @@ TEST(GltfMaterialCli, InfoAndRenderWarnOnceForEachUnhonouredFeature) {
     const CommandResult r = run(command);
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_EQ(count(r.output, "not honoured: alphaMode"), 0u) << r.output;  // BLEND is honoured
-    EXPECT_EQ(count(r.output, "glTF feature not honoured: extension KHR_materials_sheen: 1 material"), 1u) << r.output;
-    EXPECT_EQ(count(r.output, "KHR_materials_sheen"), 1u) << r.output;
+    EXPECT_EQ(count(r.output, "glTF feature not honoured: extension KHR_materials_iridescence: 1 material"), 1u) << r.output;
+    EXPECT_EQ(count(r.output, "KHR_materials_iridescence"), 1u) << r.output;
   }
+}
+
+// KHR_materials_sheen (scenes/reference/sheen.gltf): info names each material's sheen and the sheen
+// colour texture with what it drives, warns about nothing, and the extension may be required.
+TEST(GltfMaterialCli, InfoListsTheSheenAndItsTextureAndAcceptsItAsRequired) {
+  const fs::path sheen = fs::path(COHORT_SOURCE_DIR) / "scenes/reference/sheen.gltf";
+  const CommandResult r = run("info " + sheen.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(count(r.output, "warning: "), 0u) << r.output;
+  EXPECT_EQ(count(r.output, "sheen (0.9, 0.5, 0.3) roughness 0.3\n"), 1u) << r.output;
+  EXPECT_EQ(count(r.output, "sheen (0.9, 0.5, 0.3) roughness 0.8\n"), 1u) << r.output;
+  EXPECT_EQ(count(r.output, "sheen (1, 1, 1) roughness 0.5, textured\n"), 1u) << r.output;
+  EXPECT_EQ(count(r.output, "image 0 4x4, sRGB, nearest, wrap repeat/repeat: sheen colour (RGB) of 'sheen_tex'"), 1u)
+      << r.output;
+  cohort_test::TempDir dir;
+  std::ifstream in(sheen);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t at = text.find("\"extensionsUsed\"");
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at, "\"extensionsRequired\": [\"KHR_materials_sheen\"], ");
+  const fs::path required = dir.path / "required.gltf";
+  std::ofstream(required) << text;
+  const CommandResult rr = run("render " + required.string() + " --res 8x8 --spp 1 -o " + (dir.path / "s.exr").string());
+  EXPECT_EQ(rr.code, 0) << rr.output;
+  EXPECT_EQ(count(rr.output, "KHR_materials_sheen"), 0u) << rr.output;
 }

@@ -28,7 +28,7 @@ void compile(const std::string& name, const std::string& defines) {
 
 const char* kAllFeatures =
     "-DCOHORT_FEATURE_TEXTURES -DCOHORT_FEATURE_CONDUCTOR -DCOHORT_FEATURE_DIELECTRIC -DCOHORT_FEATURE_PLASTIC -DCOHORT_FEATURE_VOLUME "
-    "-DCOHORT_FEATURE_CLEARCOAT";
+    "-DCOHORT_FEATURE_CLEARCOAT -DCOHORT_FEATURE_SHEEN";
 
 }  // namespace
 

@@ -6,6 +6,7 @@
 #define COHORT_FEATURE_DIELECTRIC
 #define COHORT_FEATURE_PLASTIC
 #define COHORT_FEATURE_CLEARCOAT  // the clearcoat table is a parameter only with its option
+#define COHORT_FEATURE_SHEEN      // the sheen table likewise
 #include "kernels/common/wavefront/aov_kernel.h"
 #include "kernels/common/film/film_kernels.h"
 #include "kernels/common/wavefront/naive_kernel.h"
@@ -58,9 +59,9 @@ TEST(KernelArgs, OneArgumentPerKernelParameter) {
   EXPECT_EQ(TraceRaysPthArgs::arg_count + 1, arity(&trace_rays_pth));
   EXPECT_EQ(TraceRaysSpeculativeArgs::arg_count + 1, arity(&trace_rays_speculative));
   EXPECT_EQ(FilmAddArgs::arg_count + 1, arity(&film_add));
-  // the groups stand for their parameters: 14 scene buffers and the clearcoat table (declared here, where
-  // the kernels are built with its option), 8 path buffers, 4 shadow buffers
-  EXPECT_EQ(SceneBuffers::arg_count, 15u);
+  // the groups stand for their parameters: 14 scene buffers and the clearcoat and sheen tables (declared
+  // here, where the kernels are built with their options), 8 path buffers, 4 shadow buffers
+  EXPECT_EQ(SceneBuffers::arg_count, 16u);
   EXPECT_EQ(PathBuffers::arg_count, 8u);
   EXPECT_EQ(ShadowBuffers::arg_count, 4u);
 }
@@ -97,14 +98,25 @@ TEST(KernelArgs, AFeatureTableIsBoundOnlyWhenSet) {
     *d = some_buffer();
   DeviceKernel without(nullptr, "render_naive");
   b.bind(without);
-  EXPECT_EQ(without.args().size(), SceneBuffers::arg_count - 1 + 1);  // and co_params_end
+  EXPECT_EQ(without.args().size(), SceneBuffers::arg_count - 2 + 1);  // neither table, and co_params_end
+  // each table is bound where it is set, in its place after the punctual lights: the coat's, then the sheen's
+  b.material_sheen = some_buffer();
+  DeviceKernel sheen_only(nullptr, "render_naive");
+  b.bind(sheen_only);
+  ASSERT_EQ(sheen_only.args().size(), SceneBuffers::arg_count - 1 + 1);
+  const auto* sheen = std::get_if<DeviceBuffer>(&sheen_only.args()[SceneBuffers::arg_count - 2]);
+  ASSERT_TRUE(sheen);
+  EXPECT_EQ(sheen->object(), b.material_sheen.object());
   b.material_coats = some_buffer();
   DeviceKernel with(nullptr, "render_naive");
   b.bind(with);
   ASSERT_EQ(with.args().size(), SceneBuffers::arg_count + 1);
-  const auto* coats = std::get_if<DeviceBuffer>(&with.args()[SceneBuffers::arg_count - 1]);
+  const auto* coats = std::get_if<DeviceBuffer>(&with.args()[SceneBuffers::arg_count - 2]);
   ASSERT_TRUE(coats);
   EXPECT_EQ(coats->object(), b.material_coats.object());
+  sheen = std::get_if<DeviceBuffer>(&with.args()[SceneBuffers::arg_count - 1]);
+  ASSERT_TRUE(sheen);
+  EXPECT_EQ(sheen->object(), b.material_sheen.object());
 }
 
 TEST(KernelArgs, UnsetBufferIsAnErrorNamingIt) {

@@ -4,6 +4,7 @@
 #define COHORT_BSDF_TEST_IO_H
 
 #include "common/shading/bsdf.h"
+#include "common/shading/sheen.h"
 
 typedef struct BsdfTestIn {
   Bsdf bsdf;

@@ -86,7 +86,7 @@ TEST_P(ReferenceScene, MatchesMitsuba3) {
 INSTANTIATE_TEST_SUITE_P(Mitsuba3, ReferenceScene,
                          ::testing::Values("conductor", "rough-dielectric", "plastic", "envmap", "punctual", "on-ground",
                                            "nave", "textured-mr", "sampler-wrap", "alpha-mask", "alpha-blend",
-                                           "texture-transform", "glass-volume", "clearcoat"),
+                                           "texture-transform", "glass-volume", "clearcoat", "sheen"),
                          [](const auto& info) {
                            std::string n = info.param;
                            for (char& ch : n)

@@ -262,5 +262,62 @@ TEST(GltfClearcoat, FactorsAndTexturesAreReadAndChecked) {
                            "clearcoatNormalTexture.scale is not a finite number");
 }
 
+// KHR_materials_sheen: the colour and roughness factors, the colour texture (sRGB, RGB) and the
+// roughness texture (linear, A) with their texCoord and KHR_texture_transform, what `info` says they
+// drive, the extension accepted as required; wrong values name the file and the material.
+TEST(GltfSheen, FactorsAndTexturesAreReadAndChecked) {
+  TempDir dir;
+  const auto with = [&](const json& sheen) {
+    const json material = {{"name", "velvet"}, {"extensions", {{"KHR_materials_sheen", sheen}}}};
+    GltfWriter g = textured_triangle(dir, material, json::array({{{"source", 0}}, {{"source", 0}}}), nullptr);
+    g.doc()["extensionsUsed"] = g.doc()["extensionsRequired"] = {"KHR_materials_sheen", "KHR_texture_transform"};
+    g.doc()["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] =
+        g.doc()["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"];
+    return g.write_gltf(dir.path(), "sheen");
+  };
+  const Scene s = load_scene(with({{"sheenColorFactor", {0.9, 0.5, 0.25}},
+                                   {"sheenRoughnessFactor", 0.3},
+                                   {"sheenColorTexture", {{"index", 0}, {"texCoord", 1}}},
+                                   {"sheenRoughnessTexture",
+                                    {{"index", 1},
+                                     {"extensions", {{"KHR_texture_transform", {{"rotation", 0.5}, {"texCoord", 1}}}}}}}}));
+  const SceneSheen& sh = s.materials.at(0).sheen;
+  EXPECT_EQ(sh.color, glm::vec3(0.9f, 0.5f, 0.25f));
+  EXPECT_EQ(sh.roughness, 0.3f);
+  EXPECT_TRUE(sh.present());
+  ASSERT_GE(sh.color_texture, 0);
+  ASSERT_GE(sh.roughness_texture, 0);
+  EXPECT_EQ(sh.color_texcoord, 1);
+  EXPECT_TRUE(sh.color_transform.identity());
+  EXPECT_EQ(sh.roughness_texcoord, 1);  // the transform's texCoord replaces the reference's own
+  EXPECT_EQ(sh.roughness_transform, (UvTransform{{0.f, 0.f}, 0.5f, {1.f, 1.f}}));
+  const Texture& colour = s.textures.at(std::size_t(sh.color_texture));
+  const Texture& rough = s.textures.at(std::size_t(sh.roughness_texture));
+  EXPECT_TRUE(colour.srgb);
+  EXPECT_FALSE(rough.srgb);
+  EXPECT_EQ(colour.uses, (std::vector<std::string>{"sheen colour (RGB) of 'velvet'"}));
+  EXPECT_EQ(rough.uses, (std::vector<std::string>{"sheen roughness (A) of 'velvet'"}));
+  EXPECT_EQ(material_warnings(s), "") << "honoured, and accepted as required";
+  // defaults: colour 0 (no sheen) and roughness 0; no extension at all: the same
+  const SceneSheen none = load_scene(with(json::object())).materials[0].sheen;
+  EXPECT_EQ(none.color, glm::vec3(0.f));
+  EXPECT_EQ(none.roughness, 0.f);
+  EXPECT_FALSE(none.present());
+  EXPECT_EQ(none.color_texture, -1);
+  test::expect_input_error(with({{"sheenColorFactor", {0.5, 1.5, 0.5}}}),
+                           "material 0 'velvet': KHR_materials_sheen sheenColorFactor (0.5, 1.5, 0.5) is outside [0, 1]");
+  test::expect_input_error(with({{"sheenColorFactor", {0.5, 0.5}}}), "sheenColorFactor is not an array of three numbers");
+  test::expect_input_error(with({{"sheenColorFactor", {0.5, "red", 0.5}}}), "sheenColorFactor is not a finite number");
+  test::expect_input_error(with({{"sheenRoughnessFactor", -0.1}}), "sheenRoughnessFactor -0.1 is outside [0, 1]");
+  test::expect_input_error(with({{"sheenRoughnessFactor", 2}}), "sheenRoughnessFactor 2 is outside [0, 1]");
+  test::expect_input_error(with({{"sheenRoughnessFactor", "soft"}}), "sheenRoughnessFactor is not a finite number");
+  test::expect_input_error(with({{"sheenColorTexture", {{"index", 7}}}}), "sheenColorTexture does not name an existing texture");
+  test::expect_input_error(with({{"sheenRoughnessTexture", 3}}), "sheenRoughnessTexture does not name an existing texture");
+  test::expect_input_error(with({{"sheenColorTexture", {{"index", 0}, {"texCoord", -2}}}}),
+                           "sheenColorTexture.texCoord is not an integer >= 0");
+  test::expect_input_error(with({{"sheenColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"scale", 2}}}}}}}}),
+                           "KHR_materials_sheen.sheenColorTexture: KHR_texture_transform scale is not an array of two numbers");
+}
+
 }  // namespace
 }  // namespace cohort

@@ -45,20 +45,20 @@ TEST(GltfUnhonoured, EachFeatureIsOneWarningWithItsMaterialCount) {
       {"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"texCoord", 2}}}}}}}};
   GltfWriter g = triangles_with(dir, {{{"pbrMetallicRoughness", transformed},
                                        {"alphaMode", "BLEND"},
-                                       {"extensions", {{"KHR_materials_sheen", json::object()}}}},
+                                       {"extensions", {{"KHR_materials_iridescence", json::object()}}}},
                                       {{"pbrMetallicRoughness", transformed},
-                                       {"extensions", {{"KHR_materials_sheen", json::object()}}}},
+                                       {"extensions", {{"KHR_materials_iridescence", json::object()}}}},
                                       {{"alphaMode", "OPAQUE"}, {"occlusionTexture", tex}}});
-  g.doc()["extensionsUsed"] = {"KHR_materials_sheen", "EXT_meshopt_compression", "KHR_texture_transform"};
+  g.doc()["extensionsUsed"] = {"KHR_materials_iridescence", "EXT_meshopt_compression", "KHR_texture_transform"};
   const Scene s = load_scene(g.write_gltf(dir.path(), "features"));
   EXPECT_EQ(lines_containing(s.warnings, "KHR_texture_transform"), 0u);  // honoured
   // its texCoord replaces the reference's: set 2 is not read
   EXPECT_EQ(lines_containing(s.warnings, "TEXCOORD_2 or above (TEXCOORD_0 used): 2 materials"), 1u);
   EXPECT_EQ(lines_containing(s.warnings, "alphaMode"), 0u);  // honoured (kernels/common/accel/alpha.h)
-  EXPECT_EQ(lines_containing(s.warnings, "extension KHR_materials_sheen: 2 materials"), 1u);
-  // an extension no material carries is still named, once, and the sheen is not named twice
+  EXPECT_EQ(lines_containing(s.warnings, "extension KHR_materials_iridescence: 2 materials"), 1u);
+  // an extension no material carries is still named, once, and the iridescence is not named twice
   EXPECT_EQ(lines_containing(s.warnings, "ignored (optional, not implemented): EXT_meshopt_compression"), 1u);
-  EXPECT_EQ(lines_containing(s.warnings, "KHR_materials_sheen"), 1u);
+  EXPECT_EQ(lines_containing(s.warnings, "KHR_materials_iridescence"), 1u);
   // occlusion is left out by design: listed as a texture not read, neither a warning nor a note
   EXPECT_EQ(lines_containing(s.warnings, "occlusion"), 0u);
   EXPECT_TRUE(s.notes.empty());

@@ -29,7 +29,9 @@ CO_INLINE uint32_t alpha_ray_seed(uint32_t seed, uint32_t pixel, uint32_t sample
                                   uint32_t purpose) {
   return rng_make(seed, pixel, sample, segment, purpose).state >> 8;
 }
-#ifdef COHORT_FEATURE_TEXTURES
+#endif
+/* the sheen roughness texture reads the alpha channel too (scene_view.h, sheen_params) */
+#if (defined(COHORT_FEATURE_ALPHA) || defined(COHORT_FEATURE_SHEEN)) && defined(COHORT_FEATURE_TEXTURES)
 /* The alpha channel (linear in glTF, never sRGB) of texture `index` at (u, v), filtered and
  * wrapped exactly as texture_sample filters the colour channels (the same footprint). */
 CO_INLINE float texel_alpha(const CO_GLOBAL uint32_t* texels, uint32_t index) {
@@ -45,6 +47,7 @@ CO_INLINE float texture_sample_alpha(const CO_GLOBAL TextureDesc* descs, const C
   return a * (1.0f - f.ty) + b * f.ty;
 }
 #endif
+#if defined(COHORT_FEATURE_ALPHA)
 
 /* The material's alpha at barycentric weights (b1, b2) of kept triangle `triangle`. */
 CO_INLINE float material_alpha(const AlphaView* a, const CO_GLOBAL Material* m, uint32_t triangle, float b1,

@@ -3,7 +3,7 @@
  * built with COHORT_FEATURE_TEXTURES, and one-element placeholders otherwise), vertex colours
  * (COHORT_FEATURE_VERTEX_COLORS), the environment map
  * (COHORT_FEATURE_ENVMAP) and the punctual lights (COHORT_FEATURE_PUNCTUAL), placeholders
- * likewise. With COHORT_FEATURE_ALPHA the traversal view also holds what alpha tests read
+ * likewise, and the materials' sheen (COHORT_FEATURE_SHEEN; a placeholder without). With COHORT_FEATURE_ALPHA the traversal view also holds what alpha tests read
  * (alpha.h). */
 #ifndef COHORT_SCENE_VIEW_H
 #define COHORT_SCENE_VIEW_H
@@ -33,6 +33,9 @@ typedef struct SceneView {
 #ifdef COHORT_FEATURE_CLEARCOAT
   const CO_GLOBAL MaterialCoat* material_coats; /* per material (shading/clearcoat.h) */
 #endif
+#ifdef COHORT_FEATURE_SHEEN
+  const CO_GLOBAL MaterialSheen* material_sheen; /* per material (shading/sheen.h) */
+#endif
   EnvironmentView env;
   const CO_GLOBAL PunctualLight* punctual_lights;
   uint32_t emitter_count;
@@ -50,6 +53,14 @@ typedef struct SceneView {
 #define CO_CLEARCOAT_PARAM
 #define CO_CLEARCOAT_ARG(coats)
 #endif
+/* The sheen table likewise, with COHORT_FEATURE_SHEEN only (SCENE_SHEEN_BUFFERS) */
+#ifdef COHORT_FEATURE_SHEEN
+#define CO_SHEEN_PARAM , const CO_GLOBAL MaterialSheen* material_sheen
+#define CO_SHEEN_ARG(sheen) , (sheen)
+#else
+#define CO_SHEEN_PARAM
+#define CO_SHEEN_ARG(sheen)
+#endif
 
 /* The view of the scene that a rendering kernel's SCENE_PARAMS (kernel_params.h) make. */
 CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNode* nodes,
@@ -60,7 +71,7 @@ CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNod
                                     const CO_GLOBAL TriangleColor* triangle_colors,
                                     const CO_GLOBAL TriangleFrame* triangle_frames,
                                     const CO_GLOBAL co_float4* env_texels, const CO_GLOBAL float* env_tables,
-                                    const CO_GLOBAL PunctualLight* punctual_lights CO_CLEARCOAT_PARAM) {
+                                    const CO_GLOBAL PunctualLight* punctual_lights CO_CLEARCOAT_PARAM CO_SHEEN_PARAM) {
   SceneView s;
   s.tree = make_scene_accel(nodes, leaf_triangles, triangles, p->scene_min, p->scene_max);
 #if defined(COHORT_FEATURE_ALPHA)
@@ -91,6 +102,9 @@ CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNod
 #else
   (void)triangle_frames;
 #endif
+#ifdef COHORT_FEATURE_SHEEN
+  s.material_sheen = material_sheen;
+#endif
   s.env.texels = env_texels;
   s.env.tables = env_tables;
   s.env.width = p->env_width;
@@ -110,7 +124,7 @@ CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNod
 #define SCENE_VIEW(p)                                                                                \
   make_scene_view(&(p), nodes, leaf_triangles, triangles, triangle_material, materials, emitters, triangle_uvs, \
                   textures, texels, triangle_colors, triangle_frames, env_texels, env_tables,       \
-                  punctual_lights CO_CLEARCOAT_ARG(material_coats))
+                  punctual_lights CO_CLEARCOAT_ARG(material_coats) CO_SHEEN_ARG(material_sheen))
 
 CO_INLINE float luminance(co_vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
@@ -197,6 +211,47 @@ CO_INLINE SurfaceParams surface_params(const SceneView* s, const CO_GLOBAL Mater
 #endif
   return p;
 }
+
+#ifdef COHORT_FEATURE_SHEEN
+/* KHR_materials_sheen at a surface point: the factors times their textures (the colour texture's RGB,
+ * sRGB-decoded; the roughness texture's A, linear), what bsdf_sheen_select takes. */
+typedef struct SheenParams {
+  co_vec3 color;
+  float roughness;
+} SheenParams;
+
+CO_INLINE SheenParams sheen_params(const SceneView* s, uint32_t material, uint32_t triangle, float b1, float b2) {
+  MaterialSheen ms = s->material_sheen[material];
+  SheenParams p;
+  p.color = v3_from4(ms.color_roughness);
+  p.roughness = ms.color_roughness.w;
+#ifdef COHORT_FEATURE_TEXTURES
+  if (ms.color_texture >= 0 || ms.roughness_texture >= 0) {
+    float u, v;
+#ifdef COHORT_FEATURE_TEXCOORD1
+    if (ms.color_texture >= 0) {
+      triangle_uv_at(s->triangle_uvs, 2u * triangle + ((ms.flags & MAT_SHEEN_UV1_COLOR) ? 1u : 0u), b1, b2, &u, &v);
+      p.color = v3_mul(p.color, texture_sample(s->textures, s->texels, ms.color_texture, u, v));
+    }
+    if (ms.roughness_texture >= 0) {
+      triangle_uv_at(s->triangle_uvs, 2u * triangle + ((ms.flags & MAT_SHEEN_UV1_ROUGHNESS) ? 1u : 0u), b1, b2, &u, &v);
+      p.roughness = p.roughness * texture_sample_alpha(s->textures, s->texels, ms.roughness_texture, u, v);
+    }
+#else
+    triangle_uv_at(s->triangle_uvs, triangle, b1, b2, &u, &v);
+    if (ms.color_texture >= 0) p.color = v3_mul(p.color, texture_sample(s->textures, s->texels, ms.color_texture, u, v));
+    if (ms.roughness_texture >= 0)
+      p.roughness = p.roughness * texture_sample_alpha(s->textures, s->texels, ms.roughness_texture, u, v);
+#endif
+  }
+#else
+  (void)triangle;
+  (void)b1;
+  (void)b2;
+#endif
+  return p;
+}
+#endif
 
 #ifdef COHORT_FEATURE_NORMAL_MAP
 /* A tangent-space normal map's texel c at (b1, b2) as a world normal: (c * 2 - 1) with x and y times

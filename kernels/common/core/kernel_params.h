@@ -63,6 +63,11 @@
 #else
 #define SCENE_CLEARCOAT_BUFFERS(P) P(FEATURE_ABSENT, MaterialCoat, material_coats)
 #endif
+#if defined(COHORT_FEATURE_SHEEN)
+#define SCENE_SHEEN_BUFFERS(P) P(FEATURE_IN, MaterialSheen, material_sheen)
+#else
+#define SCENE_SHEEN_BUFFERS(P) P(FEATURE_ABSENT, MaterialSheen, material_sheen)
+#endif
 
 /* The scene's buffers (scene_view.h makes them a SceneView with the RenderParams). */
 #define SCENE_BUFFERS(P, G)                                                                                   \
@@ -70,7 +75,7 @@
   P(IN, uint32_t, triangle_material) P(IN, Material, materials) P(IN, EmitterEntry, emitters)                \
   P(IN, TriangleUv, triangle_uvs) P(IN, TextureDesc, textures) P(IN, uint32_t, texels)                       \
   P(IN, TriangleColor, triangle_colors) P(IN, TriangleFrame, triangle_frames) P(IN, co_float4, env_texels) P(IN, float, env_tables)               \
-  P(IN, PunctualLight, punctual_lights) SCENE_CLEARCOAT_BUFFERS(P)
+  P(IN, PunctualLight, punctual_lights) SCENE_CLEARCOAT_BUFFERS(P) SCENE_SHEEN_BUFFERS(P)
 
 /* What every rendering kernel takes: the render's parameters and the scene. */
 #define SCENE_PARAMS(P, G) P(UNIFORM, RenderParams, params) G(SceneBuffers, scene, SCENE_BUFFERS)

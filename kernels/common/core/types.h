@@ -135,6 +135,21 @@ typedef struct MaterialCoat {
 } MaterialCoat;
 CO_STATIC_ASSERT(sizeof(MaterialCoat) == 32, "MaterialCoat must stay 32 bytes");
 #endif
+/* glTF KHR_materials_sheen of each material, a table indexed like the materials; uploaded and passed
+ * to the kernels only with COHORT_FEATURE_SHEEN, as the coat's, so Material keeps its size and the
+ * programs of a scene without sheen do not declare it (shading/sheen.h). */
+#define MAT_SHEEN_UV1_COLOR 1u     /* the colour texture reads TEXCOORD_1 */
+#define MAT_SHEEN_UV1_ROUGHNESS 2u /* the roughness texture reads TEXCOORD_1 */
+#if defined(COHORT_FEATURE_SHEEN) || !(defined(__OPENCL_VERSION__) || defined(__CUDACC__))
+typedef struct MaterialSheen {
+  co_float4 color_roughness; /* rgb sheenColorFactor (linear); w sheenRoughnessFactor; rgb 0: no sheen */
+  int32_t color_texture;     /* -1: none; its RGB (sRGB colour) multiplies the colour */
+  int32_t roughness_texture; /* -1: none; its A (linear data) multiplies the roughness */
+  uint32_t flags;            /* MAT_SHEEN_UV1_* */
+  uint32_t pad0;
+} MaterialSheen;
+CO_STATIC_ASSERT(sizeof(MaterialSheen) == 32, "MaterialSheen must stay 32 bytes");
+#endif
 
 /* ---- Textures ---------------------------------------------------------------------------------
  * Every texture's texels live in one buffer of RGBA8 words (r in the low byte, as glTF stores

@@ -43,6 +43,12 @@
 #else
 #define BSDF_WITH_PLASTIC 1
 #endif
+/* the sheen layer (KHR_materials_sheen, sheen.h): -DCOHORT_FEATURE_SHEEN */
+#if defined(COHORT_BSDF_SPECIALISED) && !defined(COHORT_FEATURE_SHEEN)
+#define BSDF_WITH_SHEEN 0
+#else
+#define BSDF_WITH_SHEEN 1
+#endif
 
 /* glTF's clearcoat layer (BSDF_COAT) only with COHORT_FEATURE_CLEARCOAT (shading/clearcoat.h) */
 #if defined(COHORT_BSDF_SPECIALISED) && !defined(COHORT_FEATURE_CLEARCOAT)
@@ -91,6 +97,9 @@ CO_INLINE co_vec3 frame_to_world(const ShadingFrame* f, co_vec3 v) {
 #define BSDF_DIELECTRIC 2u /* smooth or GGX (Walter 2007) dielectric; color tints transmission */
 #define BSDF_PLASTIC 3u    /* diffuse color under a dielectric coat (Mitsuba's plastic, nonlinear=false) */
 #define BSDF_COAT 4u       /* the plastic's coat alone, times spec_weight: glTF's clearcoat layer */
+#if BSDF_WITH_SHEEN
+#define BSDF_SHEEN 5u      /* the sheen lobe alone, color = sheenColor over its selection probability (sheen.h) */
+#endif
 
 /* GGX alpha below which a surface is smooth (delta lobes): the GGX lobe would be narrower than
  * float sampling resolves well, and its peak D = 1/(pi alpha^2) would pass 3e5. */
@@ -468,6 +477,13 @@ CO_INLINE BsdfSample coat_sample(const Bsdf* b, co_vec3 wi, float u1, float u2) 
   return s;
 }
 #endif
+#if BSDF_WITH_SHEEN
+/* The sheen lobe (BSDF_SHEEN) is defined in sheen.h, which a program includes after this file (the
+ * kernel sources expand each header once, at its first #include, so sheen.h and the medium.h it needs
+ * are included where the rendering programs' order of headers allows: pathtrace.h). */
+CO_INLINE co_vec3 sheen_eval(const Bsdf* b, co_vec3 wi, co_vec3 wo);
+CO_INLINE BsdfSample sheen_sample(const Bsdf* b, co_vec3 wi, float u1, float u2);
+#endif
 
 /* ---- Dispatch ---------------------------------------------------------------------------------- */
 
@@ -494,6 +510,9 @@ CO_INLINE co_vec3 bsdf_eval(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
 #if BSDF_WITH_COAT
   if (b->type == BSDF_COAT) return coat_eval(b, wi, wo);
 #endif
+#if BSDF_WITH_SHEEN
+  if (b->type == BSDF_SHEEN) return sheen_eval(b, wi, wo);
+#endif
   return v3_splat(0.0f);
 }
 
@@ -513,6 +532,9 @@ CO_INLINE float bsdf_pdf(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
 #endif
 #if BSDF_WITH_COAT
   if (b->type == BSDF_COAT) return coat_pdf(b, wi, wo);
+#endif
+#if BSDF_WITH_SHEEN
+  if (b->type == BSDF_SHEEN) return diffuse_pdf(wi, wo);
 #endif
   return 0.0f;
 }
@@ -534,6 +556,9 @@ CO_INLINE BsdfSample bsdf_sample(const Bsdf* b, co_vec3 wi, float u_lobe, float 
 #endif
 #if BSDF_WITH_COAT
   else if (b->type == BSDF_COAT) s = coat_sample(b, wi, u1, u2);
+#endif
+#if BSDF_WITH_SHEEN
+  else if (b->type == BSDF_SHEEN) s = sheen_sample(b, wi, u1, u2);
 #endif
   else s = bsdf_no_sample();
   s.wo.z *= side;

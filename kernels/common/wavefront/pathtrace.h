@@ -17,11 +17,14 @@
 #include "common/accel/ray_offset.h"
 #include "common/core/rng.h"
 #include "common/accel/scene_view.h"
-#if defined(COHORT_FEATURE_VOLUME)
+#if defined(COHORT_FEATURE_VOLUME) || defined(COHORT_FEATURE_SHEEN)
 #include "common/shading/medium.h"
 #endif
 #if defined(COHORT_FEATURE_CLEARCOAT)
 #include "common/shading/clearcoat.h"
+#endif
+#if defined(COHORT_FEATURE_SHEEN)
+#include "common/shading/sheen.h"
 #endif
 
 /* A path between stages: what the megakernel keeps in registers and the wavefront kernels keep
@@ -363,7 +366,9 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
                                 u_select);
   u_select = coat.u_rest;
 #endif
+#ifndef COHORT_FEATURE_SHEEN
   Bsdf b = bsdf_from_gltf(sp.base_color, sp.metallic, sp.roughness, m->transmission, m->ior, u_select);
+#endif
   ShadingFrame frame = frame_from_normal(n_geo);
 #ifdef COHORT_FEATURE_NORMAL_MAP
   {
@@ -377,7 +382,18 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
   }
 #endif
   co_vec3 wi = frame_to_local(&frame, v3_neg(st->dir));
+#ifdef COHORT_FEATURE_SHEEN
+  /* the sheen layer above the base, taken with a probability that depends on wi (bsdf_sheen_select;
+   * docs/bsdf.md, "Sheen"); otherwise the base's choice with the remapped u_select */
+  Bsdf b;
+  {
+    SheenParams sh = sheen_params(s, s->triangle_material[hit.triangle], hit.triangle, hit.u, hit.v);
+    if (!bsdf_sheen_select(sh.color, sh.roughness, wi, &u_select, &b))
+      b = bsdf_from_gltf(sp.base_color, sp.metallic, sp.roughness, m->transmission, m->ior, u_select);
+  }
+#endif
 #if defined(COHORT_FEATURE_CLEARCOAT)
+  /* the coat, chosen first, replaces whatever the rest of u_select chose below it */
   if (coat.chosen) {
     b = coat.bsdf;
     frame = coat.frame;

@@ -86,6 +86,16 @@ MaterialCoat to_device_coat(const SceneClearcoat& c) {
   return d;
 }
 
+MaterialSheen to_device_sheen(const SceneMaterial& m) {
+  MaterialSheen d{};
+  d.color_roughness = to_float4(m.sheen.color, m.sheen.roughness);
+  d.color_texture = m.sheen.color_texture;
+  d.roughness_texture = m.sheen.roughness_texture;
+  if (m.sheen.color_texcoord == 1) d.flags |= MAT_SHEEN_UV1_COLOR;
+  if (m.sheen.roughness_texcoord == 1) d.flags |= MAT_SHEEN_UV1_ROUGHNESS;
+  return d;
+}
+
 std::vector<std::string> SceneFeatures::names() const {
   std::vector<std::string> out;
   if (textures) out.push_back("textures");
@@ -101,6 +111,7 @@ std::vector<std::string> SceneFeatures::names() const {
   if (texture_transform) out.push_back("texture_transform");
   if (volume) out.push_back("volume");
   if (clearcoat) out.push_back("clearcoat");
+  if (sheen) out.push_back("sheen");
   return out;
 }
 
@@ -220,6 +231,11 @@ void add_textures(const Scene& scene, const KdTree& tree, const std::vector<bool
     slot(m.emission_texture, used[i], sm.emission_texcoord, sm.emission_transform);
     slot(m.metallic_roughness_texture, used[i], sm.metallic_roughness_texcoord, sm.metallic_roughness_transform);
     slot(m.normal_texture, used[i], sm.normal_texcoord, sm.normal_transform);
+    // the sheen's textures, uploaded only where the material has a sheen
+    MaterialSheen& sheen = t.material_sheen[i];
+    const bool sheen_used = used[i] && sm.sheen.present();
+    slot(sheen.color_texture, sheen_used, sm.sheen.color_texcoord, sm.sheen.color_transform);
+    slot(sheen.roughness_texture, sheen_used, sm.sheen.roughness_texcoord, sm.sheen.roughness_transform);
     t.features.normal_map |= m.normal_texture >= 0;
     if (!t.features.clearcoat) continue;
     // a coat's textures only where the coat is there (factor > 0): a scene without one uploads none
@@ -307,7 +323,10 @@ void add_vertex_colors(const Scene& scene, const KdTree& tree, SceneTables& t) {
 
 SceneTables make_scene_tables(const Scene& scene, const KdTree& tree) {
   SceneTables t;
-  for (const auto& m : scene.materials) t.materials.push_back(to_device_material(m));
+  for (const auto& m : scene.materials) {
+    t.materials.push_back(to_device_material(m));
+    t.material_sheen.push_back(to_device_sheen(m));
+  }
   t.triangle_material.reserve(tree.source_index.size());
   for (std::uint32_t src : tree.source_index) t.triangle_material.push_back(scene.material_ids.at(src));
   std::vector<bool> used(t.materials.size(), false);
@@ -327,7 +346,9 @@ SceneTables make_scene_tables(const Scene& scene, const KdTree& tree) {
     t.features.plastic |= f.plastic;
     t.features.volume |= f.volume;
     t.features.alpha |= (t.materials[i].flags & (MAT_ALPHA_MASK | MAT_ALPHA_BLEND)) != 0u;
+    t.features.sheen |= scene.materials[i].sheen.present();
   }
+  if (!t.features.sheen) t.material_sheen.clear();  // the programs take no sheen table: nothing goes up
   // the path slot keeps the medium, 1 + a material index, as a float (wavefront_path.h): exact below 2^24
   if (t.features.volume && t.materials.size() >= (std::size_t{1} << 24) - 1)
     throw InputError(fmt::format("{} materials: volumes (KHR_materials_volume) need fewer than 2^24 - 1",
@@ -382,6 +403,7 @@ SceneBuffers DeviceScene::kernel_buffers() const {
   b.env_tables = env_tables;
   b.punctual_lights = punctual_lights;
   b.material_coats = material_coats;
+  b.material_sheen = material_sheen;
   return b;
 }
 
@@ -425,6 +447,7 @@ DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables
   d.triangle_frames = upload("tangent frames", tables.triangle_frames);
   d.punctual_lights = upload("punctual lights", tables.punctual.lights);
   if (tables.features.clearcoat) d.material_coats = upload("clearcoat", tables.material_coats);
+  if (tables.features.sheen) d.material_sheen = upload("material sheen", tables.material_sheen);
   d.punctual_count = static_cast<std::uint32_t>(tables.punctual.lights.size());
   if (tables.environment) {
     d.env_texels = upload("environment map", tables.environment->texels);
