@@ -83,9 +83,10 @@ TEST(SharedModelDetails, DamagedHelmetMaterialAndTextures) {
   EXPECT_EQ(s.uvs.size(), s.positions.size());
   EXPECT_EQ(s.normals.size(), s.positions.size());
   EXPECT_EQ(s.tangents.size(), s.positions.size());  // generated: the file has none
-  // what the loader leaves out by design is noted: occlusion
-  ASSERT_EQ(s.notes.size(), 1u);
-  EXPECT_NE(s.notes[0].find("occlusionTexture"), std::string::npos);
+  // what the loader leaves out by design is listed as not read: the occlusion map
+  EXPECT_TRUE(s.notes.empty());
+  ASSERT_EQ(s.unread_textures.size(), 1u);
+  EXPECT_EQ(s.unread_textures[0].rfind("Default_AO.jpg: occlusion of 'Material_MR', not used", 0), 0u) << s.unread_textures[0];
   EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
 }
 
