@@ -91,4 +91,16 @@ void parallel_chunks(std::size_t n, const F& f) {
                     });
 }
 
+// f(i) for each of the n children of a node of the binary tree that hold `references` references
+// between them: in parallel where that subtree is large (a collapse into wide nodes counts and
+// emits their subtrees so), else in order.
+template <class F>
+void for_children(std::uint32_t references, int n, const F& f) {
+  if (references >= kParallelTriangles) {
+    tbb::parallel_for(0, n, f);
+  } else {
+    for (int i = 0; i < n; ++i) f(i);
+  }
+}
+
 }  // namespace cohort::binary_bvh

@@ -2,7 +2,6 @@
 #include "runtime/accel/bvh4.h"
 
 #include <fmt/format.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -19,7 +18,6 @@ namespace {
 
 using binary_bvh::Box;
 using binary_bvh::kNodeCost;
-using binary_bvh::kParallelTriangles;
 using Node2 = binary_bvh::Node;
 
 constexpr std::uint32_t kMaxLeaf = 4;  // triangles; BVH4_LEAF_MAX allows up to 16
@@ -96,21 +94,11 @@ struct Collapser {
     return n;
   }
 
-  // Calls f(lane) for each lane, in parallel when the node's subtree is large.
-  template <class F>
-  void for_lanes(std::uint32_t slot, int n, const F& f) const {
-    if (b.nodes[slot].references >= kParallelTriangles) {
-      tbb::parallel_for(0, n, f);
-    } else {
-      for (int lane = 0; lane < n; ++lane) f(lane);
-    }
-  }
-
   std::uint32_t count(std::uint32_t slot) {
     std::array<std::uint32_t, 4> kids{};
     const int n = lanes(slot, kids);
     std::array<std::uint32_t, 4> counts{};
-    for_lanes(slot, n, [&](int lane) {
+    binary_bvh::for_children(b.nodes[slot].references, n, [&](int lane) {
       if (!b.nodes[kids[lane]].count) counts[lane] = count(kids[lane]);
     });
     return subtree_nodes[slot] = 1 + counts[0] + counts[1] + counts[2] + counts[3];
@@ -128,7 +116,7 @@ struct Collapser {
       next += subtree_nodes[kids[lane]];
     }
     std::array<Sums, 4> lane_sums{};
-    for_lanes(slot, n, [&](int lane) {
+    binary_bvh::for_children(b.nodes[slot].references, n, [&](int lane) {
       if (!b.nodes[kids[lane]].count) lane_sums[lane] = emit(kids[lane], child_index[lane], depth + 1);
     });
     Bvh4Node node{};

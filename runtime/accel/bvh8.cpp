@@ -4,7 +4,6 @@
 #include "runtime/accel/bvh8.h"
 
 #include <fmt/format.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -23,7 +22,6 @@ namespace {
 
 using binary_bvh::Box;
 using binary_bvh::kNodeCost;
-using binary_bvh::kParallelTriangles;
 
 constexpr int kWidth = 8;
 static_assert(binary_bvh::kMaxDepth + 1 <= BVH8_STACK, "the traversal stack must hold a group per level");
@@ -166,19 +164,10 @@ struct Collapser {
     return child_in;
   }
 
-  template <class F>
-  void for_children(std::uint32_t slot, int n, const F& f) const {
-    if (b.nodes[slot].references >= kParallelTriangles) {
-      tbb::parallel_for(0, n, f);
-    } else {
-      for (int i = 0; i < n; ++i) f(i);
-    }
-  }
-
   std::uint32_t count(std::uint32_t slot) {
     const Children c = children(slot);
     std::array<std::uint32_t, kWidth> counts{};
-    for_children(slot, c.count, [&](int i) {
+    binary_bvh::for_children(b.nodes[slot].references, c.count, [&](int i) {
       if (!c.leaf[i]) counts[i] = count(c.node[i]);
     });
     std::uint32_t total = 1;
@@ -270,7 +259,7 @@ struct Collapser {
       next_triangle += k.references;
     }
     std::array<Sums, kWidth> child_sums{};
-    for_children(slot, c.count, [&](int i) {
+    binary_bvh::for_children(b.nodes[slot].references, c.count, [&](int i) {
       if (!c.leaf[i]) child_sums[i] = emit(c.node[i], child_index[i], child_region[i], child_triangles[i], depth + 1);
     });
     for (const Sums& s : child_sums) sums.add(s);

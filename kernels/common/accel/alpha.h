@@ -56,11 +56,7 @@ CO_INLINE float material_alpha(const AlphaView* a, const CO_GLOBAL Material* m, 
 #ifdef COHORT_FEATURE_TEXTURES
   if (m->base_color_texture >= 0) {
     float u, v;
-#ifdef COHORT_FEATURE_TEXCOORD1
-    triangle_uv_at(a->triangle_uvs, 2u * triangle + ((m->flags & MAT_UV1_BASE_COLOR) ? 1u : 0u), b1, b2, &u, &v);
-#else
-    triangle_uv_at(a->triangle_uvs, triangle, b1, b2, &u, &v);
-#endif
+    slot_uv_at(a->triangle_uvs, (m->flags & MAT_UV1_BASE_COLOR) != 0u, triangle, b1, b2, &u, &v);
     alpha = alpha * texture_sample_alpha(a->textures, a->texels, m->base_color_texture, u, v);
   }
 #endif

@@ -150,33 +150,31 @@ CO_INLINE co_vec3 emitted_radiance(const CO_GLOBAL Material* m, co_vec3 n_geo, c
   return le;
 }
 
-/* Texture `index` at barycentric weights (b1, b2) of `triangle`, read with coordinate set 1
- * (TEXCOORD_1) where the material's `uv1_flag` is set, else set 0; 1 where the material has no
- * texture. Without COHORT_FEATURE_TEXTURES every texture is absent and no lookup is compiled. */
-CO_INLINE co_vec3 material_texture(const SceneView* s, const CO_GLOBAL Material* m, int32_t index, uint32_t uv1_flag,
-                                   uint32_t triangle, float b1, float b2) {
+/* Texture `index` (colour channels) at barycentric weights (b1, b2) of `triangle`, read through the
+ * coordinate set `set1` picks (slot_uv_at); 1 where there is no texture (index < 0). Without
+ * COHORT_FEATURE_TEXTURES every texture is absent and no lookup is compiled. */
+CO_INLINE co_vec3 slot_texture(const SceneView* s, int32_t index, int set1, uint32_t triangle, float b1, float b2) {
 #ifdef COHORT_FEATURE_TEXTURES
   if (index >= 0) {
     float u, v;
-#ifdef COHORT_FEATURE_TEXCOORD1
-    triangle_uv_at(s->triangle_uvs, 2u * triangle + ((m->flags & uv1_flag) ? 1u : 0u), b1, b2, &u, &v);
-#else
-    (void)m;
-    (void)uv1_flag;
-    triangle_uv_at(s->triangle_uvs, triangle, b1, b2, &u, &v);
-#endif
+    slot_uv_at(s->triangle_uvs, set1, triangle, b1, b2, &u, &v);
     return texture_sample(s->textures, s->texels, index, u, v);
   }
 #else
   (void)s;
-  (void)m;
   (void)index;
-  (void)uv1_flag;
+  (void)set1;
   (void)triangle;
   (void)b1;
   (void)b2;
 #endif
   return v3_splat(1.0f);
+}
+
+/* A core slot of material `m`: TEXCOORD_1 where the material's `uv1_flag` is set. */
+CO_INLINE co_vec3 material_texture(const SceneView* s, const CO_GLOBAL Material* m, int32_t index, uint32_t uv1_flag,
+                                   uint32_t triangle, float b1, float b2) {
+  return slot_texture(s, index, (m->flags & uv1_flag) != 0u, triangle, b1, b2);
 }
 
 /* The glTF metallic-roughness parameters at a surface point: factors times textures (base colour
@@ -226,23 +224,11 @@ CO_INLINE SheenParams sheen_params(const SceneView* s, uint32_t material, uint32
   p.color = v3_from4(ms.color_roughness);
   p.roughness = ms.color_roughness.w;
 #ifdef COHORT_FEATURE_TEXTURES
-  if (ms.color_texture >= 0 || ms.roughness_texture >= 0) {
+  p.color = v3_mul(p.color, slot_texture(s, ms.color_texture, (ms.flags & MAT_SHEEN_UV1_COLOR) != 0u, triangle, b1, b2));
+  if (ms.roughness_texture >= 0) {
     float u, v;
-#ifdef COHORT_FEATURE_TEXCOORD1
-    if (ms.color_texture >= 0) {
-      triangle_uv_at(s->triangle_uvs, 2u * triangle + ((ms.flags & MAT_SHEEN_UV1_COLOR) ? 1u : 0u), b1, b2, &u, &v);
-      p.color = v3_mul(p.color, texture_sample(s->textures, s->texels, ms.color_texture, u, v));
-    }
-    if (ms.roughness_texture >= 0) {
-      triangle_uv_at(s->triangle_uvs, 2u * triangle + ((ms.flags & MAT_SHEEN_UV1_ROUGHNESS) ? 1u : 0u), b1, b2, &u, &v);
-      p.roughness = p.roughness * texture_sample_alpha(s->textures, s->texels, ms.roughness_texture, u, v);
-    }
-#else
-    triangle_uv_at(s->triangle_uvs, triangle, b1, b2, &u, &v);
-    if (ms.color_texture >= 0) p.color = v3_mul(p.color, texture_sample(s->textures, s->texels, ms.color_texture, u, v));
-    if (ms.roughness_texture >= 0)
-      p.roughness = p.roughness * texture_sample_alpha(s->textures, s->texels, ms.roughness_texture, u, v);
-#endif
+    slot_uv_at(s->triangle_uvs, (ms.flags & MAT_SHEEN_UV1_ROUGHNESS) != 0u, triangle, b1, b2, &u, &v);
+    p.roughness = p.roughness * texture_sample_alpha(s->textures, s->texels, ms.roughness_texture, u, v);
   }
 #else
   (void)triangle;

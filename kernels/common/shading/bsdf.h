@@ -222,6 +222,27 @@ CO_INLINE float microfacet_reflection_pdf(co_vec3 wi, co_vec3 wo, float alpha) {
   if (!(dwo > 0.0f)) return 0.0f;
   return ggx_vndf_pdf(wi, m, alpha) / (4.0f * dwo);
 }
+/* A reflection about a visible normal m sampled from wi (Heitz 2018), with what a rough reflector's
+ * weight needs besides its Fresnel term: wo, its pdf D_wi(m) / (4 wi.m), wi.m and G2 / G1(wi).
+ * 0 when wo falls below the surface (the single-scattering energy loss) or the pdf vanishes. */
+typedef struct MicrofacetReflection {
+  co_vec3 wo;
+  float pdf, dwi, shadowing;
+} MicrofacetReflection;
+CO_INLINE int microfacet_reflection_sample(co_vec3 wi, float alpha, float u1, float u2, MicrofacetReflection* r) {
+  co_vec3 m = ggx_sample_vndf(wi, alpha, u1, u2);
+  co_vec3 wo = v3_reflect(wi, m);
+  if (!(wo.z > 0.0f)) return 0;
+  float dwi = v3_dot(wi, m);
+  float pdf = ggx_vndf_pdf(wi, m, alpha) / (4.0f * dwi);
+  float g1 = ggx_g1(wi, m, alpha);
+  if (!(pdf > 0.0f) || !(g1 > 0.0f)) return 0;
+  r->wo = wo;
+  r->pdf = pdf;
+  r->dwi = dwi;
+  r->shadowing = ggx_g2(wi, wo, m, alpha) / g1;
+  return 1;
+}
 CO_INLINE float conductor_pdf(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
   if (b->alpha < BSDF_SMOOTH_ALPHA) return 0.0f;
   return microfacet_reflection_pdf(wi, wo, b->alpha);
@@ -236,16 +257,11 @@ CO_INLINE BsdfSample conductor_sample(const Bsdf* b, co_vec3 wi, float u1, float
     s.flags = BSDF_REFLECTION | BSDF_DELTA;
     return s;
   }
-  co_vec3 m = ggx_sample_vndf(wi, b->alpha, u1, u2);
-  co_vec3 wo = v3_reflect(wi, m);
-  if (!(wo.z > 0.0f)) return s; /* reflected below the surface: the single-scattering energy loss */
-  float dwi = v3_dot(wi, m);
-  float pdf = ggx_vndf_pdf(wi, m, b->alpha) / (4.0f * dwi);
-  float g1 = ggx_g1(wi, m, b->alpha);
-  if (!(pdf > 0.0f) || !(g1 > 0.0f)) return s;
-  s.wo = wo;
-  s.pdf = pdf;
-  s.weight = v3_scale(fresnel_schlick(b->color, dwi), ggx_g2(wi, wo, m, b->alpha) / g1);
+  MicrofacetReflection r;
+  if (!microfacet_reflection_sample(wi, b->alpha, u1, u2, &r)) return s;
+  s.wo = r.wo;
+  s.pdf = r.pdf;
+  s.weight = v3_scale(fresnel_schlick(b->color, r.dwi), r.shadowing);
   s.flags = BSDF_REFLECTION | BSDF_GLOSSY;
   return s;
 }
@@ -463,16 +479,11 @@ CO_INLINE BsdfSample coat_sample(const Bsdf* b, co_vec3 wi, float u1, float u2) 
     s.flags = BSDF_REFLECTION | BSDF_DELTA;
     return s;
   }
-  co_vec3 m = ggx_sample_vndf(wi, b->alpha, u1, u2);
-  co_vec3 wo = v3_reflect(wi, m);
-  if (!(wo.z > 0.0f)) return s; /* below the surface: the single-scattering energy loss */
-  float dwi = v3_dot(wi, m);
-  float pdf = ggx_vndf_pdf(wi, m, b->alpha) / (4.0f * dwi);
-  float g1 = ggx_g1(wi, m, b->alpha);
-  if (!(pdf > 0.0f) || !(g1 > 0.0f)) return s;
-  s.wo = wo;
-  s.pdf = pdf;
-  s.weight = v3_splat(b->spec_weight * fresnel_dielectric_r(dwi, b->eta) * (ggx_g2(wi, wo, m, b->alpha) / g1));
+  MicrofacetReflection r;
+  if (!microfacet_reflection_sample(wi, b->alpha, u1, u2, &r)) return s;
+  s.wo = r.wo;
+  s.pdf = r.pdf;
+  s.weight = v3_splat(b->spec_weight * fresnel_dielectric_r(r.dwi, b->eta) * r.shadowing);
   s.flags = BSDF_REFLECTION | BSDF_GLOSSY;
   return s;
 }

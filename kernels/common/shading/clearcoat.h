@@ -14,34 +14,6 @@
 
 #define CLEARCOAT_ETA 1.5f /* glTF: the coat's IOR is fixed at 1.5 */
 
-/* Texture `index` of a coat at (b1, b2), read with TEXCOORD_1 where the coat's `uv1_flag` is set
- * (material_texture's rule with the coat's flags); 1 without a texture. */
-CO_INLINE co_vec3 coat_texture(const SceneView* s, const CO_GLOBAL MaterialCoat* c, int32_t index, uint32_t uv1_flag,
-                               uint32_t triangle, float b1, float b2) {
-#ifdef COHORT_FEATURE_TEXTURES
-  if (index >= 0) {
-    float u, v;
-#ifdef COHORT_FEATURE_TEXCOORD1
-    triangle_uv_at(s->triangle_uvs, 2u * triangle + ((c->flags & uv1_flag) ? 1u : 0u), b1, b2, &u, &v);
-#else
-    (void)c;
-    (void)uv1_flag;
-    triangle_uv_at(s->triangle_uvs, triangle, b1, b2, &u, &v);
-#endif
-    return texture_sample(s->textures, s->texels, index, u, v);
-  }
-#else
-  (void)s;
-  (void)c;
-  (void)index;
-  (void)uv1_flag;
-  (void)triangle;
-  (void)b1;
-  (void)b2;
-#endif
-  return v3_splat(1.0f);
-}
-
 /* The outcome of the coat's choice at a shading point: when `chosen`, the coat's BSDF, its frame
  * and wi in that frame replace the base's; otherwise u_rest is u_select remapped to [0, 1) given
  * "not the coat", for bsdf_from_gltf. */
@@ -64,13 +36,13 @@ CO_INLINE CoatChoice coat_choose(const SceneView* s, uint32_t material, uint32_t
   const CO_GLOBAL MaterialCoat* c = &s->material_coats[material];
   if (!(c->factor > 0.0f)) return r;
   float weight = c->factor;
-  if (c->factor_texture >= 0) weight = weight * coat_texture(s, c, c->factor_texture, COAT_UV1_FACTOR, triangle, b1, b2).x;
+  if (c->factor_texture >= 0) weight = weight * slot_texture(s, c->factor_texture, (c->flags & COAT_UV1_FACTOR) != 0u, triangle, b1, b2).x;
   weight = fmin(weight, 1.0f);
   r.frame = frame_from_normal(n_geo);
 #ifdef COHORT_FEATURE_NORMAL_MAP
   if (c->normal_texture >= 0) {
     co_vec3 ns = tangent_space_normal(s, triangle, b1, b2, n_geo,
-                                      coat_texture(s, c, c->normal_texture, COAT_UV1_NORMAL, triangle, b1, b2),
+                                      slot_texture(s, c->normal_texture, (c->flags & COAT_UV1_NORMAL) != 0u, triangle, b1, b2),
                                       c->normal_scale);
     if (v3_dot(ns, dir) * v3_dot(n_geo, dir) > 0.0f) {
       r.frame = frame_from_normal(ns);
@@ -86,7 +58,7 @@ CO_INLINE CoatChoice coat_choose(const SceneView* s, uint32_t material, uint32_t
   }
   float roughness = c->roughness;
   if (c->roughness_texture >= 0)
-    roughness = roughness * coat_texture(s, c, c->roughness_texture, COAT_UV1_ROUGHNESS, triangle, b1, b2).y;
+    roughness = roughness * slot_texture(s, c->roughness_texture, (c->flags & COAT_UV1_ROUGHNESS) != 0u, triangle, b1, b2).y;
   roughness = fmin(fmax(roughness, 0.0f), 1.0f);
   r.chosen = 1;
   r.bsdf = bsdf_coat(CLEARCOAT_ETA, roughness * roughness, weight / q);

@@ -172,4 +172,17 @@ CO_INLINE void triangle_uv_at(const CO_GLOBAL TriangleUv* uvs, uint32_t triangle
   *v = t.v0 * b0 + t.v1 * b1 + t.v2 * b2;
 }
 
+/* The coordinates a texture slot reads at (b1, b2) of kept triangle `triangle`: set 1 (TEXCOORD_1)
+ * where `set1`, else set 0. Both sets are stored (two TriangleUv per triangle) only with
+ * COHORT_FEATURE_TEXCOORD1; without it every slot reads set 0. */
+CO_INLINE void slot_uv_at(const CO_GLOBAL TriangleUv* uvs, int set1, uint32_t triangle, float b1, float b2, float* u,
+                          float* v) {
+#ifdef COHORT_FEATURE_TEXCOORD1
+  triangle_uv_at(uvs, 2u * triangle + (set1 ? 1u : 0u), b1, b2, u, v);
+#else
+  (void)set1;
+  triangle_uv_at(uvs, triangle, b1, b2, u, v);
+#endif
+}
+
 #endif
