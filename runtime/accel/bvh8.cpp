@@ -70,7 +70,7 @@ float decoded(const Grid& g, int q) {
 
 std::uint32_t unary(std::uint32_t count) { return (1u << count) - 1u; }
 
-struct Collapser {
+struct Bvh8Collapser {
   const binary_bvh::Tree& b;
   std::span<const Triangle> triangles;
   float pad;  // as the 4-wide BVH's boxes (bvh4_traverse.h says why)
@@ -90,7 +90,7 @@ struct Collapser {
     }
   };
 
-  Collapser(const binary_bvh::Tree& tree, std::span<const Triangle> tris)
+  Bvh8Collapser(const binary_bvh::Tree& tree, std::span<const Triangle> tris)
       : b(tree), triangles(tris), pad(tree.pad()),
         subtree_nodes(std::make_unique_for_overwrite<std::uint32_t[]>(2 * b.size - 1)) {}
 
@@ -302,8 +302,8 @@ Bvh8 build_bvh8(std::span<const Triangle> triangles) {
                                  triangles.size(), references.size, kMost));
   const binary_bvh::Tree binary = binary_bvh::build(references, BVH8_LEAF_MAX);
   Bvh8 bvh;
-  Collapser collapser(binary, triangles);
-  const Collapser::Sums sums = collapser.collapse(bvh);
+  Bvh8Collapser collapser(binary, triangles);
+  const Bvh8Collapser::Sums sums = collapser.collapse(bvh);
   bvh.stats.node_count = bvh.nodes.size();
   bvh.stats.references = references.size;
   bvh.stats.leaf_count = sums.leaves;

@@ -14,6 +14,7 @@
 
 #include "accel/ray_check.h"
 #include "accel/test_meshes.h"
+#include "accel/tree_check.h"
 #include "runtime/accel/host_traversal.h"
 #include "runtime/util/error.h"
 
@@ -101,12 +102,6 @@ std::vector<std::string> structure_errors(const Bvh4& bvh, const KdTree& tree) {
   if (deepest > BVH4_MAX_DEPTH) errors.push_back(fmt::format("depth {} over BVH4_MAX_DEPTH", deepest));
   if (errors.size() > 10) errors.resize(10);
   return errors;
-}
-
-KdTree kept_triangles(const std::vector<glm::vec3>& positions) {
-  KdBuildOptions one_leaf;
-  one_leaf.leaf_triangles = INT_MAX;
-  return build_kdtree(positions, one_leaf);
 }
 
 // Feature rays (at shared vertices and edge midpoints), rays from split planes and random ones: closest hit through the BVH

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <optional>
 #include <utility>
@@ -223,6 +224,12 @@ std::string summary(const KdTree& tree) {
       s.leaf_count, s.empty_leaf_count, s.leaf_references,
       tree.triangles.empty() ? 0.0 : double(s.leaf_references) / double(tree.triangles.size()),
       s.average_leaf_triangles, s.sah_cost, double(s.bytes) / (1 << 20));
+}
+
+KdTree kept_triangles(const std::vector<glm::vec3>& positions) {
+  KdBuildOptions one_leaf;
+  one_leaf.leaf_triangles = INT_MAX;
+  return build_kdtree(positions, one_leaf);
 }
 
 }  // namespace cohort::test

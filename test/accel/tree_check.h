@@ -24,4 +24,8 @@ std::vector<std::string> coverage_errors(const KdTree& tree);
 // One line of stats for the test log.
 std::string summary(const KdTree& tree);
 
+// The kept triangles of `positions` (degenerate ones dropped, as every tree keeps them) in a
+// KD-tree of one leaf: what the BVH builders take and brute force checks against.
+KdTree kept_triangles(const std::vector<glm::vec3>& positions);
+
 }  // namespace cohort::test
