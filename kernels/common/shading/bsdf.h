@@ -504,10 +504,15 @@ CO_INLINE float bsdf_side(const Bsdf* b, co_vec3 wi) {
   return (!bsdf_has_transmission(b) && wi.z < 0.0f) ? -1.0f : 1.0f;
 }
 
-CO_INLINE co_vec3 bsdf_eval(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
-  float side = bsdf_side(b, wi);
-  wi.z *= side;
-  wo.z *= side;
+/* The dispatchers below mirror wi and wo into local copies, never into their by-value parameters:
+ * Mesa's rusticl (llvmpipe, LLVM 15) let such a write reach the caller's variable, so a later call
+ * with the same arguments saw them mirrored (its BSDF device test failed on a two-sided BSDF seen
+ * from below, 2026-12-05). */
+CO_INLINE co_vec3 bsdf_mirrored(co_vec3 w, float side) { return v3(w.x, w.y, w.z * side); }
+
+CO_INLINE co_vec3 bsdf_eval(const Bsdf* b, co_vec3 wi_in, co_vec3 wo_in) {
+  float side = bsdf_side(b, wi_in);
+  co_vec3 wi = bsdf_mirrored(wi_in, side), wo = bsdf_mirrored(wo_in, side);
   if (b->type == BSDF_DIFFUSE) return diffuse_eval(b, wi, wo);
 #if BSDF_WITH_CONDUCTOR
   if (b->type == BSDF_CONDUCTOR) return conductor_eval(b, wi, wo);
@@ -527,10 +532,9 @@ CO_INLINE co_vec3 bsdf_eval(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
   return v3_splat(0.0f);
 }
 
-CO_INLINE float bsdf_pdf(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
-  float side = bsdf_side(b, wi);
-  wi.z *= side;
-  wo.z *= side;
+CO_INLINE float bsdf_pdf(const Bsdf* b, co_vec3 wi_in, co_vec3 wo_in) {
+  float side = bsdf_side(b, wi_in);
+  co_vec3 wi = bsdf_mirrored(wi_in, side), wo = bsdf_mirrored(wo_in, side);
   if (b->type == BSDF_DIFFUSE) return diffuse_pdf(wi, wo);
 #if BSDF_WITH_CONDUCTOR
   if (b->type == BSDF_CONDUCTOR) return conductor_pdf(b, wi, wo);
@@ -551,9 +555,9 @@ CO_INLINE float bsdf_pdf(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
 }
 
 /* u_lobe picks the lobe (Fresnel or coat choice), (u1, u2) the direction; all in [0, 1). */
-CO_INLINE BsdfSample bsdf_sample(const Bsdf* b, co_vec3 wi, float u_lobe, float u1, float u2) {
-  float side = bsdf_side(b, wi);
-  wi.z *= side;
+CO_INLINE BsdfSample bsdf_sample(const Bsdf* b, co_vec3 wi_in, float u_lobe, float u1, float u2) {
+  float side = bsdf_side(b, wi_in);
+  co_vec3 wi = bsdf_mirrored(wi_in, side);
   BsdfSample s;
   if (b->type == BSDF_DIFFUSE) s = diffuse_sample(b, wi, u1, u2);
 #if BSDF_WITH_CONDUCTOR
