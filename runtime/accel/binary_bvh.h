@@ -3,6 +3,7 @@
 // tree over them, and what both collapses share.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -64,6 +65,20 @@ struct ReferenceChunks {
 
 // Early split clipping (make_references in binary_bvh.cpp says how and why).
 ReferenceChunks make_references(std::span<const Triangle> triangles);
+
+// What a subtree of a wide BVH adds to the tree's statistics, summed as a collapse emits it (in
+// lane or slot order, so the sums do not depend on the thread count).
+struct SubtreeSums {
+  std::size_t leaves = 0;
+  int depth = 0;
+  double sah = 0;  // area x cost over nodes and leaves; divided by the root's area at the end
+  void add(const SubtreeSums& o) {
+    leaves += o.leaves;
+    depth = std::max(depth, o.depth);
+    sah += o.sah;
+  }
+};
+
 
 struct Tree {
   std::size_t size = 0;                       // references

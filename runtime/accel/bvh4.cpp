@@ -47,17 +47,7 @@ struct Collapser {
   std::unique_ptr<std::uint32_t[]> subtree_nodes;
   Bvh4Node* out = nullptr;
 
-  // What a subtree adds to the tree's statistics; joined in lane order.
-  struct Sums {
-    std::size_t leaves = 0;
-    int depth = 0;
-    double sah = 0;  // area x cost over nodes and leaves; divided by the root's area at the end
-    void add(const Sums& o) {
-      leaves += o.leaves;
-      depth = std::max(depth, o.depth);
-      sah += o.sah;
-    }
-  };
+  using Sums = binary_bvh::SubtreeSums;
 
   Collapser(const binary_bvh::Tree& builder, float pad_)
       : b(builder), pad(pad_), subtree_nodes(std::make_unique_for_overwrite<std::uint32_t[]>(2 * b.size - 1)) {}

@@ -79,16 +79,7 @@ struct Bvh8Collapser {
   Bvh8Node* out_nodes = nullptr;
   Triangle* out_triangles = nullptr;
 
-  struct Sums {
-    std::size_t leaves = 0;
-    int depth = 0;
-    double sah = 0;  // area x cost over nodes and leaves; divided by the root's area at the end
-    void add(const Sums& o) {
-      leaves += o.leaves;
-      depth = std::max(depth, o.depth);
-      sah += o.sah;
-    }
-  };
+  using Sums = binary_bvh::SubtreeSums;
 
   Bvh8Collapser(const binary_bvh::Tree& tree, std::span<const Triangle> tris)
       : b(tree), triangles(tris), pad(tree.pad()),
