@@ -231,11 +231,13 @@ void add_textures(const Scene& scene, const KdTree& tree, const std::vector<bool
     slot(m.emission_texture, used[i], sm.emission_texcoord, sm.emission_transform);
     slot(m.metallic_roughness_texture, used[i], sm.metallic_roughness_texcoord, sm.metallic_roughness_transform);
     slot(m.normal_texture, used[i], sm.normal_texcoord, sm.normal_transform);
-    // the sheen's textures, uploaded only where the material has a sheen
-    MaterialSheen& sheen = t.material_sheen[i];
-    const bool sheen_used = used[i] && sm.sheen.present();
-    slot(sheen.color_texture, sheen_used, sm.sheen.color_texcoord, sm.sheen.color_transform);
-    slot(sheen.roughness_texture, sheen_used, sm.sheen.roughness_texcoord, sm.sheen.roughness_transform);
+    if (t.features.sheen) {
+      // the sheen's textures, uploaded only where the material has a sheen
+      MaterialSheen& sheen = t.material_sheen[i];
+      const bool sheen_used = used[i] && sm.sheen.present();
+      slot(sheen.color_texture, sheen_used, sm.sheen.color_texcoord, sm.sheen.color_transform);
+      slot(sheen.roughness_texture, sheen_used, sm.sheen.roughness_texcoord, sm.sheen.roughness_transform);
+    }
     t.features.normal_map |= m.normal_texture >= 0;
     if (!t.features.clearcoat) continue;
     // a coat's textures only where the coat is there (factor > 0): a scene without one uploads none
@@ -323,10 +325,7 @@ void add_vertex_colors(const Scene& scene, const KdTree& tree, SceneTables& t) {
 
 SceneTables make_scene_tables(const Scene& scene, const KdTree& tree) {
   SceneTables t;
-  for (const auto& m : scene.materials) {
-    t.materials.push_back(to_device_material(m));
-    t.material_sheen.push_back(to_device_sheen(m));
-  }
+  for (const auto& m : scene.materials) t.materials.push_back(to_device_material(m));
   t.triangle_material.reserve(tree.source_index.size());
   for (std::uint32_t src : tree.source_index) t.triangle_material.push_back(scene.material_ids.at(src));
   std::vector<bool> used(t.materials.size(), false);
@@ -335,6 +334,10 @@ SceneTables make_scene_tables(const Scene& scene, const KdTree& tree) {
     t.features.clearcoat |= used[i] && scene.materials[i].clearcoat.factor > 0.f;
   if (t.features.clearcoat)
     for (const auto& m : scene.materials) t.material_coats.push_back(to_device_coat(m.clearcoat));
+  // the sheen's table likewise, only where a used material has one (the programs take it only then)
+  for (std::size_t i = 0; i < t.materials.size(); ++i) t.features.sheen |= used[i] && scene.materials[i].sheen.present();
+  if (t.features.sheen)
+    for (const auto& m : scene.materials) t.material_sheen.push_back(to_device_sheen(m));
   add_textures(scene, tree, used, t);  // first: a texture left out selects no more families
   add_vertex_colors(scene, tree, t);
   add_frames(scene, tree, t);
@@ -346,9 +349,7 @@ SceneTables make_scene_tables(const Scene& scene, const KdTree& tree) {
     t.features.plastic |= f.plastic;
     t.features.volume |= f.volume;
     t.features.alpha |= (t.materials[i].flags & (MAT_ALPHA_MASK | MAT_ALPHA_BLEND)) != 0u;
-    t.features.sheen |= scene.materials[i].sheen.present();
   }
-  if (!t.features.sheen) t.material_sheen.clear();  // the programs take no sheen table: nothing goes up
   // the path slot keeps the medium, 1 + a material index, as a float (wavefront_path.h): exact below 2^24
   if (t.features.volume && t.materials.size() >= (std::size_t{1} << 24) - 1)
     throw InputError(fmt::format("{} materials: volumes (KHR_materials_volume) need fewer than 2^24 - 1",
