@@ -135,12 +135,10 @@ CO_INLINE Bsdf bsdf_sheen(co_vec3 color, float roughness) {
 CO_INLINE co_vec3 sheen_eval(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
   return v3_scale(b->color, sheen_lobe(wi, wo, b->alpha));
 }
+/* Sampled as the Lambertian is (its direction and pdf, as bsdf_pdf's diffuse_pdf), weighted by the lobe. */
 CO_INLINE BsdfSample sheen_sample(const Bsdf* b, co_vec3 wi, float u1, float u2) {
-  BsdfSample s = bsdf_no_sample();
-  if (!(wi.z > 0.0f)) return s;
-  s.wo = sample_cosine_local(u1, u2);
-  s.pdf = s.wo.z * CO_INV_PI;
-  if (!(s.pdf > 0.0f)) return bsdf_no_sample();
+  BsdfSample s = diffuse_sample(b, wi, u1, u2);
+  if (s.flags == 0u) return s;
   s.weight = v3_scale(sheen_eval(b, wi, s.wo), 1.0f / s.pdf);
   s.flags = BSDF_REFLECTION | BSDF_GLOSSY;
   return s;
