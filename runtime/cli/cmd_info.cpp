@@ -71,11 +71,17 @@ int run_info(const std::filesystem::path& path, const std::string& tree) {
                                         m.sheen.color.y, m.sheen.color.z, m.sheen.roughness,
                                         m.sheen.color_texture >= 0 || m.sheen.roughness_texture >= 0 ? ", textured" : "")
                           : std::string();
+    const std::string specular =
+        m.specular.present()
+            ? fmt::format(", specular {:.3g} colour ({:.3g}, {:.3g}, {:.3g}){}", m.specular.factor, m.specular.color.x,
+                          m.specular.color.y, m.specular.color.z,
+                          m.specular.texture >= 0 || m.specular.color_texture >= 0 ? ", textured" : "")
+            : std::string();
     fmt::print("  [{}] {}: base colour ({:.3g}, {:.3g}, {:.3g}), metallic {:.3g}, roughness {:.3g}, emission ({:.3g}, "
-               "{:.3g}, {:.3g}){}{}{}{}{}\n",
+               "{:.3g}, {:.3g}){}{}{}{}{}{}\n",
                i, m.name.empty() ? "(unnamed)" : m.name, m.base_color.x, m.base_color.y, m.base_color.z, m.metallic,
                m.roughness, m.emission.x, m.emission.y, m.emission.z, m.base_color_texture >= 0 ? ", textured" : "",
-               alpha, volume, coat, sheen);
+               alpha, volume, coat, sheen, specular);
   }
   const std::size_t unread = p.scene.unread_textures.size();
   fmt::print("textures: {}{}\n", p.scene.textures.size(),

@@ -350,6 +350,38 @@ SceneSheen read_sheen(const tinygltf::Material& m, TextureTable& textures, std::
   return out;
 }
 
+// KHR_materials_specular: specularFactor (a number in [0, 1], default 1), specularColorFactor (three
+// numbers >= 0, linear, default 1; glTF allows them above 1, the f0 they tint is clamped to 1),
+// specularTexture (A, linear data) and specularColorTexture (RGB, sRGB colour), each texture with its
+// texCoord and KHR_texture_transform as the core slots have. Wrong types, values outside the schema's
+// ranges and textures that do not exist are a broken file.
+SceneSpecular read_specular(const tinygltf::Material& m, TextureTable& textures, std::size_t texture_count,
+                            const std::string& where) {
+  SceneSpecular out;
+  const auto it = m.extensions.find("KHR_materials_specular");
+  if (it == m.extensions.end()) return out;
+  const ExtensionReader r(it->second, fmt::format("{}: KHR_materials_specular", where));
+  const tinygltf::Value& e = r.value();
+  r.unit("specularFactor", out.factor);
+  if (e.Has("specularColorFactor")) {
+    const tinygltf::Value& c = e.Get("specularColorFactor");
+    if (!c.IsArray() || c.ArrayLen() != 3) r.fail("specularColorFactor is not an array of three numbers");
+    for (int i = 0; i < 3; ++i) {
+      const double v = r.number(c.Get(i), "specularColorFactor");
+      if (!(v >= 0.0) || v > double(std::numeric_limits<float>::max()))
+        r.fail(fmt::format("specularColorFactor ({}, {}, {}) has a negative or too large component",
+                           c.Get(0).GetNumberAsDouble(), c.Get(1).GetNumberAsDouble(), c.Get(2).GetNumberAsDouble()));
+      out.color[i] = static_cast<float>(v);
+    }
+  }
+  const std::string of = m.name.empty() ? "" : fmt::format(" of '{}'", m.name);
+  read_extension_texture(r, "specularTexture", texture_count, textures, false, "specular factor (A)", of,
+                         out.texture, out.texcoord, out.transform);
+  read_extension_texture(r, "specularColorTexture", texture_count, textures, true, "specular colour (RGB)", of,
+                         out.color_texture, out.color_texcoord, out.color_transform);
+  return out;
+}
+
 SceneMaterial convert(const tinygltf::Material& m, TextureTable& textures) {
   const auto& pbr = m.pbrMetallicRoughness;
   SceneMaterial out;
@@ -399,6 +431,7 @@ void convert_materials(const tinygltf::Model& model, const std::string& file, Sc
     out.absorption = read_volume(m, model.textures.size(), where);
     out.clearcoat = read_clearcoat(m, textures, model.textures.size(), where);
     out.sheen = read_sheen(m, textures, model.textures.size(), where);
+    out.specular = read_specular(m, textures, model.textures.size(), where);
     const auto transform = [&](const tinygltf::ExtensionMap& extensions, int tex_coord, const char* slot,
                                UvTransform& x, int& set) {
       x = read_transform(extensions, tex_coord, fmt::format("{}: {}", where, slot));

@@ -23,7 +23,7 @@ constexpr std::array kImplemented = {
     std::string_view("KHR_materials_ior"), std::string_view("KHR_mesh_quantization"),
     std::string_view("KHR_lights_punctual"), std::string_view("KHR_texture_transform"),
     std::string_view("KHR_materials_volume"), std::string_view("KHR_materials_clearcoat"),
-    std::string_view("KHR_materials_sheen")};
+    std::string_view("KHR_materials_sheen"), std::string_view("KHR_materials_specular")};
 
 // A texture reference of a material (glTF's textureInfo and its normal and occlusion variants), with
 // the coordinate set it reads (KHR_texture_transform's texCoord replaces the reference's own).
@@ -50,9 +50,10 @@ std::vector<TextureRef> honoured_textures(const tinygltf::Material& m) {
   if (m.normalTexture.index >= 0)
     out.push_back(texture_ref(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions));
   // the textureInfos of the material extensions the loader reads (it has checked their types)
-  constexpr std::array<std::pair<const char*, std::array<const char*, 3>>, 2> kExtensionSlots = {{
+  constexpr std::array<std::pair<const char*, std::array<const char*, 3>>, 3> kExtensionSlots = {{
       {"KHR_materials_clearcoat", {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}},
       {"KHR_materials_sheen", {"sheenColorTexture", "sheenRoughnessTexture", nullptr}},
+      {"KHR_materials_specular", {"specularTexture", "specularColorTexture", nullptr}},
   }};
   for (const auto& [extension, slots] : kExtensionSlots) {
     const auto it = m.extensions.find(extension);
@@ -83,10 +84,34 @@ struct Unhonoured {
   std::string extension = {};  // the extension this feature is, if one
 };
 
+// A KHR_materials_specular of other than default values (or with a texture) on a material that also
+// transmits (KHR_materials_transmission): the specular layering is the opaque dielectric's only
+// (docs/bsdf.md, "Specular"), so its transmissive part keeps the exact Fresnel of its IOR.
+bool specular_on_transmission(const tinygltf::Material& m) {
+  const auto s = m.extensions.find("KHR_materials_specular");
+  const auto t = m.extensions.find("KHR_materials_transmission");
+  if (s == m.extensions.end() || t == m.extensions.end() || !s->second.IsObject() || !t->second.IsObject())
+    return false;
+  const tinygltf::Value& f = t->second.Get("transmissionFactor");
+  if (!(f.IsNumber() && f.GetNumberAsDouble() > 0.0) && !t->second.Has("transmissionTexture")) return false;
+  const tinygltf::Value& e = s->second;
+  const auto is_one = [](const tinygltf::Value& v) { return v.IsNumber() && v.GetNumberAsDouble() == 1.0; };
+  bool default_colour = true;
+  if (e.Has("specularColorFactor")) {
+    const tinygltf::Value& c = e.Get("specularColorFactor");
+    default_colour = c.IsArray() && c.ArrayLen() == 3 && is_one(c.Get(0)) && is_one(c.Get(1)) && is_one(c.Get(2));
+  }
+  return (e.Has("specularFactor") && !is_one(e.Get("specularFactor"))) || !default_colour ||
+         e.Has("specularTexture") || e.Has("specularColorTexture");
+}
+
 std::vector<Unhonoured> unhonoured_features() {
   return {
       {"textures read with TEXCOORD_2 or above (TEXCOORD_0 used)",
        [](const auto&, const auto& m) { return any_texture(m, [](const TextureRef& t) { return t.tex_coord > 1; }); }},
+      {"KHR_materials_specular on the transmission (KHR_materials_transmission) of a material (its refraction and "
+       "reflection keep the exact Fresnel of its IOR; the specular layering is its opaque part's only)",
+       [](const auto&, const auto& m) { return specular_on_transmission(m); }},
   };
 }
 
@@ -172,7 +197,9 @@ void report_missing_coordinates(const std::string& file, Scene& scene) {
              (m.clearcoat.roughness_texture >= 0 && m.clearcoat.roughness_texcoord == set) ||
              (m.clearcoat.normal_texture >= 0 && m.clearcoat.normal_texcoord == set) ||
              (m.sheen.color_texture >= 0 && m.sheen.color_texcoord == set) ||
-             (m.sheen.roughness_texture >= 0 && m.sheen.roughness_texcoord == set);
+             (m.sheen.roughness_texture >= 0 && m.sheen.roughness_texcoord == set) ||
+             (m.specular.texture >= 0 && m.specular.texcoord == set) ||
+             (m.specular.color_texture >= 0 && m.specular.color_texcoord == set);
     }));
   };
   for (int set : {0, 1})

@@ -70,6 +70,11 @@ void check_material(const SceneMaterial& m, std::size_t index, const std::filesy
     if (!std::isfinite(value) || value < 0.f) fail(fmt::format("{} {} is negative or not finite", name, value));
   if (!std::isfinite(m.clearcoat.normal_scale))
     fail(fmt::format("clearcoat normal scale {} is not finite", m.clearcoat.normal_scale));
+  if (!(m.specular.factor >= 0.f && m.specular.factor <= 1.f))
+    fail(fmt::format("specular factor {} is outside [0, 1]", m.specular.factor));
+  if (!finite_and_non_negative(m.specular.color))
+    fail(fmt::format("specular colour ({}, {}, {}) is negative or not finite", m.specular.color.x, m.specular.color.y,
+                     m.specular.color.z));
 }
 
 void check_loaded(const Scene& scene, const std::filesystem::path& path) {

@@ -55,6 +55,18 @@ struct SceneSheen {
   bool present() const { return color.x > 0.f || color.y > 0.f || color.z > 0.f; }
 };
 
+// glTF KHR_materials_specular of a material (docs/bsdf.md, "Specular"): the strength and colour of the
+// dielectric's specular reflection. Default values and no texture are the material without it.
+struct SceneSpecular {
+  float factor = 1.f;          // specularFactor, in [0, 1]
+  glm::vec3 color{1.f};        // specularColorFactor, linear, >= 0
+  int texture = -1;            // specularTexture (linear data): its A multiplies the factor
+  int color_texture = -1;      // specularColorTexture (sRGB colour): its RGB multiplies the colour
+  int texcoord = 0, color_texcoord = 0;     // the coordinate set each texture reads
+  UvTransform transform, color_transform;  // each texture's KHR_texture_transform
+  bool present() const { return factor != 1.f || color != glm::vec3(1.f) || texture >= 0 || color_texture >= 0; }
+};
+
 struct SceneMaterial {
   std::string name;
   glm::vec3 base_color{0.8f};
@@ -87,6 +99,7 @@ struct SceneMaterial {
   AlphaMode alpha_mode = AlphaMode::opaque;
   float alpha_cutoff = 0.5f;    // glTF alphaCutoff, read with MASK only
   SceneSheen sheen;             // KHR_materials_sheen
+  SceneSpecular specular;       // KHR_materials_specular
   bool is_emissive() const { return emission.x > 0.f || emission.y > 0.f || emission.z > 0.f; }
 };
 

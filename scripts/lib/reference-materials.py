@@ -4,8 +4,8 @@
 
 The sibling of scripts/reference-scenes.py (same room, camera, light, film and passes; its geometry and
 glTF camera helpers are reused): each scene goes to scenes/reference/NAME.gltf with its textures as
-PNG data URIs, and the same triangles, with texture coordinates, to Mitsuba 3 (scalar_rgb; the clearcoat
-scene llvm_ad_rgb, with DRJIT_LIBLLVM_PATH found below) with the matching plugins. Texels reach Mitsuba already decoded to linear floats (raw bitmaps), as Cohort
+PNG data URIs, and the same triangles, with texture coordinates, to Mitsuba 3 (scalar_rgb; the clearcoat,
+sheen and specular scenes llvm_ad_rgb, with DRJIT_LIBLLVM_PATH found below) with the matching plugins. Texels reach Mitsuba already decoded to linear floats (raw bitmaps), as Cohort
 decodes them (sRGB for colour, byte / 255 for data), so the filters and wrap modes compare alone.
 
   textured-mr    a panel whose metallic-roughness texture (NEAREST) makes a checker of rough metal
@@ -37,6 +37,13 @@ decodes them (sRGB for colour, byte / 255 for data), so the filters and wrap mod
                  no Charlie sheen, so a Python BSDF (gltf_sheen below, llvm_ad_rgb) written from the
                  specification's formulas, with its own albedo table integrated here, layers it over
                  Mitsuba's own diffuse plugin
+  specular       three panels under glTF's KHR_materials_specular: a grey Lambertian base at roughness 0.3
+                 with specularFactor 0.3 and specularColor (3, 1.5, 0.5), a smooth blue one with specular 1
+                 and colour (6, 3, 1.5) (f0 tinted up to 0.24), and a green one at roughness 0.5 whose factor
+                 (A) and colour (RGB, sRGB) come from NEAREST checker textures; Mitsuba has no glTF
+                 specular, so a Python BSDF (gltf_specular below, llvm_ad_rgb) written from the
+                 specification with the exact Fresnel's shape mixes Mitsuba's own diffuse plugin and a GGX
+                 reflection of Mitsuba's MicrofacetDistribution
   (Mitsuba's path integrator counts a pass through a mask as a path segment where Cohort's does not,
   and its shadow rays stop at masks: the alpha scenes use max_depth 24, where both have converged to
   the unbounded answer of this open room)
@@ -62,7 +69,7 @@ from reference_common import reference_arguments  # noqa: E402
 # --help answers before the imports below, which need the venv's packages
 ARGS = reference_arguments(__doc__, "the glTF files") if __name__ == "__main__" else None
 
-# llvm_ad_rgb (the clearcoat and sheen scenes) needs Dr.Jit to find libLLVM: the newest libLLVM-N.so installed
+# llvm_ad_rgb (the clearcoat, sheen and specular scenes) needs Dr.Jit to find libLLVM: the newest libLLVM-N.so installed
 if "DRJIT_LIBLLVM_PATH" not in os.environ:
     import glob
     import re
@@ -227,6 +234,24 @@ def sheen(base, colour, roughness, texels=None, sampler=None):
             "sampler": sampler}
 
 
+def specular_checker(n=4):
+    """Texels of the specular panel: RGB an sRGB checker of two colours (specularColorTexture), A a checker
+    of 255 and 64 (specularTexture), offset by one texel so that the two do not coincide."""
+    t = np.zeros((n, n, 4), dtype=np.uint8)
+    for y in range(n):
+        for x in range(n):
+            t[y, x, :3] = (255, 140, 40) if (x + y) % 2 == 0 else (60, 170, 255)
+            t[y, x, 3] = 255 if (x + y // 2) % 2 == 0 else 64
+    return t
+
+
+def specular(base, roughness, factor, colour, texels=None, sampler=None):
+    """A Lambertian of colour `base` (not metal, `roughness`) under KHR_materials_specular: specularFactor
+    `factor` (times the texture's A) and specularColorFactor `colour` (times its RGB), where there is one."""
+    return {"kind": "specular", "base": base, "roughness": roughness, "factor": factor, "colour": colour,
+            "texels": texels, "sampler": sampler}
+
+
 def room_with(panels, light=True):
     shapes = [("ground", (*rs.quad([-4, 0, 4], [8, 0, 0], [0, 0, -8]), None), rs.diffuse([0.5, 0.5, 0.5])),
               ("wall", (*rs.quad([-4, 0, -3], [8, 0, 0], [0, 5, 0]), None), rs.diffuse([0.2, 0.4, 0.7]))]
@@ -257,6 +282,14 @@ def scene_list():
             ("sheen_08", panel([-0.65, 0.1, 0.9], [1.3, 0, 0], [0, 1.0, -2.2]), sheen(blue, [0.9, 0.5, 0.3], 0.8)),
             ("sheen_tex", panel([0.9, 0.2, 0.2], [1.3, 0, 0], [0, 2.0, -0.3]),
              sheen(blue, [1.0, 1.0, 1.0], 0.5, sheen_checker(), {"magFilter": NEAREST, "minFilter": NEAREST}))])},
+        "specular": {"environment": [0.1, 0.1, 0.1], "llvm": True, "shapes": room_with([
+            ("tinted", panel([-2.1, 0.3, 0.0], [1.3, 0, 0], [0, 1.3, -0.3]),
+             specular([0.5, 0.5, 0.5], 0.3, 0.3, [3.0, 1.5, 0.5])),
+            ("smooth", panel([-0.65, 0.3, 0.0], [1.3, 0, 0], [0, 1.3, -0.3]),
+             specular([0.1, 0.2, 0.5], 0.0, 1.0, [6.0, 3.0, 1.5])),
+            ("textured", panel([0.8, 0.3, 0.0], [1.3, 0, 0], [0, 1.3, -0.3]),
+             specular([0.2, 0.5, 0.2], 0.5, 1.0, [2.0, 2.0, 2.0], specular_checker(),
+                      {"magFilter": NEAREST, "minFilter": NEAREST}))])},
         "glass-volume": {"environment": [0.1, 0.1, 0.1], "integrator": "volpath", "shapes": room_with([
             ("block", (*rs.cuboid([-0.9, 0.02, -0.5], [0.9, 1.3, 0.5]), None),
              glass_volume([0.85, 0.55, 0.25], 0.6, 1.5))])},
@@ -350,6 +383,16 @@ def write_gltf(path, desc):
                  "extensions": {"KHR_materials_sheen": ext}}
             if "KHR_materials_sheen" not in doc["extensionsUsed"]:
                 doc["extensionsUsed"].append("KHR_materials_sheen")
+        elif kind == "specular":
+            ext = {"specularFactor": mat["factor"], "specularColorFactor": mat["colour"]}
+            if mat["texels"] is not None:
+                ext["specularTexture"] = add_texture(mat["texels"], mat["sampler"])
+                ext["specularColorTexture"] = add_texture(mat["texels"], mat["sampler"])
+            m = {"pbrMetallicRoughness": {"baseColorFactor": mat["base"] + [1.0], "metallicFactor": 0.0,
+                                          "roughnessFactor": mat["roughness"]},
+                 "extensions": {"KHR_materials_specular": ext}}
+            if "KHR_materials_specular" not in doc["extensionsUsed"]:
+                doc["extensionsUsed"].append("KHR_materials_specular")
         elif kind == "normal_map":
             m = {"pbrMetallicRoughness": {"baseColorFactor": mat["albedo"] + [1.0], "metallicFactor": 0.0,
                                           "roughnessFactor": 1.0},
@@ -602,8 +645,106 @@ def register_gltf_sheen():
     mi.register_bsdf("gltf_sheen", lambda props: GltfSheen(props))
 
 
+def register_gltf_specular():
+    """glTF's KHR_materials_specular layering of the dielectric as a Mitsuba Python BSDF, written from the
+    specification with the exact Fresnel's shape (docs/bsdf.md, "Specular"): f = (1 - max3 F(cos_i)) base
+    + F(wi.m) D G / (4 cos_i cos_o), F = f0' + (f90' - f0') s, f0' = min(f0 specularColor, 1) specular,
+    f90' = specular, s = (F_exact - f0) / (1 - f0) clamped to [0, 1], F_exact Mitsuba's fresnel; the base a
+    nested BSDF (Mitsuba's diffuse here), D and G (and the visible-normal sampling) Mitsuba's GGX
+    MicrofacetDistribution, or a delta mirror of weight F(cos_i) when smooth. Sampling takes the
+    reflection with probability q = max3 F(cos_i), else the base; non-delta samples weigh the mixture's eval
+    over its pdf (one-sample MIS). Front side only: wrap it in twosided."""
+
+    class GltfSpecular(mi.BSDF):
+        def __init__(self, props):
+            mi.BSDF.__init__(self, props)
+            self.base = props["base"]
+            self.specular = float(props["specular"])
+            self.colour = mi.Color3f(props["specular_color"])
+            self.factor_texture = props["specular_texture"] if "specular_texture" in props else None
+            self.colour_texture = props["specular_color_texture"] if "specular_color_texture" in props else None
+            self.eta = float(props["ior"])
+            self.f0 = ((self.eta - 1.0) / (self.eta + 1.0)) ** 2
+            alpha = float(props["alpha"])
+            self.smooth = alpha < 1e-3  # Cohort's BSDF_SMOOTH_ALPHA
+            self.distr = None if self.smooth else mi.MicrofacetDistribution(mi.MicrofacetType.GGX, alpha, True)
+            lobe = mi.BSDFFlags.DeltaReflection if self.smooth else mi.BSDFFlags.GlossyReflection
+            self.m_components = [self.base.flags(), lobe | mi.BSDFFlags.FrontSide]
+            self.m_flags = self.base.flags() | lobe | mi.BSDFFlags.FrontSide
+
+        def fresnel(self, si, cos, active):
+            w = self.specular * (self.factor_texture.eval_1(si, active) if self.factor_texture is not None else 1.0)
+            c = self.colour * (self.colour_texture.eval(si, active) if self.colour_texture is not None else 1.0)
+            f0 = dr.minimum(self.f0 * c, 1.0) * w
+            s = dr.clip((mi.fresnel(cos, self.eta)[0] - self.f0) / (1.0 - self.f0), 0.0, 1.0)
+            return f0 + (w - f0) * s
+
+        def eval_pdf(self, ctx, si, wo, active=True):
+            ci, co = mi.Frame3f.cos_theta(si.wi), mi.Frame3f.cos_theta(wo)
+            active = active & (ci > 0.0) & (co > 0.0)
+            q = dr.max(self.fresnel(si, ci, active))
+            vb, pb = self.base.eval_pdf(ctx, si, wo, active)
+            value, pdf = vb * (1.0 - q), pb * (1.0 - q)
+            if not self.smooth:
+                m = dr.normalize(si.wi + wo)
+                lobe = self.distr.eval(m) * self.distr.G(si.wi, wo, m) / (4.0 * ci)
+                value += self.fresnel(si, dr.dot(si.wi, m), active) * lobe
+                pdf += q * self.distr.pdf(si.wi, m) / (4.0 * dr.abs(dr.dot(wo, m)))
+            return dr.select(active, value, 0.0), dr.select(active, pdf, 0.0)
+
+        def eval(self, ctx, si, wo, active=True):
+            return self.eval_pdf(ctx, si, wo, active)[0]
+
+        def pdf(self, ctx, si, wo, active=True):
+            return self.eval_pdf(ctx, si, wo, active)[1]
+
+        def sample(self, ctx, si, sample1, sample2, active=True):
+            ci = mi.Frame3f.cos_theta(si.wi)
+            active = active & (ci > 0.0)
+            f_i = self.fresnel(si, ci, active)
+            q = dr.max(f_i)
+            lobe = active & (sample1 < q)
+            base = active & ~lobe
+            bs_b, w_b = self.base.sample(ctx, si, dr.minimum((sample1 - q) / (1.0 - q), 0.99999994), sample2, base)
+            bs = mi.BSDFSample3f(bs_b)
+            if self.smooth:
+                wo = mi.Vector3f(-si.wi.x, -si.wi.y, si.wi.z)
+                lobe_type = mi.UInt32(+mi.BSDFFlags.DeltaReflection)
+            else:
+                m, _ = self.distr.sample(si.wi, sample2)
+                wo = mi.reflect(si.wi, m)
+                lobe_type = mi.UInt32(+mi.BSDFFlags.GlossyReflection)
+            bs.wo = dr.select(lobe, wo, bs_b.wo)
+            bs.eta = 1.0
+            bs.sampled_type = dr.select(lobe, lobe_type, bs_b.sampled_type)
+            bs.sampled_component = dr.select(lobe, mi.UInt32(1), mi.UInt32(0))
+            delta = lobe if self.smooth else mi.Bool(False)
+            value, pdf = self.eval_pdf(ctx, si, bs.wo, active & ~delta)
+            bs.pdf = dr.select(delta, q, pdf)
+            weight = dr.select(delta, f_i / q, value / dr.maximum(pdf, 1e-30))
+            ok = active & (bs.pdf > 0.0) & (mi.Frame3f.cos_theta(bs.wo) > 0.0) & (lobe | (bs_b.pdf > 0.0))
+            bs.pdf = dr.select(ok, bs.pdf, 0.0)
+            return bs, dr.select(ok, weight, 0.0)
+
+        def traverse(self, callback):
+            pass
+
+        def to_string(self):
+            return f"GltfSpecular[specular={self.specular}, smooth={self.smooth}]"
+
+    mi.register_bsdf("gltf_specular", lambda props: GltfSpecular(props))
+
+
 def mitsuba_bsdf(mat):
     kind = mat.get("kind")
+    if kind == "specular":
+        bsdf = {"type": "gltf_specular", "specular": mat["factor"], "specular_color": mi.ScalarColor3d(mat["colour"]),
+                "ior": 1.5, "alpha": mat["roughness"] ** 2,
+                "base": {"type": "diffuse", "reflectance": rs.rgb_value(mat["base"])}}
+        if mat["texels"] is not None:
+            bsdf["specular_texture"] = bitmap(mat["texels"][:, :, 3:4] / 255.0, mat["sampler"])
+            bsdf["specular_color_texture"] = bitmap(srgb_to_linear(mat["texels"][:, :, :3]), mat["sampler"])
+        return {"type": "twosided", "bsdf": bsdf}
     if kind == "clearcoat":
         factor = {"type": "uniform", "value": mat["coat"]["clearcoatFactor"]}
         if "texels" in mat:
@@ -670,6 +811,7 @@ def render(name, desc, args):
     if desc.get("llvm"):
         register_clearcoat()
         register_gltf_sheen()
+        register_gltf_specular()
     with tempfile.TemporaryDirectory() as tmp:
         rs.render_reference(name, mitsuba_scene(desc, tmp), args, desc.get("integrator", "path"),
                             desc.get("max_depth", rs.MAX_DEPTH),

@@ -69,6 +69,18 @@ std::vector<Config> standard_configs(bool white) {
   for (double r : roughness)
     for (double a : angles) out.push_back(make_config("sheen", bsdf_sheen(sheen, static_cast<float>(r)), r, a));
   out.push_back(make_config("sheen", bsdf_sheen(sheen, 0.5f), 0.5, 45, true));
+  // glTF's specular reflection alone (KHR_materials_specular): white, the exact Fresnel (specular 1,
+  // colour 1) with scale 1; else specular 0.6, colour (2.5, 1, 0.4) and the scale 1.5 of a choice
+  const float fr = (eta - 1.0f) * (eta - 1.0f) / ((eta + 1.0f) * (eta + 1.0f));
+  const co_vec3 spec_f0 = white ? v3_splat(fr) : v3(fr * 2.5f * 0.6f, fr * 0.6f, fr * 0.4f * 0.6f);
+  const float spec_f90 = white ? 1.0f : 0.6f, spec_scale = white ? 1.0f : 1.5f;
+  for (double r : roughness)
+    for (double a : angles)
+      out.push_back(make_config("specular", bsdf_specular(eta, static_cast<float>(r * r), spec_f0, spec_f90, spec_scale),
+                                r, a));
+  out.push_back(make_config("specular", bsdf_specular(eta, 0.3f * 0.3f, spec_f0, spec_f90, spec_scale), 0.3, 45, true));
+  for (double a : angles)
+    out.push_back(make_config("smooth_specular", bsdf_specular(eta, 0.0f, spec_f0, spec_f90, spec_scale), -1, a));
   return out;
 }
 
@@ -273,7 +285,7 @@ void delta_probabilities(const Config& c, double* reflect, double* transmit) {
     *transmit = 1.0 - *reflect;
   } else if (b.type == BSDF_PLASTIC) {
     *reflect = plastic_coat_probability_ref(b, c.wi.z);
-  } else if (b.type == BSDF_COAT) {
+  } else if (b.type == BSDF_COAT || b.type == BSDF_SPECULAR) {
     *reflect = 1.0;
   }
 }

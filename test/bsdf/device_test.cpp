@@ -115,7 +115,10 @@ std::vector<Config> device_configs() {
           make_config("coat", bsdf_coat(1.5f, 0.09f, 0.7f), 0.3, 45),
           make_config("smooth_coat", bsdf_coat(1.5f, 0.0f, 0.7f), -1, 45),
           make_config("sheen", bsdf_sheen(c, 0.3f), 0.3, 45),
-          make_config("sheen", bsdf_sheen(c, 0.8f), 0.8, 75, true)};
+          make_config("sheen", bsdf_sheen(c, 0.8f), 0.8, 75, true),
+          make_config("specular", bsdf_specular(1.5f, 0.09f, v3(0.06f, 0.024f, 0.0096f), 0.6f, 1.5f), 0.3, 45),
+          make_config("specular", bsdf_specular(1.33f, 0.49f, v3(0.02f, 0.01f, 0.03f), 0.3f, 2.0f), 0.7, 70, true),
+          make_config("smooth_specular", bsdf_specular(1.5f, 0.0f, v3(0.06f, 0.024f, 0.0096f), 0.6f, 1.5f), -1, 45)};
 }
 
 }  // namespace

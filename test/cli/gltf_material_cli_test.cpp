@@ -91,6 +91,36 @@ TEST(GltfMaterialCli, ClearcoatIsListedAndCompiled) {
   EXPECT_NE(render.output.find("kernel features: textures conductor clearcoat\n"), std::string::npos) << render.output;
 }
 
+// KHR_materials_specular (scenes/reference/specular.gltf): info names each material's specular and the
+// textures with what they drive, warns about nothing, render compiles the layering, and the extension
+// may be required.
+TEST(GltfMaterialCli, InfoListsTheSpecularAndItsTexturesAndAcceptsItAsRequired) {
+  const fs::path specular = fs::path(COHORT_SOURCE_DIR) / "scenes/reference/specular.gltf";
+  const CommandResult r = run("info " + specular.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(count(r.output, "warning: "), 0u) << r.output;
+  EXPECT_EQ(count(r.output, "roughness 0.3, emission (0, 0, 0), specular 0.3 colour (3, 1.5, 0.5)\n"), 1u) << r.output;
+  EXPECT_EQ(count(r.output, "roughness 0, emission (0, 0, 0), specular 1 colour (6, 3, 1.5)\n"), 1u) << r.output;
+  EXPECT_EQ(count(r.output, "specular 1 colour (2, 2, 2), textured\n"), 1u) << r.output;
+  EXPECT_EQ(count(r.output, "image 0 4x4, linear, nearest, wrap repeat/repeat: specular factor (A) of 'textured'"), 1u)
+      << r.output;
+  EXPECT_EQ(count(r.output, "image 1 4x4, sRGB, nearest, wrap repeat/repeat: specular colour (RGB) of 'textured'"), 1u)
+      << r.output;
+  cohort_test::TempDir dir;
+  std::ifstream in(specular);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t at = text.find("\"extensionsUsed\"");
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at, "\"extensionsRequired\": [\"KHR_materials_specular\"], ");
+  const fs::path required = dir.path / "required.gltf";
+  std::ofstream(required) << text;
+  const CommandResult rr =
+      run("render " + required.string() + " --res 8x8 --spp 1 -v -o " + (dir.path / "s.exr").string());
+  EXPECT_EQ(rr.code, 0) << rr.output;
+  EXPECT_EQ(count(rr.output, "KHR_materials_specular"), 0u) << rr.output;
+  EXPECT_NE(rr.output.find("kernel features: textures plastic specular\n"), std::string::npos) << rr.output;
+}
+
 // A triangle whose material asks for BLEND and an iridescence: one warning each, from info and from render.
 TEST(GltfMaterialCli, InfoAndRenderWarnOnceForEachUnhonouredFeature) {
   cohort_test::TempDir dir;

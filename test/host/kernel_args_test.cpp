@@ -7,6 +7,7 @@
 #define COHORT_FEATURE_PLASTIC
 #define COHORT_FEATURE_CLEARCOAT  // the clearcoat table is a parameter only with its option
 #define COHORT_FEATURE_SHEEN      // the sheen table likewise
+#define COHORT_FEATURE_SPECULAR   // and the specular table
 #include "kernels/common/wavefront/aov_kernel.h"
 #include "kernels/common/film/film_kernels.h"
 #include "kernels/common/wavefront/naive_kernel.h"
@@ -59,9 +60,9 @@ TEST(KernelArgs, OneArgumentPerKernelParameter) {
   EXPECT_EQ(TraceRaysPthArgs::arg_count + 1, arity(&trace_rays_pth));
   EXPECT_EQ(TraceRaysSpeculativeArgs::arg_count + 1, arity(&trace_rays_speculative));
   EXPECT_EQ(FilmAddArgs::arg_count + 1, arity(&film_add));
-  // the groups stand for their parameters: 14 scene buffers and the clearcoat and sheen tables (declared
-  // here, where the kernels are built with their options), 8 path buffers, 4 shadow buffers
-  EXPECT_EQ(SceneBuffers::arg_count, 16u);
+  // the groups stand for their parameters: 14 scene buffers and the clearcoat, sheen and specular tables
+  // (declared here, where the kernels are built with their options), 8 path buffers, 4 shadow buffers
+  EXPECT_EQ(SceneBuffers::arg_count, 17u);
   EXPECT_EQ(PathBuffers::arg_count, 8u);
   EXPECT_EQ(ShadowBuffers::arg_count, 4u);
 }
@@ -98,25 +99,36 @@ TEST(KernelArgs, AFeatureTableIsBoundOnlyWhenSet) {
     *d = some_buffer();
   DeviceKernel without(nullptr, "render_naive");
   b.bind(without);
-  EXPECT_EQ(without.args().size(), SceneBuffers::arg_count - 2 + 1);  // neither table, and co_params_end
-  // each table is bound where it is set, in its place after the punctual lights: the coat's, then the sheen's
+  EXPECT_EQ(without.args().size(), SceneBuffers::arg_count - 3 + 1);  // no table, and co_params_end
+  // each table is bound where it is set, in its place after the punctual lights: the coat's, the
+  // sheen's, then the specular's
   b.material_sheen = some_buffer();
   DeviceKernel sheen_only(nullptr, "render_naive");
   b.bind(sheen_only);
-  ASSERT_EQ(sheen_only.args().size(), SceneBuffers::arg_count - 1 + 1);
-  const auto* sheen = std::get_if<DeviceBuffer>(&sheen_only.args()[SceneBuffers::arg_count - 2]);
+  ASSERT_EQ(sheen_only.args().size(), SceneBuffers::arg_count - 2 + 1);
+  const auto* sheen = std::get_if<DeviceBuffer>(&sheen_only.args()[SceneBuffers::arg_count - 3]);
   ASSERT_TRUE(sheen);
   EXPECT_EQ(sheen->object(), b.material_sheen.object());
+  b.material_specular = some_buffer();
+  DeviceKernel sheen_specular(nullptr, "render_naive");
+  b.bind(sheen_specular);
+  ASSERT_EQ(sheen_specular.args().size(), SceneBuffers::arg_count - 1 + 1);
+  const auto* specular = std::get_if<DeviceBuffer>(&sheen_specular.args()[SceneBuffers::arg_count - 2]);
+  ASSERT_TRUE(specular);
+  EXPECT_EQ(specular->object(), b.material_specular.object());
   b.material_coats = some_buffer();
   DeviceKernel with(nullptr, "render_naive");
   b.bind(with);
   ASSERT_EQ(with.args().size(), SceneBuffers::arg_count + 1);
-  const auto* coats = std::get_if<DeviceBuffer>(&with.args()[SceneBuffers::arg_count - 2]);
+  const auto* coats = std::get_if<DeviceBuffer>(&with.args()[SceneBuffers::arg_count - 3]);
   ASSERT_TRUE(coats);
   EXPECT_EQ(coats->object(), b.material_coats.object());
-  sheen = std::get_if<DeviceBuffer>(&with.args()[SceneBuffers::arg_count - 1]);
+  sheen = std::get_if<DeviceBuffer>(&with.args()[SceneBuffers::arg_count - 2]);
   ASSERT_TRUE(sheen);
   EXPECT_EQ(sheen->object(), b.material_sheen.object());
+  specular = std::get_if<DeviceBuffer>(&with.args()[SceneBuffers::arg_count - 1]);
+  ASSERT_TRUE(specular);
+  EXPECT_EQ(specular->object(), b.material_specular.object());
 }
 
 TEST(KernelArgs, UnsetBufferIsAnErrorNamingIt) {

@@ -319,5 +319,76 @@ TEST(GltfSheen, FactorsAndTexturesAreReadAndChecked) {
                            "KHR_materials_sheen.sheenColorTexture: KHR_texture_transform scale is not an array of two numbers");
 }
 
+// KHR_materials_specular: the factor and colour factor, the specular texture (linear, A) and the colour
+// texture (sRGB, RGB) with their texCoord and KHR_texture_transform, what `info` says they drive, the
+// extension accepted as required; default values are the material without it; wrong values name the
+// file and the material; a specular on a transmissive material is reported as not honoured there.
+TEST(GltfSpecular, FactorsAndTexturesAreReadAndChecked) {
+  TempDir dir;
+  const auto with = [&](const json& specular, double transmission = 0.0) {
+    json material = {{"name", "lacquer"}, {"extensions", {{"KHR_materials_specular", specular}}}};
+    if (transmission > 0.0)
+      material["extensions"]["KHR_materials_transmission"] = {{"transmissionFactor", transmission}};
+    GltfWriter g = textured_triangle(dir, material, json::array({{{"source", 0}}, {{"source", 0}}}), nullptr);
+    g.doc()["extensionsUsed"] = g.doc()["extensionsRequired"] = {"KHR_materials_specular", "KHR_texture_transform"};
+    g.doc()["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] =
+        g.doc()["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"];
+    return g.write_gltf(dir.path(), "specular");
+  };
+  const Scene s = load_scene(with({{"specularFactor", 0.3},
+                                   {"specularColorFactor", {2.0, 0.5, 0.25}},
+                                   {"specularTexture", {{"index", 1}, {"texCoord", 1}}},
+                                   {"specularColorTexture",
+                                    {{"index", 0},
+                                     {"extensions", {{"KHR_texture_transform", {{"offset", {0.5, 0.25}}, {"texCoord", 1}}}}}}}}));
+  const SceneSpecular& sp = s.materials.at(0).specular;
+  EXPECT_EQ(sp.factor, 0.3f);
+  EXPECT_EQ(sp.color, glm::vec3(2.0f, 0.5f, 0.25f));  // glTF allows a colour above 1
+  EXPECT_TRUE(sp.present());
+  ASSERT_GE(sp.texture, 0);
+  ASSERT_GE(sp.color_texture, 0);
+  EXPECT_EQ(sp.texcoord, 1);
+  EXPECT_TRUE(sp.transform.identity());
+  EXPECT_EQ(sp.color_texcoord, 1);  // the transform's texCoord replaces the reference's own
+  EXPECT_EQ(sp.color_transform, (UvTransform{{0.5f, 0.25f}, 0.f, {1.f, 1.f}}));
+  const Texture& factor = s.textures.at(std::size_t(sp.texture));
+  const Texture& colour = s.textures.at(std::size_t(sp.color_texture));
+  EXPECT_FALSE(factor.srgb);
+  EXPECT_TRUE(colour.srgb);
+  EXPECT_EQ(factor.uses, (std::vector<std::string>{"specular factor (A) of 'lacquer'"}));
+  EXPECT_EQ(colour.uses, (std::vector<std::string>{"specular colour (RGB) of 'lacquer'"}));
+  EXPECT_EQ(material_warnings(s), "") << "honoured, and accepted as required";
+  // defaults: factor 1 and colour 1, the material without the extension
+  for (const json& defaults : {json::object(), json{{"specularFactor", 1.0}, {"specularColorFactor", {1, 1, 1}}}}) {
+    const SceneSpecular d = load_scene(with(defaults)).materials[0].specular;
+    EXPECT_EQ(d.factor, 1.f);
+    EXPECT_EQ(d.color, glm::vec3(1.f));
+    EXPECT_FALSE(d.present());
+    EXPECT_EQ(d.texture, -1);
+    EXPECT_EQ(d.color_texture, -1);
+  }
+  EXPECT_TRUE(load_scene(with({{"specularFactor", 0.0}})).materials[0].specular.present());
+  EXPECT_TRUE(load_scene(with({{"specularTexture", {{"index", 0}}}})).materials[0].specular.present());
+  // the transmissive part does not take it: one line, with the material count
+  const std::string glass = material_warnings(load_scene(with({{"specularFactor", 0.5}}, 0.8)));
+  EXPECT_NE(glass.find("glTF feature not honoured: KHR_materials_specular on the transmission"), std::string::npos) << glass;
+  EXPECT_NE(glass.find(": 1 material"), std::string::npos) << glass;
+  EXPECT_EQ(material_warnings(load_scene(with(json::object(), 0.8))), "") << "default values change nothing";
+  test::expect_input_error(with({{"specularFactor", 1.5}}),
+                           "material 0 'lacquer': KHR_materials_specular specularFactor 1.5 is outside [0, 1]");
+  test::expect_input_error(with({{"specularFactor", -0.1}}), "specularFactor -0.1 is outside [0, 1]");
+  test::expect_input_error(with({{"specularFactor", "shiny"}}), "specularFactor is not a finite number");
+  test::expect_input_error(with({{"specularColorFactor", {0.5, -1.0, 0.5}}}),
+                           "KHR_materials_specular specularColorFactor (0.5, -1, 0.5) has a negative or too large component");
+  test::expect_input_error(with({{"specularColorFactor", {0.5, 0.5}}}), "specularColorFactor is not an array of three numbers");
+  test::expect_input_error(with({{"specularColorFactor", {0.5, "red", 0.5}}}), "specularColorFactor is not a finite number");
+  test::expect_input_error(with({{"specularTexture", {{"index", 7}}}}), "specularTexture does not name an existing texture");
+  test::expect_input_error(with({{"specularColorTexture", 3}}), "specularColorTexture does not name an existing texture");
+  test::expect_input_error(with({{"specularTexture", {{"index", 0}, {"texCoord", -2}}}}),
+                           "specularTexture.texCoord is not an integer >= 0");
+  test::expect_input_error(with({{"specularColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"scale", 2}}}}}}}}),
+                           "KHR_materials_specular.specularColorTexture: KHR_texture_transform scale is not an array of two numbers");
+}
+
 }  // namespace
 }  // namespace cohort

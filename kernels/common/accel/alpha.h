@@ -30,8 +30,10 @@ CO_INLINE uint32_t alpha_ray_seed(uint32_t seed, uint32_t pixel, uint32_t sample
   return rng_make(seed, pixel, sample, segment, purpose).state >> 8;
 }
 #endif
-/* the sheen roughness texture reads the alpha channel too (scene_view.h, sheen_params) */
-#if (defined(COHORT_FEATURE_ALPHA) || defined(COHORT_FEATURE_SHEEN)) && defined(COHORT_FEATURE_TEXTURES)
+/* the sheen roughness and specular textures read the alpha channel too (scene_view.h, sheen_params and
+ * specular_params) */
+#if (defined(COHORT_FEATURE_ALPHA) || defined(COHORT_FEATURE_SHEEN) || defined(COHORT_FEATURE_SPECULAR)) && \
+    defined(COHORT_FEATURE_TEXTURES)
 /* The alpha channel (linear in glTF, never sRGB) of texture `index` at (u, v), filtered and
  * wrapped exactly as texture_sample filters the colour channels (the same footprint). */
 CO_INLINE float texel_alpha(const CO_GLOBAL uint32_t* texels, uint32_t index) {

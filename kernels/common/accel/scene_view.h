@@ -3,7 +3,8 @@
  * built with COHORT_FEATURE_TEXTURES, and one-element placeholders otherwise), vertex colours
  * (COHORT_FEATURE_VERTEX_COLORS), the environment map
  * (COHORT_FEATURE_ENVMAP) and the punctual lights (COHORT_FEATURE_PUNCTUAL), placeholders
- * likewise, and the materials' sheen (COHORT_FEATURE_SHEEN; a placeholder without). With COHORT_FEATURE_ALPHA the traversal view also holds what alpha tests read
+ * likewise, and the materials' clearcoat, sheen and specular tables (COHORT_FEATURE_CLEARCOAT, _SHEEN,
+ * _SPECULAR; parameters only of the programs built with them). With COHORT_FEATURE_ALPHA the traversal view also holds what alpha tests read
  * (alpha.h). */
 #ifndef COHORT_SCENE_VIEW_H
 #define COHORT_SCENE_VIEW_H
@@ -36,6 +37,9 @@ typedef struct SceneView {
 #ifdef COHORT_FEATURE_SHEEN
   const CO_GLOBAL MaterialSheen* material_sheen; /* per material (shading/sheen.h) */
 #endif
+#ifdef COHORT_FEATURE_SPECULAR
+  const CO_GLOBAL MaterialSpecular* material_specular; /* per material (shading/specular.h) */
+#endif
   EnvironmentView env;
   const CO_GLOBAL PunctualLight* punctual_lights;
   uint32_t emitter_count;
@@ -61,6 +65,14 @@ typedef struct SceneView {
 #define CO_SHEEN_PARAM
 #define CO_SHEEN_ARG(sheen)
 #endif
+/* The specular table likewise, with COHORT_FEATURE_SPECULAR only (SCENE_SPECULAR_BUFFERS) */
+#ifdef COHORT_FEATURE_SPECULAR
+#define CO_SPECULAR_PARAM , const CO_GLOBAL MaterialSpecular* material_specular
+#define CO_SPECULAR_ARG(specular) , (specular)
+#else
+#define CO_SPECULAR_PARAM
+#define CO_SPECULAR_ARG(specular)
+#endif
 
 /* The view of the scene that a rendering kernel's SCENE_PARAMS (kernel_params.h) make. */
 CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNode* nodes,
@@ -71,7 +83,8 @@ CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNod
                                     const CO_GLOBAL TriangleColor* triangle_colors,
                                     const CO_GLOBAL TriangleFrame* triangle_frames,
                                     const CO_GLOBAL co_float4* env_texels, const CO_GLOBAL float* env_tables,
-                                    const CO_GLOBAL PunctualLight* punctual_lights CO_CLEARCOAT_PARAM CO_SHEEN_PARAM) {
+                                    const CO_GLOBAL PunctualLight* punctual_lights CO_CLEARCOAT_PARAM CO_SHEEN_PARAM
+                                        CO_SPECULAR_PARAM) {
   SceneView s;
   s.tree = make_scene_accel(nodes, leaf_triangles, triangles, p->scene_min, p->scene_max);
 #if defined(COHORT_FEATURE_ALPHA)
@@ -105,6 +118,9 @@ CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNod
 #ifdef COHORT_FEATURE_SHEEN
   s.material_sheen = material_sheen;
 #endif
+#ifdef COHORT_FEATURE_SPECULAR
+  s.material_specular = material_specular;
+#endif
   s.env.texels = env_texels;
   s.env.tables = env_tables;
   s.env.width = p->env_width;
@@ -124,7 +140,8 @@ CO_INLINE SceneView make_scene_view(const RenderParams* p, const CO_GLOBAL KdNod
 #define SCENE_VIEW(p)                                                                                \
   make_scene_view(&(p), nodes, leaf_triangles, triangles, triangle_material, materials, emitters, triangle_uvs, \
                   textures, texels, triangle_colors, triangle_frames, env_texels, env_tables,       \
-                  punctual_lights CO_CLEARCOAT_ARG(material_coats) CO_SHEEN_ARG(material_sheen))
+                  punctual_lights CO_CLEARCOAT_ARG(material_coats) CO_SHEEN_ARG(material_sheen) \
+                      CO_SPECULAR_ARG(material_specular))
 
 CO_INLINE float luminance(co_vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
@@ -229,6 +246,39 @@ CO_INLINE SheenParams sheen_params(const SceneView* s, uint32_t material, uint32
     float u, v;
     slot_uv_at(s->triangle_uvs, (ms.flags & MAT_SHEEN_UV1_ROUGHNESS) != 0u, triangle, b1, b2, &u, &v);
     p.roughness = p.roughness * texture_sample_alpha(s->textures, s->texels, ms.roughness_texture, u, v);
+  }
+#else
+  (void)triangle;
+  (void)b1;
+  (void)b2;
+#endif
+  return p;
+}
+#endif
+
+#ifdef COHORT_FEATURE_SPECULAR
+/* KHR_materials_specular at a surface point: the factors times their textures (the colour texture's
+ * RGB, sRGB-decoded; the specular texture's A, linear), what bsdf_specular_layer takes; `layer` 0 for a
+ * material that keeps its opaque dielectric (MAT_SPECULAR_LAYER unset). */
+typedef struct SpecularParams {
+  co_vec3 color;
+  float factor;
+  int layer;
+} SpecularParams;
+
+CO_INLINE SpecularParams specular_params(const SceneView* s, uint32_t material, uint32_t triangle, float b1, float b2) {
+  MaterialSpecular ms = s->material_specular[material];
+  SpecularParams p;
+  p.layer = (ms.flags & MAT_SPECULAR_LAYER) != 0u;
+  p.color = v3_from4(ms.color_factor);
+  p.factor = ms.color_factor.w;
+  if (!p.layer) return p;
+#ifdef COHORT_FEATURE_TEXTURES
+  p.color = v3_mul(p.color, slot_texture(s, ms.color_texture, (ms.flags & MAT_SPECULAR_UV1_COLOR) != 0u, triangle, b1, b2));
+  if (ms.factor_texture >= 0) {
+    float u, v;
+    slot_uv_at(s->triangle_uvs, (ms.flags & MAT_SPECULAR_UV1_FACTOR) != 0u, triangle, b1, b2, &u, &v);
+    p.factor = p.factor * texture_sample_alpha(s->textures, s->texels, ms.factor_texture, u, v);
   }
 #else
   (void)triangle;

@@ -68,6 +68,11 @@
 #else
 #define SCENE_SHEEN_BUFFERS(P) P(FEATURE_ABSENT, MaterialSheen, material_sheen)
 #endif
+#if defined(COHORT_FEATURE_SPECULAR)
+#define SCENE_SPECULAR_BUFFERS(P) P(FEATURE_IN, MaterialSpecular, material_specular)
+#else
+#define SCENE_SPECULAR_BUFFERS(P) P(FEATURE_ABSENT, MaterialSpecular, material_specular)
+#endif
 
 /* The scene's buffers (scene_view.h makes them a SceneView with the RenderParams). */
 #define SCENE_BUFFERS(P, G)                                                                                   \
@@ -75,7 +80,8 @@
   P(IN, uint32_t, triangle_material) P(IN, Material, materials) P(IN, EmitterEntry, emitters)                \
   P(IN, TriangleUv, triangle_uvs) P(IN, TextureDesc, textures) P(IN, uint32_t, texels)                       \
   P(IN, TriangleColor, triangle_colors) P(IN, TriangleFrame, triangle_frames) P(IN, co_float4, env_texels) P(IN, float, env_tables)               \
-  P(IN, PunctualLight, punctual_lights) SCENE_CLEARCOAT_BUFFERS(P) SCENE_SHEEN_BUFFERS(P)
+  P(IN, PunctualLight, punctual_lights) SCENE_CLEARCOAT_BUFFERS(P) SCENE_SHEEN_BUFFERS(P) \
+  SCENE_SPECULAR_BUFFERS(P)
 
 /* What every rendering kernel takes: the render's parameters and the scene. */
 #define SCENE_PARAMS(P, G) P(UNIFORM, RenderParams, params) G(SceneBuffers, scene, SCENE_BUFFERS)

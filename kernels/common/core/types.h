@@ -150,6 +150,23 @@ typedef struct MaterialSheen {
 } MaterialSheen;
 CO_STATIC_ASSERT(sizeof(MaterialSheen) == 32, "MaterialSheen must stay 32 bytes");
 #endif
+/* glTF KHR_materials_specular of each material, a table indexed like the materials; uploaded and passed
+ * to the kernels only with COHORT_FEATURE_SPECULAR, as the coat's and the sheen's (shading/specular.h).
+ * A material without MAT_SPECULAR_LAYER (no extension, or one of default values and no texture) keeps
+ * the opaque dielectric it has without the extension. */
+#define MAT_SPECULAR_UV1_FACTOR 1u /* the specular texture reads TEXCOORD_1 */
+#define MAT_SPECULAR_UV1_COLOR 2u  /* the specular colour texture reads TEXCOORD_1 */
+#define MAT_SPECULAR_LAYER 4u      /* the opaque dielectric is glTF's specular layering */
+#if defined(COHORT_FEATURE_SPECULAR) || !(defined(__OPENCL_VERSION__) || defined(__CUDACC__))
+typedef struct MaterialSpecular {
+  co_float4 color_factor; /* rgb specularColorFactor (linear, >= 0); w specularFactor in [0, 1] */
+  int32_t factor_texture; /* -1: none; its A (linear data) multiplies specularFactor */
+  int32_t color_texture;  /* -1: none; its RGB (sRGB colour) multiplies specularColorFactor */
+  uint32_t flags;         /* MAT_SPECULAR_* */
+  uint32_t pad0;
+} MaterialSpecular;
+CO_STATIC_ASSERT(sizeof(MaterialSpecular) == 32, "MaterialSpecular must stay 32 bytes");
+#endif
 
 /* ---- Textures ---------------------------------------------------------------------------------
  * Every texture's texels live in one buffer of RGBA8 words (r in the low byte, as glTF stores

@@ -56,6 +56,13 @@
 #else
 #define BSDF_WITH_COAT 1
 #endif
+/* glTF's specular layer (BSDF_SPECULAR, KHR_materials_specular) only with COHORT_FEATURE_SPECULAR
+ * (shading/specular.h) */
+#if defined(COHORT_BSDF_SPECIALISED) && !defined(COHORT_FEATURE_SPECULAR)
+#define BSDF_WITH_SPECULAR 0
+#else
+#define BSDF_WITH_SPECULAR 1
+#endif
 
 /* ---- Shading frame --------------------------------------------------------------------------- */
 
@@ -100,6 +107,7 @@ CO_INLINE co_vec3 frame_to_world(const ShadingFrame* f, co_vec3 v) {
 #if BSDF_WITH_SHEEN
 #define BSDF_SHEEN 5u      /* the sheen lobe alone, color = sheenColor over its selection probability (sheen.h) */
 #endif
+#define BSDF_SPECULAR 6u   /* glTF's tinted specular reflection alone (KHR_materials_specular), times spec_weight */
 
 /* GGX alpha below which a surface is smooth (delta lobes): the GGX lobe would be narrower than
  * float sampling resolves well, and its peak D = 1/(pi alpha^2) would pass 3e5. */
@@ -117,9 +125,11 @@ typedef struct Bsdf {
   float alpha;       /* GGX alpha = roughness^2; 0 = smooth */
   float eta;         /* dielectric and plastic: interior IOR / exterior IOR */
   float spec_weight; /* plastic: Mitsuba's specular_sampling_weight = 1 / (1 + mean(color));
-                      * coat: the scale of the layer (clearcoat factor over its selection probability) */
-  co_vec3 color;     /* see the types above */
-  float fdr_int;     /* plastic: F_dr(1/eta), diffuse reflectance of the coat seen from inside */
+                      * coat: the scale of the layer (clearcoat factor over its selection probability);
+                      * specular: the scale of the lobe (1 over its selection probability) */
+  co_vec3 color;     /* see the types above; specular: f0' = min(f0(eta) specularColor, 1) specular */
+  float fdr_int;     /* plastic: F_dr(1/eta), diffuse reflectance of the coat seen from inside;
+                      * specular: f90' = specular */
 } Bsdf;
 CO_STATIC_ASSERT(sizeof(Bsdf) == 32, "Bsdf is shared with bsdf_test.cl");
 
@@ -159,6 +169,9 @@ CO_INLINE int bsdf_is_delta(const Bsdf* b) {
   return (b->type == BSDF_CONDUCTOR || b->type == BSDF_DIELECTRIC
 #if BSDF_WITH_COAT
           || b->type == BSDF_COAT
+#endif
+#if BSDF_WITH_SPECULAR
+          || b->type == BSDF_SPECULAR
 #endif
           ) && b->alpha < BSDF_SMOOTH_ALPHA;
 }
@@ -488,6 +501,62 @@ CO_INLINE BsdfSample coat_sample(const Bsdf* b, co_vec3 wi, float u1, float u2) 
   return s;
 }
 #endif
+#if BSDF_WITH_SPECULAR
+/* ---- Specular (KHR_materials_specular) ------------------------------------------------------------
+ * glTF's specular reflection of the dielectric with its Fresnel term re-shaped (docs/bsdf.md,
+ * "Specular"): F(cos) = f0' + (f90' - f0') s(cos), f0' = min(f0 specularColor, 1) specular (color),
+ * f90' = specular (fdr_int), and s the exact dielectric Fresnel's shape between f0 = ((eta-1)/(eta+1))^2
+ * and 1, s = (F_exact(cos) - f0) / (1 - f0) clamped to [0, 1], so F = F_exact where specular and its
+ * colour are 1. The lobe: F(wi.m) D G2 / (4 cos_i cos_o) sampled by visible normals, or its delta
+ * mirror of value F(cos_i) when smooth, times `scale` (spec_weight). The caller (specular.h) takes it
+ * with probability q = max3 F(cos_i) and scale 1 / q. */
+CO_INLINE Bsdf bsdf_specular(float eta, float alpha, co_vec3 f0, float f90, float scale) {
+  Bsdf b = bsdf_make(BSDF_SPECULAR, f0, alpha, eta);
+  b.spec_weight = scale;
+  b.fdr_int = f90;
+  return b;
+}
+/* s(cos) for a dielectric of relative IOR eta: 0 at normal incidence, 1 at grazing. */
+CO_INLINE float specular_fresnel_shape(float cos_theta, float eta) {
+  float r = (eta - 1.0f) / (eta + 1.0f);
+  float f0 = r * r;
+  if (!(f0 < 1.0f)) return 1.0f;
+  float s = (fresnel_dielectric_r(cos_theta, eta) - f0) / (1.0f - f0);
+  return fmin(fmax(s, 0.0f), 1.0f);
+}
+CO_INLINE co_vec3 specular_fresnel(co_vec3 f0, float f90, float cos_theta, float eta) {
+  float s = specular_fresnel_shape(cos_theta, eta);
+  return v3(f0.x + (f90 - f0.x) * s, f0.y + (f90 - f0.y) * s, f0.z + (f90 - f0.z) * s);
+}
+CO_INLINE co_vec3 specular_eval(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
+  if (b->alpha < BSDF_SMOOTH_ALPHA || !(wi.z > 0.0f) || !(wo.z > 0.0f)) return v3_splat(0.0f);
+  co_vec3 m = v3_normalize(v3_add(wi, wo));
+  co_vec3 f = specular_fresnel(b->color, b->fdr_int, v3_dot(wi, m), b->eta);
+  return v3_scale(f, b->spec_weight * ggx_d(m, b->alpha) * ggx_g2(wi, wo, m, b->alpha) / (4.0f * wi.z));
+}
+CO_INLINE float specular_pdf(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
+  if (b->alpha < BSDF_SMOOTH_ALPHA) return 0.0f;
+  return microfacet_reflection_pdf(wi, wo, b->alpha);
+}
+CO_INLINE BsdfSample specular_sample(const Bsdf* b, co_vec3 wi, float u1, float u2) {
+  BsdfSample s = bsdf_no_sample();
+  if (!(wi.z > 0.0f)) return s;
+  if (b->alpha < BSDF_SMOOTH_ALPHA) {
+    s.wo = v3(-wi.x, -wi.y, wi.z);
+    s.weight = v3_scale(specular_fresnel(b->color, b->fdr_int, wi.z, b->eta), b->spec_weight);
+    s.pdf = 1.0f;
+    s.flags = BSDF_REFLECTION | BSDF_DELTA;
+    return s;
+  }
+  MicrofacetReflection r;
+  if (!microfacet_reflection_sample(wi, b->alpha, u1, u2, &r)) return s;
+  s.wo = r.wo;
+  s.pdf = r.pdf;
+  s.weight = v3_scale(specular_fresnel(b->color, b->fdr_int, r.dwi, b->eta), b->spec_weight * r.shadowing);
+  s.flags = BSDF_REFLECTION | BSDF_GLOSSY;
+  return s;
+}
+#endif
 #if BSDF_WITH_SHEEN
 /* The sheen lobe (BSDF_SHEEN) is defined in sheen.h, which a program includes after this file (the
  * kernel sources expand each header once, at its first #include, so sheen.h and the medium.h it needs
@@ -529,6 +598,9 @@ CO_INLINE co_vec3 bsdf_eval(const Bsdf* b, co_vec3 wi_in, co_vec3 wo_in) {
 #if BSDF_WITH_SHEEN
   if (b->type == BSDF_SHEEN) return sheen_eval(b, wi, wo);
 #endif
+#if BSDF_WITH_SPECULAR
+  if (b->type == BSDF_SPECULAR) return specular_eval(b, wi, wo);
+#endif
   return v3_splat(0.0f);
 }
 
@@ -550,6 +622,9 @@ CO_INLINE float bsdf_pdf(const Bsdf* b, co_vec3 wi_in, co_vec3 wo_in) {
 #endif
 #if BSDF_WITH_SHEEN
   if (b->type == BSDF_SHEEN) return diffuse_pdf(wi, wo);
+#endif
+#if BSDF_WITH_SPECULAR
+  if (b->type == BSDF_SPECULAR) return specular_pdf(b, wi, wo);
 #endif
   return 0.0f;
 }
@@ -574,6 +649,9 @@ CO_INLINE BsdfSample bsdf_sample(const Bsdf* b, co_vec3 wi_in, float u_lobe, flo
 #endif
 #if BSDF_WITH_SHEEN
   else if (b->type == BSDF_SHEEN) s = sheen_sample(b, wi, u1, u2);
+#endif
+#if BSDF_WITH_SPECULAR
+  else if (b->type == BSDF_SPECULAR) s = specular_sample(b, wi, u1, u2);
 #endif
   else s = bsdf_no_sample();
   s.wo.z *= side;

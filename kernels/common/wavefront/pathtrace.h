@@ -26,6 +26,9 @@
 #if defined(COHORT_FEATURE_SHEEN)
 #include "common/shading/sheen.h"
 #endif
+#if defined(COHORT_FEATURE_SPECULAR)
+#include "common/shading/specular.h"
+#endif
 
 /* A path between stages: what the megakernel keeps in registers and the wavefront kernels keep
  * in structure-of-arrays buffers. Every method runs these same functions in the same order per
@@ -390,6 +393,16 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
     SheenParams sh = sheen_params(s, s->triangle_material[hit.triangle], hit.triangle, hit.u, hit.v);
     if (!bsdf_sheen_select(sh.color, sh.roughness, wi, &u_select, &b))
       b = bsdf_from_gltf(sp.base_color, sp.metallic, sp.roughness, m->transmission, m->ior, u_select);
+  }
+#endif
+#if defined(COHORT_FEATURE_SPECULAR)
+  /* KHR_materials_specular: the opaque dielectric that the rest of u_select chose becomes glTF's
+   * layering, chosen from what remains of u_select (specular.h; docs/bsdf.md, "Specular") */
+  if (b.type == BSDF_PLASTIC || b.type == BSDF_DIFFUSE) {
+    SpecularParams sq = specular_params(s, s->triangle_material[hit.triangle], hit.triangle, hit.u, hit.v);
+    if (sq.layer)
+      b = bsdf_specular_base(b, sp.base_color, sp.metallic, sp.roughness, m->transmission, m->ior, sq.color,
+                             sq.factor, wi, u_select);
   }
 #endif
 #if defined(COHORT_FEATURE_CLEARCOAT)

@@ -96,6 +96,17 @@ MaterialSheen to_device_sheen(const SceneMaterial& m) {
   return d;
 }
 
+MaterialSpecular to_device_specular(const SceneSpecular& s) {
+  MaterialSpecular d{};
+  d.color_factor = to_float4(s.color, s.factor);
+  d.factor_texture = s.texture;
+  d.color_texture = s.color_texture;
+  if (s.texcoord == 1) d.flags |= MAT_SPECULAR_UV1_FACTOR;
+  if (s.color_texcoord == 1) d.flags |= MAT_SPECULAR_UV1_COLOR;
+  if (s.present()) d.flags |= MAT_SPECULAR_LAYER;
+  return d;
+}
+
 std::vector<std::string> SceneFeatures::names() const {
   std::vector<std::string> out;
   if (textures) out.push_back("textures");
@@ -112,6 +123,7 @@ std::vector<std::string> SceneFeatures::names() const {
   if (volume) out.push_back("volume");
   if (clearcoat) out.push_back("clearcoat");
   if (sheen) out.push_back("sheen");
+  if (specular) out.push_back("specular");
   return out;
 }
 
@@ -238,6 +250,13 @@ void add_textures(const Scene& scene, const KdTree& tree, const std::vector<bool
       slot(sheen.color_texture, sheen_used, sm.sheen.color_texcoord, sm.sheen.color_transform);
       slot(sheen.roughness_texture, sheen_used, sm.sheen.roughness_texcoord, sm.sheen.roughness_transform);
     }
+    if (t.features.specular) {
+      // the specular textures, uploaded only where the material has the extension's layering
+      MaterialSpecular& spec = t.material_specular[i];
+      const bool spec_used = used[i] && sm.specular.present();
+      slot(spec.factor_texture, spec_used, sm.specular.texcoord, sm.specular.transform);
+      slot(spec.color_texture, spec_used, sm.specular.color_texcoord, sm.specular.color_transform);
+    }
     t.features.normal_map |= m.normal_texture >= 0;
     if (!t.features.clearcoat) continue;
     // a coat's textures only where the coat is there (factor > 0): a scene without one uploads none
@@ -338,6 +357,11 @@ SceneTables make_scene_tables(const Scene& scene, const KdTree& tree) {
   for (std::size_t i = 0; i < t.materials.size(); ++i) t.features.sheen |= used[i] && scene.materials[i].sheen.present();
   if (t.features.sheen)
     for (const auto& m : scene.materials) t.material_sheen.push_back(to_device_sheen(m));
+  // KHR_materials_specular's likewise, where a used material has one of other than default values
+  for (std::size_t i = 0; i < t.materials.size(); ++i)
+    t.features.specular |= used[i] && scene.materials[i].specular.present();
+  if (t.features.specular)
+    for (const auto& m : scene.materials) t.material_specular.push_back(to_device_specular(m.specular));
   add_textures(scene, tree, used, t);  // first: a texture left out selects no more families
   add_vertex_colors(scene, tree, t);
   add_frames(scene, tree, t);
@@ -405,6 +429,7 @@ SceneBuffers DeviceScene::kernel_buffers() const {
   b.punctual_lights = punctual_lights;
   b.material_coats = material_coats;
   b.material_sheen = material_sheen;
+  b.material_specular = material_specular;
   return b;
 }
 
@@ -449,6 +474,7 @@ DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables
   d.punctual_lights = upload("punctual lights", tables.punctual.lights);
   if (tables.features.clearcoat) d.material_coats = upload("clearcoat", tables.material_coats);
   if (tables.features.sheen) d.material_sheen = upload("material sheen", tables.material_sheen);
+  if (tables.features.specular) d.material_specular = upload("material specular", tables.material_specular);
   d.punctual_count = static_cast<std::uint32_t>(tables.punctual.lights.size());
   if (tables.environment) {
     d.env_texels = upload("environment map", tables.environment->texels);

@@ -44,6 +44,7 @@ struct SceneFeatures {
   bool volume = false;  // some used material can refract into an absorbing interior (KHR_materials_volume)
   bool clearcoat = false;  // some used material has a clearcoat (KHR_materials_clearcoat, factor > 0)
   bool sheen = false;   // some used material has a non-zero sheen colour (KHR_materials_sheen)
+  bool specular = false;  // some used material has a KHR_materials_specular of other than default values
 
   std::vector<std::string> names() const;  // "textures", "conductor", ...; empty for diffuse only
   std::string build_options() const;       // "-DCOHORT_FEATURE_TEXTURES ..."; empty for diffuse only
@@ -69,6 +70,7 @@ struct SceneTables {
   std::vector<TriangleFrame> triangle_frames;  // per kept triangle, only with features.normal_map
   std::vector<MaterialCoat> material_coats;    // per material, only with features.clearcoat
   std::vector<MaterialSheen> material_sheen;   // per material, only with features.sheen
+  std::vector<MaterialSpecular> material_specular;  // per material, only with features.specular
   PunctualTable punctual;                // point and spot lights
   std::optional<EnvironmentMap> environment;
   SceneFeatures features;                // of the materials the kept triangles use, and the lights
@@ -78,6 +80,8 @@ Material to_device_material(const SceneMaterial& m);
 MaterialCoat to_device_coat(const SceneClearcoat& c);
 // The sheen of a material as the kernels read it (texture indices as in the scene, before upload).
 MaterialSheen to_device_sheen(const SceneMaterial& m);
+// KHR_materials_specular of a material as the kernels read it (texture indices as in the scene).
+MaterialSpecular to_device_specular(const SceneSpecular& s);
 SceneTables make_scene_tables(const Scene& scene, const KdTree& tree);
 // Lights the scene with an environment map (it replaces any constant environment).
 void set_environment_map(SceneTables& tables, EnvironmentMap map);
@@ -97,6 +101,7 @@ struct DeviceScene {
   DeviceBuffer triangle_frames;                 // a one-element placeholder without normal maps
   DeviceBuffer material_coats;                  // unset without clearcoat: the programs take no such argument
   DeviceBuffer material_sheen;                  // unset without sheen: the programs take no such argument
+  DeviceBuffer material_specular;               // unset without specular: the programs take no such argument
   DeviceBuffer env_texels, env_tables, punctual_lights;  // placeholders without those lights
   SceneFeatures features;
   std::string build_options;  // features.build_options() (and the BVH's): every rendering program gets them

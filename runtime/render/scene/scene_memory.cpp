@@ -15,7 +15,7 @@ SceneMemory scene_memory(const KdTree& tree, const SceneTables& tables, WideBvh 
   m.triangles = bytes_of(tree.triangles);
   m.shading = bytes_of(tables.triangle_material) + bytes_of(tables.materials) +
               bytes_of(tables.emitters.entries) + bytes_of(tables.triangle_uvs) + bytes_of(tables.triangle_colors) + bytes_of(tables.triangle_frames) +
-              bytes_of(tables.material_coats) + bytes_of(tables.material_sheen) +
+              bytes_of(tables.material_coats) + bytes_of(tables.material_sheen) + bytes_of(tables.material_specular) +
               bytes_of(tables.textures) + bytes_of(tables.texels) +
               bytes_of(tables.punctual.lights) +
               (tables.environment ? bytes_of(tables.environment->texels) +
