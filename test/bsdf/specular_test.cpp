@@ -183,7 +183,11 @@ TEST(SpecularLayer, WhiteFurnaceReflectsAtMostAll) {
           const std::string name = fmt::format("roughness {} theta {}{} kind {}", roughness, theta, below ? " below" : "", kind);
           if (kind == 0) std::printf("specular 1 over white: %-34s albedo %.5f +- %.5f\n", name.c_str(), mean, sigma);
           for (double v : sum) EXPECT_LE(v / n, 1.0 + 5.0 * sigma + 1e-3) << name;
-          if (roughness == 0.0f && kind < 2) EXPECT_NEAR(mean, 1.0, 1e-5) << name;  // every sample weighs 1
-          if (kind == 2 && theta < 85.0) EXPECT_LT(sum[2], sum[0]) << name;
+          if (roughness == 0.0f && kind < 2) {
+            EXPECT_NEAR(mean, 1.0, 1e-5) << name;  // every sample weighs 1
+          }
+          if (kind == 2 && theta < 85.0) {
+            EXPECT_LT(sum[2], sum[0]) << name;
+          }
         }
 }
