@@ -18,15 +18,6 @@ using namespace cohort::test;
 
 namespace {
 
-RenderSettings white_sky(std::uint32_t size, std::uint32_t spp) {
-  RenderSettings rs;
-  rs.width = rs.height = size;
-  rs.spp = spp;
-  rs.environment = glm::vec3(1.f);
-  rs.max_depth = 0;  // unbounded: a convex object under the sky sends every path back to the sky
-  return rs;
-}
-
 SceneMaterial lambertian(glm::vec3 albedo) {
   SceneMaterial m;
   m.base_color = albedo;
@@ -80,7 +71,7 @@ TEST(GltfClearcoat, AWhiteFurnaceStaysAtOne) {
       add_sphere(s, {0.f, 0.f, 0.f}, 0.6f, 0, 3);
       const PreparedScene p = prepare(s, camera);
       ASSERT_TRUE(p.tables.features.clearcoat);
-      const RenderResult r = render_prepared(p, white_sky(16, 64));
+      const RenderResult r = render_prepared(p, unbounded_white_sky(16, 64));
       double sum = 0, sum2 = 0, lo = 1e9, hi = 0;
       for (float v : r.image.rgb) {
         sum += v;
@@ -144,7 +135,7 @@ TEST(GltfClearcoat, FactorAndRoughnessTexturesAreRedAndGreen) {
   const PreparedScene factors = prepare(coat_where_texture_says(false), camera);
   ASSERT_TRUE(textured.tables.features.textures);
   ASSERT_TRUE(textured.tables.features.clearcoat);
-  RenderSettings rs = white_sky(16, 3);
+  RenderSettings rs = unbounded_white_sky(16, 3);
   rs.max_depth = 4;
   const RenderResult a = render_prepared(textured, rs), b = render_prepared(factors, rs);
   ASSERT_EQ(a.image.rgb.size(), b.image.rgb.size());

@@ -19,15 +19,6 @@ using namespace cohort::test;
 
 namespace {
 
-RenderSettings white_sky(std::uint32_t size, std::uint32_t spp) {
-  RenderSettings rs;
-  rs.width = rs.height = size;
-  rs.spp = spp;
-  rs.environment = glm::vec3(1.f);
-  rs.max_depth = 0;  // unbounded: a convex object under the sky sends every path back to the sky
-  return rs;
-}
-
 SceneMaterial dielectric(glm::vec3 albedo, float roughness) {
   SceneMaterial m;
   m.base_color = albedo;
@@ -87,7 +78,7 @@ TEST(GltfSpecular, SpecularZeroIsExactlyTheLambertian) {
   Scene lambert;
   lambert.materials = {dielectric(glm::vec3(0.8f, 0.4f, 0.2f), 1.f)};
   add_sphere(lambert, {0.f, 0.f, 0.f}, 0.6f, 0, 3);
-  RenderSettings rs = white_sky(16, 8);
+  RenderSettings rs = unbounded_white_sky(16, 8);
   rs.max_depth = 5;
   const RenderResult want = render_prepared(prepare(lambert, camera), rs);
   for (float roughness : {0.f, 0.4f, 1.f}) {
@@ -115,7 +106,7 @@ TEST(GltfSpecular, AWhiteFurnaceStaysAtOne) {
     add_sphere(s, {0.f, 0.f, 0.f}, 0.6f, 0, 3);
     const PreparedScene p = prepare(s, camera);
     ASSERT_TRUE(p.tables.features.specular);
-    const RenderResult r = render_prepared(p, white_sky(16, 64));
+    const RenderResult r = render_prepared(p, unbounded_white_sky(16, 64));
     double sum = 0, sum2 = 0, lo = 1e9, hi = 0;
     for (float v : r.image.rgb) {
       sum += v;
@@ -172,7 +163,7 @@ TEST(GltfSpecular, TexturesAreAlphaAndColour) {
   const PreparedScene factors = prepare(specular_where_texture_says(false), camera);
   ASSERT_TRUE(textured.tables.features.textures);
   ASSERT_TRUE(textured.tables.features.specular);
-  RenderSettings rs = white_sky(16, 3);
+  RenderSettings rs = unbounded_white_sky(16, 3);
   rs.max_depth = 4;
   const RenderResult a = render_prepared(textured, rs), b = render_prepared(factors, rs);
   EXPECT_TRUE(same_image(a, b)) << "the textures' alpha and colour must give the factors' image bit for bit";

@@ -19,6 +19,17 @@ inline std::filesystem::path shipped_scene(const std::string& name) {
   return std::filesystem::path(COHORT_SOURCE_DIR) / "scenes" / name;
 }
 
+// A constant sky of 1 and unbounded paths at size x size and spp: a convex object under the sky
+// sends every path back to the sky, so a furnace reads the object's albedo.
+inline RenderSettings unbounded_white_sky(std::uint32_t size, std::uint32_t spp) {
+  RenderSettings rs;
+  rs.width = rs.height = size;
+  rs.spp = spp;
+  rs.environment = glm::vec3(1.f);
+  rs.max_depth = 0;
+  return rs;
+}
+
 inline RenderResult render_prepared(const PreparedScene& prepared, const RenderSettings& settings) {
   const ClContext cl(select_device(""));
   const ProgramCache cache(ProgramCache::default_directory());
