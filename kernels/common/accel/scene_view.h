@@ -188,6 +188,17 @@ CO_INLINE co_vec3 slot_texture(const SceneView* s, int32_t index, int set1, uint
   return v3_splat(1.0f);
 }
 
+#if (defined(COHORT_FEATURE_SHEEN) || defined(COHORT_FEATURE_SPECULAR)) && defined(COHORT_FEATURE_TEXTURES)
+/* Texture `index`'s alpha channel (linear, byte / 255) as slot_texture reads colour; 1 where there is
+ * no texture, so a factor times it keeps its bits. The sheen's roughness and the specular factor. */
+CO_INLINE float slot_alpha(const SceneView* s, int32_t index, int set1, uint32_t triangle, float b1, float b2) {
+  float u, v;
+  if (index < 0) return 1.0f;
+  slot_uv_at(s->triangle_uvs, set1, triangle, b1, b2, &u, &v);
+  return texture_sample_alpha(s->textures, s->texels, index, u, v);
+}
+#endif
+
 /* A core slot of material `m`: TEXCOORD_1 where the material's `uv1_flag` is set. */
 CO_INLINE co_vec3 material_texture(const SceneView* s, const CO_GLOBAL Material* m, int32_t index, uint32_t uv1_flag,
                                    uint32_t triangle, float b1, float b2) {
@@ -242,11 +253,8 @@ CO_INLINE SheenParams sheen_params(const SceneView* s, uint32_t material, uint32
   p.roughness = ms.color_roughness.w;
 #ifdef COHORT_FEATURE_TEXTURES
   p.color = v3_mul(p.color, slot_texture(s, ms.color_texture, (ms.flags & MAT_SHEEN_UV1_COLOR) != 0u, triangle, b1, b2));
-  if (ms.roughness_texture >= 0) {
-    float u, v;
-    slot_uv_at(s->triangle_uvs, (ms.flags & MAT_SHEEN_UV1_ROUGHNESS) != 0u, triangle, b1, b2, &u, &v);
-    p.roughness = p.roughness * texture_sample_alpha(s->textures, s->texels, ms.roughness_texture, u, v);
-  }
+  p.roughness =
+      p.roughness * slot_alpha(s, ms.roughness_texture, (ms.flags & MAT_SHEEN_UV1_ROUGHNESS) != 0u, triangle, b1, b2);
 #else
   (void)triangle;
   (void)b1;
@@ -275,11 +283,7 @@ CO_INLINE SpecularParams specular_params(const SceneView* s, uint32_t material, 
   if (!p.layer) return p;
 #ifdef COHORT_FEATURE_TEXTURES
   p.color = v3_mul(p.color, slot_texture(s, ms.color_texture, (ms.flags & MAT_SPECULAR_UV1_COLOR) != 0u, triangle, b1, b2));
-  if (ms.factor_texture >= 0) {
-    float u, v;
-    slot_uv_at(s->triangle_uvs, (ms.flags & MAT_SPECULAR_UV1_FACTOR) != 0u, triangle, b1, b2, &u, &v);
-    p.factor = p.factor * texture_sample_alpha(s->textures, s->texels, ms.factor_texture, u, v);
-  }
+  p.factor = p.factor * slot_alpha(s, ms.factor_texture, (ms.flags & MAT_SPECULAR_UV1_FACTOR) != 0u, triangle, b1, b2);
 #else
   (void)triangle;
   (void)b1;

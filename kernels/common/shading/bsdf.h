@@ -256,7 +256,9 @@ CO_INLINE int microfacet_reflection_sample(co_vec3 wi, float alpha, float u1, fl
   r->shadowing = ggx_g2(wi, wo, m, alpha) / g1;
   return 1;
 }
-CO_INLINE float conductor_pdf(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
+/* The pdf of a reflector that is a delta mirror when smooth and else samples GGX's visible normals:
+ * the conductor, the coat and the specular layer alike. */
+CO_INLINE float glossy_reflection_pdf(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
   if (b->alpha < BSDF_SMOOTH_ALPHA) return 0.0f;
   return microfacet_reflection_pdf(wi, wo, b->alpha);
 }
@@ -478,10 +480,6 @@ CO_INLINE co_vec3 coat_eval(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
   if (b->alpha < BSDF_SMOOTH_ALPHA || !(wi.z > 0.0f) || !(wo.z > 0.0f)) return v3_splat(0.0f);
   return v3_splat(b->spec_weight * plastic_coat_eval(b, wi, wo));
 }
-CO_INLINE float coat_pdf(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
-  if (b->alpha < BSDF_SMOOTH_ALPHA) return 0.0f;
-  return microfacet_reflection_pdf(wi, wo, b->alpha);
-}
 CO_INLINE BsdfSample coat_sample(const Bsdf* b, co_vec3 wi, float u1, float u2) {
   BsdfSample s = bsdf_no_sample();
   if (!(wi.z > 0.0f)) return s;
@@ -533,10 +531,6 @@ CO_INLINE co_vec3 specular_eval(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
   co_vec3 m = v3_normalize(v3_add(wi, wo));
   co_vec3 f = specular_fresnel(b->color, b->fdr_int, v3_dot(wi, m), b->eta);
   return v3_scale(f, b->spec_weight * ggx_d(m, b->alpha) * ggx_g2(wi, wo, m, b->alpha) / (4.0f * wi.z));
-}
-CO_INLINE float specular_pdf(const Bsdf* b, co_vec3 wi, co_vec3 wo) {
-  if (b->alpha < BSDF_SMOOTH_ALPHA) return 0.0f;
-  return microfacet_reflection_pdf(wi, wo, b->alpha);
 }
 CO_INLINE BsdfSample specular_sample(const Bsdf* b, co_vec3 wi, float u1, float u2) {
   BsdfSample s = bsdf_no_sample();
@@ -609,7 +603,7 @@ CO_INLINE float bsdf_pdf(const Bsdf* b, co_vec3 wi_in, co_vec3 wo_in) {
   co_vec3 wi = bsdf_mirrored(wi_in, side), wo = bsdf_mirrored(wo_in, side);
   if (b->type == BSDF_DIFFUSE) return diffuse_pdf(wi, wo);
 #if BSDF_WITH_CONDUCTOR
-  if (b->type == BSDF_CONDUCTOR) return conductor_pdf(b, wi, wo);
+  if (b->type == BSDF_CONDUCTOR) return glossy_reflection_pdf(b, wi, wo);
 #endif
 #if BSDF_WITH_DIELECTRIC
   if (b->type == BSDF_DIELECTRIC) return dielectric_pdf(b, wi, wo);
@@ -618,13 +612,13 @@ CO_INLINE float bsdf_pdf(const Bsdf* b, co_vec3 wi_in, co_vec3 wo_in) {
   if (b->type == BSDF_PLASTIC) return plastic_pdf(b, wi, wo);
 #endif
 #if BSDF_WITH_COAT
-  if (b->type == BSDF_COAT) return coat_pdf(b, wi, wo);
+  if (b->type == BSDF_COAT) return glossy_reflection_pdf(b, wi, wo);
 #endif
 #if BSDF_WITH_SHEEN
   if (b->type == BSDF_SHEEN) return diffuse_pdf(wi, wo);
 #endif
 #if BSDF_WITH_SPECULAR
-  if (b->type == BSDF_SPECULAR) return specular_pdf(b, wi, wo);
+  if (b->type == BSDF_SPECULAR) return glossy_reflection_pdf(b, wi, wo);
 #endif
   return 0.0f;
 }
