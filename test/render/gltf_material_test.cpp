@@ -262,24 +262,11 @@ Scene feature_room() {
 }
 
 TEST(GltfMaterial, EveryMethodAndTreeGivesTheSameBits) {
-  RenderSettings s;
-  s.width = 24;
-  s.height = 20;
-  s.spp = 3;
-  s.rr_depth = 3;
-  s.seed = 5;
   expect_every_method_and_tree_agree(
-      "feature-room", feature_room(), {{0.5f, 0.5f, 0.02f}, {0.5f, 0.3f, 1.f}, {0, 1, 0}, 70}, s,
-      [](const PreparedScene& p, const char* tree) {
-        const SceneFeatures expected{.textures = true, .texcoord1 = true, .vertex_colors = true, .normal_map = true,
-                                     .conductor = true, .plastic = true};
-        EXPECT_EQ(p.tables.features, expected) << tree;
-      },
-      [](const Image& image) {
-        double sum = 0;
-        for (float v : image.rgb) sum += v;
-        return sum > 0.0;
-      });
+      "feature-room", feature_room(), feature_room_camera(), feature_room_settings(),
+      expect_features(SceneFeatures{.textures = true, .texcoord1 = true, .vertex_colors = true, .normal_map = true,
+                                    .conductor = true, .plastic = true}),
+      any_light);
 }
 
 }  // namespace

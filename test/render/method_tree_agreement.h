@@ -37,6 +37,30 @@ inline const std::array<NamedTree, 4>& every_tree() {
   return trees;
 }
 
+// What most scenes' checks ask of expect_every_method_and_tree_agree: each tree's prepared scene has
+// exactly the feature options `expected`, and the reference image is not black.
+inline std::function<void(const PreparedScene&, const char*)> expect_features(SceneFeatures expected) {
+  return [expected](const PreparedScene& p, const char* tree) { EXPECT_EQ(p.tables.features, expected) << tree; };
+}
+inline bool any_light(const Image& image) {
+  double sum = 0;
+  for (float v : image.rgb) sum += v;
+  return sum > 0.0;
+}
+
+// The glTF feature rooms' view and render (a unit room seen from its front wall): 24x20 at 3 spp,
+// Russian roulette from depth 3, so every method and tree runs in seconds.
+inline SceneCamera feature_room_camera() { return {{0.5f, 0.5f, 0.02f}, {0.5f, 0.3f, 1.f}, {0, 1, 0}, 70}; }
+inline RenderSettings feature_room_settings() {
+  RenderSettings s;
+  s.width = 24;
+  s.height = 20;
+  s.spp = 3;
+  s.rr_depth = 3;
+  s.seed = 5;
+  return s;
+}
+
 // Renders `scene` from `camera` with `settings` (its method, pool, payload and speculation are set
 // here) on every tree (every_tree), with every method the device and the tree run; the
 // sorting methods also in a pool of 129 paths that refills (the speculative resume on the KD-trees)
