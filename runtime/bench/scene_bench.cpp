@@ -115,6 +115,7 @@ SceneFigures bench_scene(const OpenedDevices& devices, const std::filesystem::pa
   out.build_seconds = prepared.build_seconds();
   if (prepared.bvh4) out.bvh4 = prepared.bvh4->stats;
   if (prepared.bvh8) out.bvh8 = prepared.bvh8->stats;
+  if (prepared.bvh8f) out.bvh8f = prepared.bvh8f->stats;
   out.bounds = prepared.scene.bounds();
   log(fmt::format("{}: {} triangles, {} tree built in {:.3f}s", path.string(), out.triangles, out.tree_kind,
                   out.build_seconds));

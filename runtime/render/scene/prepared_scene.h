@@ -12,6 +12,7 @@
 
 #include "runtime/accel/bvh4.h"
 #include "runtime/accel/bvh8.h"
+#include "runtime/accel/bvh8f.h"
 #include "runtime/accel/wide_bvh.h"
 #include "runtime/accel/kdtree/kdtree.h"
 #include "runtime/backend/device_info.h"
@@ -25,6 +26,7 @@ struct PreparedScene {
   KdTree tree;                // with a BVH: one leaf, for the kept triangles and their indices
   std::optional<Bvh4> bvh4;   // what the kernels trace with --tree bvh4 (tree_options)
   std::optional<Bvh8> bvh8;   // what the kernels trace with --tree bvh8
+  std::optional<Bvh8f> bvh8f; // what the kernels trace with --tree bvh8f
   SceneTables tables;
   SceneCamera camera;  // the file's camera, else the framing camera of docs/bench-protocol.md
   double load_seconds = 0;
@@ -33,12 +35,17 @@ struct PreparedScene {
   WideBvh bvh() const {
     if (bvh4) return &*bvh4;
     if (bvh8) return &*bvh8;
+    if (bvh8f) return &*bvh8f;
     return {};
   }
   // the BVH's figures, if there is one
-  const Bvh4Stats* bvh_stats() const { return bvh4 ? &bvh4->stats : bvh8 ? &bvh8->stats : nullptr; }
-  // "deep", "compact", "bvh4" or "bvh8": what --stats, info and the bench JSON name as the tree
-  const char* tree_kind() const { return bvh4 ? "bvh4" : bvh8 ? "bvh8" : cohort::tree_kind(tree.stats); }
+  const Bvh4Stats* bvh_stats() const {
+    return bvh4 ? &bvh4->stats : bvh8 ? &bvh8->stats : bvh8f ? &bvh8f->stats : nullptr;
+  }
+  // "deep", "compact", "bvh4", "bvh8" or "bvh8f": what --stats, info and the bench JSON name as the tree
+  const char* tree_kind() const {
+    return bvh4 ? "bvh4" : bvh8 ? "bvh8" : bvh8f ? "bvh8f" : cohort::tree_kind(tree.stats);
+  }
   double build_seconds() const {
     const Bvh4Stats* b = bvh_stats();
     return tree.stats.build_seconds + (b ? b->build_seconds : 0.0);
@@ -53,13 +60,14 @@ std::string describe_bvh(const char* name, const Bvh4Stats& stats, std::size_t t
 std::string describe_kdtree(const KdTreeStats& stats);
 
 // What a scene is traced with: a KD-tree built with `kd`, or with `bvh4` a 4-wide BVH, with `bvh8`
-// the compressed 8-wide BVH, over the kept triangles (the KD-tree then one leaf; `kd` is still the
+// the compressed 8-wide BVH, with `bvh8f` the 8-wide BVH with float planes, over the kept triangles (the KD-tree then one leaf; `kd` is still the
 // KD-tree the choice would build without the BVH, what a memory limit falls back to).
 struct TreeChoice {
   KdBuildOptions kd;
   bool bvh4 = false;
   bool bvh8 = false;
-  bool bvh() const { return bvh4 || bvh8; }
+  bool bvh8f = false;
+  bool bvh() const { return bvh4 || bvh8 || bvh8f; }
 };
 
 // The structure a render traces with (`--tree`): "bvh4" (a 4-wide BVH: 1.6-2.3x the KD-tree's
