@@ -154,10 +154,10 @@ TEST(Cli, InfoAllListsEachLayoutsMemory) {
 // bit.
 TEST(Cli, EveryTreeRendersTheSameImage) {
   TempDir dir;
-  std::string images[5];
-  nlohmann::json stats[5];
-  const char* trees[5] = {"deep", "compact", "auto", "bvh4", "bvh8"};
-  for (int k = 0; k < 5; ++k) {
+  std::string images[6];
+  nlohmann::json stats[6];
+  const char* trees[6] = {"deep", "compact", "auto", "bvh4", "bvh8", "bvh8f"};
+  for (int k = 0; k < 6; ++k) {
     const auto out = dir.path / trees[k];
     const CommandResult r = run("render " + scene("cornell-box.gltf") + " --res 40x32 --spp 8 --method sc --tree " +
                                 trees[k] + " -o " + out.string() + " --stats " + (dir.path / "s.json").string());
@@ -180,13 +180,18 @@ TEST(Cli, EveryTreeRendersTheSameImage) {
   EXPECT_EQ(stats[4]["kdtree"]["kind"], "bvh8");
   EXPECT_GT(stats[4]["kdtree"]["bvh8"]["nodes"].get<int>(), 0);
   EXPECT_TRUE(images[0] == images[4]) << "the 8-wide BVH rendered a different image";
-  // hash and pth do not walk the 8-wide BVH yet: an error naming the tree, no image
-  for (const char* method : {"pth", "hash"}) {
-    const CommandResult r = run("render " + scene("cornell-box.gltf") + " --res 8x8 --spp 1 --method " + method +
-                                " --tree bvh8 -o " + (dir.path / "x8").string());
-    EXPECT_EQ(r.code, 2) << method << ": " << r.output;
-    EXPECT_NE(r.output.find("--tree bvh8"), std::string::npos) << r.output;
-    EXPECT_FALSE(fs::exists(dir.path / "x8.exr"));
+  EXPECT_EQ(stats[5]["kdtree"]["kind"], "bvh8f");
+  EXPECT_GT(stats[5]["kdtree"]["bvh8f"]["nodes"].get<int>(), 0);
+  EXPECT_TRUE(images[0] == images[5]) << "the 8-wide BVH with float planes rendered a different image";
+  // hash and pth do not walk the 8-wide BVHs: an error naming the tree, no image
+  for (const char* tree : {"bvh8", "bvh8f"}) {
+    for (const char* method : {"pth", "hash"}) {
+      const CommandResult r = run("render " + scene("cornell-box.gltf") + " --res 8x8 --spp 1 --method " + method +
+                                  " --tree " + tree + " -o " + (dir.path / "x8").string());
+      EXPECT_EQ(r.code, 2) << method << " on " << tree << ": " << r.output;
+      EXPECT_NE(r.output.find(std::string("--tree ") + tree + ":"), std::string::npos) << r.output;
+      EXPECT_FALSE(fs::exists(dir.path / "x8.exr"));
+    }
   }
   // pth and hash walk the top of whichever tree is built: the BVH by default, the KD-tree when asked
   for (const char* method : {"pth", "hash"}) {
