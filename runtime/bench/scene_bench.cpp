@@ -49,6 +49,8 @@ RenderInput bench_input(const std::filesystem::path& path, const BenchOptions& o
   input.settings.sort = options.sort;
   input.white_sky = true;
   input.tree = options.tree;
+  input.runs_sorting_methods = std::any_of(options.methods.begin(), options.methods.end(),
+                                           [](const std::string& m) { return m == "hash" || m == "pth"; });
   return input;
 }
 

@@ -210,9 +210,9 @@ typedef float8 co_float8;
 #define co_f8_min(a, b) select((b), (a), (a) < (b))
 #define co_f8_max(a, b) select((b), (a), (a) > (b))
 CO_INLINE uint32_t co_f8_less(float8 a, float8 b) {
-  int8 m = (a < b) & (int8)(1, 2, 4, 8, 16, 32, 64, 128);
-  int4 h = m.lo | m.hi;
-  return (uint32_t)(h.x | h.y | h.z | h.w);
+  int8 m = a < b;
+  return (uint32_t)((m.s0 & 1) | (m.s1 & 2) | (m.s2 & 4) | (m.s3 & 8) | (m.s4 & 16) | (m.s5 & 32) | (m.s6 & 64) |
+                    (m.s7 & 128));
 }
 #else
 typedef struct co_float8 {

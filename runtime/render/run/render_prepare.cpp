@@ -41,11 +41,12 @@ OpenedDevices open_one_device(Backend backend, const std::string& spec) {
 PreparedScene build_render_trees(const RenderInput& input, const std::vector<DeviceInfo>& devices,
                                  const std::function<PreparedScene(const TreeChoice&)>& build) {
   // what rays are traced through (tree_options: the BVH unless a tree budget or speculative traversal
-  // asks for the KD-tree, which then fits the devices); any gives the same image
-  const TreeChoice tree = tree_options(input.tree, devices, input.needs_kdtree());
+  // asks for the KD-tree, which then fits the devices; on CPUs the 8-wide one unless hash or pth
+  // runs); any gives the same image
+  const TreeChoice tree = tree_options(input.tree, devices, input.needs_kdtree(), input.sorts());
   PreparedScene prepared = build(tree);
   // the BVH has no depth to trade for bytes: where it does not fit, auto falls back to the KD-tree
-  if (input.memory_limit && prepared.bvh4 && input.tree == "auto" &&
+  if (input.memory_limit && prepared.bvh() && input.tree == "auto" &&
       scene_memory(prepared.tree, prepared.tables, prepared.bvh()).total() > input.memory_limit)
     prepared = build(TreeChoice{tree.kd, false});
   if (input.tree_budget_mib > 0)

@@ -17,14 +17,19 @@ const std::vector<std::string>& tree_choices() {
   return names;
 }
 
-TreeChoice tree_options(const std::string& choice, std::span<const DeviceInfo> devices, bool needs_kd) {
+TreeChoice tree_options(const std::string& choice, std::span<const DeviceInfo> devices, bool needs_kd, bool sorts) {
   TreeChoice options;
   const bool no_gpu = std::none_of(devices.begin(), devices.end(), [](const DeviceInfo& d) { return d.is_gpu; });
+  const bool cpus =
+      !devices.empty() && std::all_of(devices.begin(), devices.end(), [](const DeviceInfo& d) { return d.is_cpu; });
   if (choice == "compact") {
     options.kd.compact = true;
   } else if (choice == "auto") {
     options.kd.compact = no_gpu;
-    options.bvh4 = !needs_kd;
+    // CPUs trace the 8-wide BVH with float planes (eight boxes per AVX step) unless hash or pth,
+    // which walk the 4-wide BVH's top, run on it; GPUs trace the 4-wide one
+    options.bvh8f = !needs_kd && cpus && !sorts;
+    options.bvh4 = !needs_kd && !options.bvh8f;
   } else if (choice == "bvh4" || choice == "bvh8" || choice == "bvh8f") {
     if (needs_kd)
       throw InputError(fmt::format("--tree {}: --tree-budget and --speculative need the KD-tree; give --tree auto, "

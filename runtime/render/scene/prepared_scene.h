@@ -72,17 +72,22 @@ struct TreeChoice {
 
 // The structure a render traces with (`--tree`): "bvh4" (a 4-wide BVH: 1.6-2.3x the KD-tree's
 // samples per CPU second on PoCL, 1.1-2.1x its rays/s on the H200 for naive and sc; 0.9x on the
-// conference; docs/results.md), "deep" (the KD-tree built for GPUs), "compact" (KdBuildOptions::compact:
-// 0.55-0.67x the nodes and 0.74-0.83x the bytes) or "auto": bvh4 unless a KD-tree is asked for
-// (`needs_kd`: --tree-budget, --speculative), then compact when no device is a GPU and deep when one is. Every
-// method walks either; pth's partial traversal walks the top of whichever is built. "bvh8" (the
-// compressed 8-wide BVH of Ylitie, Karras & Laine, for GPUs' incoherent rays; docs/design.md) is
-// never chosen by auto; hash and pth do not run on it yet (SortedTraversal refuses them). Every structure gives every ray the same hit (kernels/common/accel/bvh4_traverse.h), so
-// the choice changes speed and memory, never the image. Throws InputError for another name, and for
-// bvh4 or bvh8 with `needs_kd`.
-TreeChoice tree_options(const std::string& choice, std::span<const DeviceInfo> devices = {}, bool needs_kd = false);
-inline TreeChoice tree_options(const std::string& choice, const DeviceInfo& device, bool needs_kd = false) {
-  return tree_options(choice, {&device, 1}, needs_kd);
+// conference; docs/results.md), "bvh8f" (the 8-wide BVH with float planes: on PoCL 1.10-1.15x the
+// 4-wide BVH's path tracing; docs/design.md), "deep" (the KD-tree built for GPUs), "compact"
+// (KdBuildOptions::compact: 0.55-0.67x the nodes and 0.74-0.83x the bytes) or "auto": a KD-tree when
+// one is asked for (`needs_kd`: --tree-budget, --speculative: compact when no device is a GPU, deep
+// when one is), else bvh8f when every device is a CPU and the method is not hash or pth (`sorts`:
+// they walk the top of the KD-tree or the 4-wide BVH; the auto method then probes the others), else
+// bvh4 (GPUs, and without devices: `info`). "bvh8" (the compressed 8-wide BVH of Ylitie, Karras &
+// Laine, for GPUs' incoherent rays; docs/design.md) is never chosen by auto; hash and pth do not run
+// on either 8-wide BVH (SortedTraversal refuses them). Every structure gives every ray the same hit
+// (kernels/common/accel/bvh4_traverse.h), so the choice changes speed and memory, never the image.
+// Throws InputError for another name, and for bvh4, bvh8 or bvh8f with `needs_kd`.
+TreeChoice tree_options(const std::string& choice, std::span<const DeviceInfo> devices = {}, bool needs_kd = false,
+                        bool sorts = false);
+inline TreeChoice tree_options(const std::string& choice, const DeviceInfo& device, bool needs_kd = false,
+                               bool sorts = false) {
+  return tree_options(choice, {&device, 1}, needs_kd, sorts);
 }
 // The names tree_options takes, for the CLI's --tree.
 const std::vector<std::string>& tree_choices();
