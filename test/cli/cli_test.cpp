@@ -140,7 +140,8 @@ TEST(Cli, InfoAllListsEachLayoutsMemory) {
   ASSERT_EQ(r.code, 0) << r.output;
   std::size_t at = 0;
   for (const char* layout :
-       {"4-wide BVH: depth", "compressed 8-wide BVH: depth", "kd-tree (deep):", "kd-tree (compact):"}) {
+       {"4-wide BVH: depth", "compressed 8-wide BVH: depth", "8-wide BVH (float planes): depth", "kd-tree (deep):",
+        "kd-tree (compact):"}) {
     at = r.output.find(layout, at);
     ASSERT_NE(at, std::string::npos) << layout << "\n" << r.output;
     const std::size_t memory = r.output.find("device memory: ", at);
@@ -295,6 +296,20 @@ TEST(Cli, MemoryLimitAndTreeBudgetMakeTheTreeShallowerToFit) {
     EXPECT_LE(s["kdtree"]["bytes"].get<double>(), 0.35 * 1048576.0);
     EXPECT_EQ(s["device_memory"]["triangles"], full_stats["device_memory"]["triangles"]);
   }
+}
+
+// Under --memory-limit, --tree auto's BVH falls back to a smaller tree where it does not fit: on a CPU
+// the 8-wide BVH with float planes (1.0 MiB for the furnace sphere) to the 4-wide one (0.88 MiB),
+// before the KD-tree.
+TEST(Cli, AutoFallsBackToTheFourWideBvhWhereItsBvhDoesNotFit) {
+  TempDir dir;
+  const auto stats = dir.path / "s.json";
+  const CommandResult r = run("render " + scene("furnace-sphere.gltf") + " --method naive --res 8x8 --spp 1 " +
+                              "--memory-limit 0.95 -o " + (dir.path / "m").string() + " --stats " + stats.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto s = nlohmann::json::parse(std::ifstream(stats));
+  EXPECT_EQ(s["kdtree"]["kind"], "bvh4");
+  EXPECT_LE(s["device_memory"]["total"].get<double>(), 0.95 * 1048576.0);
 }
 
 TEST(Cli, TimeLimitStopsTheRender) {
