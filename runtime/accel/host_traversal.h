@@ -4,9 +4,11 @@
 
 #include "kernels/common/accel/bvh4_traverse.h"
 #include "kernels/common/accel/bvh8_traverse.h"
+#include "kernels/common/accel/bvh8f_traverse.h"
 #include "kernels/common/accel/kdtree_traverse.h"
 #include "runtime/accel/bvh4.h"
 #include "runtime/accel/bvh8.h"
+#include "runtime/accel/bvh8f.h"
 #include "runtime/accel/kdtree/kdtree.h"
 
 namespace cohort {
@@ -32,6 +34,14 @@ inline Bvh4View host_view(const Bvh4& bvh) {
 // The compressed 8-wide BVH (its leaves carry their own copies of the triangles too).
 inline Bvh8View host_view(const Bvh8& bvh) {
   Bvh8View view;
+  view.nodes = bvh.nodes.data();
+  view.leaf_triangles = bvh.leaf_vertices.data();
+  return view;
+}
+
+// The 8-wide BVH with float planes (the 4-wide BVH's leaves).
+inline Bvh8fView host_view(const Bvh8f& bvh) {
+  Bvh8fView view;
   view.nodes = bvh.nodes.data();
   view.leaf_triangles = bvh.leaf_vertices.data();
   return view;

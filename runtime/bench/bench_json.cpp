@@ -92,6 +92,7 @@ nlohmann::json scenes_json(const std::vector<SceneFigures>& scenes, const std::s
                     {"views", views}});
     if (s.bvh4 && accel_key == "kdtree") list.back()[accel_key]["bvh4"] = bvh4_json(*s.bvh4);
     if (s.bvh8 && accel_key == "kdtree") list.back()[accel_key]["bvh8"] = bvh4_json(*s.bvh8);
+    if (s.bvh8f && accel_key == "kdtree") list.back()[accel_key]["bvh8f"] = bvh4_json(*s.bvh8f);
   }
   return list;
 }

@@ -1,5 +1,7 @@
 #include "runtime/bench/gate_bench.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <numeric>
 #include <optional>
@@ -33,7 +35,9 @@ std::vector<std::uint64_t> layout_keys(const std::string& layout, const Prepared
   const KdTree& tree = scene.tree;
   const CodeParams c = parse_code_layout(layout, 10, tree.bounds);
   const KdTreeView view = host_view(tree);
-  if (scene.bvh8) throw InputError("--tree bvh8: the PTH gate's walk runs on the KD-tree or the 4-wide BVH");
+  if (scene.bvh8 || scene.bvh8f)
+    throw InputError(fmt::format("--tree {}: the PTH gate's walk runs on the KD-tree or the 4-wide BVH",
+                                 scene.tree_kind()));
   std::optional<Bvh4View> bvh;
   if (scene.bvh4) bvh = host_view(*scene.bvh4);
   std::vector<std::uint64_t> keys(rays.size());

@@ -49,6 +49,8 @@ RenderInput bench_input(const std::filesystem::path& path, const BenchOptions& o
   input.settings.sort = options.sort;
   input.white_sky = true;
   input.tree = options.tree;
+  input.runs_sorting_methods = std::any_of(options.methods.begin(), options.methods.end(),
+                                           [](const std::string& m) { return m == "hash" || m == "pth"; });
   return input;
 }
 
@@ -115,6 +117,7 @@ SceneFigures bench_scene(const OpenedDevices& devices, const std::filesystem::pa
   out.build_seconds = prepared.build_seconds();
   if (prepared.bvh4) out.bvh4 = prepared.bvh4->stats;
   if (prepared.bvh8) out.bvh8 = prepared.bvh8->stats;
+  if (prepared.bvh8f) out.bvh8f = prepared.bvh8f->stats;
   out.bounds = prepared.scene.bounds();
   log(fmt::format("{}: {} triangles, {} tree built in {:.3f}s", path.string(), out.triangles, out.tree_kind,
                   out.build_seconds));

@@ -13,6 +13,7 @@
 
 #include "runtime/accel/bvh4.h"
 #include "runtime/accel/bvh8.h"
+#include "runtime/accel/bvh8f.h"
 #include "runtime/accel/kdtree/kdtree.h"
 #include "runtime/bench/figures.h"
 #include "runtime/backend/device.h"
@@ -80,6 +81,7 @@ struct SceneFigures {
   double build_seconds = 0;          // PreparedScene::build_seconds(): the tree, or the BVH and its one leaf
   std::optional<Bvh4Stats> bvh4;     // with --tree bvh4 (the KD-tree is then one leaf)
   std::optional<Bvh8Stats> bvh8;     // with --tree bvh8 (likewise)
+  std::optional<Bvh8fStats> bvh8f;   // with --tree bvh8f (likewise)
   Bounds bounds;
   std::vector<ViewFigures> views;
 };

@@ -77,10 +77,11 @@ void add_render_options(CLI::App& cmd, RenderCommand& r) {
                  "Use at most this many MiB of device memory (the KD-tree gets shallower when the scene would not fit)")
       ->check(CLI::PositiveNumber);
   cmd.add_option("--tree", r.tree,
-                 "What rays are traced through: bvh4 (a 4-wide BVH, the fastest on CPUs and the H200; not with pth "
-                 "or hash), bvh8 (a compressed 8-wide BVH for GPUs' incoherent rays; not with pth or hash), deep "
-                 "(the KD-tree for GPUs), compact (a KD-tree of 0.6x the nodes) or auto (bvh4 when the method "
-                 "allows, else compact without a GPU and deep with one); the image is the same with every tree")
+                 "What rays are traced through: bvh4 (a 4-wide BVH, the fastest on the H200; every method), bvh8 (a compressed 8-wide BVH for GPUs' incoherent rays; not with pth or hash), bvh8f (an "
+                 "8-wide BVH with float planes, eight boxes per AVX step, the fastest on CPUs; not with pth or hash), deep "
+                 "(the KD-tree for GPUs), compact (a KD-tree of 0.6x the nodes) or auto (bvh8f where every device is "
+                 "a CPU and the method is not pth or hash, else bvh4; compact without a GPU and deep with one where a "
+                 "KD-tree is needed); the image is the same with every tree")
       ->check(CLI::IsMember(tree_choices()));
   cmd.add_option("--tree-budget", r.tree_budget_mib,
                  "Lower the KD-tree depth limit until nodes, leaf lists and triangles fit in this many MiB")
@@ -130,7 +131,7 @@ void add_bench_options(CLI::App& cmd, BenchCommand& b) {
   cmd.add_option("--device", b.device, "Device index or name substring");
   cmd.add_option("--backend", b.backend, "Device backend: opencl or cuda (the same kernels either way)")
       ->check(CLI::IsMember({"opencl", "cuda"}));
-  cmd.add_option("--tree", b.tree, "auto, deep, compact, bvh4 or bvh8 (see render --tree)")
+  cmd.add_option("--tree", b.tree, "auto, deep, compact, bvh4, bvh8 or bvh8f (see render --tree)")
       ->check(CLI::IsMember(tree_choices()));
   cmd.add_option("--json", b.json, "Write every figure to this JSON file");
   cmd.add_flag("--no-traversal", b.no_traversal, "Skip the primary and diffuse traversal workloads");
@@ -169,10 +170,10 @@ int run_cli(int argc, char** argv) {
   auto* info_cmd = app.add_subcommand("info", "Print a scene's size, materials, lights, tree and device memory");
   info_cmd->add_option("scene", info_scene, "Scene file")->required();
   info_cmd->add_option("--tree", info_tree,
-                       "What to build: auto (what a render builds: the 4-wide BVH, the default), bvh4, bvh8 (the "
-                       "compressed 8-wide BVH), deep or compact (the KD-trees), or all (each, with its bytes per "
+                       "What to build: auto (what a render builds on a GPU: the 4-wide BVH, the default), bvh4, bvh8 (the "
+                       "compressed 8-wide BVH), bvh8f (the 8-wide BVH with float planes), deep or compact (the KD-trees), or all (each, with its bytes per "
                        "triangle)")
-      ->check(CLI::IsMember({"auto", "bvh4", "bvh8", "deep", "compact", "all"}));
+      ->check(CLI::IsMember({"auto", "bvh4", "bvh8", "bvh8f", "deep", "compact", "all"}));
 
   BenchCommand bench;
   auto* bench_cmd = app.add_subcommand("bench", "Measure rays/s (protocol rays) and path tracing per method");

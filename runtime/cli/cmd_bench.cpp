@@ -112,8 +112,9 @@ int run_gate(const BenchCommand& cmd, const std::vector<BenchView>& views, Devic
   options.bounces = cmd.bounces;
   options.reps = cmd.reps;
   nlohmann::json all = nlohmann::json::array();
-  // the tree the renderer traces (--tree auto: the BVH), or a KD-tree; the PTH keys walk its top
-  const TreeChoice tree = tree_options(cmd.tree, info);
+  // the tree the renderer traces (--tree auto: the 4-wide BVH, as for pth), or a KD-tree; the PTH
+  // keys walk its top
+  const TreeChoice tree = tree_options(cmd.tree, info, false, true);
   for (const auto& path : cmd.scenes) {
     PreparedScene prepared = prepare_scene(path, tree);
     for (const BenchView& view : views) {

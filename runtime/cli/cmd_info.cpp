@@ -23,8 +23,8 @@ std::string describe(const Texture& t) {
                      wrap_name(t.sampler.wrap_t), uses.empty() ? "unused" : uses);
 }
 
-// The tree `p` holds and its device memory, then, for --tree all, the compressed 8-wide BVH and the
-// KD-trees built from the same kept triangles: what each layout costs a scene in bytes per triangle.
+// The tree `p` holds and its device memory, then, for --tree all, the 8-wide BVHs (compressed, and
+// with float planes) and the KD-trees built from the same kept triangles: what each layout costs a scene in bytes per triangle.
 void print_layouts(const PreparedScene& p, bool all) {
   const std::size_t triangles = p.tree.triangles.size();
   fmt::print("{}\n", describe_tree(p));
@@ -33,6 +33,9 @@ void print_layouts(const PreparedScene& p, bool all) {
   const Bvh8 bvh8 = build_bvh8(p.tree.triangles);
   fmt::print("{}\n", describe_bvh("compressed 8-wide BVH", bvh8.stats, triangles, p.tree.stats.build_seconds));
   fmt::print("device memory: {}\n", describe(scene_memory(p.tree, p.tables, &bvh8), triangles));
+  const Bvh8f bvh8f = build_bvh8f(p.tree.triangles);
+  fmt::print("{}\n", describe_bvh("8-wide BVH (float planes)", bvh8f.stats, triangles, p.tree.stats.build_seconds));
+  fmt::print("device memory: {}\n", describe(scene_memory(p.tree, p.tables, &bvh8f), triangles));
   for (const bool compact : {false, true}) {
     KdBuildOptions options;
     options.compact = compact;

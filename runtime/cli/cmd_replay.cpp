@@ -47,15 +47,16 @@ int run_replay(const ReplayCommand& cmd) {
   std::string tree = "deep";
   if (stats.contains("kdtree") && stats["kdtree"].contains("kind")) {
     const nlohmann::json& kind = stats["kdtree"]["kind"];
-    if (!kind.is_string() || (kind != "deep" && kind != "compact" && kind != "bvh4" && kind != "bvh8"))
-      throw InputError(
-          fmt::format("{}: kdtree.kind must be \"deep\", \"compact\", \"bvh4\" or \"bvh8\"", cmd.stats.string()));
+    if (!kind.is_string() || (kind != "deep" && kind != "compact" && kind != "bvh4" && kind != "bvh8" && kind != "bvh8f"))
+      throw InputError(fmt::format("{}: kdtree.kind must be \"deep\", \"compact\", \"bvh4\", \"bvh8\" or \"bvh8f\"",
+                                   cmd.stats.string()));
     tree = kind.get<std::string>();
   }
   const PreparedScene p = prepare_scene(cmd.scene, tree_options(tree));
   const KdTreeView kd_view = host_view(p.tree);
   std::optional<Bvh4View> bvh_view;
   std::optional<Bvh8View> bvh8_view;
+  std::optional<Bvh8fView> bvh8f_view;
   if (p.bvh4) {
     bvh_view = host_view(*p.bvh4);
     fmt::print("{}: 4-wide BVH, {} nodes, depth {}\n", cmd.scene.string(), p.bvh4->stats.node_count,
@@ -64,6 +65,10 @@ int run_replay(const ReplayCommand& cmd) {
     bvh8_view = host_view(*p.bvh8);
     fmt::print("{}: compressed 8-wide BVH, {} nodes, depth {}\n", cmd.scene.string(), p.bvh8->stats.node_count,
                p.bvh8->stats.depth);
+  } else if (p.bvh8f) {
+    bvh8f_view = host_view(*p.bvh8f);
+    fmt::print("{}: 8-wide BVH (float planes), {} nodes, depth {}\n", cmd.scene.string(), p.bvh8f->stats.node_count,
+               p.bvh8f->stats.depth);
   } else {
     fmt::print("{}: {} KD-tree, {} nodes, depth {}\n", cmd.scene.string(), tree, p.tree.stats.node_count,
                p.tree.stats.depth);
@@ -76,6 +81,7 @@ int run_replay(const ReplayCommand& cmd) {
       const co_vec3 org = v3(o.x, o.y, o.z), dir = v3(d.x, d.y, d.z);
       const HitOut hit = bvh_view    ? bvh4_trace_steps(&*bvh_view, org, dir, tmin, tmax, 0, &steps)
                          : bvh8_view ? bvh8_trace_steps(&*bvh8_view, org, dir, tmin, tmax, 0, &steps)
+                         : bvh8f_view ? bvh8f_trace_steps(&*bvh8f_view, org, dir, tmin, tmax, 0, &steps)
                                      : kd_trace_steps(&kd_view, org, dir, tmin, tmax, 0, &steps);
       fmt::print("device {} nodes, host {} nodes: org ({:a}, {:a}, {:a}) dir ({:a}, {:a}, {:a}) -> {}\n",
                  ray.at("nodes").get<std::uint32_t>(), steps, o.x, o.y, o.z, d.x, d.y, d.z,

@@ -85,8 +85,8 @@ def tree_figures_of(doc, tree=""):
     scene = scenes[0]
     kd = scene["kdtree"]
     kept = scene["triangles"] - kd.get("dropped_triangles", 0)
-    kind = tree if tree in ("bvh4", "bvh8") else kd.get("kind")
-    bvh = kd.get(kind) if kind in ("bvh4", "bvh8") else None
+    kind = tree if tree in ("bvh4", "bvh8", "bvh8f") else kd.get("kind")
+    bvh = kd.get(kind) if kind in ("bvh4", "bvh8", "bvh8f") else None
     if bvh:
         return kept, bvh["depth"], bvh["nodes"], bvh["sah_cost"], bvh["build_seconds"] + kd["build_seconds"], bvh["bytes"]
     return kept, kd["depth"], kd["nodes"], kd["sah_cost"], kd["build_seconds"], kd["bytes"]
@@ -238,7 +238,7 @@ def main():
     p.add_argument("--sizes", default="1m,4m", help="comma list of orig (Crytek Sponza as shipped), 1m, 4m, 18m, 31m ('' for none)")
     p.add_argument("--scene", type=Path, action="append", default=[], help="another scene file (repeatable)")
     p.add_argument("--reps", type=int, default=3)
-    p.add_argument("--tree", default="", choices=["", "deep", "compact", "bvh4", "bvh8"],
+    p.add_argument("--tree", default="", choices=["", "deep", "compact", "bvh4", "bvh8", "bvh8f"],
                    help="the tree to build (default: the deep KD-tree); the BVHs' build "
                         "seconds include keeping the triangles, as a render's do")
     p.add_argument("--cpus", default="", help="pin the builds to these CPUs (taskset -c "

@@ -24,7 +24,8 @@ using namespace cohort::test;
 
 namespace {
 
-// With `bvh`, through that BVH (the program built with COHORT_ACCEL_BVH4 or COHORT_ACCEL_BVH8), else
+// With `bvh`, through that BVH (the program built with COHORT_ACCEL_BVH4, COHORT_ACCEL_BVH8 or
+// COHORT_ACCEL_BVH8F), else
 // the KD-tree.
 std::vector<HitOut> trace_on_device(const KdTree& tree, const std::vector<TestRay>& rays, bool any_hit,
                                     const std::vector<float>& tmax, WideBvh bvh = {}) {
@@ -108,7 +109,7 @@ void check_scene(const fs::path& path, std::size_t ray_count) {
   EXPECT_GT(hits, rays.size() / 10);  // the rays must actually exercise the tree
 }
 
-// The BVH kernel (4- or 8-wide, `Bvh` and its builder) on the device against the KD-tree kernel, bit
+// The BVH kernel (4- or 8-wide, compressed or with float planes: `Bvh` and its builder) on the device against the KD-tree kernel, bit
 // for bit (t, u, v, triangle), on rays aimed at shared vertices and edges and random ones, closest
 // and any hit: what lets a CPU trace the BVH and render the GPU's image.
 template <class Bvh>
@@ -152,6 +153,21 @@ TEST(TraceKernel, Bvh8GivesTheKdTreesHitsOnTheCornellBox) {
 
 TEST(TraceKernel, Bvh8GivesTheKdTreesHitsOnTheVoxelTerrain) {
   check_bvh_against_kd(fs::path(COHORT_SOURCE_DIR) / "scenes/voxel-terrain.gltf", build_bvh8);
+}
+
+// The 8-wide BVH with float planes: its float8 box tests (one AVX operation per plane row on an AVX
+// CPU) give every lane the 4-wide test's answer.
+TEST(TraceKernel, Bvh8fGivesTheKdTreesHitsOnTheCornellBox) {
+  check_bvh_against_kd(fs::path(COHORT_SOURCE_DIR) / "scenes/cornell-box.gltf", build_bvh8f);
+}
+
+TEST(TraceKernel, Bvh8fGivesTheKdTreesHitsOnTheVoxelTerrain) {
+  check_bvh_against_kd(fs::path(COHORT_SOURCE_DIR) / "scenes/voxel-terrain.gltf", build_bvh8f);
+}
+
+TEST(TraceKernel, Bvh8fGivesTheKdTreesHitsOnTheBunny) {
+  if (!fs::exists(shared("bunny"))) GTEST_SKIP() << "the external models (scenes/external.json) are missing";
+  check_bvh_against_kd(shared("bunny/bun_zipper_res2.ply"), build_bvh8f);
 }
 
 TEST(TraceKernel, Bvh4GivesTheKdTreesHitsOnTheBunny) {

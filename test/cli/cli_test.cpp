@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/cli_helpers.h"
+#include "runtime/cl/devices.h"
 
 namespace fs = std::filesystem;
 using cohort_test::CommandResult;
@@ -139,7 +140,8 @@ TEST(Cli, InfoAllListsEachLayoutsMemory) {
   ASSERT_EQ(r.code, 0) << r.output;
   std::size_t at = 0;
   for (const char* layout :
-       {"4-wide BVH: depth", "compressed 8-wide BVH: depth", "kd-tree (deep):", "kd-tree (compact):"}) {
+       {"4-wide BVH: depth", "compressed 8-wide BVH: depth", "8-wide BVH (float planes): depth", "kd-tree (deep):",
+        "kd-tree (compact):"}) {
     at = r.output.find(layout, at);
     ASSERT_NE(at, std::string::npos) << layout << "\n" << r.output;
     const std::size_t memory = r.output.find("device memory: ", at);
@@ -154,10 +156,10 @@ TEST(Cli, InfoAllListsEachLayoutsMemory) {
 // bit.
 TEST(Cli, EveryTreeRendersTheSameImage) {
   TempDir dir;
-  std::string images[5];
-  nlohmann::json stats[5];
-  const char* trees[5] = {"deep", "compact", "auto", "bvh4", "bvh8"};
-  for (int k = 0; k < 5; ++k) {
+  std::string images[6];
+  nlohmann::json stats[6];
+  const char* trees[6] = {"deep", "compact", "auto", "bvh4", "bvh8", "bvh8f"};
+  for (int k = 0; k < 6; ++k) {
     const auto out = dir.path / trees[k];
     const CommandResult r = run("render " + scene("cornell-box.gltf") + " --res 40x32 --spp 8 --method sc --tree " +
                                 trees[k] + " -o " + out.string() + " --stats " + (dir.path / "s.json").string());
@@ -169,7 +171,8 @@ TEST(Cli, EveryTreeRendersTheSameImage) {
   EXPECT_EQ(stats[0]["kdtree"]["kind"], "deep");
   EXPECT_EQ(stats[1]["kdtree"]["kind"], "compact");
   EXPECT_LT(stats[1]["kdtree"]["nodes"].get<int>(), stats[0]["kdtree"]["nodes"].get<int>());
-  EXPECT_EQ(stats[2]["kdtree"]["kind"], "bvh4") << "auto with sc";
+  // auto with sc: the 8-wide BVH with float planes on a CPU, the 4-wide one on a GPU
+  EXPECT_EQ(stats[2]["kdtree"]["kind"], cohort::select_device("").is_gpu ? "bvh4" : "bvh8f") << "auto with sc";
   EXPECT_EQ(stats[3]["kdtree"]["kind"], "bvh4");
   EXPECT_GT(stats[3]["kdtree"]["bvh4"]["nodes"].get<int>(), 0);
   EXPECT_EQ(stats[3]["kdtree"]["nodes"].get<int>(), 1) << "with the BVH the KD-tree only keeps the triangles";
@@ -180,13 +183,18 @@ TEST(Cli, EveryTreeRendersTheSameImage) {
   EXPECT_EQ(stats[4]["kdtree"]["kind"], "bvh8");
   EXPECT_GT(stats[4]["kdtree"]["bvh8"]["nodes"].get<int>(), 0);
   EXPECT_TRUE(images[0] == images[4]) << "the 8-wide BVH rendered a different image";
-  // hash and pth do not walk the 8-wide BVH yet: an error naming the tree, no image
-  for (const char* method : {"pth", "hash"}) {
-    const CommandResult r = run("render " + scene("cornell-box.gltf") + " --res 8x8 --spp 1 --method " + method +
-                                " --tree bvh8 -o " + (dir.path / "x8").string());
-    EXPECT_EQ(r.code, 2) << method << ": " << r.output;
-    EXPECT_NE(r.output.find("--tree bvh8"), std::string::npos) << r.output;
-    EXPECT_FALSE(fs::exists(dir.path / "x8.exr"));
+  EXPECT_EQ(stats[5]["kdtree"]["kind"], "bvh8f");
+  EXPECT_GT(stats[5]["kdtree"]["bvh8f"]["nodes"].get<int>(), 0);
+  EXPECT_TRUE(images[0] == images[5]) << "the 8-wide BVH with float planes rendered a different image";
+  // hash and pth do not walk the 8-wide BVHs: an error naming the tree, no image
+  for (const char* tree : {"bvh8", "bvh8f"}) {
+    for (const char* method : {"pth", "hash"}) {
+      const CommandResult r = run("render " + scene("cornell-box.gltf") + " --res 8x8 --spp 1 --method " + method +
+                                  " --tree " + tree + " -o " + (dir.path / "x8").string());
+      EXPECT_EQ(r.code, 2) << method << " on " << tree << ": " << r.output;
+      EXPECT_NE(r.output.find(std::string("--tree ") + tree + ":"), std::string::npos) << r.output;
+      EXPECT_FALSE(fs::exists(dir.path / "x8.exr"));
+    }
   }
   // pth and hash walk the top of whichever tree is built: the BVH by default, the KD-tree when asked
   for (const char* method : {"pth", "hash"}) {
@@ -288,6 +296,20 @@ TEST(Cli, MemoryLimitAndTreeBudgetMakeTheTreeShallowerToFit) {
     EXPECT_LE(s["kdtree"]["bytes"].get<double>(), 0.35 * 1048576.0);
     EXPECT_EQ(s["device_memory"]["triangles"], full_stats["device_memory"]["triangles"]);
   }
+}
+
+// Under --memory-limit, --tree auto's BVH falls back to a smaller tree where it does not fit: on a CPU
+// the 8-wide BVH with float planes (1.0 MiB for the furnace sphere) to the 4-wide one (0.88 MiB),
+// before the KD-tree.
+TEST(Cli, AutoFallsBackToTheFourWideBvhWhereItsBvhDoesNotFit) {
+  TempDir dir;
+  const auto stats = dir.path / "s.json";
+  const CommandResult r = run("render " + scene("furnace-sphere.gltf") + " --method naive --res 8x8 --spp 1 " +
+                              "--memory-limit 0.95 -o " + (dir.path / "m").string() + " --stats " + stats.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto s = nlohmann::json::parse(std::ifstream(stats));
+  EXPECT_EQ(s["kdtree"]["kind"], "bvh4");
+  EXPECT_LE(s["device_memory"]["total"].get<double>(), 0.95 * 1048576.0);
 }
 
 TEST(Cli, TimeLimitStopsTheRender) {

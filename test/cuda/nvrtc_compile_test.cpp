@@ -55,6 +55,13 @@ TEST(NvrtcCompile, ProgramsTracingTheBvh8) {
   compile("naive", std::string(kAllFeatures) + " -DCOHORT_ACCEL_BVH8");
 }
 
+// The 8-wide BVH with float planes (--tree bvh8f) likewise: its float8 helpers' lane-by-lane CUDA
+// form (port.h), in every program but pth.
+TEST(NvrtcCompile, ProgramsTracingTheBvh8f) {
+  for (const char* name : {"naive", "wavefront", "trace", "aov"}) compile(name, "-DCOHORT_ACCEL_BVH8F");
+  compile("naive", std::string(kAllFeatures) + " -DCOHORT_ACCEL_BVH8F");
+}
+
 TEST(NvrtcCompile, TracingAndTestPrograms) {
   compile("trace", "");
   compile("film", "");

@@ -19,21 +19,22 @@
 
 namespace cohort::test {
 
-// The trees a render can trace, by their --tree names: the deep and compact KD-trees, the 4-wide BVH
-// and the compressed 8-wide BVH.
+// The trees a render can trace, by their --tree names: the deep and compact KD-trees, the 4-wide BVH,
+// the compressed 8-wide BVH and the 8-wide BVH with float planes.
 struct NamedTree {
   const char* name;
   TreeChoice choice;
   // hash and pth run on it (they walk the KD-trees and the 4-wide BVH; the host refuses them on the
-  // 8-wide one)
+  // 8-wide ones)
   bool sorts = true;
 };
-inline const std::array<NamedTree, 4>& every_tree() {
-  static const std::array<NamedTree, 4> trees{
+inline const std::array<NamedTree, 5>& every_tree() {
+  static const std::array<NamedTree, 5> trees{
       {{"deep", TreeChoice{KdBuildOptions{}, false}},
        {"compact", TreeChoice{KdBuildOptions{.compact = true}, false}},
        {"bvh4", TreeChoice{KdBuildOptions{}, true}},
-       {"bvh8", TreeChoice{.kd = KdBuildOptions{}, .bvh8 = true}, false}}};
+       {"bvh8", TreeChoice{.kd = KdBuildOptions{}, .bvh8 = true}, false},
+       {"bvh8f", TreeChoice{.kd = KdBuildOptions{}, .bvh8f = true}, false}}};
   return trees;
 }
 

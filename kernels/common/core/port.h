@@ -195,6 +195,69 @@ CO_INLINE uint32_t co_f4_less(co_float4 a, co_float4 b) {
 }
 #endif
 
+/* Eight-lane float arithmetic for the 8-wide BVH with float planes (--tree bvh8f): OpenCL's float8
+ * (one AVX instruction each where the CPU has it, two SSE ones where not), lane by lane elsewhere
+ * (the CUDA and host fallback, as the four-lane helpers'). co_f8_load and co_f8_store move eight
+ * consecutive floats (no alignment assumed); co_f8_less gives an 8-bit mask, lane 0 in bit 0. */
+#if defined(__OPENCL_VERSION__)
+typedef float8 co_float8;
+#define co_f8_load(p) vload8(0, (p))
+#define co_f8_store(v, p) vstore8((v), 0, (p))
+#define co_f8_splat(s) ((float8)(s))
+#define co_f8_sub(a, b) ((a) - (b))
+#define co_f8_mul(a, b) ((a) * (b))
+#define co_f8_scale(a, s) ((a) * (s))
+#define co_f8_min(a, b) select((b), (a), (a) < (b))
+#define co_f8_max(a, b) select((b), (a), (a) > (b))
+CO_INLINE uint32_t co_f8_less(float8 a, float8 b) {
+  int8 m = a < b;
+  return (uint32_t)((m.s0 & 1) | (m.s1 & 2) | (m.s2 & 4) | (m.s3 & 8) | (m.s4 & 16) | (m.s5 & 32) | (m.s6 & 64) |
+                    (m.s7 & 128));
+}
+#else
+typedef struct co_float8 {
+  float s[8];
+} co_float8;
+CO_INLINE co_float8 co_f8_load(const CO_GLOBAL float* p) {
+  co_float8 r;
+  for (int i = 0; i < 8; ++i) r.s[i] = p[i];
+  return r;
+}
+CO_INLINE void co_f8_store(co_float8 v, float* p) {
+  for (int i = 0; i < 8; ++i) p[i] = v.s[i];
+}
+CO_INLINE co_float8 co_f8_splat(float s) {
+  co_float8 r;
+  for (int i = 0; i < 8; ++i) r.s[i] = s;
+  return r;
+}
+CO_INLINE co_float8 co_f8_sub(co_float8 a, co_float8 b) {
+  for (int i = 0; i < 8; ++i) a.s[i] = a.s[i] - b.s[i];
+  return a;
+}
+CO_INLINE co_float8 co_f8_mul(co_float8 a, co_float8 b) {
+  for (int i = 0; i < 8; ++i) a.s[i] = a.s[i] * b.s[i];
+  return a;
+}
+CO_INLINE co_float8 co_f8_scale(co_float8 a, float s) {
+  for (int i = 0; i < 8; ++i) a.s[i] = a.s[i] * s;
+  return a;
+}
+CO_INLINE co_float8 co_f8_min(co_float8 a, co_float8 b) {
+  for (int i = 0; i < 8; ++i) a.s[i] = a.s[i] < b.s[i] ? a.s[i] : b.s[i];
+  return a;
+}
+CO_INLINE co_float8 co_f8_max(co_float8 a, co_float8 b) {
+  for (int i = 0; i < 8; ++i) a.s[i] = a.s[i] > b.s[i] ? a.s[i] : b.s[i];
+  return a;
+}
+CO_INLINE uint32_t co_f8_less(co_float8 a, co_float8 b) {
+  uint32_t m = 0u;
+  for (int i = 0; i < 8; ++i) m |= a.s[i] < b.s[i] ? 1u << i : 0u;
+  return m;
+}
+#endif
+
 /* A hint to start loading the cache line at p, where the host asks for it with -DCOHORT_PREFETCH
  * (devices whose local memory is the cached global memory: runtime/cl/kernel_program.cpp); GPUs hide
  * the latency with other warps. The form is chosen from what the compiler says it is, at program

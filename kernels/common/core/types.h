@@ -72,6 +72,20 @@ typedef struct Bvh8Node {
 } Bvh8Node;
 CO_STATIC_ASSERT(sizeof(Bvh8Node) == 80, "Bvh8Node must stay 80 bytes");
 
+/* ---- 8-wide BVH with float planes, 256 bytes per node (--tree bvh8f, for CPUs) --------------
+ * The 4-wide node's layout at twice the width: each plane of the eight child boxes is one row of
+ * eight floats (child i in lane i), so one float8 load and one AVX operation per slab test all
+ * eight. planes[p] is lo_x, hi_x, lo_y, hi_y, lo_z, hi_z for p = 0-5 (the 4-wide node's order);
+ * child[i] is child i's reference as a 4-wide node's (an inner node's index, a bvh4_leaf_ref into
+ * the leaf triangles, or BVH4_EMPTY with a box at +infinity). 64-byte aligned, four cache lines:
+ * the planes in the first three, the references in the fourth. */
+typedef struct CO_ALIGN(64) Bvh8fNode {
+  float planes[6][8];
+  uint32_t child[8];
+  uint32_t reserved[8]; /* zero; pads the node to four 64-byte cache lines */
+} Bvh8fNode;
+CO_STATIC_ASSERT(sizeof(Bvh8fNode) == 256, "Bvh8fNode must stay 256 bytes");
+
 /* ---- Triangles, stored for the watertight test of Woop, Benthin & Wald (JCGT 2013) -----------
  * The watertight test needs the vertices themselves; w components are padding. 48 bytes. */
 typedef struct Triangle {

@@ -13,8 +13,8 @@
 #if defined(COHORT_ACCEL_BVH4)
 #include "common/accel/bvh4_path.h"
 #endif
-#if defined(COHORT_ACCEL_BVH8)
-#error "the pth and hash kernels walk the KD-tree or the 4-wide BVH; the host refuses them with --tree bvh8"
+#if defined(COHORT_ACCEL_BVH8) || defined(COHORT_ACCEL_BVH8F)
+#error "the pth and hash kernels walk the KD-tree or the 4-wide BVH; the host refuses them with --tree bvh8 and bvh8f"
 #endif
 
 /* A ray that is not traced (or misses the scene) this bounce: the largest key, so that it sorts

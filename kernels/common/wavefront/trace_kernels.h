@@ -33,7 +33,7 @@ CO_KERNEL trace_rays_steps(CO_PARAMS(TRACE_RAYS_STEPS_PARAMS)) {
 }
 
 /* The rest walks the KD-tree itself (partial traversal, resume, speculation). */
-#if !defined(COHORT_ACCEL_BVH4) && !defined(COHORT_ACCEL_BVH8)
+#if !defined(COHORT_ACCEL_BVH4) && !defined(COHORT_ACCEL_BVH8) && !defined(COHORT_ACCEL_BVH8F)
 #include "common/pth/coherence.h"
 
 /* Partial traversal of the top `levels` (subtree in local memory) then resumed traversal, for a

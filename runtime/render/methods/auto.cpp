@@ -105,7 +105,7 @@ class AutoMethod final : public PassLauncher {
     for (const Method& m : methods()) {
       if (m.set_up == auto_method) continue;
       if (m.sorts && !device_support(in.device.info()).sorts) continue;  // the device cannot sort
-      if (m.sorts && in.scene.bvh8) continue;  // hash and pth do not walk the 8-wide BVH (SortedTraversal)
+      if (m.sorts && (in.scene.bvh8 || in.scene.bvh8f)) continue;  // hash and pth do not walk the 8-wide BVHs
       auto c = std::make_unique<Candidate>();
       c->method = &m;
       c->settings = in.settings;

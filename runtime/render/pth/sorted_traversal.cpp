@@ -1,5 +1,7 @@
 #include "runtime/render/pth/sorted_traversal.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 
 #include "kernels/common/core/contract.h"
@@ -16,9 +18,10 @@ SortedTraversal::SortedTraversal(const WavefrontRender& render, RayOrder key)
   const MethodInputs& in = render.inputs();
   const Device& cl = in.device;
   const std::uint32_t slots = render.pool().slots;
-  if (in.scene.bvh8)
-    throw InputError("--tree bvh8: the hash and pth methods walk the KD-tree or the 4-wide BVH; give --tree auto, "
-                     "bvh4, deep or compact with them");
+  if (in.scene.bvh8 || in.scene.bvh8f)
+    throw InputError(fmt::format("--tree {}: the hash and pth methods walk the KD-tree or the 4-wide BVH; give --tree "
+                                 "auto, bvh4, deep or compact with them",
+                                 in.scene.bvh8 ? "bvh8" : "bvh8f"));
   if (speculative_ && in.scene.bvh4)
     throw InputError("--speculative is the KD-tree's resume: give --tree auto, deep or compact with it");
   program_ = cl.build_program(in.cache, "pth", in.scene.build_options);

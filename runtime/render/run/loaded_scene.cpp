@@ -17,17 +17,17 @@ LoadedScene::LoadedScene(const RenderInput& base, FirstTree first_tree)
 }
 
 LoadedScene::Variant& LoadedScene::variant(const RenderInput& input, bool& built) {
-  const bool needs_kd = input.needs_kdtree();
-  const VariantKey key{needs_kd, input.white_sky, input.environment_map.string()};
+  const TreeKey tree_key{input.needs_kdtree(), input.sorts()};
+  const VariantKey key{tree_key, input.white_sky, input.environment_map.string()};
   built = false;
   if (auto it = variants_.find(key); it != variants_.end()) return it->second;
-  auto tree = trees_.find(needs_kd);
+  auto tree = trees_.find(tree_key);
   if (tree == trees_.end()) {
     PreparedScene prepared = build_render_trees(input, opened_.devices, [&](const TreeChoice& choice) {
       return prepare_loaded_scene(path_, loaded_, choice);
     });
     if (trees_.empty() && first_tree_) first_tree_(prepared);
-    tree = trees_.emplace(needs_kd, std::move(prepared)).first;
+    tree = trees_.emplace(tree_key, std::move(prepared)).first;
     built = true;
   }
   PreparedScene scene = tree->second;

@@ -1,6 +1,7 @@
 // A scene loaded once and rendered many times: what the Python module drives. The devices stay open
 // with the scene uploaded and their programs built, the file is read once, and each tree (the BVH,
-// or the KD-tree pth and hash walk) is built once from the loaded scene; a white sky or an
+// the 4-wide one hash and pth walk where --tree auto gives the others the 8-wide one, or the KD-tree)
+// is built once from the loaded scene; a white sky or an
 // environment map makes a variant of the scene's tables (uploaded when first used), and a camera is
 // set per render. Each render runs as any other (render_run.h).
 #pragma once
@@ -11,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "runtime/render/run/render_prepare.h"
@@ -45,9 +47,12 @@ class LoadedScene {
   double load_seconds() const { return load_seconds_; }
 
  private:
-  // The scene as a render needs it: its tree (the KD-tree or not), the white sky, an environment
-  // map; `camera` is its own, before each render's.
-  using VariantKey = std::tuple<bool, bool, std::string>;
+  // Which tree a render needs: whether it needs the KD-tree, and whether hash or pth runs (on CPUs
+  // --tree auto then builds the 4-wide BVH, else the 8-wide one; tree_options).
+  using TreeKey = std::pair<bool, bool>;
+  // The scene as a render needs it: its tree, the white sky, an environment map; `camera` is its
+  // own, before each render's.
+  using VariantKey = std::tuple<TreeKey, bool, std::string>;
   struct Variant {
     std::unique_ptr<PreparedRender> render;  // at a fixed address: the pool knows its scene by it
     SceneCamera camera;
@@ -61,7 +66,7 @@ class LoadedScene {
   std::filesystem::path path_;
   Scene loaded_;
   double load_seconds_ = 0;
-  std::map<bool, PreparedScene> trees_;  // by whether the KD-tree is needed
+  std::map<TreeKey, PreparedScene> trees_;
   std::map<VariantKey, Variant> variants_;
 };
 

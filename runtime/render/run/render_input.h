@@ -51,8 +51,12 @@ struct RenderInput {
   bool denoise = false;  // --denoise: the first-hit albedo and normal guide the denoiser
   CheckpointPolicy checkpoint;
 
+  bool runs_sorting_methods = false;  // `cohort bench`: hash or pth is among the methods it runs on the scene
+
   // --tree-budget and --speculative ask for the KD-tree
   bool needs_kdtree() const { return tree_budget_mib > 0 || settings.speculative; }
+  // hash or pth runs: they walk the top of the KD-tree or the 4-wide BVH, so auto builds no 8-wide one
+  bool sorts() const { return settings.method == "hash" || settings.method == "pth" || runs_sorting_methods; }
   bool first_hit_aovs() const { return aovs.any() || denoise; }
   std::size_t pixels() const { return std::size_t(settings.width) * settings.height; }
 };

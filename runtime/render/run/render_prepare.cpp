@@ -41,13 +41,19 @@ OpenedDevices open_one_device(Backend backend, const std::string& spec) {
 PreparedScene build_render_trees(const RenderInput& input, const std::vector<DeviceInfo>& devices,
                                  const std::function<PreparedScene(const TreeChoice&)>& build) {
   // what rays are traced through (tree_options: the BVH unless a tree budget or speculative traversal
-  // asks for the KD-tree, which then fits the devices); any gives the same image
-  const TreeChoice tree = tree_options(input.tree, devices, input.needs_kdtree());
+  // asks for the KD-tree, which then fits the devices; on CPUs the 8-wide one unless hash or pth
+  // runs); any gives the same image
+  const TreeChoice tree = tree_options(input.tree, devices, input.needs_kdtree(), input.sorts());
   PreparedScene prepared = build(tree);
-  // the BVH has no depth to trade for bytes: where it does not fit, auto falls back to the KD-tree
-  if (input.memory_limit && prepared.bvh4 && input.tree == "auto" &&
-      scene_memory(prepared.tree, prepared.tables, prepared.bvh()).total() > input.memory_limit)
-    prepared = build(TreeChoice{tree.kd, false});
+  // a BVH has no depth to trade for bytes: where auto's does not fit, the 8-wide one falls back to
+  // the 4-wide one (0.9x its bytes), and that to the KD-tree
+  const auto too_large = [&](const PreparedScene& p) {
+    return scene_memory(p.tree, p.tables, p.bvh()).total() > input.memory_limit;
+  };
+  if (input.memory_limit && input.tree == "auto") {
+    if (prepared.bvh8f && too_large(prepared)) prepared = build(TreeChoice{tree.kd, true});
+    if (prepared.bvh4 && too_large(prepared)) prepared = build(TreeChoice{tree.kd, false});
+  }
   if (input.tree_budget_mib > 0)
     prepared.tree = build_kdtree_within(prepared.scene.positions, tree.kd,
                                         static_cast<std::size_t>(input.tree_budget_mib * 1048576.0));

@@ -440,6 +440,9 @@ TraversalArrays traversal_arrays(const KdTree& tree, WideBvh bvh) {
   if (const Bvh8* b = bvh.bvh8)
     return {"BVH", b->nodes.data(), bytes_of(b->nodes), b->leaf_vertices.data(), bytes_of(b->leaf_vertices),
             "-DCOHORT_ACCEL_BVH8"};
+  if (const Bvh8f* b = bvh.bvh8f)
+    return {"BVH", b->nodes.data(), bytes_of(b->nodes), b->leaf_vertices.data(), bytes_of(b->leaf_vertices),
+            "-DCOHORT_ACCEL_BVH8F"};
   return {"KD-tree", tree.nodes.data(), bytes_of(tree.nodes), tree.leaf_triangles.data(), bytes_of(tree.leaf_triangles),
           ""};
 }
@@ -490,6 +493,7 @@ DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables
   d.build_options = tables.features.build_options();
   d.bvh4 = bvh.bvh4 != nullptr;
   d.bvh8 = bvh.bvh8 != nullptr;
+  d.bvh8f = bvh.bvh8f != nullptr;
   if (*arrays.build_option) {
     if (!d.build_options.empty()) d.build_options += ' ';
     d.build_options += arrays.build_option;
@@ -497,8 +501,10 @@ DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables
   d.emitter_count = static_cast<std::uint32_t>(tables.emitters.entries.size());
   d.emitter_power_total = tables.emitters.total_power;
   d.bounds = tree.bounds;
-  // the 8-wide BVH has no breadth-first top (the PTH walk does not run on it)
-  d.level_starts = bvh.bvh4 ? bvh.bvh4->top_level_starts : bvh.bvh8 ? std::vector<std::uint32_t>{} : level_starts(tree);
+  // the 8-wide BVHs have no breadth-first top (the PTH walk does not run on them)
+  d.level_starts = bvh.bvh4                  ? bvh.bvh4->top_level_starts
+                   : bvh.bvh8 || bvh.bvh8f ? std::vector<std::uint32_t>{}
+                                             : level_starts(tree);
   d.centroid_samples = centroid_samples(tree);
   return d;
 }

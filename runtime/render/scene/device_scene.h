@@ -107,6 +107,7 @@ struct DeviceScene {
   std::string build_options;  // features.build_options() (and the BVH's): every rendering program gets them
   bool bvh4 = false;          // nodes and leaf lists are a 4-wide BVH's (programs built with COHORT_ACCEL_BVH4)
   bool bvh8 = false;          // nodes and leaf lists are an 8-wide BVH's (programs built with COHORT_ACCEL_BVH8)
+  bool bvh8f = false;         // nodes and leaf lists are the float-plane 8-wide BVH's (COHORT_ACCEL_BVH8F)
   std::uint32_t emitter_count = 0;
   float emitter_power_total = 0;
   std::uint32_t env_width = 0, env_height = 0;  // 0 x 0 without an environment map
@@ -131,12 +132,12 @@ struct TraversalArrays {
   std::size_t node_bytes;
   const void* leaf_lists;
   std::size_t leaf_list_bytes;
-  const char* build_option;  // "-DCOHORT_ACCEL_BVH4", "-DCOHORT_ACCEL_BVH8" or empty
+  const char* build_option;  // "-DCOHORT_ACCEL_BVH4", "-DCOHORT_ACCEL_BVH8", "-DCOHORT_ACCEL_BVH8F" or empty
 };
 TraversalArrays traversal_arrays(const KdTree& tree, WideBvh bvh);
 
 // With `bvh`, its nodes and leaf lists go where the KD-tree's would, and every rendering program is
-// built with COHORT_ACCEL_BVH4 or COHORT_ACCEL_BVH8 to trace them (traversal_arrays).
+// built with COHORT_ACCEL_BVH4, COHORT_ACCEL_BVH8 or COHORT_ACCEL_BVH8F to trace them (traversal_arrays).
 DeviceScene upload_scene(const Device& cl, const KdTree& tree, const SceneTables& tables, WideBvh bvh = {});
 
 }  // namespace cohort

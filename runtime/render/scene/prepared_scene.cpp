@@ -13,25 +13,31 @@
 namespace cohort {
 
 const std::vector<std::string>& tree_choices() {
-  static const std::vector<std::string> names{"auto", "deep", "compact", "bvh4", "bvh8"};
+  static const std::vector<std::string> names{"auto", "deep", "compact", "bvh4", "bvh8", "bvh8f"};
   return names;
 }
 
-TreeChoice tree_options(const std::string& choice, std::span<const DeviceInfo> devices, bool needs_kd) {
+TreeChoice tree_options(const std::string& choice, std::span<const DeviceInfo> devices, bool needs_kd, bool sorts) {
   TreeChoice options;
   const bool no_gpu = std::none_of(devices.begin(), devices.end(), [](const DeviceInfo& d) { return d.is_gpu; });
+  const bool cpus =
+      !devices.empty() && std::all_of(devices.begin(), devices.end(), [](const DeviceInfo& d) { return d.is_cpu; });
   if (choice == "compact") {
     options.kd.compact = true;
   } else if (choice == "auto") {
     options.kd.compact = no_gpu;
-    options.bvh4 = !needs_kd;
-  } else if (choice == "bvh4" || choice == "bvh8") {
+    // CPUs trace the 8-wide BVH with float planes (eight boxes per AVX step) unless hash or pth,
+    // which walk the 4-wide BVH's top, run on it; GPUs trace the 4-wide one
+    options.bvh8f = !needs_kd && cpus && !sorts;
+    options.bvh4 = !needs_kd && !options.bvh8f;
+  } else if (choice == "bvh4" || choice == "bvh8" || choice == "bvh8f") {
     if (needs_kd)
       throw InputError(fmt::format("--tree {}: --tree-budget and --speculative need the KD-tree; give --tree auto, "
                                    "deep or compact with them",
                                    choice));
     options.bvh4 = choice == "bvh4";
     options.bvh8 = choice == "bvh8";
+    options.bvh8f = choice == "bvh8f";
   } else if (choice != "deep") {
     throw InputError(
         fmt::format("--tree {}: unknown tree (choose from {})", choice, fmt::join(tree_choices(), ", ")));
@@ -41,7 +47,7 @@ TreeChoice tree_options(const std::string& choice, std::span<const DeviceInfo> d
 
 std::string describe_tree(const PreparedScene& p) {
   if (const Bvh4Stats* bvh = p.bvh_stats())
-    return describe_bvh(p.bvh8 ? "compressed 8-wide BVH" : "4-wide BVH", *bvh, p.tree.triangles.size(),
+    return describe_bvh(p.bvh8 ? "compressed 8-wide BVH" : p.bvh8f ? "8-wide BVH (float planes)" : "4-wide BVH", *bvh, p.tree.triangles.size(),
                         p.tree.stats.build_seconds);
   return describe_kdtree(p.tree.stats);
 }
@@ -83,6 +89,7 @@ PreparedScene prepare_loaded_scene(const std::filesystem::path& path, Scene scen
                                  path.string(), p.scene.triangle_count()));
   if (choice.bvh4) p.bvh4 = build_bvh4(p.tree.triangles);
   if (choice.bvh8) p.bvh8 = build_bvh8(p.tree.triangles);
+  if (choice.bvh8f) p.bvh8f = build_bvh8f(p.tree.triangles);
   p.tables = make_scene_tables(p.scene, p.tree);
   p.camera = p.scene.camera ? *p.scene.camera : framing_camera(p.scene.bounds());
   return p;
@@ -94,7 +101,7 @@ void fit_scene_to(PreparedScene& p, std::size_t device_bytes, const KdBuildOptio
   if (p.bvh())
     throw InputError(fmt::format("the scene needs {:.2f} MiB of device memory with the {}-wide BVH; the limit is "
                                  "{:.2f} MiB (a KD-tree can trade depth for bytes: --tree deep or compact)",
-                                 memory.total() / 1048576.0, p.bvh8 ? 8 : 4, device_bytes / 1048576.0));
+                                 memory.total() / 1048576.0, p.bvh8 || p.bvh8f ? 8 : 4, device_bytes / 1048576.0));
   // The smallest tree is one leaf: a node and one list entry and the vertices per triangle.
   const std::size_t smallest = sizeof(KdNode) + p.tree.triangles.size() * (sizeof(std::uint32_t) + sizeof(Triangle));
   if (memory.shading + smallest > device_bytes) {

@@ -1,0 +1,183 @@
+/* Closest-hit and any-hit traversal of the 8-wide BVH with float planes (types.h, Bvh8fNode; --tree
+ * bvh8f): the 4-wide walk (bvh4_traverse.h) at twice the width, for CPUs. PoCL runs a work item's
+ * walk as scalar code, so the only SIMD a walk gets is from explicit vector types: the 4-wide node
+ * test is SSE-wide, and an AVX CPU tests eight boxes in the same instructions with float8 (one
+ * vsubps, vmulps, vmaxps or vminps per plane row). The nodes are the 4-wide ones' with eight lanes
+ * (six rows of eight floats, then the eight references), built by the same collapse of the same
+ * binary SAH tree (runtime/accel/bvh4.cpp), and the leaves are the 4-wide BVH's: consecutive
+ * triangle copies, the kept-triangle index in v0.w.
+ *
+ * The hit is the one every other tree gives, bit for bit (docs/design.md, "The closest hit does not
+ * depend on the tree"): the same watertight test (consider_triangle) on the same kept triangles, the
+ * least (t, triangle index) over every triangle the ray meets, and each box tested lane for lane
+ * with BVH4_ENTER's operations: the boxes padded as the 4-wide BVH's, a zero direction component
+ * taken as 1e-18 (bvh4_inverse), the exit widened by a few ulps, a box skipped only when it starts
+ * beyond the best t by more than KD_TERMINATION_SLACK. The order of the children changes visits,
+ * never the hit. */
+#ifndef COHORT_BVH8F_TRAVERSE_H
+#define COHORT_BVH8F_TRAVERSE_H
+
+#include "common/accel/bvh4_traverse.h"
+
+/* Entries of the traversal stack: a step leaves at most seven children on it, and the tree is at
+ * most BVH4_MAX_DEPTH levels deep (a step writes all it enters, then takes the nearest back). */
+#define BVH8F_STACK (7 * BVH4_MAX_DEPTH + 1)
+
+typedef struct Bvh8fView {
+  const CO_GLOBAL Bvh8fNode* nodes;
+  const CO_GLOBAL Triangle* leaf_triangles; /* each a kept triangle's copy, its index in v0.w */
+#if defined(COHORT_FEATURE_ALPHA)
+  AlphaView alpha; /* set by make_scene_view */
+#endif
+} Bvh8fView;
+
+/* The scene's arrays as the kernels receive them: the tree travels in the buffers of KD nodes and
+ * leaf lists, as the 4-wide one does. */
+CO_INLINE Bvh8fView make_bvh8f_view(const CO_GLOBAL KdNode* nodes, const CO_GLOBAL uint32_t* leaf_lists) {
+  Bvh8fView b;
+  b.nodes = (const CO_GLOBAL Bvh8fNode*)nodes;
+  b.leaf_triangles = (const CO_GLOBAL Triangle*)leaf_lists;
+  return b;
+}
+
+/* Starts loading a pushed child's cache lines for when it is popped (bvh4_prefetch says why): a
+ * leaf's as the 4-wide walk does, an inner node's four. */
+CO_INLINE void bvh8f_prefetch(const Bvh8fView* bvh, uint32_t ref) {
+  if (bvh4_is_leaf(ref)) {
+    const CO_GLOBAL char* first = (const CO_GLOBAL char*)&bvh->leaf_triangles[bvh4_leaf_first(ref)];
+    const CO_GLOBAL char* last = first + bvh4_leaf_count(ref) * sizeof(Triangle) - 1u;
+    co_prefetch(first);
+    if (bvh4_leaf_count(ref) > 2u) co_prefetch(first + 64);
+    co_prefetch(last);
+  } else {
+    const CO_GLOBAL char* node = (const CO_GLOBAL char*)&bvh->nodes[ref];
+    co_prefetch(node);
+    co_prefetch(node + 64);
+    co_prefetch(node + 128);
+    co_prefetch(node + 192);
+  }
+}
+
+/* A walk's ray: the watertight set-up, the origin and inverse direction over eight lanes, and the
+ * plane row each slab is entered through (Bvh4Ray says why that picks what a min and a max would). */
+typedef struct Bvh8fRay {
+  WatertightRay wr;
+  co_float8 ox, oy, oz, ix, iy, iz;
+  int near_x, near_y, near_z;
+} Bvh8fRay;
+
+/* With COHORT_FEATURE_ALPHA a last argument is the ray's alpha seed (alpha.h). */
+CO_INLINE Bvh8fRay bvh8f_ray(co_vec3 org, co_vec3 dir CO_ALPHA_PARAM) {
+  Bvh8fRay r;
+  r.wr = watertight_ray(org, dir);
+#if defined(COHORT_FEATURE_ALPHA)
+  r.wr.alpha = 0; /* bvh8f_trace_steps points a copy at its tree's */
+  r.wr.alpha_seed = alpha_seed;
+#endif
+  r.ox = co_f8_splat(org.x); r.oy = co_f8_splat(org.y); r.oz = co_f8_splat(org.z);
+  r.ix = co_f8_splat(bvh4_inverse(dir.x)); r.iy = co_f8_splat(bvh4_inverse(dir.y));
+  r.iz = co_f8_splat(bvh4_inverse(dir.z));
+  r.near_x = dir.x < 0.0f ? 1 : 0; r.near_y = dir.y < 0.0f ? 3 : 2; r.near_z = dir.z < 0.0f ? 5 : 4;
+  return r;
+}
+
+/* The eight child boxes of node `n` against ray `r`: BVH4_ENTER's operations lane for lane. Writes
+ * each box's entry distance (at least tmin) to enter[0-7] and returns the mask of the boxes entered
+ * before `limit`, lane i in bit i. */
+CO_FORCE_INLINE uint32_t bvh8f_enter(const CO_GLOBAL Bvh8fNode* n, const Bvh8fRay* r, float tmin, float limit,
+                                     float* enter) {
+  co_float8 e = co_f8_max(co_f8_max(co_f8_mul(co_f8_sub(co_f8_load(n->planes[r->near_x]), r->ox), r->ix),
+                                    co_f8_mul(co_f8_sub(co_f8_load(n->planes[r->near_y]), r->oy), r->iy)),
+                          co_f8_max(co_f8_mul(co_f8_sub(co_f8_load(n->planes[r->near_z]), r->oz), r->iz),
+                                    co_f8_splat(tmin)));
+  co_float8 l = co_f8_min(co_f8_min(co_f8_mul(co_f8_sub(co_f8_load(n->planes[r->near_x ^ 1]), r->ox), r->ix),
+                                    co_f8_mul(co_f8_sub(co_f8_load(n->planes[r->near_y ^ 1]), r->oy), r->iy)),
+                          co_f8_min(co_f8_mul(co_f8_sub(co_f8_load(n->planes[r->near_z ^ 1]), r->oz), r->iz),
+                                    co_f8_splat(limit)));
+  co_f8_store(e, enter);
+  return co_f8_less(e, co_f8_scale(l, 1.0000004f));
+}
+
+/* The lowest set bit's index of a mask that is not 0. */
+CO_INLINE uint32_t bvh8f_lowest(uint32_t mask) { return 31u - co_clz(mask & (0u - mask)); }
+
+/* One step down from node `n`, whose lanes `mask` (not 0) the ray enters at enter[lane]: goes on
+ * with the nearest child (*ref, *ref_t) and pushes the others, farthest deepest, as bvh4_descend. */
+CO_FORCE_INLINE void bvh8f_descend(const Bvh8fView* bvh, const CO_GLOBAL Bvh8fNode* n, uint32_t mask,
+                                   const float* enter, uint32_t* ref, float* ref_t, uint32_t* stack_ref,
+                                   float* stack_t, int* sp) {
+  uint32_t lane = bvh8f_lowest(mask);
+  mask &= mask - 1u;
+  if (mask == 0u) { /* one lane entered (most steps): no stack */
+    *ref = n->child[lane];
+    *ref_t = enter[lane];
+    return;
+  }
+  /* two or more: an insertion sort onto the stack, nearest on top, then the top taken back */
+  int base = *sp, top = *sp;
+  for (;;) {
+    float t = enter[lane];
+    uint32_t c = n->child[lane];
+    int k = top;
+    while (k > base && stack_t[k - 1] < t) {
+      stack_t[k] = stack_t[k - 1];
+      stack_ref[k] = stack_ref[k - 1];
+      --k;
+    }
+    stack_t[k] = t;
+    stack_ref[k] = c;
+    ++top;
+    if (mask == 0u) break;
+    lane = bvh8f_lowest(mask);
+    mask &= mask - 1u;
+  }
+  --top;
+  *ref = stack_ref[top];
+  *ref_t = stack_t[top];
+  for (int k = base; k < top; ++k) bvh8f_prefetch(bvh, stack_ref[k]);
+  *sp = top;
+}
+
+/* Closest hit (any_hit = 0) or any hit (any_hit = 1) in (tmin, tmax), as kd_trace_steps (with its
+ * alpha seed under COHORT_FEATURE_ALPHA). `steps`, when not null, receives the number of nodes and
+ * leaves visited. */
+CO_INLINE HitOut bvh8f_trace_steps(const Bvh8fView* bvh, co_vec3 org, co_vec3 dir, float tmin, float tmax,
+                                   int any_hit, uint32_t* steps CO_ALPHA_PARAM) {
+  HitOut hit;
+  hit.t = tmax; hit.u = 0.0f; hit.v = 0.0f; hit.triangle = HIT_NONE;
+  Bvh8fRay r = bvh8f_ray(org, dir CO_ALPHA_ARG(alpha_seed));
+#if defined(COHORT_FEATURE_ALPHA)
+  r.wr.alpha = &bvh->alpha;
+#endif
+  uint32_t stack_ref[BVH8F_STACK];
+  float stack_t[BVH8F_STACK];
+  float enter[8];
+  int sp = 0;
+  uint32_t ref = 0u; /* the root */
+  float ref_t = tmin;
+  uint32_t count = 0u;
+  for (;;) {
+    if (!kd_beyond_hit(hit.t, ref_t)) {
+      ++count;
+      if (bvh4_is_leaf(ref)) {
+        if (bvh4_intersect_leaf(&bvh->leaf_triangles[bvh4_leaf_first(ref)], bvh4_leaf_count(ref), &r.wr, tmin, &hit,
+                                any_hit))
+          break;
+      } else {
+        const CO_GLOBAL Bvh8fNode* n = &bvh->nodes[ref];
+        uint32_t mask = bvh8f_enter(n, &r, tmin, hit.t * KD_TERMINATION_SLACK, enter);
+        if (mask != 0u) {
+          bvh8f_descend(bvh, n, mask, enter, &ref, &ref_t, stack_ref, stack_t, &sp);
+          continue;
+        }
+      }
+    }
+    if (sp == 0) break;
+    --sp;
+    ref = stack_ref[sp]; ref_t = stack_t[sp];
+  }
+  if (steps) *steps = count;
+  return hit;
+}
+
+#endif

@@ -1,0 +1,145 @@
+// The binary BVH of runtime/accel/binary_bvh.h collapsed into wide nodes with one box per lane and
+// 4-wide child references (types.h): the 4-wide BVH's Bvh4Node (runtime/accel/bvh4.cpp) and the
+// 8-wide BVH with float planes' Bvh8fNode (runtime/accel/bvh8f.cpp), one collapse for both widths.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "kernels/common/core/types.h"
+#include "runtime/accel/binary_bvh.h"
+
+namespace cohort::wide_collapse {
+
+using binary_bvh::Box;
+
+// Boxes grow by `pad` on every side: the watertight test reports a hit on a shared edge or vertex
+// for a ray that, rounded otherwise, passes a few ulps outside that triangle's box, and the box
+// must still let it in (bvh4_traverse.h).
+inline void set_lane(Bvh4Node& node, int lane, const Box& b, std::uint32_t child, float pad) {
+  float* lanes[6] = {&node.lo_x.x, &node.hi_x.x, &node.lo_y.x, &node.hi_y.x, &node.lo_z.x, &node.hi_z.x};
+  for (int a = 0; a < 3; ++a) {
+    lanes[2 * a][lane] = b.lo[a] - pad;
+    lanes[2 * a + 1][lane] = b.hi[a] + pad;
+  }
+  (&node.child.x)[lane] = child;
+}
+
+inline void set_lane(Bvh8fNode& node, int lane, const Box& b, std::uint32_t child, float pad) {
+  for (int a = 0; a < 3; ++a) {
+    node.planes[2 * a][lane] = b.lo[a] - pad;
+    node.planes[2 * a + 1][lane] = b.hi[a] + pad;
+  }
+  node.child[lane] = child;
+}
+
+// The binary tree collapsed into `Width`-wide nodes, depth first (each node before its children, a
+// lane's subtree after the lanes before it). A first pass counts each wide node's subtree, so the
+// second knows where every subtree goes and both run in parallel over large subtrees; the result
+// is the nodes of a serial depth-first walk, the same for any thread count.
+template <class WideNode, int Width>
+struct Collapser {
+  const binary_bvh::Tree& b;
+  float pad;  // 2^-20 of the largest coordinate: far above the rounding of any vertex
+  // Per binary slot that roots a wide node: that node's subtree size in wide nodes.
+  std::unique_ptr<std::uint32_t[]> subtree_nodes;
+  WideNode* out = nullptr;
+
+  using Sums = binary_bvh::SubtreeSums;
+  using Kids = std::array<std::uint32_t, Width>;
+
+  Collapser(const binary_bvh::Tree& builder, float pad_)
+      : b(builder), pad(pad_), subtree_nodes(std::make_unique_for_overwrite<std::uint32_t[]>(2 * b.size - 1)) {}
+
+  // The lanes of the wide node at binary node `slot`: its children, then the inner child of
+  // largest area opened until every lane is full.
+  int lanes(std::uint32_t slot, Kids& kids) const {
+    int n = 0;
+    if (b.nodes[slot].count) {
+      kids[n++] = slot;  // a root that is a leaf: one lane
+    } else {
+      kids[n++] = b.nodes[slot].left;
+      kids[n++] = b.nodes[slot].right;
+    }
+    // each kid's area once (a leaf's is never compared)
+    std::array<float, Width> area{};
+    const auto measure = [&](int i) {
+      const binary_bvh::Node& k = b.nodes[kids[i]];
+      area[i] = k.count ? -1.0f : k.box().area();
+    };
+    for (int i = 0; i < n; ++i) measure(i);
+    while (n < Width) {
+      int widest = -1;
+      for (int i = 0; i < n; ++i) {
+        if (!(area[i] < 0.0f) && (widest < 0 || area[i] > area[widest])) widest = i;
+      }
+      if (widest < 0) break;
+      const binary_bvh::Node& k = b.nodes[kids[widest]];
+      kids[widest] = k.left;
+      kids[n] = k.right;
+      measure(widest);
+      measure(n++);
+    }
+    return n;
+  }
+
+  std::uint32_t count(std::uint32_t slot) {
+    Kids kids{};
+    const int n = lanes(slot, kids);
+    std::array<std::uint32_t, Width> counts{};
+    binary_bvh::for_children(b.nodes[slot].references, n, [&](int lane) {
+      if (!b.nodes[kids[lane]].count) counts[lane] = count(kids[lane]);
+    });
+    std::uint32_t total = 1;
+    for (const std::uint32_t c : counts) total += c;
+    return subtree_nodes[slot] = total;
+  }
+
+  // Writes the wide node for binary node `slot` at `index`, and its subtree after it.
+  Sums emit(std::uint32_t slot, std::uint32_t index, int depth) {
+    Kids kids{};
+    const int n = lanes(slot, kids);
+    std::array<std::uint32_t, Width> child_index{};
+    std::uint32_t next = index + 1;
+    for (int lane = 0; lane < n; ++lane) {
+      if (b.nodes[kids[lane]].count) continue;
+      child_index[lane] = next;
+      next += subtree_nodes[kids[lane]];
+    }
+    std::array<Sums, Width> lane_sums{};
+    binary_bvh::for_children(b.nodes[slot].references, n, [&](int lane) {
+      if (!b.nodes[kids[lane]].count) lane_sums[lane] = emit(kids[lane], child_index[lane], depth + 1);
+    });
+    WideNode node{};
+    const Box empty{{INFINITY, INFINITY, INFINITY}, {INFINITY, INFINITY, INFINITY}};
+    for (int lane = 0; lane < Width; ++lane) set_lane(node, lane, empty, BVH4_EMPTY, 0.0f);
+    Sums sums;
+    sums.depth = depth;
+    sums.sah = binary_bvh::kNodeCost * b.nodes[slot].box().area();
+    for (int lane = 0; lane < n; ++lane) {
+      const binary_bvh::Node& k = b.nodes[kids[lane]];
+      std::uint32_t child = child_index[lane];
+      if (k.count) {
+        child = bvh4_leaf_ref(k.first, k.count);
+        ++sums.leaves;
+        sums.sah += k.box().area() * k.count;
+      }
+      sums.add(lane_sums[lane]);
+      set_lane(node, lane, k.box(), child, pad);
+    }
+    out[index] = node;
+    return sums;
+  }
+
+  // The wide tree into `nodes` (resized to fit).
+  Sums collapse(std::vector<WideNode>& nodes) {
+    nodes.resize(count(0));
+    out = nodes.data();
+    return emit(0, 0, 1);
+  }
+};
+
+}  // namespace cohort::wide_collapse
