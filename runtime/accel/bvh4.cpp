@@ -2,28 +2,14 @@
 // (runtime/accel/wide_collapse.h).
 #include "runtime/accel/bvh4.h"
 
-#include <fmt/format.h>
-
-#include <algorithm>
-#include <array>
 #include <chrono>
-#include <cmath>
-#include <memory>
+#include <vector>
 
 #include "kernels/common/accel/bvh4_traverse.h"
-#include "runtime/accel/binary_bvh.h"
 #include "runtime/accel/wide_collapse.h"
-#include "runtime/util/error.h"
 
 namespace cohort {
 namespace {
-
-using binary_bvh::Box;
-using Collapser = wide_collapse::Collapser<Bvh4Node, 4>;
-
-constexpr std::uint32_t kMaxLeaf = 4;  // triangles; BVH4_LEAF_MAX allows up to 16
-static_assert(binary_bvh::kMaxDepth <= BVH4_MAX_DEPTH, "the traversal stack must hold the deepest tree");
-
 
 // The top BVH4_TOP_LEVELS levels moved to the front of the node array in breadth-first order (the
 // rest keeps its depth-first order behind them), so that any number of top levels is a prefix: the
@@ -63,36 +49,9 @@ std::vector<std::uint32_t> lay_out_top_breadth_first(std::vector<Bvh4Node>& node
 
 Bvh4 build_bvh4(std::span<const Triangle> triangles) {
   const auto start = std::chrono::steady_clock::now();
-  if (triangles.empty()) throw InputError("a BVH needs at least one triangle");
-  if (triangles.size() > BVH4_LEAF_FIRST_MAX)
-    throw InputError(fmt::format("the scene has {} triangles; the 4-wide BVH (--tree bvh4) takes at most {}: use "
-                                 "--tree deep or compact",
-                                 triangles.size(), BVH4_LEAF_FIRST_MAX));
-  const binary_bvh::ReferenceChunks references = binary_bvh::make_references(triangles);
-  if (references.size > BVH4_LEAF_FIRST_MAX)
-    throw InputError(fmt::format("the scene's {} triangles make {} BVH references; the 4-wide BVH (--tree bvh4) "
-                                 "takes at most {}: use --tree deep or compact",
-                                 triangles.size(), references.size, BVH4_LEAF_FIRST_MAX));
-  const binary_bvh::Tree binary = binary_bvh::build(references, kMaxLeaf);
   Bvh4 bvh;
-  const Box root = binary.nodes[0].box();
-  Collapser collapser{binary, binary.pad()};
-  const Collapser::Sums sums = collapser.collapse(bvh.nodes);
+  wide_collapse::build<4>(bvh, triangles, "4-wide BVH (--tree bvh4)");
   bvh.top_level_starts = lay_out_top_breadth_first(bvh.nodes);
-  bvh.leaf_vertices.resize(binary.size);
-  binary_bvh::parallel_chunks(binary.size, [&](std::size_t i) {
-    const std::uint32_t tri = binary.triangle_of(i);
-    bvh.leaf_vertices[i] = triangles[tri];
-    bvh.leaf_vertices[i].v0.w = co_as_float(tri);
-  });
-  bvh.stats.node_count = bvh.nodes.size();
-  bvh.stats.references = references.size;
-  bvh.stats.leaf_count = sums.leaves;
-  bvh.stats.depth = sums.depth;
-  bvh.stats.average_leaf_triangles = double(references.size) / double(bvh.stats.leaf_count);
-  const float root_area = root.area();
-  bvh.stats.sah_cost = root_area > 0 ? sums.sah / root_area : 0.0;
-  bvh.stats.bytes = bvh.nodes.size() * sizeof(Bvh4Node) + bvh.leaf_vertices.size() * sizeof(Triangle);
   bvh.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return bvh;
 }

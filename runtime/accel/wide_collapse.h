@@ -3,14 +3,21 @@
 // 8-wide BVH with float planes' Bvh8fNode (runtime/accel/bvh8f.cpp), one collapse for both widths.
 #pragma once
 
+#include <fmt/format.h>
+
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
+#include "kernels/common/accel/bvh4_traverse.h"
 #include "kernels/common/core/types.h"
 #include "runtime/accel/binary_bvh.h"
+#include "runtime/accel/bvh4.h"
+#include "runtime/util/error.h"
 
 namespace cohort::wide_collapse {
 
@@ -141,5 +148,46 @@ struct Collapser {
     return emit(0, 0, 1);
   }
 };
+
+static_assert(binary_bvh::kMaxDepth <= BVH4_MAX_DEPTH, "the traversal stack must hold the deepest tree");
+
+// Triangles per leaf of both wide BVHs (BVH4_LEAF_MAX allows up to 16).
+inline constexpr std::uint32_t kMaxLeaf = 4;
+
+// A wide BVH (Bvh4, Bvh8f: `nodes`, `leaf_vertices`, `stats`) of `triangles`: the binary SAH tree with
+// leaves of kMaxLeaf references, collapsed `Width` wide, each leaf entry a copy of its kept triangle
+// with the triangle's index in v0.w. `tree` names the layout in errors (its --tree value); throws
+// InputError for an empty input or more references than a leaf reference can name. The caller sets
+// stats.build_seconds (a layout may reorder the nodes after this).
+template <int Width, class Bvh>
+void build(Bvh& bvh, std::span<const Triangle> triangles, const char* tree) {
+  using Node = typename decltype(bvh.nodes)::value_type;
+  if (triangles.empty()) throw InputError("a BVH needs at least one triangle");
+  if (triangles.size() > BVH4_LEAF_FIRST_MAX)
+    throw InputError(fmt::format("the scene has {} triangles; the {} takes at most {}: use --tree deep or compact",
+                                 triangles.size(), tree, BVH4_LEAF_FIRST_MAX));
+  const binary_bvh::ReferenceChunks references = binary_bvh::make_references(triangles);
+  if (references.size > BVH4_LEAF_FIRST_MAX)
+    throw InputError(fmt::format("the scene's {} triangles make {} BVH references; the {} takes at most {}: use "
+                                 "--tree deep or compact",
+                                 triangles.size(), references.size, tree, BVH4_LEAF_FIRST_MAX));
+  const binary_bvh::Tree binary = binary_bvh::build(references, kMaxLeaf);
+  Collapser<Node, Width> collapser{binary, binary.pad()};
+  const binary_bvh::SubtreeSums sums = collapser.collapse(bvh.nodes);
+  bvh.leaf_vertices.resize(binary.size);
+  binary_bvh::parallel_chunks(binary.size, [&](std::size_t i) {
+    const std::uint32_t tri = binary.triangle_of(i);
+    bvh.leaf_vertices[i] = triangles[tri];
+    bvh.leaf_vertices[i].v0.w = co_as_float(tri);
+  });
+  bvh.stats.node_count = bvh.nodes.size();
+  bvh.stats.references = references.size;
+  bvh.stats.leaf_count = sums.leaves;
+  bvh.stats.depth = sums.depth;
+  bvh.stats.average_leaf_triangles = double(references.size) / double(bvh.stats.leaf_count);
+  const float root_area = binary.nodes[0].box().area();
+  bvh.stats.sah_cost = root_area > 0 ? sums.sah / root_area : 0.0;
+  bvh.stats.bytes = bvh.nodes.size() * sizeof(Node) + bvh.leaf_vertices.size() * sizeof(Triangle);
+}
 
 }  // namespace cohort::wide_collapse
