@@ -112,7 +112,7 @@ std::vector<std::string> structure_errors(const Bvh8f& bvh, const KdTree& tree) 
 // closest hit through the 8-wide BVH with float planes against the deep KD-tree's, the 4-wide BVH's
 // and the compressed 8-wide BVH's, bit for bit, and against brute force on every 8th ray; any hit
 // before half and 1.5 times the closest distance.
-void expect_same_hits(const std::vector<glm::vec3>& positions, const char* name) {
+void expect_same_hits_as_every_tree(const std::vector<glm::vec3>& positions, const char* name) {
   const KdTree kd = build_kdtree(positions);
   const KdTree kept = kept_triangles(positions);
   ASSERT_EQ(kd.triangles.size(), kept.triangles.size());
@@ -169,11 +169,11 @@ void expect_same_hits(const std::vector<glm::vec3>& positions, const char* name)
 }
 
 TEST(Bvh8f, GivesEveryTreesHitsBitForBit) {
-  expect_same_hits(coplanar_grid(100, 100), "20k coplanar");
-  expect_same_hits(random_soup(4000, 7), "soup");
-  expect_same_hits(load_shipped("voxel-terrain.gltf"), "voxel terrain");
+  expect_same_hits_as_every_tree(coplanar_grid(100, 100), "20k coplanar");
+  expect_same_hits_as_every_tree(random_soup(4000, 7), "soup");
+  expect_same_hits_as_every_tree(load_shipped("voxel-terrain.gltf"), "voxel terrain");
   for (const char* model : {"bunny/bun_zipper_res2.ply", "cornell-box-mcguire/CornellBox-Original.obj"})
-    if (const auto positions = load_shared(model)) expect_same_hits(*positions, model);
+    if (const auto positions = load_shared(model)) expect_same_hits_as_every_tree(*positions, model);
 }
 
 // The same binary tree collapsed at width 8 holds the same leaves as the 4-wide BVH's (the same
