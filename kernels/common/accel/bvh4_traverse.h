@@ -193,37 +193,23 @@ CO_INLINE void bvh4_continue(const Bvh4View* bvh, const Bvh4Ray* r, float tmin, 
 #else
 #define BVH4_WR &r->wr
 #endif
-  /* "while-while" (Aila & Laine 2009): inner nodes in a loop of their own until the walk holds a
-   * leaf, then the leaf. The nodes and leaves visited, and their order, are those of one loop that
-   * takes either per step; on a GPU the lanes of a warp then run node steps together and leaf
-   * tests together instead of alternating between the two. */
   for (;;) {
-    int finished = 0;
-    while (!bvh4_is_leaf(ref)) {
-      int entered = 0;
-      if (!kd_beyond_hit(hit->t, ref_t)) {
-        ++count;
+    if (!kd_beyond_hit(hit->t, ref_t)) {
+      ++count;
+      if (bvh4_is_leaf(ref)) {
+        if (bvh4_intersect_leaf(&bvh->leaf_triangles[bvh4_leaf_first(ref)], bvh4_leaf_count(ref), BVH4_WR, tmin, hit,
+                                any_hit))
+          break;
+      } else {
         const CO_GLOBAL Bvh4Node* n = &bvh->nodes[ref];
         co_float4 enter;
         uint32_t mask;
         BVH4_ENTER(&n->lo_x, r, enter_min, hit->t * KD_TERMINATION_SLACK, enter, mask);
         if (mask != 0u) {
           bvh4_descend(bvh, mask, enter, n->child, &ref, &ref_t, stack_ref, stack_t, &sp);
-          entered = 1;
+          continue;
         }
       }
-      if (!entered) {
-        if (sp == 0) { finished = 1; break; }
-        --sp;
-        ref = stack_ref[sp]; ref_t = stack_t[sp];
-      }
-    }
-    if (finished) break;
-    if (!kd_beyond_hit(hit->t, ref_t)) {
-      ++count;
-      if (bvh4_intersect_leaf(&bvh->leaf_triangles[bvh4_leaf_first(ref)], bvh4_leaf_count(ref), BVH4_WR, tmin, hit,
-                              any_hit))
-        break;
     }
     if (sp == 0) break;
     --sp;

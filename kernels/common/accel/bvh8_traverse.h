@@ -81,13 +81,9 @@ CO_INLINE Bvh8Ray bvh8_ray(co_vec3 org, co_vec3 dir CO_ALPHA_PARAM) {
   return r;
 }
 
-/* The four bytes of a word as floats, byte 0 in x: the float whose bits are 2^23's with the byte in
- * the low mantissa bits is 2^23 + byte, less 2^23 is the byte, exactly. Integer-to-float conversion
- * runs at a quarter of the float rate on NVIDIA GPUs, and a node decodes 48 bytes. */
+/* The four bytes of a word as floats, byte 0 in x (exact: integers below 256). */
 CO_INLINE co_float4 bvh8_bytes(uint32_t w) {
-  co_float4 biased = co_make_float4(co_as_float(0x4b000000u | (w & 255u)), co_as_float(0x4b000000u | ((w >> 8) & 255u)),
-                                    co_as_float(0x4b000000u | ((w >> 16) & 255u)), co_as_float(0x4b000000u | (w >> 24)));
-  return co_f4_sub(biased, co_f4_splat(8388608.0f));
+  return co_make_float4((float)(w & 255u), (float)((w >> 8) & 255u), (float)((w >> 16) & 255u), (float)(w >> 24));
 }
 
 /* Distances to four slots' planes on one axis: (origin + q * scale - o) * inverse. origin + q * scale
