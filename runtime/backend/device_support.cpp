@@ -29,6 +29,9 @@ DeviceSupport device_support(const DeviceInfo& device) {
   // CPU runtime, rusticl's llvmpipe); GPUs hide the latency with other warps; Oclgrind checks the
   // kernels and does not time them
   s.prefetch = device.local_memory_is_global && !is_oclgrind(device);
+  // two walks in turn let a core wait on two nodes' loads at once; a GPU hides the latency with other
+  // warps and would pay twice the registers. Oclgrind runs them so that its checks cover them.
+  s.paired_walks = device.local_memory_is_global;
   if (device.platform_name == "rusticl" || device.platform_name == "Clover") {
     s.sorts = false;
     s.sort_refusal = fmt::format("{} ({}) does not run the work-groups of a launch independently, which the "

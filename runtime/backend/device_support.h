@@ -19,6 +19,9 @@ struct DeviceSupport {
   std::size_t local_budget = 0;     // bytes of local memory the PTH subtree may take
   std::uint32_t pth_levels = 0;     // full levels of a tree's top that fit in local_budget
   bool prefetch = false;            // the BVH walk prefetches (kernels/common/core/port.h, co_prefetch)
+  // the naive megakernel traces two samples' paths in lock step on the 8-wide BVH with float planes
+  // (kernels/common/wavefront/pathtrace.h, trace_path_pair)
+  bool paired_walks = false;
   // The device radix sort (hash, pth, the gate benchmark) hands tiles from one work-group to the next
   // within a launch (decoupled look-back), which needs the groups of a launch to make progress
   // independently. OpenCL reports no such property; Mesa's OpenCL (rusticl, clover) was measured

@@ -29,9 +29,11 @@ std::string build_log(const cl::Program& program, const cl::Device& device) {
 std::string base_build_options(const DeviceInfo& device) {
   std::string options = "-cl-std=CL1.2";
   if (device.correctly_rounded_divide_sqrt) options += " -cl-fp32-correctly-rounded-divide-sqrt";
-  // software prefetch in the BVH walk where device_support says so (port.h's co_prefetch picks its
-  // form from the compiler)
-  if (device_support(device).prefetch) options += " -DCOHORT_PREFETCH";
+  // software prefetch in the BVH walk and paired walks where device_support says so (port.h's
+  // co_prefetch picks its form from the compiler)
+  const DeviceSupport support = device_support(device);
+  if (support.prefetch) options += " -DCOHORT_PREFETCH";
+  if (support.paired_walks) options += " -DCOHORT_PAIRED_WALKS";
   return options;
 }
 

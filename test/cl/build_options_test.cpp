@@ -2,7 +2,9 @@
 // the BVH walk (kernels/common/core/port.h, co_prefetch, whose form the compiler's own macros choose) only
 // on devices whose local memory is the cached global memory (device_support), never on Oclgrind
 // (which checks, not times) nor on a GPU with a scratchpad (which hides the latency with other warps).
-// That the walk's hits do not change with it is TraceKernel.Bvh4* on the CPU device.
+// That the walk's hits do not change with it is TraceKernel.Bvh4* on the CPU device. The naive
+// megakernel's paired walks (two samples' paths in lock step) go with the same memory, Oclgrind included
+// (so that its checks cover them); that they change no bit is Naive.PairedWalks*.
 #include <gtest/gtest.h>
 
 #include "runtime/cl/kernel_program.h"
@@ -22,7 +24,19 @@ DeviceInfo device(const char* platform, bool cpu) {
 
 bool prefetches(const DeviceInfo& d) { return base_build_options(d).find("-DCOHORT_PREFETCH") != std::string::npos; }
 
+bool pairs(const DeviceInfo& d) { return base_build_options(d).find("-DCOHORT_PAIRED_WALKS") != std::string::npos; }
+
 }  // namespace
+
+TEST(BuildOptions, PairedWalksWhereLocalMemoryIsTheCache) {
+  EXPECT_TRUE(pairs(device("Portable Computing Language", true)));
+  EXPECT_TRUE(pairs(device("Intel(R) OpenCL", true)));
+  EXPECT_TRUE(pairs(device("Oclgrind", true)));
+  EXPECT_FALSE(pairs(device("NVIDIA CUDA", false)));
+  DeviceInfo gpu_like_cpu = device("Some runtime", true);
+  gpu_like_cpu.local_memory_is_global = false;
+  EXPECT_FALSE(pairs(gpu_like_cpu));
+}
 
 TEST(BuildOptions, PrefetchWhereLocalMemoryIsTheCache) {
   EXPECT_TRUE(prefetches(device("Portable Computing Language", true)));

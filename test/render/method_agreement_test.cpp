@@ -15,6 +15,7 @@
 #include "method_tree_agreement.h"
 #include "render_fixture.h"
 #include "runtime/backend/device_support.h"
+#include "runtime/cl/kernel_program.h"
 #include "runtime/render/pth/coherence.h"
 #include "runtime/render/methods/methods.h"
 #include "runtime/render/workloads.h"
@@ -469,4 +470,44 @@ TEST(Methods, GlassVolumeIsTheSameOnEveryTreeAndMethod) {
   const auto path = std::filesystem::path(COHORT_SOURCE_DIR) / "scenes/reference/glass-volume.gltf";
   ASSERT_TRUE(prepare_scene(path).tables.features.volume);
   expect_every_tree_and_method_agrees(path, {1u, 5u}, glm::vec3(0.1f));
+}
+
+// On a CPU device the naive megakernel traces two samples' paths in lock step on the 8-wide BVH with
+// float planes (-DCOHORT_PAIRED_WALKS; kernels/common/wavefront/pathtrace.h, trace_path_pair): each
+// path must still be what a walk of its own gives. Passes of an odd number of samples end with one
+// path alone; Russian roulette from the second segment and an alpha-masked scene end the two paths of
+// a pair at different segments. The reference is naive on the 4-wide BVH (no pairs) and sc+rg on the
+// same tree (one walk per ray).
+TEST(Methods, PairedWalksGiveEachPathItsOwnWalksImage) {
+  const ClContext cl(select_device(""));
+  if (base_build_options(cl.info()).find("-DCOHORT_PAIRED_WALKS") == std::string::npos)
+    GTEST_SKIP() << cl.info().name << " runs no paired walks";
+  const ProgramCache cache(ProgramCache::default_directory());
+  for (const char* scene : {"cornell-box.gltf", "reference/alpha-mask.gltf"}) {
+    const auto path = shipped_scene(scene);
+    PreparedScene wide = prepare_scene(path, TreeChoice{.kd = KdBuildOptions{}, .bvh8f = true});
+    PreparedScene four = prepare_scene(path, TreeChoice{KdBuildOptions{}, true});
+    const DeviceScene wide_scene = upload_scene(cl, wide.tree, wide.tables, wide.bvh());
+    const DeviceScene four_scene = upload_scene(cl, four.tree, four.tables, four.bvh());
+    for (const std::uint32_t pass_samples : {0u, 1u, 3u}) {
+      RenderSettings s;
+      s.width = 24;
+      s.height = 20;
+      s.spp = 7;
+      s.seed = 5;
+      s.rr_depth = 2;
+      s.pass_samples = pass_samples;
+      s.method = "naive";
+      const RenderResult reference = render(cl, cache, four_scene, four.camera, s);
+      const RenderResult paired = render(cl, cache, wide_scene, wide.camera, s);
+      s.method = "sc+rg";
+      const RenderResult single = render(cl, cache, wide_scene, wide.camera, s);
+      const std::string what = fmt::format("{}, passes of {} samples", scene, pass_samples);
+      expect_bitwise_equal(reference, paired, ("paired naive: " + what).c_str());
+      expect_bitwise_equal(reference, single, ("sc+rg: " + what).c_str());
+      double sum = 0.0;
+      for (const float v : paired.image.rgb) sum += v;
+      EXPECT_GT(sum, 0.0) << what << ": a black image proves nothing";
+    }
+  }
 }

@@ -138,46 +138,87 @@ CO_FORCE_INLINE void bvh8f_descend(const Bvh8fView* bvh, const CO_GLOBAL Bvh8fNo
   *sp = top;
 }
 
+/* A walk in progress: the ray, its best hit so far, the node it stands at and its stack. The walk is
+ * a loop of bvh8f_walk_step calls, so that a work item can step two walks in turn (bvh8f_trace_pair). */
+typedef struct Bvh8fWalk {
+  Bvh8fRay r;
+  HitOut hit;
+  float tmin;
+  int any_hit;
+  uint32_t ref; /* the node or leaf to visit next */
+  float ref_t;  /* where the ray enters it */
+  int sp;
+  uint32_t count; /* nodes and leaves visited */
+  uint32_t stack_ref[BVH8F_STACK];
+  float stack_t[BVH8F_STACK];
+} Bvh8fWalk;
+
+CO_FORCE_INLINE void bvh8f_walk_start(const Bvh8fView* bvh, Bvh8fWalk* w, co_vec3 org, co_vec3 dir, float tmin,
+                                      float tmax, int any_hit CO_ALPHA_PARAM) {
+  w->hit.t = tmax; w->hit.u = 0.0f; w->hit.v = 0.0f; w->hit.triangle = HIT_NONE;
+  w->r = bvh8f_ray(org, dir CO_ALPHA_ARG(alpha_seed));
+#if defined(COHORT_FEATURE_ALPHA)
+  w->r.wr.alpha = &bvh->alpha;
+#else
+  (void)bvh;
+#endif
+  w->tmin = tmin;
+  w->any_hit = any_hit;
+  w->ref = 0u; /* the root */
+  w->ref_t = tmin;
+  w->sp = 0;
+  w->count = 0u;
+}
+
+/* Visits the walk's next node or leaf (or pops one it need not visit); 0 when the walk is over. */
+CO_FORCE_INLINE int bvh8f_walk_step(const Bvh8fView* bvh, Bvh8fWalk* w) {
+  if (!kd_beyond_hit(w->hit.t, w->ref_t)) {
+    ++w->count;
+    if (bvh4_is_leaf(w->ref)) {
+      if (bvh4_intersect_leaf(&bvh->leaf_triangles[bvh4_leaf_first(w->ref)], bvh4_leaf_count(w->ref), &w->r.wr, w->tmin,
+                              &w->hit, w->any_hit))
+        return 0;
+    } else {
+      const CO_GLOBAL Bvh8fNode* n = &bvh->nodes[w->ref];
+      float enter[8];
+      uint32_t mask = bvh8f_enter(n, &w->r, w->tmin, w->hit.t * KD_TERMINATION_SLACK, enter);
+      if (mask != 0u) {
+        bvh8f_descend(bvh, n, mask, enter, &w->ref, &w->ref_t, w->stack_ref, w->stack_t, &w->sp);
+        return 1;
+      }
+    }
+  }
+  if (w->sp == 0) return 0;
+  --w->sp;
+  w->ref = w->stack_ref[w->sp];
+  w->ref_t = w->stack_t[w->sp];
+  return 1;
+}
+
 /* Closest hit (any_hit = 0) or any hit (any_hit = 1) in (tmin, tmax), as kd_trace_steps (with its
  * alpha seed under COHORT_FEATURE_ALPHA). `steps`, when not null, receives the number of nodes and
  * leaves visited. */
 CO_INLINE HitOut bvh8f_trace_steps(const Bvh8fView* bvh, co_vec3 org, co_vec3 dir, float tmin, float tmax,
                                    int any_hit, uint32_t* steps CO_ALPHA_PARAM) {
-  HitOut hit;
-  hit.t = tmax; hit.u = 0.0f; hit.v = 0.0f; hit.triangle = HIT_NONE;
-  Bvh8fRay r = bvh8f_ray(org, dir CO_ALPHA_ARG(alpha_seed));
-#if defined(COHORT_FEATURE_ALPHA)
-  r.wr.alpha = &bvh->alpha;
-#endif
-  uint32_t stack_ref[BVH8F_STACK];
-  float stack_t[BVH8F_STACK];
-  float enter[8];
-  int sp = 0;
-  uint32_t ref = 0u; /* the root */
-  float ref_t = tmin;
-  uint32_t count = 0u;
-  for (;;) {
-    if (!kd_beyond_hit(hit.t, ref_t)) {
-      ++count;
-      if (bvh4_is_leaf(ref)) {
-        if (bvh4_intersect_leaf(&bvh->leaf_triangles[bvh4_leaf_first(ref)], bvh4_leaf_count(ref), &r.wr, tmin, &hit,
-                                any_hit))
-          break;
-      } else {
-        const CO_GLOBAL Bvh8fNode* n = &bvh->nodes[ref];
-        uint32_t mask = bvh8f_enter(n, &r, tmin, hit.t * KD_TERMINATION_SLACK, enter);
-        if (mask != 0u) {
-          bvh8f_descend(bvh, n, mask, enter, &ref, &ref_t, stack_ref, stack_t, &sp);
-          continue;
-        }
-      }
-    }
-    if (sp == 0) break;
-    --sp;
-    ref = stack_ref[sp]; ref_t = stack_t[sp];
+  Bvh8fWalk w;
+  bvh8f_walk_start(bvh, &w, org, dir, tmin, tmax, any_hit CO_ALPHA_ARG(alpha_seed));
+  while (bvh8f_walk_step(bvh, &w)) {
   }
-  if (steps) *steps = count;
-  return hit;
+  if (steps) *steps = w.count;
+  return w.hit;
+}
+
+/* Two started walks to their ends, a step of each in turn: each walk is one chain of dependent
+ * loads, and two chains in one instruction stream let the core wait on both nodes' loads at once.
+ * Each walk visits what it visits alone, so each gets bvh8f_trace_steps' hit. */
+CO_INLINE void bvh8f_trace_pair(const Bvh8fView* bvh, Bvh8fWalk* a, Bvh8fWalk* b) {
+  int more_a = 1, more_b = 1;
+  while (more_a && more_b) {
+    more_a = bvh8f_walk_step(bvh, a);
+    more_b = bvh8f_walk_step(bvh, b);
+  }
+  while (more_a) more_a = bvh8f_walk_step(bvh, a);
+  while (more_b) more_b = bvh8f_walk_step(bvh, b);
 }
 
 #endif

@@ -7,6 +7,17 @@
 #include "common/core/kernel_params.h"
 #include "common/wavefront/pathtrace.h"
 
+/* A sample's path into the pixel's sum and the counters. A NaN or infinite sample never reaches the
+ * image; it counts as a zero sample. */
+CO_INLINE void naive_add_sample(co_float4* acc, uint32_t* rays, uint32_t* max_steps, uint32_t* dropped, PathResult r) {
+  *rays += r.rays;
+  *max_steps = co_umax(*max_steps, r.max_steps);
+  if (v3_is_finite(r.radiance))
+    *acc = film_add_sample(*acc, r.radiance);
+  else
+    *dropped += 1u;
+}
+
 CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
   uint32_t k = co_global_id();
   RenderParams p = *params;
@@ -17,14 +28,17 @@ CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
   co_float4 acc = film[pixel];
   uint32_t rays = 0u, dropped = 0u, max_steps = 0u;
   for (uint32_t i = 0u; i < p.samples_per_pass; ++i) {
-    PathResult r = trace_path(&s, &p, pixel, p.sample_offset + i);
-    rays += r.rays;
-    max_steps = co_umax(max_steps, r.max_steps);
-    /* a NaN or infinite sample never reaches the image; it counts as a zero sample */
-    if (v3_is_finite(r.radiance))
-      acc = film_add_sample(acc, r.radiance);
-    else
-      ++dropped;
+#if defined(COHORT_NAIVE_PAIRS)
+    if (i + 1u < p.samples_per_pass) {
+      PathResult first, second;
+      trace_path_pair(&s, &p, pixel, p.sample_offset + i, &first, &second);
+      naive_add_sample(&acc, &rays, &max_steps, &dropped, first);
+      naive_add_sample(&acc, &rays, &max_steps, &dropped, second);
+      ++i;
+      continue;
+    }
+#endif
+    naive_add_sample(&acc, &rays, &max_steps, &dropped, trace_path(&s, &p, pixel, p.sample_offset + i));
   }
   film[pixel] = acc;
   co_atomic_add(&counters[NAIVE_COUNTER_RAYS], rays);

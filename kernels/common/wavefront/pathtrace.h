@@ -490,28 +490,86 @@ typedef struct PathResult {
   uint32_t max_steps; /* the most KD-tree nodes one of its rays visited */
 } PathResult;
 
-/* The whole path in one call: what the NAIVE megakernel runs per sample. */
-CO_INLINE PathResult trace_path(const SceneView* s, const RenderParams* p, uint32_t pixel, uint32_t sample) {
-  PathResult result;
-  result.rays = 0u;
-  result.max_steps = 0u;
-  PathState st = path_start(p, pixel, sample);
-  while (st.status == PATH_ALIVE) {
+CO_INLINE void path_count_ray(PathResult* result, uint32_t steps) {
+  result->rays += 1u;
+  result->max_steps = co_umax(result->max_steps, steps);
+}
+
+/* A started path to its end, one ray and its shadow ray at a time. */
+CO_INLINE void path_continue(const SceneView* s, const RenderParams* p, PathState* st, uint32_t pixel, uint32_t sample,
+                             PathResult* result) {
+  while (st->status == PATH_ALIVE) {
     uint32_t steps = 0u;
-    HitOut hit = scene_trace_steps(&s->tree, st.org, st.dir, 0.0f, INFINITY, 0, &steps CO_ALPHA_ARG(st.alpha_seed));
-    result.rays += 1u;
-    result.max_steps = co_umax(result.max_steps, steps);
-    ShadowRay sr = path_shade(s, p, &st, hit, pixel, sample);
+    HitOut hit = scene_trace_steps(&s->tree, st->org, st->dir, 0.0f, INFINITY, 0, &steps CO_ALPHA_ARG(st->alpha_seed));
+    path_count_ray(result, steps);
+    ShadowRay sr = path_shade(s, p, st, hit, pixel, sample);
     if (sr.valid) {
-      result.rays += 1u;
-      path_resolve_shadow(&st, &sr,
+      path_resolve_shadow(st, &sr,
                           scene_trace_steps(&s->tree, sr.org, sr.dir, 0.0f, sr.tmax, 1, &steps CO_ALPHA_ARG(sr.alpha_seed)));
-      result.max_steps = co_umax(result.max_steps, steps);
+      path_count_ray(result, steps);
     }
   }
-  result.radiance = st.radiance;
+  result->radiance = st->radiance;
+}
+
+CO_INLINE PathResult path_result_none(void) {
+  PathResult result;
+  result.radiance = v3_splat(0.0f);
+  result.rays = 0u;
+  result.max_steps = 0u;
   return result;
 }
+
+/* The whole path in one call: what the NAIVE megakernel runs per sample. */
+CO_INLINE PathResult trace_path(const SceneView* s, const RenderParams* p, uint32_t pixel, uint32_t sample) {
+  PathResult result = path_result_none();
+  PathState st = path_start(p, pixel, sample);
+  path_continue(s, p, &st, pixel, sample, &result);
+  return result;
+}
+
+#if defined(COHORT_PAIRED_WALKS) && defined(COHORT_ACCEL_BVH8F)
+#define COHORT_NAIVE_PAIRS 1
+/* Two samples' paths in lock step, for CPUs: their rays walk the tree in turn (bvh8f_trace_pair),
+ * so the core waits on two chains of node loads at once, and their set-up and shading are two
+ * independent chains of arithmetic in one stream. Each path computes exactly what trace_path
+ * computes for it; once one ends, the other goes on alone. */
+CO_INLINE void trace_path_pair(const SceneView* s, const RenderParams* p, uint32_t pixel, uint32_t sample,
+                               PathResult* ra, PathResult* rb) {
+  *ra = path_result_none();
+  *rb = path_result_none();
+  PathState a = path_start(p, pixel, sample), b = path_start(p, pixel, sample + 1u);
+  while (a.status == PATH_ALIVE && b.status == PATH_ALIVE) {
+    Bvh8fWalk wa, wb;
+    bvh8f_walk_start(&s->tree, &wa, a.org, a.dir, 0.0f, INFINITY, 0 CO_ALPHA_ARG(a.alpha_seed));
+    bvh8f_walk_start(&s->tree, &wb, b.org, b.dir, 0.0f, INFINITY, 0 CO_ALPHA_ARG(b.alpha_seed));
+    bvh8f_trace_pair(&s->tree, &wa, &wb);
+    path_count_ray(ra, wa.count);
+    path_count_ray(rb, wb.count);
+    ShadowRay sa = path_shade(s, p, &a, wa.hit, pixel, sample);
+    ShadowRay sb = path_shade(s, p, &b, wb.hit, pixel, sample + 1u);
+    if (sa.valid || sb.valid) {
+      if (sa.valid) bvh8f_walk_start(&s->tree, &wa, sa.org, sa.dir, 0.0f, sa.tmax, 1 CO_ALPHA_ARG(sa.alpha_seed));
+      if (sb.valid) bvh8f_walk_start(&s->tree, &wb, sb.org, sb.dir, 0.0f, sb.tmax, 1 CO_ALPHA_ARG(sb.alpha_seed));
+      if (sa.valid && sb.valid)
+        bvh8f_trace_pair(&s->tree, &wa, &wb);
+      else
+        while (bvh8f_walk_step(&s->tree, sa.valid ? &wa : &wb)) {
+        }
+      if (sa.valid) {
+        path_resolve_shadow(&a, &sa, wa.hit);
+        path_count_ray(ra, wa.count);
+      }
+      if (sb.valid) {
+        path_resolve_shadow(&b, &sb, wb.hit);
+        path_count_ray(rb, wb.count);
+      }
+    }
+  }
+  path_continue(s, p, &a, pixel, sample, ra);
+  path_continue(s, p, &b, pixel, sample + 1u, rb);
+}
+#endif
 
 /* A sample added to a film pixel's running sum (rgb; w stays 0), component by component as
  * OpenCL's float4 addition does. */

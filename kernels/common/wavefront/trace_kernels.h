@@ -17,6 +17,21 @@ CO_KERNEL trace_rays(CO_PARAMS(TRACE_RAYS_PARAMS)) {
   uint32_t i = co_global_id();
   if (i >= count) return;
   SceneAccel tree = make_scene_accel(nodes, leaf_triangles, triangles, scene_min, scene_max);
+#if defined(COHORT_ACCEL_BVH8F) && defined(COHORT_PAIRED_WALKS)
+  /* paired walks (bvh8f_trace_pair; a CPU's option): an even item traces its ray and the next in
+   * turn, an odd one returns, which on a CPU costs a branch */
+  if (i & 1u) return;
+  if (i + 1u < count) {
+    RayIn ra = rays[i], rb = rays[i + 1u];
+    Bvh8fWalk a, b;
+    bvh8f_walk_start(&tree, &a, v3_from4(ra.origin), v3_from4(ra.dir), ra.origin.w, ra.dir.w, (int)any_hit);
+    bvh8f_walk_start(&tree, &b, v3_from4(rb.origin), v3_from4(rb.dir), rb.origin.w, rb.dir.w, (int)any_hit);
+    bvh8f_trace_pair(&tree, &a, &b);
+    hits[i] = a.hit;
+    hits[i + 1u] = b.hit;
+    return;
+  }
+#endif
   RayIn r = rays[i];
   hits[i] = scene_trace_steps(&tree, v3_from4(r.origin), v3_from4(r.dir), r.origin.w, r.dir.w, (int)any_hit, 0);
 }
