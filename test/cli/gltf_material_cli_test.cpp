@@ -1,10 +1,14 @@
 // What `cohort info` and `cohort render` say about a glTF material: every texture and what it
-// drives, and a warning per feature the loader leaves out.
+// drives, and a warning per feature the loader leaves out; one table of the material extensions'
+// reference scenes, each listed, compiled and accepted as required.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
+#include <ostream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "cli/cli_helpers.h"
 
@@ -20,6 +24,16 @@ std::size_t count(const std::string& text, const std::string& what) {
   std::size_t n = 0;
   for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
   return n;
+}
+
+// `scene` with its first `from` made `to`, written to `out`, which it returns.
+fs::path edited_copy(const fs::path& scene, const std::string& from, const std::string& to, const fs::path& out) {
+  std::string text = cohort_test::read_all(scene);
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << "no " << from << " in " << scene;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  std::ofstream(out) << text;
+  return out;
 }
 
 }  // namespace
@@ -60,65 +74,12 @@ TEST(GltfMaterialCli, AlphaModesAreListedCompiledAndChecked) {
   const CommandResult render = run("render " + scene + " --res 8x8 --spp 1 -v -o " + (dir.path / "a.exr").string());
   ASSERT_EQ(render.code, 0) << render.output;
   EXPECT_NE(render.output.find("kernel features: textures alpha\n"), std::string::npos) << render.output;
-  std::ifstream in(scene);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const auto at = text.find("\"MASK\"");
-  ASSERT_NE(at, std::string::npos);
-  text.replace(at, 6, "\"CUT\"");
-  const fs::path bad = dir.path / "bad-alpha.gltf";
-  std::ofstream(bad) << text;
+  const fs::path bad = edited_copy(scene, "\"MASK\"", "\"CUT\"", dir.path / "bad-alpha.gltf");
   const CommandResult rejected = run("info " + bad.string());
   EXPECT_EQ(rejected.code, 2) << rejected.output;
   EXPECT_NE(rejected.output.find(bad.string() + ": material 2 'panel': alphaMode \"CUT\" is not one of glTF 2.0's"),
             std::string::npos)
       << rejected.output;
-}
-
-// The clearcoat reference scene: info lists each coat and the texture that drives one, warns of
-// nothing, and render compiles the coat.
-TEST(GltfMaterialCli, ClearcoatIsListedAndCompiled) {
-  const std::string scene = (fs::path(COHORT_SOURCE_DIR) / "scenes/reference/clearcoat.gltf").string();
-  const CommandResult info = run("info " + scene);
-  ASSERT_EQ(info.code, 0) << info.output;
-  EXPECT_EQ(count(info.output, ", clearcoat 1 (roughness 0)"), 2u) << info.output;
-  EXPECT_EQ(count(info.output, ", clearcoat 1 (roughness 0.3)"), 1u) << info.output;
-  EXPECT_EQ(count(info.output, "image 0 4x4, linear, nearest, wrap repeat/repeat: clearcoat factor (R) of 'textured'"),
-            1u) << info.output;
-  EXPECT_EQ(count(info.output, "warning: "), 0u) << info.output;
-  cohort_test::TempDir dir;
-  const CommandResult render = run("render " + scene + " --res 8x8 --spp 1 -v -o " + (dir.path / "c.exr").string());
-  ASSERT_EQ(render.code, 0) << render.output;
-  EXPECT_NE(render.output.find("kernel features: textures conductor clearcoat\n"), std::string::npos) << render.output;
-}
-
-// KHR_materials_specular (scenes/reference/specular.gltf): info names each material's specular and the
-// textures with what they drive, warns about nothing, render compiles the layering, and the extension
-// may be required.
-TEST(GltfMaterialCli, InfoListsTheSpecularAndItsTexturesAndAcceptsItAsRequired) {
-  const fs::path specular = fs::path(COHORT_SOURCE_DIR) / "scenes/reference/specular.gltf";
-  const CommandResult r = run("info " + specular.string());
-  ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_EQ(count(r.output, "warning: "), 0u) << r.output;
-  EXPECT_EQ(count(r.output, "roughness 0.3, emission (0, 0, 0), specular 0.3 colour (3, 1.5, 0.5)\n"), 1u) << r.output;
-  EXPECT_EQ(count(r.output, "roughness 0, emission (0, 0, 0), specular 1 colour (6, 3, 1.5)\n"), 1u) << r.output;
-  EXPECT_EQ(count(r.output, "specular 1 colour (2, 2, 2), textured\n"), 1u) << r.output;
-  EXPECT_EQ(count(r.output, "image 0 4x4, linear, nearest, wrap repeat/repeat: specular factor (A) of 'textured'"), 1u)
-      << r.output;
-  EXPECT_EQ(count(r.output, "image 1 4x4, sRGB, nearest, wrap repeat/repeat: specular colour (RGB) of 'textured'"), 1u)
-      << r.output;
-  cohort_test::TempDir dir;
-  std::ifstream in(specular);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::size_t at = text.find("\"extensionsUsed\"");
-  ASSERT_NE(at, std::string::npos);
-  text.insert(at, "\"extensionsRequired\": [\"KHR_materials_specular\"], ");
-  const fs::path required = dir.path / "required.gltf";
-  std::ofstream(required) << text;
-  const CommandResult rr =
-      run("render " + required.string() + " --res 8x8 --spp 1 -v -o " + (dir.path / "s.exr").string());
-  EXPECT_EQ(rr.code, 0) << rr.output;
-  EXPECT_EQ(count(rr.output, "KHR_materials_specular"), 0u) << rr.output;
-  EXPECT_NE(rr.output.find("kernel features: textures plastic specular\n"), std::string::npos) << rr.output;
 }
 
 // A triangle whose material asks for BLEND and an iridescence: one warning each, from info and from render.
@@ -146,27 +107,67 @@ TEST(GltfMaterialCli, InfoAndRenderWarnOnceForEachUnhonouredFeature) {
   }
 }
 
-// KHR_materials_sheen (scenes/reference/sheen.gltf): info names each material's sheen and the sheen
-// colour texture with what it drives, warns about nothing, and the extension may be required.
-TEST(GltfMaterialCli, InfoListsTheSheenAndItsTextureAndAcceptsItAsRequired) {
-  const fs::path sheen = fs::path(COHORT_SOURCE_DIR) / "scenes/reference/sheen.gltf";
-  const CommandResult r = run("info " + sheen.string());
-  ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_EQ(count(r.output, "warning: "), 0u) << r.output;
-  EXPECT_EQ(count(r.output, "sheen (0.9, 0.5, 0.3) roughness 0.3\n"), 1u) << r.output;
-  EXPECT_EQ(count(r.output, "sheen (0.9, 0.5, 0.3) roughness 0.8\n"), 1u) << r.output;
-  EXPECT_EQ(count(r.output, "sheen (1, 1, 1) roughness 0.5, textured\n"), 1u) << r.output;
-  EXPECT_EQ(count(r.output, "image 0 4x4, sRGB, nearest, wrap repeat/repeat: sheen colour (RGB) of 'sheen_tex'"), 1u)
-      << r.output;
+namespace {
+
+// A material extension's reference scene (scenes/reference/): what `info` says of it (line fragments
+// and how often each stands there), and the kernel features `render -v` compiles for it.
+struct ExtensionScene {
+  const char* name;
+  const char* extension;
+  const char* scene;
+  std::vector<std::pair<std::string, std::size_t>> info;
+  const char* kernel_features;
+};
+
+void PrintTo(const ExtensionScene& e, std::ostream* os) { *os << e.scene; }
+
+const ExtensionScene kExtensionScenes[] = {
+    {"Clearcoat", "KHR_materials_clearcoat", "clearcoat.gltf",
+     {{", clearcoat 1 (roughness 0)", 2},
+      {", clearcoat 1 (roughness 0.3)", 1},
+      {"image 0 4x4, linear, nearest, wrap repeat/repeat: clearcoat factor (R) of 'textured'", 1}},
+     "textures conductor clearcoat"},
+    {"Specular", "KHR_materials_specular", "specular.gltf",
+     {{"roughness 0.3, emission (0, 0, 0), specular 0.3 colour (3, 1.5, 0.5)\n", 1},
+      {"roughness 0, emission (0, 0, 0), specular 1 colour (6, 3, 1.5)\n", 1},
+      {"specular 1 colour (2, 2, 2), textured\n", 1},
+      {"image 0 4x4, linear, nearest, wrap repeat/repeat: specular factor (A) of 'textured'", 1},
+      {"image 1 4x4, sRGB, nearest, wrap repeat/repeat: specular colour (RGB) of 'textured'", 1}},
+     "textures plastic specular"},
+    {"Sheen", "KHR_materials_sheen", "sheen.gltf",
+     {{"sheen (0.9, 0.5, 0.3) roughness 0.3\n", 1},
+      {"sheen (0.9, 0.5, 0.3) roughness 0.8\n", 1},
+      {"sheen (1, 1, 1) roughness 0.5, textured\n", 1},
+      {"image 0 4x4, sRGB, nearest, wrap repeat/repeat: sheen colour (RGB) of 'sheen_tex'", 1}},
+     "textures sheen"},
+};
+
+class GltfExtensionScene : public ::testing::TestWithParam<ExtensionScene> {};
+
+}  // namespace
+
+// info names each material's extension and the textures with what they drive, and warns about
+// nothing; render compiles the extension and says nothing of it, as shipped and with the extension
+// required.
+TEST_P(GltfExtensionScene, IsListedCompiledAndAcceptedAsRequired) {
+  const ExtensionScene& e = GetParam();
+  const fs::path scene = fs::path(COHORT_SOURCE_DIR) / "scenes/reference" / e.scene;
+  const CommandResult info = run("info " + scene.string());
+  ASSERT_EQ(info.code, 0) << info.output;
+  EXPECT_EQ(count(info.output, "warning: "), 0u) << info.output;
+  for (const auto& [line, times] : e.info) EXPECT_EQ(count(info.output, line), times) << line << " in:\n" << info.output;
   cohort_test::TempDir dir;
-  std::ifstream in(sheen);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::size_t at = text.find("\"extensionsUsed\"");
-  ASSERT_NE(at, std::string::npos);
-  text.insert(at, "\"extensionsRequired\": [\"KHR_materials_sheen\"], ");
-  const fs::path required = dir.path / "required.gltf";
-  std::ofstream(required) << text;
-  const CommandResult rr = run("render " + required.string() + " --res 8x8 --spp 1 -o " + (dir.path / "s.exr").string());
-  EXPECT_EQ(rr.code, 0) << rr.output;
-  EXPECT_EQ(count(rr.output, "KHR_materials_sheen"), 0u) << rr.output;
+  const std::string extension = e.extension;
+  const fs::path required = edited_copy(scene, "\"extensionsUsed\"",
+                                        "\"extensionsRequired\": [\"" + extension + "\"], \"extensionsUsed\"",
+                                        dir.path / "required.gltf");
+  for (const fs::path& file : {scene, required}) {
+    const CommandResult r = run("render " + file.string() + " --res 8x8 --spp 1 -v -o " + (dir.path / "r.exr").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(count(r.output, extension), 0u) << r.output;
+    EXPECT_NE(r.output.find("kernel features: " + std::string(e.kernel_features) + "\n"), std::string::npos) << r.output;
+  }
 }
+
+INSTANTIATE_TEST_SUITE_P(ReferenceScenes, GltfExtensionScene, ::testing::ValuesIn(kExtensionScenes),
+                         [](const ::testing::TestParamInfo<ExtensionScene>& info) { return info.param.name; });

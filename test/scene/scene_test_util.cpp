@@ -1,5 +1,6 @@
 #include "scene_test_util.h"
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <random>
@@ -17,7 +18,8 @@ std::filesystem::path shared_scenes() { return COHORT_SHARED_SCENES; }
 TempDir::TempDir() {
   std::random_device rd;
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::string test = info ? fmt::format("{}-{}", info->test_suite_name(), info->name()) : "scene";
+  std::string test = info ? fmt::format("{}-{}", info->test_suite_name(), info->name()) : "scene";
+  std::replace(test.begin(), test.end(), '/', '-');  // a parameterised test's name: one folder, not nested ones
   path_ = std::filesystem::temp_directory_path() / fmt::format("cohort-{}-{:08x}", test, rd());
   std::filesystem::create_directories(path_);
 }
