@@ -34,5 +34,6 @@ struct DeviceInfo {
 // and fills (runtime/cl/cl_device.cpp), buffers the driver allocates itself (runtime/cl/context.cpp),
 // and no prefetch (it checks the kernels, never times them: device_support).
 inline bool is_oclgrind(const DeviceInfo& d) { return d.platform_name == "Oclgrind"; }
+inline bool is_pocl(const DeviceInfo& d) { return d.platform_name == "Portable Computing Language"; }
 
 }  // namespace cohort

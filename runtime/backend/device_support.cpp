@@ -29,9 +29,11 @@ DeviceSupport device_support(const DeviceInfo& device) {
   // CPU runtime, rusticl's llvmpipe); GPUs hide the latency with other warps; Oclgrind checks the
   // kernels and does not time them
   s.prefetch = device.local_memory_is_global && !is_oclgrind(device);
-  // two walks in turn let a core wait on two nodes' loads at once; a GPU hides the latency with other
-  // warps and would pay twice the registers. Oclgrind runs them so that its checks cover them.
-  s.paired_walks = device.local_memory_is_global;
+  // two walks in turn let a core wait on two nodes' loads at once where a work item runs as scalar
+  // code of its own (PoCL's CPU driver). Intel's CPU runtime and llvmpipe pack work items into SIMD
+  // lanes, and the pair's private state made their naive renders 5.5x and 53x slower (2026-12-06); a
+  // GPU hides the latency with other warps. Oclgrind runs them so that its checks cover them.
+  s.paired_walks = (is_pocl(device) && device.local_memory_is_global) || is_oclgrind(device);
   if (device.platform_name == "rusticl" || device.platform_name == "Clover") {
     s.sorts = false;
     s.sort_refusal = fmt::format("{} ({}) does not run the work-groups of a launch independently, which the "
