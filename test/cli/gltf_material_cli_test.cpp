@@ -144,7 +144,6 @@ const ExtensionScene kExtensionScenes[] = {
 
 class GltfExtensionScene : public ::testing::TestWithParam<ExtensionScene> {};
 
-}  // namespace
 
 // info names each material's extension and the textures with what they drive, and warns about
 // nothing; render compiles the extension and says nothing of it, as shipped and with the extension
@@ -171,3 +170,5 @@ TEST_P(GltfExtensionScene, IsListedCompiledAndAcceptedAsRequired) {
 
 INSTANTIATE_TEST_SUITE_P(ReferenceScenes, GltfExtensionScene, ::testing::ValuesIn(kExtensionScenes),
                          [](const ::testing::TestParamInfo<ExtensionScene>& info) { return info.param.name; });
+
+}  // namespace
