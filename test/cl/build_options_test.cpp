@@ -54,16 +54,6 @@ TEST(BuildOptions, PrefetchWhereLocalMemoryIsTheCache) {
   EXPECT_FALSE(prefetches(gpu_like_cpu));
 }
 
-// fmin/fmax in the box tests where local memory is a scratchpad (a GPU: one instruction where a compare
-// and a select took two); x86 CPU runtimes keep the select, which they compile to minps/maxps.
-TEST(BuildOptions, HardwareMinMaxOnGpus) {
-  const auto hw = [](const DeviceInfo& d) { return base_build_options(d).find("-DCOHORT_HW_MINMAX") != std::string::npos; };
-  EXPECT_TRUE(hw(device("NVIDIA CUDA", false)));
-  EXPECT_FALSE(hw(device("Portable Computing Language", true)));
-  EXPECT_FALSE(hw(device("Intel(R) OpenCL", true)));
-  EXPECT_FALSE(hw(device("Oclgrind", true)));
-}
-
 TEST(BuildOptions, AlwaysOpenClC12) {
   for (const DeviceInfo& d : {device("Portable Computing Language", true), device("NVIDIA CUDA", false)})
     EXPECT_EQ(base_build_options(d).rfind("-cl-std=CL1.2", 0), 0u) << base_build_options(d);
