@@ -92,6 +92,17 @@ TYPED_TEST(WideBvh, ARayWithANanDirectionMisses) {
     for (const int any_hit : {0, 1}) EXPECT_EQ(bvh.trace(v3(0.f, 0.f, 0.f), dir, kInf, any_hit).triangle, HIT_NONE);
 }
 
+// An origin that is not finite hits nothing and stays in the tree: NaN slabs entered every lane of a
+// node, the unused ones too, and the walk read past the leaf array (a crash on the host).
+TYPED_TEST(WideBvh, ARayWithANonFiniteOriginMisses) {
+  const KdTree kept = kept_triangles(random_soup(4000, 7));
+  const BuiltBvh<TypeParam> bvh(kept.triangles);
+  const float nan = std::nanf("");
+  for (const co_vec3 org : {v3(nan, 0.f, 0.f), v3(0.f, nan, 0.f), v3(0.f, 0.f, nan), v3(nan, nan, nan),
+                            v3(kInf, 0.f, 0.f), v3(-kInf, kInf, -kInf), v3(nan, -kInf, 0.f)})
+    for (const int any_hit : {0, 1}) EXPECT_EQ(bvh.trace(org, v3(0.3f, -0.2f, 0.9f), kInf, any_hit).triangle, HIT_NONE);
+}
+
 TYPED_TEST(WideBvh, RejectsAnEmptyInput) {
   EXPECT_THROW(TypeParam::build({}), InputError);
 }

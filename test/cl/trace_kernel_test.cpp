@@ -2,6 +2,8 @@
 // brute-force loop over every triangle on the host: >= 100k rays on three scenes.
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -120,6 +122,13 @@ void check_bvh_against_kd(const fs::path& path, Bvh (*build)(std::span<const Tri
   auto rays = make_feature_rays(tree, 20000, 99);
   const auto random = make_rays(tree.bounds, 20000, 98);
   rays.insert(rays.end(), random.begin(), random.end());
+  // origins that are not finite: no hit on either tree, and the walk stays inside the BVH
+  const float nan = std::nanf("");
+  for (const auto& [x, y, z] : {std::array{nan, 0.f, 0.f}, std::array{nan, nan, nan}, std::array{INFINITY, 0.f, -INFINITY}}) {
+    auto ray = rays[7];
+    ray.org = glm::vec3(x, y, z);
+    rays.push_back(ray);
+  }
   const std::vector<float> unbounded(rays.size(), INFINITY);
   const auto kd = trace_on_device(tree, rays, false, unbounded);
   const auto through_bvh = trace_on_device(tree, rays, false, unbounded, &bvh);
@@ -134,6 +143,7 @@ void check_bvh_against_kd(const fs::path& path, Bvh (*build)(std::span<const Tri
   const auto bvh_occluded = trace_on_device(tree, rays, true, half, &bvh);
   for (std::size_t i = 0; i < rays.size(); ++i)
     occlusion_differ += (kd_occluded[i].triangle != HIT_NONE) != (bvh_occluded[i].triangle != HIT_NONE);
+  for (std::size_t i = rays.size() - 3; i < rays.size(); ++i) EXPECT_EQ(through_bvh[i].triangle, HIT_NONE) << "ray " << i;
   std::printf("%s: %zu rays, %zu hits, %zu closest and %zu any-hit answers differ between the KD-tree and the BVH\n",
               path.filename().c_str(), rays.size(), hits, differ, occlusion_differ);
   EXPECT_GT(hits, rays.size() / 4);

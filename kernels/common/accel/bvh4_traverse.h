@@ -116,6 +116,13 @@ CO_INLINE Bvh4Ray bvh4_ray(co_vec3 org, co_vec3 dir CO_ALPHA_PARAM) {
   r.ox = co_f4_splat(org.x); r.oy = co_f4_splat(org.y); r.oz = co_f4_splat(org.z);
   r.ix = co_f4_splat(bvh4_inverse(dir.x)); r.iy = co_f4_splat(bvh4_inverse(dir.y));
   r.iz = co_f4_splat(bvh4_inverse(dir.z));
+  /* an origin that is not finite hits nothing: from -infinity every plane is +infinity away, so
+   * no box is entered (NaN slabs would enter every lane, the unused ones too, whose references are
+   * no nodes) */
+  if (!v3_is_finite(org)) {
+    r.ox = r.oy = r.oz = co_f4_splat(-INFINITY);
+    r.ix = r.iy = r.iz = co_f4_splat(1.0f);
+  }
   r.near_x = dir.x < 0.0f ? 1 : 0; r.near_y = dir.y < 0.0f ? 3 : 2; r.near_z = dir.z < 0.0f ? 5 : 4;
   return r;
 }

@@ -77,6 +77,10 @@ CO_INLINE Bvh8fRay bvh8f_ray(co_vec3 org, co_vec3 dir CO_ALPHA_PARAM) {
   r.ox = co_f8_splat(org.x); r.oy = co_f8_splat(org.y); r.oz = co_f8_splat(org.z);
   r.ix = co_f8_splat(bvh4_inverse(dir.x)); r.iy = co_f8_splat(bvh4_inverse(dir.y));
   r.iz = co_f8_splat(bvh4_inverse(dir.z));
+  if (!v3_is_finite(org)) { /* hits nothing, as bvh4_ray says */
+    r.ox = r.oy = r.oz = co_f8_splat(-INFINITY);
+    r.ix = r.iy = r.iz = co_f8_splat(1.0f);
+  }
   r.near_x = dir.x < 0.0f ? 1 : 0; r.near_y = dir.y < 0.0f ? 3 : 2; r.near_z = dir.z < 0.0f ? 5 : 4;
   return r;
 }
