@@ -15,7 +15,6 @@
 #include "method_tree_agreement.h"
 #include "render_fixture.h"
 #include "runtime/backend/device_support.h"
-#include "runtime/cl/kernel_program.h"
 #include "runtime/render/pth/coherence.h"
 #include "runtime/render/methods/methods.h"
 #include "runtime/render/workloads.h"
@@ -480,8 +479,7 @@ TEST(Methods, GlassVolumeIsTheSameOnEveryTreeAndMethod) {
 // same tree (one walk per ray).
 TEST(Methods, PairedWalksGiveEachPathItsOwnWalksImage) {
   const ClContext cl(select_device(""));
-  if (base_build_options(cl.info()).find("-DCOHORT_PAIRED_WALKS") == std::string::npos)
-    GTEST_SKIP() << cl.info().name << " runs no paired walks";
+  if (!device_support(cl.info()).paired_walks) GTEST_SKIP() << cl.info().name << " runs no paired walks";
   const ProgramCache cache(ProgramCache::default_directory());
   for (const char* scene : {"cornell-box.gltf", "reference/alpha-mask.gltf"}) {
     const auto path = shipped_scene(scene);

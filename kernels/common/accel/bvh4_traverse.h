@@ -105,6 +105,20 @@ typedef struct Bvh4Ray {
   int near_x, near_y, near_z;
 } Bvh4Ray;
 
+/* What every BVH ray splats over its lanes: the origin and the inverse direction (bvh4_inverse). An
+ * origin that is not finite hits nothing: it becomes -infinity with unit inverses, so every plane is
+ * +infinity away and no box is entered (NaN slabs would enter every lane, the unused ones too, whose
+ * references are no nodes). */
+CO_INLINE void bvh_slab_ray(co_vec3 org, co_vec3 dir, co_vec3* origin, co_vec3* inverse) {
+  if (v3_is_finite(org)) {
+    *origin = org;
+    *inverse = v3(bvh4_inverse(dir.x), bvh4_inverse(dir.y), bvh4_inverse(dir.z));
+  } else {
+    *origin = v3_splat(-INFINITY);
+    *inverse = v3_splat(1.0f);
+  }
+}
+
 /* With COHORT_FEATURE_ALPHA a last argument is the ray's alpha seed (alpha.h). */
 CO_INLINE Bvh4Ray bvh4_ray(co_vec3 org, co_vec3 dir CO_ALPHA_PARAM) {
   Bvh4Ray r;
@@ -113,16 +127,10 @@ CO_INLINE Bvh4Ray bvh4_ray(co_vec3 org, co_vec3 dir CO_ALPHA_PARAM) {
   r.wr.alpha = 0; /* bvh4_continue points a copy at its tree's */
   r.wr.alpha_seed = alpha_seed;
 #endif
-  r.ox = co_f4_splat(org.x); r.oy = co_f4_splat(org.y); r.oz = co_f4_splat(org.z);
-  r.ix = co_f4_splat(bvh4_inverse(dir.x)); r.iy = co_f4_splat(bvh4_inverse(dir.y));
-  r.iz = co_f4_splat(bvh4_inverse(dir.z));
-  /* an origin that is not finite hits nothing: from -infinity every plane is +infinity away, so
-   * no box is entered (NaN slabs would enter every lane, the unused ones too, whose references are
-   * no nodes) */
-  if (!v3_is_finite(org)) {
-    r.ox = r.oy = r.oz = co_f4_splat(-INFINITY);
-    r.ix = r.iy = r.iz = co_f4_splat(1.0f);
-  }
+  co_vec3 o, inv;
+  bvh_slab_ray(org, dir, &o, &inv);
+  r.ox = co_f4_splat(o.x); r.oy = co_f4_splat(o.y); r.oz = co_f4_splat(o.z);
+  r.ix = co_f4_splat(inv.x); r.iy = co_f4_splat(inv.y); r.iz = co_f4_splat(inv.z);
   r.near_x = dir.x < 0.0f ? 1 : 0; r.near_y = dir.y < 0.0f ? 3 : 2; r.near_z = dir.z < 0.0f ? 5 : 4;
   return r;
 }

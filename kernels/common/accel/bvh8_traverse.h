@@ -73,13 +73,10 @@ CO_INLINE Bvh8Ray bvh8_ray(co_vec3 org, co_vec3 dir CO_ALPHA_PARAM) {
   r.wr.alpha = 0; /* bvh8_trace_steps points a copy at its tree's */
   r.wr.alpha_seed = alpha_seed;
 #endif
-  r.ox = co_f4_splat(org.x); r.oy = co_f4_splat(org.y); r.oz = co_f4_splat(org.z);
-  r.ix = co_f4_splat(bvh4_inverse(dir.x)); r.iy = co_f4_splat(bvh4_inverse(dir.y));
-  r.iz = co_f4_splat(bvh4_inverse(dir.z));
-  if (!v3_is_finite(org)) { /* hits nothing, as bvh4_ray says */
-    r.ox = r.oy = r.oz = co_f4_splat(-INFINITY);
-    r.ix = r.iy = r.iz = co_f4_splat(1.0f);
-  }
+  co_vec3 o, inv;
+  bvh_slab_ray(org, dir, &o, &inv);
+  r.ox = co_f4_splat(o.x); r.oy = co_f4_splat(o.y); r.oz = co_f4_splat(o.z);
+  r.ix = co_f4_splat(inv.x); r.iy = co_f4_splat(inv.y); r.iz = co_f4_splat(inv.z);
   r.neg_x = dir.x < 0.0f; r.neg_y = dir.y < 0.0f; r.neg_z = dir.z < 0.0f;
   r.oct_inv = 7u ^ ((uint32_t)r.neg_x | ((uint32_t)r.neg_y << 1) | ((uint32_t)r.neg_z << 2));
   return r;

@@ -74,13 +74,10 @@ CO_INLINE Bvh8fRay bvh8f_ray(co_vec3 org, co_vec3 dir CO_ALPHA_PARAM) {
   r.wr.alpha = 0; /* bvh8f_trace_steps points a copy at its tree's */
   r.wr.alpha_seed = alpha_seed;
 #endif
-  r.ox = co_f8_splat(org.x); r.oy = co_f8_splat(org.y); r.oz = co_f8_splat(org.z);
-  r.ix = co_f8_splat(bvh4_inverse(dir.x)); r.iy = co_f8_splat(bvh4_inverse(dir.y));
-  r.iz = co_f8_splat(bvh4_inverse(dir.z));
-  if (!v3_is_finite(org)) { /* hits nothing, as bvh4_ray says */
-    r.ox = r.oy = r.oz = co_f8_splat(-INFINITY);
-    r.ix = r.iy = r.iz = co_f8_splat(1.0f);
-  }
+  co_vec3 o, inv;
+  bvh_slab_ray(org, dir, &o, &inv);
+  r.ox = co_f8_splat(o.x); r.oy = co_f8_splat(o.y); r.oz = co_f8_splat(o.z);
+  r.ix = co_f8_splat(inv.x); r.iy = co_f8_splat(inv.y); r.iz = co_f8_splat(inv.z);
   r.near_x = dir.x < 0.0f ? 1 : 0; r.near_y = dir.y < 0.0f ? 3 : 2; r.near_z = dir.z < 0.0f ? 5 : 4;
   return r;
 }
