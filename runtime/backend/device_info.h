@@ -26,6 +26,7 @@ struct DeviceInfo {
   bool correctly_rounded_divide_sqrt = false;  // OpenCL: CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT
   bool subgroups = false;                      // OpenCL: cl_khr_subgroups (sub-group votes)
   bool denormals = true;                       // OpenCL: CL_FP_DENORM in the single-precision config
+  bool fma = true;                             // OpenCL: CL_FP_FMA (a fused multiply-add in hardware)
   bool image_support = false;                  // OpenCL: CL_DEVICE_IMAGE_SUPPORT (Cohort reads textures from buffers)
   std::string opencl_c_version;                // OpenCL: CL_DEVICE_OPENCL_C_VERSION; empty for CUDA
 };

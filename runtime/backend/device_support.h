@@ -22,6 +22,9 @@ struct DeviceSupport {
   // the naive megakernel traces two samples' paths in lock step on the 8-wide BVH with float planes
   // (kernels/common/wavefront/pathtrace.h, trace_path_pair)
   bool paired_walks = false;
+  // the BVH box tests compute each slab in one fused multiply-add (kernels/common/accel/bvh4_traverse.h,
+  // BVH_SLAB4); without it the host passes -DCOHORT_UNFUSED_SLABS. The same hits either way.
+  bool fused_slabs = true;
   // The device radix sort (hash, pth, the gate benchmark) hands tiles from one work-group to the next
   // within a launch (decoupled look-back), which needs the groups of a launch to make progress
   // independently. OpenCL reports no such property; Mesa's OpenCL (rusticl, clover) was measured

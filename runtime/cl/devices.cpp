@@ -37,6 +37,7 @@ DeviceInfo describe_device(const cl::Platform& platform, const cl::Device& devic
   const auto fp = device.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>();
   info.correctly_rounded_divide_sqrt = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
   info.denormals = (fp & CL_FP_DENORM) != 0;
+  info.fma = (fp & CL_FP_FMA) != 0;
   info.subgroups = device.getInfo<CL_DEVICE_EXTENSIONS>().find("cl_khr_subgroups") != std::string::npos;
   info.image_support = device.getInfo<CL_DEVICE_IMAGE_SUPPORT>() != CL_FALSE;
   info.opencl_c_version = clean(device.getInfo<CL_DEVICE_OPENCL_C_VERSION>());

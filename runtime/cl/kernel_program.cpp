@@ -34,6 +34,7 @@ std::string base_build_options(const DeviceInfo& device) {
   const DeviceSupport support = device_support(device);
   if (support.prefetch) options += " -DCOHORT_PREFETCH";
   if (support.paired_walks) options += " -DCOHORT_PAIRED_WALKS";
+  if (!support.fused_slabs) options += " -DCOHORT_UNFUSED_SLABS";
   return options;
 }
 

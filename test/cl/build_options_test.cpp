@@ -5,9 +5,12 @@
 // That the walk's hits do not change with it is TraceKernel.Bvh4* on the CPU device. The naive
 // megakernel's paired walks (two samples' paths in lock step) only on PoCL's CPU driver, whose work items
 // run as scalar code of their own, and on Oclgrind (so that its checks cover them); that they change no
-// bit is Methods.PairedWalks*.
+// bit is Methods.PairedWalks*. The box tests' fused slabs (one fma each) where the device has a
+// hardware fma, except on OpenCL GPUs and Oclgrind (-DCOHORT_UNFUSED_SLABS); that neither form changes a
+// hit is TraceKernel.Bvh* on PoCL (fused) and scripts/test-oclgrind (unfused).
 #include <gtest/gtest.h>
 
+#include "runtime/backend/device_support.h"
 #include "runtime/cl/kernel_program.h"
 
 using namespace cohort;
@@ -27,6 +30,8 @@ bool prefetches(const DeviceInfo& d) { return base_build_options(d).find("-DCOHO
 
 bool pairs(const DeviceInfo& d) { return base_build_options(d).find("-DCOHORT_PAIRED_WALKS") != std::string::npos; }
 
+bool unfused(const DeviceInfo& d) { return base_build_options(d).find("-DCOHORT_UNFUSED_SLABS") != std::string::npos; }
+
 }  // namespace
 
 TEST(BuildOptions, PairedWalksOnPoclsCpuDriverAndOclgrind) {
@@ -41,6 +46,18 @@ TEST(BuildOptions, PairedWalksOnPoclsCpuDriverAndOclgrind) {
   DeviceInfo gpu_like_cpu = device("Some runtime", true);
   gpu_like_cpu.local_memory_is_global = false;
   EXPECT_FALSE(pairs(gpu_like_cpu));
+}
+
+TEST(BuildOptions, FusedSlabsWhereTheCpuHasAnFmaAndOnCuda) {
+  EXPECT_FALSE(unfused(device("Portable Computing Language", true)));
+  EXPECT_FALSE(unfused(device("Intel(R) OpenCL", true)));
+  EXPECT_TRUE(unfused(device("NVIDIA CUDA", false)));  // NVIDIA's OpenCL traced diffuse rays slower fused
+  EXPECT_TRUE(unfused(device("Oclgrind", true)));      // CI checks the unfused form there
+  DeviceInfo no_fma = device("Portable Computing Language", true);
+  no_fma.fma = false;  // a software fma would cost more than it saves
+  EXPECT_TRUE(unfused(no_fma));
+  DeviceInfo cuda = device("CUDA", false);
+  EXPECT_TRUE(device_support(cuda).fused_slabs);  // the CUDA backend always fuses (every NVIDIA GPU has an fma)
 }
 
 TEST(BuildOptions, PrefetchWhereLocalMemoryIsTheCache) {

@@ -94,29 +94,70 @@ CO_INLINE void bvh4_prefetch(const Bvh4View* bvh, uint32_t ref) {
     }                                                               \
   } while (0)
 
-/* What a walk keeps of its ray: the watertight set-up, the origin and inverse direction splatted
- * over four lanes, and the plane each slab is entered through, by the direction's sign: lo ahead of
- * hi for a positive component. With a finite inverse and lo <= hi, (lo - o) * i and (hi - o) * i
- * round in the same order as the planes, so this picks exactly what a min and a max of the two
- * would; an unused lane (lo = hi = +infinity) gives equal values either way. */
+/* What a walk keeps of its ray: the watertight set-up, the inverse direction and the slab offsets
+ * (bvh_slab_offsets) splatted over four lanes, and the plane each slab is entered through, by the
+ * direction's sign: lo ahead of hi for a positive component. With lo <= hi the entry plane's
+ * distance is the smaller, so this picks what a min and a max of the two would; an unused lane
+ * (lo = hi = +infinity) gives equal values either way. */
 typedef struct Bvh4Ray {
   WatertightRay wr;
-  co_float4 ox, oy, oz, ix, iy, iz;
+  co_float4 near_ox, near_oy, near_oz; /* the entry planes' offsets (bvh_slab_offsets) */
+  co_float4 far_ox, far_oy, far_oz;    /* the exit planes' */
+  co_float4 ix, iy, iz;
   int near_x, near_y, near_z;
 } Bvh4Ray;
 
 /* What every BVH ray splats over its lanes: the origin and the inverse direction (bvh4_inverse). An
  * origin that is not finite hits nothing: it becomes -infinity with unit inverses, so every plane is
  * +infinity away and no box is entered (NaN slabs would enter every lane, the unused ones too, whose
- * references are no nodes). */
+ * references are no nodes). So does an origin whose product with the inverse overflows (a coordinate
+ * beyond 1e20: |inverse| is at most 1e18), which the fused slabs (bvh_slab_offsets) cannot offset;
+ * unfused or fused, every device gives such a ray the same answer. */
 CO_INLINE void bvh_slab_ray(co_vec3 org, co_vec3 dir, co_vec3* origin, co_vec3* inverse) {
-  if (v3_is_finite(org)) {
+  co_vec3 inv = v3(bvh4_inverse(dir.x), bvh4_inverse(dir.y), bvh4_inverse(dir.z));
+  if (v3_is_finite(org) && fabs(org.x * inv.x) <= 1e38f && fabs(org.y * inv.y) <= 1e38f &&
+      fabs(org.z * inv.z) <= 1e38f) {
     *origin = org;
-    *inverse = v3(bvh4_inverse(dir.x), bvh4_inverse(dir.y), bvh4_inverse(dir.z));
+    *inverse = inv;
   } else {
     *origin = v3_splat(-INFINITY);
     *inverse = v3_splat(1.0f);
   }
+}
+
+/* A slab's distance, fma(plane, inverse, offset) in one rounding where the device fuses (the host's
+ * default), (plane - origin) * inverse in two where the host passes -DCOHORT_UNFUSED_SLABS (an
+ * OpenCL GPU, whose compiler ran the fused walk slower; a device without a hardware fma; Oclgrind:
+ * runtime/backend/device_support.cpp). Fused, the offset is -(origin * inverse), moved by 2^-21 of
+ * itself so that the entry distance is never above and the exit never below the exact
+ * (plane - origin) * inverse before the fma's one rounding (the product's rounding is at most 2^-24
+ * of it): the boxes only grow, by about 2^-21 of the origin's coordinate, far below their padding,
+ * so a box is entered more often than exactly, never less, and the hit does not change. Unfused,
+ * both offsets are the origin. bvh_slab_ray's -infinity origin gives +infinity fused: every plane
+ * +infinity away either way. */
+#if defined(COHORT_UNFUSED_SLABS)
+#define BVH_SLAB4(plane, inverse, offset) co_f4_mul(co_f4_sub((plane), (offset)), (inverse))
+#define BVH_SLAB8(plane, inverse, offset) co_f8_mul(co_f8_sub((plane), (offset)), (inverse))
+#else
+#define BVH_SLAB4(plane, inverse, offset) co_f4_fma((plane), (inverse), (offset))
+#define BVH_SLAB8(plane, inverse, offset) co_f8_fma((plane), (inverse), (offset))
+#endif
+CO_INLINE void bvh_slab_offsets(float origin, float inverse, float* near_offset, float* far_offset) {
+#if defined(COHORT_UNFUSED_SLABS)
+  (void)inverse;
+  *near_offset = origin;
+  *far_offset = origin;
+#else
+  if (origin == -INFINITY) {
+    *near_offset = INFINITY;
+    *far_offset = INFINITY;
+    return;
+  }
+  float oi = origin * inverse; /* at most 1e38 (bvh_slab_ray) */
+  float slack = fabs(oi) * 4.76837158203125e-7f; /* 2^-21 */
+  *near_offset = -(oi + slack);
+  *far_offset = -(oi - slack);
+#endif
 }
 
 /* With COHORT_FEATURE_ALPHA a last argument is the ray's alpha seed (alpha.h). */
@@ -129,7 +170,12 @@ CO_INLINE Bvh4Ray bvh4_ray(co_vec3 org, co_vec3 dir CO_ALPHA_PARAM) {
 #endif
   co_vec3 o, inv;
   bvh_slab_ray(org, dir, &o, &inv);
-  r.ox = co_f4_splat(o.x); r.oy = co_f4_splat(o.y); r.oz = co_f4_splat(o.z);
+  float nx, ny, nz, fx, fy, fz;
+  bvh_slab_offsets(o.x, inv.x, &nx, &fx);
+  bvh_slab_offsets(o.y, inv.y, &ny, &fy);
+  bvh_slab_offsets(o.z, inv.z, &nz, &fz);
+  r.near_ox = co_f4_splat(nx); r.near_oy = co_f4_splat(ny); r.near_oz = co_f4_splat(nz);
+  r.far_ox = co_f4_splat(fx); r.far_oy = co_f4_splat(fy); r.far_oz = co_f4_splat(fz);
   r.ix = co_f4_splat(inv.x); r.iy = co_f4_splat(inv.y); r.iz = co_f4_splat(inv.z);
   r.near_x = dir.x < 0.0f ? 1 : 0; r.near_y = dir.y < 0.0f ? 3 : 2; r.near_z = dir.z < 0.0f ? 5 : 4;
   return r;
@@ -142,12 +188,12 @@ CO_INLINE Bvh4Ray bvh4_ray(co_vec3 org, co_vec3 dir CO_ALPHA_PARAM) {
  * the traversal in global memory make the same decisions from the same operations. */
 #define BVH4_ENTER(planes, r, enter_min, limit, enter, mask)                                                   \
   do {                                                                                                        \
-    (enter) = co_f4_max(co_f4_max(co_f4_mul(co_f4_sub((planes)[(r)->near_x], (r)->ox), (r)->ix),               \
-                                  co_f4_mul(co_f4_sub((planes)[(r)->near_y], (r)->oy), (r)->iy)),              \
-                        co_f4_max(co_f4_mul(co_f4_sub((planes)[(r)->near_z], (r)->oz), (r)->iz), (enter_min))); \
-    co_float4 leave_ = co_f4_min(co_f4_min(co_f4_mul(co_f4_sub((planes)[(r)->near_x ^ 1], (r)->ox), (r)->ix),  \
-                                           co_f4_mul(co_f4_sub((planes)[(r)->near_y ^ 1], (r)->oy), (r)->iy)), \
-                                 co_f4_min(co_f4_mul(co_f4_sub((planes)[(r)->near_z ^ 1], (r)->oz), (r)->iz),  \
+    (enter) = co_f4_max(co_f4_max(BVH_SLAB4((planes)[(r)->near_x], (r)->ix, (r)->near_ox),                    \
+                                  BVH_SLAB4((planes)[(r)->near_y], (r)->iy, (r)->near_oy)),                   \
+                        co_f4_max(BVH_SLAB4((planes)[(r)->near_z], (r)->iz, (r)->near_oz), (enter_min)));      \
+    co_float4 leave_ = co_f4_min(co_f4_min(BVH_SLAB4((planes)[(r)->near_x ^ 1], (r)->ix, (r)->far_ox),        \
+                                           BVH_SLAB4((planes)[(r)->near_y ^ 1], (r)->iy, (r)->far_oy)),       \
+                                 co_f4_min(BVH_SLAB4((planes)[(r)->near_z ^ 1], (r)->iz, (r)->far_oz),        \
                                            co_f4_splat(limit)));                                               \
     (mask) = co_f4_less((enter), co_f4_scale(leave_, 1.0000004f));                                            \
   } while (0)

@@ -62,7 +62,8 @@ CO_INLINE void bvh8f_prefetch(const Bvh8fView* bvh, uint32_t ref) {
  * plane row each slab is entered through (Bvh4Ray says why that picks what a min and a max would). */
 typedef struct Bvh8fRay {
   WatertightRay wr;
-  co_float8 ox, oy, oz, ix, iy, iz;
+  co_float8 near_ox, near_oy, near_oz, far_ox, far_oy, far_oz; /* bvh_slab_offsets */
+  co_float8 ix, iy, iz;
   int near_x, near_y, near_z;
 } Bvh8fRay;
 
@@ -76,7 +77,12 @@ CO_INLINE Bvh8fRay bvh8f_ray(co_vec3 org, co_vec3 dir CO_ALPHA_PARAM) {
 #endif
   co_vec3 o, inv;
   bvh_slab_ray(org, dir, &o, &inv);
-  r.ox = co_f8_splat(o.x); r.oy = co_f8_splat(o.y); r.oz = co_f8_splat(o.z);
+  float nx, ny, nz, fx, fy, fz;
+  bvh_slab_offsets(o.x, inv.x, &nx, &fx);
+  bvh_slab_offsets(o.y, inv.y, &ny, &fy);
+  bvh_slab_offsets(o.z, inv.z, &nz, &fz);
+  r.near_ox = co_f8_splat(nx); r.near_oy = co_f8_splat(ny); r.near_oz = co_f8_splat(nz);
+  r.far_ox = co_f8_splat(fx); r.far_oy = co_f8_splat(fy); r.far_oz = co_f8_splat(fz);
   r.ix = co_f8_splat(inv.x); r.iy = co_f8_splat(inv.y); r.iz = co_f8_splat(inv.z);
   r.near_x = dir.x < 0.0f ? 1 : 0; r.near_y = dir.y < 0.0f ? 3 : 2; r.near_z = dir.z < 0.0f ? 5 : 4;
   return r;
@@ -87,13 +93,13 @@ CO_INLINE Bvh8fRay bvh8f_ray(co_vec3 org, co_vec3 dir CO_ALPHA_PARAM) {
  * before `limit`, lane i in bit i. */
 CO_FORCE_INLINE uint32_t bvh8f_enter(const CO_GLOBAL Bvh8fNode* n, const Bvh8fRay* r, float tmin, float limit,
                                      float* enter) {
-  co_float8 e = co_f8_max(co_f8_max(co_f8_mul(co_f8_sub(co_f8_load(n->planes[r->near_x]), r->ox), r->ix),
-                                    co_f8_mul(co_f8_sub(co_f8_load(n->planes[r->near_y]), r->oy), r->iy)),
-                          co_f8_max(co_f8_mul(co_f8_sub(co_f8_load(n->planes[r->near_z]), r->oz), r->iz),
+  co_float8 e = co_f8_max(co_f8_max(BVH_SLAB8(co_f8_load(n->planes[r->near_x]), r->ix, r->near_ox),
+                                    BVH_SLAB8(co_f8_load(n->planes[r->near_y]), r->iy, r->near_oy)),
+                          co_f8_max(BVH_SLAB8(co_f8_load(n->planes[r->near_z]), r->iz, r->near_oz),
                                     co_f8_splat(tmin)));
-  co_float8 l = co_f8_min(co_f8_min(co_f8_mul(co_f8_sub(co_f8_load(n->planes[r->near_x ^ 1]), r->ox), r->ix),
-                                    co_f8_mul(co_f8_sub(co_f8_load(n->planes[r->near_y ^ 1]), r->oy), r->iy)),
-                          co_f8_min(co_f8_mul(co_f8_sub(co_f8_load(n->planes[r->near_z ^ 1]), r->oz), r->iz),
+  co_float8 l = co_f8_min(co_f8_min(BVH_SLAB8(co_f8_load(n->planes[r->near_x ^ 1]), r->ix, r->far_ox),
+                                    BVH_SLAB8(co_f8_load(n->planes[r->near_y ^ 1]), r->iy, r->far_oy)),
+                          co_f8_min(BVH_SLAB8(co_f8_load(n->planes[r->near_z ^ 1]), r->iz, r->far_oz),
                                     co_f8_splat(limit)));
   co_f8_store(e, enter);
   return co_f8_less(e, co_f8_scale(l, 1.0000004f));

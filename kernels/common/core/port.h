@@ -14,7 +14,10 @@
  * Rounding: OpenCL is built without contraction (the pragma below) and, where the device offers
  * it, with correctly rounded division and sqrt; CUDA with -fmad=false -prec-div=true
  * -prec-sqrt=true; the host never contracts. Then +, -, *, / and sqrt round identically on every
- * side, and the shared code uses nothing else (see microfacet.h for sin and cos). */
+ * side, and the shared code uses nothing else (see microfacet.h for sin and cos). The one explicit
+ * fma, co_f4_fma / co_f8_fma (correctly rounded everywhere: OpenCL's fma, CUDA's and the host's
+ * fmaf), is in the BVH box tests, which decide which nodes a walk visits, never its hit
+ * (bvh4_traverse.h, BVH_SLAB4). */
 #ifndef COHORT_PORT_H
 #define COHORT_PORT_H
 
@@ -115,6 +118,7 @@ using std::atan2;
 using std::fabs;
 using std::floor;
 using std::fmax;
+using std::fmaf;
 using std::fmin;
 using std::sqrt;
 #define CO_GLOBAL
@@ -170,6 +174,7 @@ inline uint32_t co_atomic_load(const uint32_t* p) { return *p; }
 #define co_f4_sub(a, b) ((a) - (b))
 #define co_f4_mul(a, b) ((a) * (b))
 #define co_f4_scale(a, s) ((a) * (s))
+#define co_f4_fma(a, b, c) fma((a), (b), (c))
 #define co_f4_min(a, b) select((b), (a), (a) < (b))
 #define co_f4_max(a, b) select((b), (a), (a) > (b))
 CO_INLINE uint32_t co_f4_less(float4 a, float4 b) {
@@ -182,6 +187,9 @@ CO_INLINE co_float4 co_f4_add(co_float4 a, co_float4 b) { return co_make_float4(
 CO_INLINE co_float4 co_f4_sub(co_float4 a, co_float4 b) { return co_make_float4(a.x - b.x, a.y - b.y, a.z - b.z, a.w - b.w); }
 CO_INLINE co_float4 co_f4_mul(co_float4 a, co_float4 b) { return co_make_float4(a.x * b.x, a.y * b.y, a.z * b.z, a.w * b.w); }
 CO_INLINE co_float4 co_f4_scale(co_float4 a, float s) { return co_make_float4(a.x * s, a.y * s, a.z * s, a.w * s); }
+CO_INLINE co_float4 co_f4_fma(co_float4 a, co_float4 b, co_float4 c) {
+  return co_make_float4(fmaf(a.x, b.x, c.x), fmaf(a.y, b.y, c.y), fmaf(a.z, b.z, c.z), fmaf(a.w, b.w, c.w));
+}
 CO_INLINE float co_f_min(float a, float b) { return a < b ? a : b; }
 CO_INLINE float co_f_max(float a, float b) { return a > b ? a : b; }
 CO_INLINE co_float4 co_f4_min(co_float4 a, co_float4 b) {
@@ -207,6 +215,7 @@ typedef float8 co_float8;
 #define co_f8_sub(a, b) ((a) - (b))
 #define co_f8_mul(a, b) ((a) * (b))
 #define co_f8_scale(a, s) ((a) * (s))
+#define co_f8_fma(a, b, c) fma((a), (b), (c))
 #define co_f8_min(a, b) select((b), (a), (a) < (b))
 #define co_f8_max(a, b) select((b), (a), (a) > (b))
 CO_INLINE uint32_t co_f8_less(float8 a, float8 b) {
@@ -248,6 +257,10 @@ CO_INLINE co_float8 co_f8_mul(co_float8 a, co_float8 b) {
 }
 CO_INLINE co_float8 co_f8_scale(co_float8 a, float s) {
   for (int i = 0; i < 8; ++i) a.s[i] = a.s[i] * s;
+  return a;
+}
+CO_INLINE co_float8 co_f8_fma(co_float8 a, co_float8 b, co_float8 c) {
+  for (int i = 0; i < 8; ++i) a.s[i] = fmaf(a.s[i], b.s[i], c.s[i]);
   return a;
 }
 CO_INLINE co_float8 co_f8_min(co_float8 a, co_float8 b) {
