@@ -36,7 +36,8 @@ DeviceSupport device_support(const DeviceInfo& device) {
   s.paired_walks = (is_pocl(device) && device.local_memory_is_global) || is_oclgrind(device);
   // one fma per slab where a subtract and a multiply were (2026-12-06, H100 and PoCL, 3 alternated
   // rounds: CUDA primary rays 1.07x, naive 1.02x, sc+rg 1.02x; PoCL naive about 1.05x): where the
-  // device has it in hardware (CL_FP_FMA; every CUDA device), but not on OpenCL GPUs, where NVIDIA's
+  // device has it in hardware (CL_FP_FMA, which PoCL reports and Intel's CPU runtime and llvmpipe do
+  // not; every CUDA device), but not on OpenCL GPUs, where NVIDIA's
   // compiler traced diffuse rays at 0.95x and sc+rg at 0.99x with it, and not on Oclgrind, so that
   // CI's checks run the unfused form too
   s.fused_slabs = device.fma && !(device.is_gpu && device.platform_name != "CUDA") && !is_oclgrind(device);

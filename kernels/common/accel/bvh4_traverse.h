@@ -142,21 +142,21 @@ CO_INLINE void bvh_slab_ray(co_vec3 org, co_vec3 dir, co_vec3* origin, co_vec3* 
 #define BVH_SLAB4(plane, inverse, offset) co_f4_fma((plane), (inverse), (offset))
 #define BVH_SLAB8(plane, inverse, offset) co_f8_fma((plane), (inverse), (offset))
 #endif
-CO_INLINE void bvh_slab_offsets(float origin, float inverse, float* near_offset, float* far_offset) {
+CO_INLINE void bvh_slab_offsets(co_vec3 origin, co_vec3 inverse, co_vec3* near_offset, co_vec3* far_offset) {
 #if defined(COHORT_UNFUSED_SLABS)
   (void)inverse;
   *near_offset = origin;
   *far_offset = origin;
 #else
-  if (origin == -INFINITY) {
-    *near_offset = INFINITY;
-    *far_offset = INFINITY;
+  if (origin.x == -INFINITY) { /* bvh_slab_ray's non-finite origin (every component) */
+    *near_offset = v3_splat(INFINITY);
+    *far_offset = v3_splat(INFINITY);
     return;
   }
-  float oi = origin * inverse; /* at most 1e38 (bvh_slab_ray) */
-  float slack = fabs(oi) * 4.76837158203125e-7f; /* 2^-21 */
-  *near_offset = -(oi + slack);
-  *far_offset = -(oi - slack);
+  co_vec3 oi = v3_mul(origin, inverse); /* each component at most 1e38 (bvh_slab_ray) */
+  co_vec3 slack = v3_scale(v3_abs(oi), 4.76837158203125e-7f); /* 2^-21 */
+  *near_offset = v3_neg(v3_add(oi, slack));
+  *far_offset = v3_neg(v3_sub(oi, slack));
 #endif
 }
 
@@ -170,12 +170,10 @@ CO_INLINE Bvh4Ray bvh4_ray(co_vec3 org, co_vec3 dir CO_ALPHA_PARAM) {
 #endif
   co_vec3 o, inv;
   bvh_slab_ray(org, dir, &o, &inv);
-  float nx, ny, nz, fx, fy, fz;
-  bvh_slab_offsets(o.x, inv.x, &nx, &fx);
-  bvh_slab_offsets(o.y, inv.y, &ny, &fy);
-  bvh_slab_offsets(o.z, inv.z, &nz, &fz);
-  r.near_ox = co_f4_splat(nx); r.near_oy = co_f4_splat(ny); r.near_oz = co_f4_splat(nz);
-  r.far_ox = co_f4_splat(fx); r.far_oy = co_f4_splat(fy); r.far_oz = co_f4_splat(fz);
+  co_vec3 n, f;
+  bvh_slab_offsets(o, inv, &n, &f);
+  r.near_ox = co_f4_splat(n.x); r.near_oy = co_f4_splat(n.y); r.near_oz = co_f4_splat(n.z);
+  r.far_ox = co_f4_splat(f.x); r.far_oy = co_f4_splat(f.y); r.far_oz = co_f4_splat(f.z);
   r.ix = co_f4_splat(inv.x); r.iy = co_f4_splat(inv.y); r.iz = co_f4_splat(inv.z);
   r.near_x = dir.x < 0.0f ? 1 : 0; r.near_y = dir.y < 0.0f ? 3 : 2; r.near_z = dir.z < 0.0f ? 5 : 4;
   return r;

@@ -77,12 +77,10 @@ CO_INLINE Bvh8fRay bvh8f_ray(co_vec3 org, co_vec3 dir CO_ALPHA_PARAM) {
 #endif
   co_vec3 o, inv;
   bvh_slab_ray(org, dir, &o, &inv);
-  float nx, ny, nz, fx, fy, fz;
-  bvh_slab_offsets(o.x, inv.x, &nx, &fx);
-  bvh_slab_offsets(o.y, inv.y, &ny, &fy);
-  bvh_slab_offsets(o.z, inv.z, &nz, &fz);
-  r.near_ox = co_f8_splat(nx); r.near_oy = co_f8_splat(ny); r.near_oz = co_f8_splat(nz);
-  r.far_ox = co_f8_splat(fx); r.far_oy = co_f8_splat(fy); r.far_oz = co_f8_splat(fz);
+  co_vec3 n, f;
+  bvh_slab_offsets(o, inv, &n, &f);
+  r.near_ox = co_f8_splat(n.x); r.near_oy = co_f8_splat(n.y); r.near_oz = co_f8_splat(n.z);
+  r.far_ox = co_f8_splat(f.x); r.far_oy = co_f8_splat(f.y); r.far_oz = co_f8_splat(f.z);
   r.ix = co_f8_splat(inv.x); r.iy = co_f8_splat(inv.y); r.iz = co_f8_splat(inv.z);
   r.near_x = dir.x < 0.0f ? 1 : 0; r.near_y = dir.y < 0.0f ? 3 : 2; r.near_z = dir.z < 0.0f ? 5 : 4;
   return r;
