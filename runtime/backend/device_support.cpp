@@ -34,12 +34,11 @@ DeviceSupport device_support(const DeviceInfo& device) {
   // lanes, and the pair's private state made their naive renders 5.5x and 53x slower (2026-12-06); a
   // GPU hides the latency with other warps. Oclgrind runs them so that its checks cover them.
   s.paired_walks = (is_pocl(device) && device.local_memory_is_global) || is_oclgrind(device);
-  // one fma per slab where a subtract and a multiply were (2026-12-06, H100 and PoCL, 3 alternated
-  // rounds: CUDA primary rays 1.07x, naive 1.02x, sc+rg 1.02x; PoCL naive about 1.05x): where the
-  // device has it in hardware (CL_FP_FMA, which PoCL reports and Intel's CPU runtime and llvmpipe do
-  // not; every CUDA device), but not on OpenCL GPUs, where NVIDIA's
-  // compiler traced diffuse rays at 0.95x and sc+rg at 0.99x with it, and not on Oclgrind, so that
-  // CI's checks run the unfused form too
+  // one fma per slab where a subtract and a multiply were (2026-12-06, 4 alternated rounds: H200 CUDA
+  // primary rays 1.06x, sc+rg 1.02x; PoCL naive 1.01-1.13x): where the device has it in hardware
+  // (CL_FP_FMA, which PoCL reports and Intel's CPU runtime and llvmpipe do not; every CUDA device),
+  // but not on OpenCL GPUs, where NVIDIA's compiler traced diffuse rays at 0.95x and sc+rg at 0.99x
+  // with it, and not on Oclgrind, so that CI's checks run the unfused form too
   s.fused_slabs = device.fma && !(device.is_gpu && device.platform_name != "CUDA") && !is_oclgrind(device);
   if (device.platform_name == "rusticl" || device.platform_name == "Clover") {
     s.sorts = false;
