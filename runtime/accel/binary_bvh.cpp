@@ -141,15 +141,20 @@ struct Builder {
   // unwritten.
   std::unique_ptr<Node[]> nodes;
   std::uint32_t max_leaf;
+  std::uint32_t block;
+
+  // The SAH cost of testing n references: one triangle test per block.
+  float tests(std::uint32_t n) const { return block == 1u ? float(n) : float((n + block - 1u) / block); }
 
   // The references of the chunks in chunk order, each chunk copied by its own task.
-  Builder(const ReferenceChunks& references, std::uint32_t max_leaf_)
+  Builder(const ReferenceChunks& references, LeafShape shape)
       : size(references.size),
         box(std::make_unique_for_overwrite<RefBox[]>(size)),
         refs(std::make_unique_for_overwrite<std::uint32_t[]>(size)),
         triangle(std::make_unique_for_overwrite<std::uint32_t[]>(size)),
         nodes(std::make_unique_for_overwrite<Node[]>(2 * size - 1)),
-        max_leaf(max_leaf_) {
+        max_leaf(shape.max_leaf),
+        block(shape.block) {
     const auto& chunks = references.chunks;
     std::vector<std::size_t> offset(chunks.size() + 1, 0);
     for (std::size_t c = 0; c < chunks.size(); ++c) offset[c + 1] = offset[c] + chunks[c].size();
@@ -244,7 +249,7 @@ struct Builder {
       for (int j = 0; j < m - 1; ++j) {
         extend(acc, bin_box[a][full[j]]);
         n += bin_count[a][full[j]];
-        const float cost = area_of(acc) * n + right_area[j + 1] * right_count[j + 1];
+        const float cost = area_of(acc) * tests(n) + right_area[j + 1] * tests(right_count[j + 1]);
         if (cost < best.cost) best = {a, full[j], cost};
       }
     }
@@ -297,7 +302,7 @@ struct Builder {
     const Split split = depth < kMedianDepth ? best_split(first, count, centroids) : Split{};
     if (split.axis >= 0) {
       const float area = node.box().area();
-      if (count <= max_leaf && area * count <= kNodeCost * area + split.cost) return;
+      if (count <= max_leaf && area * tests(count) <= kNodeCost * area + split.cost) return;
       const int axis = split.axis;
       const float lo = centroids.lo[axis];
       const float scale = kBins / (centroids.hi[axis] - lo);
@@ -361,8 +366,8 @@ float Tree::pad() const {
   return std::ldexp(std::max(largest, 1e-20f), -20);
 }
 
-Tree build(const ReferenceChunks& references, std::uint32_t max_leaf) {
-  Builder builder(references, max_leaf);
+Tree build(const ReferenceChunks& references, LeafShape shape) {
+  Builder builder(references, shape);
   const auto count = static_cast<std::uint32_t>(references.size);
   builder.build(0u, 0u, count, 0, builder.bounds_of(0u, count));
   Tree tree;

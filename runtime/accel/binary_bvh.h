@@ -92,10 +92,18 @@ struct Tree {
   float pad() const;
 };
 
+// What a leaf may hold and what testing it costs: at most `max_leaf` references, tested `block` at a
+// time (a leaf of n costs ceil(n / block) triangle tests: 1 for the GPU's trees, which test one
+// triangle after another, 4 for the CPU's, whose leaves are tested four triangles to a float4 step).
+struct LeafShape {
+  std::uint32_t max_leaf = 4;
+  std::uint32_t block = 1;
+};
+
 // Binned SAH over reference centroids (Wald, "On fast construction of SAH-based bounding volume
-// hierarchies", 2007), leaves of at most `max_leaf` references, object-median splits from depth 32
-// on (so at most 59 levels). The same tree for any thread count.
-Tree build(const ReferenceChunks& references, std::uint32_t max_leaf);
+// hierarchies", 2007), leaves as `shape` says, object-median splits from depth 32 on (so at most 59
+// levels). The same tree for any thread count.
+Tree build(const ReferenceChunks& references, LeafShape shape);
 
 // f(i) for every i below n, in parallel over chunks of kParallelTriangles.
 template <class F>

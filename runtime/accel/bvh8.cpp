@@ -291,7 +291,7 @@ Bvh8 build_bvh8(std::span<const Triangle> triangles) {
     throw InputError(fmt::format("the scene's {} triangles make {} BVH references; the 8-wide BVH (--tree bvh8) "
                                  "takes at most {}: use --tree deep or compact",
                                  triangles.size(), references.size, kMost));
-  const binary_bvh::Tree binary = binary_bvh::build(references, BVH8_LEAF_MAX);
+  const binary_bvh::Tree binary = binary_bvh::build(references, {BVH8_LEAF_MAX, 1u});
   Bvh8 bvh;
   Bvh8Collapser collapser(binary, triangles);
   const Bvh8Collapser::Sums sums = collapser.collapse(bvh);

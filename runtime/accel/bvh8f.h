@@ -1,8 +1,8 @@
 // An 8-wide BVH with float planes over the KD-tree's kept triangles, in the device layout of
 // kernels/common/core/types.h (Bvh8fNode, 256 bytes): --tree bvh8f, traced by
-// kernels/common/accel/bvh8f_traverse.h with eight boxes per float8 step, for CPUs. The 4-wide BVH's
-// collapse at width 8, its leaves the 4-wide BVH's (the same kept triangles), so every ray gets the
-// same hit from it as from any other tree.
+// kernels/common/accel/bvh8f_traverse.h with eight boxes per float8 step and four triangles per
+// float4 step, for CPUs. The 4-wide BVH's collapse at width 8, its leaves the 4-wide BVH's triangles
+// in blocks of four (Triangle4), so every ray gets the same hit from it as from any other tree.
 #pragma once
 
 #include <span>
@@ -19,9 +19,10 @@ using Bvh8fStats = Bvh4Stats;
 struct Bvh8f {
   // Node 0 is the root; each node before its children, depth first (each subtree contiguous).
   std::vector<Bvh8fNode> nodes;
-  // The leaves' entries (a leaf reference names its first entry and count): each a copy of a kept
-  // triangle, with that triangle's index in v0.w, as the 4-wide BVH's.
-  std::vector<Triangle> leaf_vertices;
+  // The leaves' triangles, four to a block (a leaf reference names its first block and its triangle
+  // count; a leaf of n triangles takes ceil(n / 4) blocks): copies of kept triangles, lane by lane,
+  // with their indices, the unused lanes of a leaf's last block a copy of its last triangle.
+  std::vector<Triangle4> leaf_blocks;
   Bvh8fStats stats;
 };
 

@@ -39,11 +39,11 @@ inline Bvh8View host_view(const Bvh8& bvh) {
   return view;
 }
 
-// The 8-wide BVH with float planes (the 4-wide BVH's leaves).
+// The 8-wide BVH with float planes (its leaves' triangles in blocks of four).
 inline Bvh8fView host_view(const Bvh8f& bvh) {
   Bvh8fView view;
   view.nodes = bvh.nodes.data();
-  view.leaf_triangles = bvh.leaf_vertices.data();
+  view.leaf_blocks = bvh.leaf_blocks.data();
   return view;
 }
 

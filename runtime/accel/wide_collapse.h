@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -54,6 +55,9 @@ struct Collapser {
   // Per binary slot that roots a wide node: that node's subtree size in wide nodes.
   std::unique_ptr<std::uint32_t[]> subtree_nodes;
   WideNode* out = nullptr;
+  // Per reference entry that starts a leaf: the leaf's first block of four triangles, for a layout
+  // whose leaves are blocks (Bvh8f); null where a leaf names its first entry.
+  const std::uint32_t* leaf_block = nullptr;
 
   using Sums = binary_bvh::SubtreeSums;
   using Kids = std::array<std::uint32_t, Width>;
@@ -130,9 +134,9 @@ struct Collapser {
       const binary_bvh::Node& k = b.nodes[kids[lane]];
       std::uint32_t child = child_index[lane];
       if (k.count) {
-        child = bvh4_leaf_ref(k.first, k.count);
+        child = bvh4_leaf_ref(leaf_block ? leaf_block[k.first] : k.first, k.count);
         ++sums.leaves;
-        sums.sah += k.box().area() * k.count;
+        sums.sah += k.box().area() * (leaf_block ? bvh8f_leaf_blocks(k.count) : k.count);  // triangle tests
       }
       sums.add(lane_sums[lane]);
       set_lane(node, lane, k.box(), child, pad);
@@ -154,9 +158,50 @@ static_assert(binary_bvh::kMaxDepth <= BVH4_MAX_DEPTH, "the traversal stack must
 // Triangles per leaf of both wide BVHs (BVH4_LEAF_MAX allows up to 16).
 inline constexpr std::uint32_t kMaxLeaf = 4;
 
-// A wide BVH (Bvh4, Bvh8f: `nodes`, `leaf_vertices`, `stats`) of `triangles`: the binary SAH tree with
-// leaves of kMaxLeaf references, collapsed `Width` wide, each leaf entry a copy of its kept triangle
-// with the triangle's index in v0.w. `tree` names the layout in errors (its --tree value); throws
+// The leaves of `binary` as blocks of four triangles (types.h, Triangle4), leaf after leaf in entry
+// order, a leaf of n entries in ceil(n / 4) blocks, each lane a copy of its entry's kept triangle
+// and that triangle's index, the unused lanes of a leaf's last block its last entry's. Sets
+// first_block[e] to its leaf's first block for each entry e that starts a leaf. A serial pass (a
+// few milliseconds per million references).
+inline void make_leaf_blocks(const binary_bvh::Tree& binary, std::span<const Triangle> triangles,
+                             std::vector<std::uint32_t>& first_block, std::vector<Triangle4>& blocks) {
+  std::vector<std::uint32_t> count_at(binary.size, 0u);
+  std::vector<std::uint32_t> stack{0u};
+  while (!stack.empty()) {  // each leaf's entry range
+    const binary_bvh::Node& n = binary.nodes[stack.back()];
+    stack.pop_back();
+    if (n.count) {
+      count_at[n.first] = n.count;
+    } else {
+      stack.push_back(n.left);
+      stack.push_back(n.right);
+    }
+  }
+  first_block.assign(binary.size, 0u);
+  blocks.clear();
+  for (std::size_t first = 0; first < binary.size; first += count_at[first]) {
+    const std::uint32_t count = count_at[first];
+    first_block[first] = static_cast<std::uint32_t>(blocks.size());
+    for (std::uint32_t b = 0; b < bvh8f_leaf_blocks(count); ++b) {
+      Triangle4 block{};
+      for (std::uint32_t lane = 0; lane < 4; ++lane) {
+        const std::uint32_t tri = binary.triangle_of(first + std::min(4 * b + lane, count - 1));
+        const Triangle& t = triangles[tri];
+        const float* rows[9] = {&t.v0.x, &t.v0.y, &t.v0.z, &t.v1.x, &t.v1.y, &t.v1.z, &t.v2.x, &t.v2.y, &t.v2.z};
+        co_float4* out[9] = {&block.v0x, &block.v0y, &block.v0z, &block.v1x, &block.v1y,
+                             &block.v1z, &block.v2x, &block.v2y, &block.v2z};
+        for (int r = 0; r < 9; ++r) (&out[r]->x)[lane] = *rows[r];
+        block.index[lane] = tri;
+      }
+      blocks.push_back(block);
+    }
+  }
+}
+
+// A wide BVH (Bvh4, Bvh8f: `nodes`, `leaf_vertices` or `leaf_blocks`, `stats`) of `triangles`: the
+// binary SAH tree with leaves of kMaxLeaf references, collapsed `Width` wide, each leaf entry a copy
+// of its kept triangle with the triangle's index (in v0.w, or a block's lane with its index).
+// `tree` names the layout in errors (its --tree value); throws
 // InputError for an empty input or more references than a leaf reference can name. The caller sets
 // stats.build_seconds (a layout may reorder the nodes after this).
 template <int Width, class Bvh>
@@ -171,15 +216,26 @@ void build(Bvh& bvh, std::span<const Triangle> triangles, const char* tree) {
     throw InputError(fmt::format("the scene's {} triangles make {} BVH references; the {} takes at most {}: use "
                                  "--tree deep or compact",
                                  triangles.size(), references.size, tree, BVH4_LEAF_FIRST_MAX));
-  const binary_bvh::Tree binary = binary_bvh::build(references, kMaxLeaf);
+  // leaves tested four triangles at a time cost a test per block of four (LeafShape)
+  constexpr bool kBlocks = requires { bvh.leaf_blocks; };
+  const binary_bvh::Tree binary = binary_bvh::build(references, {kMaxLeaf, kBlocks ? 4u : 1u});
   Collapser<Node, Width> collapser{binary, binary.pad()};
+  std::vector<std::uint32_t> first_block;
+  std::size_t leaf_bytes = 0;
+  if constexpr (kBlocks) {
+    make_leaf_blocks(binary, triangles, first_block, bvh.leaf_blocks);
+    collapser.leaf_block = first_block.data();
+    leaf_bytes = bvh.leaf_blocks.size() * sizeof(Triangle4);
+  } else {
+    bvh.leaf_vertices.resize(binary.size);
+    binary_bvh::parallel_chunks(binary.size, [&](std::size_t i) {
+      const std::uint32_t tri = binary.triangle_of(i);
+      bvh.leaf_vertices[i] = triangles[tri];
+      bvh.leaf_vertices[i].v0.w = co_as_float(tri);
+    });
+    leaf_bytes = bvh.leaf_vertices.size() * sizeof(Triangle);
+  }
   const binary_bvh::SubtreeSums sums = collapser.collapse(bvh.nodes);
-  bvh.leaf_vertices.resize(binary.size);
-  binary_bvh::parallel_chunks(binary.size, [&](std::size_t i) {
-    const std::uint32_t tri = binary.triangle_of(i);
-    bvh.leaf_vertices[i] = triangles[tri];
-    bvh.leaf_vertices[i].v0.w = co_as_float(tri);
-  });
   bvh.stats.node_count = bvh.nodes.size();
   bvh.stats.references = references.size;
   bvh.stats.leaf_count = sums.leaves;
@@ -187,7 +243,7 @@ void build(Bvh& bvh, std::span<const Triangle> triangles, const char* tree) {
   bvh.stats.average_leaf_triangles = double(references.size) / double(bvh.stats.leaf_count);
   const float root_area = binary.nodes[0].box().area();
   bvh.stats.sah_cost = root_area > 0 ? sums.sah / root_area : 0.0;
-  bvh.stats.bytes = bvh.nodes.size() * sizeof(Node) + bvh.leaf_vertices.size() * sizeof(Triangle);
+  bvh.stats.bytes = bvh.nodes.size() * sizeof(Node) + leaf_bytes;
 }
 
 }  // namespace cohort::wide_collapse

@@ -1,26 +1,45 @@
-// The 8-wide BVH with float planes' layout (runtime/accel/bvh8f.h): its structure check, and its
-// leaves the 4-wide BVH's in fewer nodes. The checks it shares with the other wide BVHs (every ray's
-// hit bit for bit against the KD-tree's and the other trees', the same tree for any thread count,
-// degenerate inputs) run on it in wide_bvh_common_test.cpp.
+// The 8-wide BVH with float planes' layout (runtime/accel/bvh8f.h): its structure check, its leaves'
+// blocks of four triangles, and the four-triangle test lane for lane against the one-triangle test.
+// The checks it shares with the other wide BVHs (every ray's hit bit for bit against the KD-tree's
+// and the other trees', the same tree for any thread count, degenerate inputs) run on it in
+// wide_bvh_common_test.cpp.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <random>
 
 #include "accel/test_meshes.h"
 #include "accel/wide_bvh_check.h"
 
 namespace cohort::test {
 
+// The blocks' lanes as entries (entry 4 b + i is lane i of block b), each a copy of its triangle
+// with the triangle's index in v0.w, as the 4-wide BVH stores its leaf entries.
+std::vector<Triangle> leaf_entries(const Bvh8f& bvh) {
+  std::vector<Triangle> entries(bvh.leaf_blocks.size() * 4);
+  for (std::size_t b = 0; b < bvh.leaf_blocks.size(); ++b) {
+    const Triangle4& q = bvh.leaf_blocks[b];
+    for (int i = 0; i < 4; ++i) {
+      const auto lane = [i](const co_float4& row) { return (&row.x)[i]; };
+      entries[4 * b + i] = {co_make_float4(lane(q.v0x), lane(q.v0y), lane(q.v0z), co_as_float(q.index[i])),
+                            co_make_float4(lane(q.v1x), lane(q.v1y), lane(q.v1z), 0.0f),
+                            co_make_float4(lane(q.v2x), lane(q.v2y), lane(q.v2z), 0.0f)};
+    }
+  }
+  return entries;
+}
+
 // Walks the tree from the root (with StructureTally's checks): each node in depth-first order (each
-// node before its children, a lane's subtree after the lanes before it); leaves within
-// BVH4_LEAF_MAX; unused lanes BVH4_EMPTY at +infinity (all six planes); reserved words zero; no node
+// node before its children, a lane's subtree after the lanes before it); leaves of at most four
+// triangles, in the lanes of their blocks, the unused lanes copies of the last; unused lanes BVH4_EMPTY at +infinity (all six planes); reserved words zero; no node
 // without children.
 std::vector<std::string> structure_errors(const Bvh8f& bvh, const KdTree& kept) {
-  StructureTally tally(bvh.nodes.size(), bvh.leaf_vertices, kept);
+  StructureTally tally(bvh.nodes.size(), leaf_entries(bvh), kept);
   std::vector<std::string>& errors = tally.errors;
   std::uint32_t next_in_order = 0;
   std::function<void(std::uint32_t, int, const float*, const float*)> walk = [&](std::uint32_t index, int depth,
@@ -43,9 +62,13 @@ std::vector<std::string> structure_errors(const Bvh8f& bvh, const KdTree& kept) 
       }
       ++used;
       tally.box(index, lane, lo, hi, plo, phi);
-      if (bvh4_is_leaf(ref))
-        tally.leaf(bvh4_leaf_first(ref), bvh4_leaf_count(ref), BVH4_LEAF_MAX, lo, hi);
-      else
+      if (bvh4_is_leaf(ref)) {
+        // a leaf's entries run through its blocks' lanes; the rest of its last block repeats its last
+        const std::uint32_t first = 4 * bvh4_leaf_first(ref), count = bvh4_leaf_count(ref);
+        tally.leaf(first, count, 4, lo, hi);
+        for (std::uint32_t e = first + count; e < first + 4 * bvh8f_leaf_blocks(count); ++e)
+          tally.padding(e, first + count - 1);
+      } else
         walk(ref, depth + 1, lo, hi);
     }
     if (used == 0) errors.push_back(fmt::format("node {} has no children", index));
@@ -56,18 +79,63 @@ std::vector<std::string> structure_errors(const Bvh8f& bvh, const KdTree& kept) 
 
 namespace {
 
-// The same binary tree collapsed at width 8 holds the same leaves as the 4-wide BVH's (the same
-// leaf entries in the same order) in fewer nodes.
-TEST(Bvh8f, HasTheFourWideLeavesInFewerNodes) {
+// Leaves that cost one test per block of four (binary_bvh::LeafShape) hold about four triangles:
+// far fewer leaves and nodes than the 4-wide BVH's, which tests one triangle after another.
+TEST(Bvh8f, LeavesOfFourTrianglesInFewerNodes) {
   const KdTree kept = kept_triangles(random_soup(20'000, 5));
   const Bvh8f wide = build_bvh8f(kept.triangles);
   const Bvh4 narrow = build_bvh4(kept.triangles);
-  ASSERT_EQ(wide.leaf_vertices.size(), narrow.leaf_vertices.size());
-  EXPECT_EQ(0, std::memcmp(wide.leaf_vertices.data(), narrow.leaf_vertices.data(),
-                           wide.leaf_vertices.size() * sizeof(Triangle)));
-  EXPECT_EQ(wide.stats.leaf_count, narrow.stats.leaf_count);
-  EXPECT_LT(wide.stats.node_count, narrow.stats.node_count * 3 / 4);  // 0.64x on this soup
+  EXPECT_EQ(wide.stats.references, narrow.stats.references);
+  EXPECT_GT(wide.stats.average_leaf_triangles, 3.0);  // 3.8 on this soup, against 1.5
+  EXPECT_LT(wide.stats.leaf_count, narrow.stats.leaf_count / 2);
+  EXPECT_LT(wide.stats.node_count, narrow.stats.node_count / 3);
   EXPECT_LT(wide.stats.depth, narrow.stats.depth);
+  EXPECT_EQ(wide.leaf_blocks.size(), wide.stats.leaf_count);  // leaves of at most four: one block each
+}
+
+// intersect_triangle4 against intersect_triangle lane by lane, bit for bit: the hit mask, and t, u
+// and v of every lane hit, over rays at random triangles, through their vertices and edges (where
+// the watertight test decides on zeros), grazing ones, degenerate triangles (det 0) and limits.
+TEST(Bvh8f, FourTriangleTestIsTheOneTriangleTestLaneForLane) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u01(-1.0f, 1.0f);
+  const auto point = [&] { return v3(u01(rng), u01(rng), u01(rng)); };
+  std::size_t lanes_hit = 0, checked = 0;
+  for (int trial = 0; trial < 20'000; ++trial) {
+    co_vec3 p[4][3];
+    for (auto& tri : p)
+      for (co_vec3& v : tri) v = point();
+    if (trial % 7 == 0) p[1][2] = v3_add(p[1][0], v3_scale(v3_sub(p[1][1], p[1][0]), 0.5f));  // det 0: collinear
+    if (trial % 11 == 0) p[2][1] = p[2][0];                                                    // a repeated vertex
+    Triangle4 q{};
+    for (int i = 0; i < 4; ++i) {
+      (&q.v0x.x)[i] = p[i][0].x; (&q.v0y.x)[i] = p[i][0].y; (&q.v0z.x)[i] = p[i][0].z;
+      (&q.v1x.x)[i] = p[i][1].x; (&q.v1y.x)[i] = p[i][1].y; (&q.v1z.x)[i] = p[i][1].z;
+      (&q.v2x.x)[i] = p[i][2].x; (&q.v2y.x)[i] = p[i][2].y; (&q.v2z.x)[i] = p[i][2].z;
+    }
+    const co_vec3 org = v3_scale(point(), 3.0f);
+    const int target = trial % 4;
+    co_vec3 at = p[target][0];  // a vertex, an edge's midpoint, or a point inside
+    if (trial % 3 == 1) at = v3_scale(v3_add(p[target][0], p[target][1]), 0.5f);
+    if (trial % 3 == 2) at = v3_scale(v3_add(v3_add(p[target][0], p[target][1]), p[target][2]), 1.0f / 3.0f);
+    const co_vec3 dir = trial % 13 == 0 ? v3(0.0f, 0.0f, 1.0f) : v3_sub(at, org);
+    const float tmin = trial % 5 == 0 ? 0.5f : 0.0f, tmax = trial % 6 == 0 ? 0.9f : INFINITY;
+    const WatertightRay wr = watertight_ray(org, dir);
+    float t4[4], u4[4], v4[4];
+    const std::uint32_t mask = intersect_triangle4(&wr, &q, tmin, tmax, t4, u4, v4);
+    for (int i = 0; i < 4; ++i) {
+      float t = 0, u = 0, v = 0;
+      const int hit = intersect_triangle(&wr, p[i][0], p[i][1], p[i][2], tmin, tmax, &t, &u, &v);
+      ASSERT_EQ(hit, int((mask >> i) & 1u)) << "trial " << trial << " lane " << i;
+      ++checked;
+      if (!hit) continue;
+      ++lanes_hit;
+      EXPECT_EQ(std::bit_cast<std::uint32_t>(t), std::bit_cast<std::uint32_t>(t4[i])) << trial;
+      EXPECT_EQ(std::bit_cast<std::uint32_t>(u), std::bit_cast<std::uint32_t>(u4[i])) << trial;
+      EXPECT_EQ(std::bit_cast<std::uint32_t>(v), std::bit_cast<std::uint32_t>(v4[i])) << trial;
+    }
+  }
+  EXPECT_GT(lanes_hit, checked / 5);  // the rays aimed at a lane hit it most of the time
 }
 
 }  // namespace

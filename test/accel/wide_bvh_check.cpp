@@ -1,6 +1,8 @@
 #include "accel/wide_bvh_check.h"
 
 #include <algorithm>
+#include <cstring>
+#include <utility>
 
 namespace cohort::test {
 
@@ -16,11 +18,11 @@ bool overlaps(const Triangle& t, const float lo[3], const float hi[3]) {
 
 }  // namespace
 
-StructureTally::StructureTally(std::size_t node_count, const std::vector<Triangle>& leaf_vertices, const KdTree& kept)
-    : leaf_vertices_(leaf_vertices),
+StructureTally::StructureTally(std::size_t node_count, std::vector<Triangle> leaf_vertices, const KdTree& kept)
+    : leaf_vertices_(std::move(leaf_vertices)),
       kept_(kept),
       seen_node_(node_count, 0),
-      seen_entry_(leaf_vertices.size(), 0),
+      seen_entry_(leaf_vertices_.size(), 0),
       seen_triangle_(kept.triangles.size(), 0) {}
 
 bool StructureTally::reach(std::uint32_t index, int depth) {
@@ -65,12 +67,23 @@ void StructureTally::leaf(std::uint32_t first, std::uint32_t count, std::uint32_
   }
 }
 
+void StructureTally::padding(std::uint32_t entry, std::uint32_t copy_of) {
+  if (entry >= leaf_vertices_.size() || copy_of >= leaf_vertices_.size()) {
+    errors.push_back(fmt::format("padding entry {} or its original {} out of range", entry, copy_of));
+    return;
+  }
+  ++seen_entry_[entry];
+  ++padding_;
+  if (std::memcmp(&leaf_vertices_[entry], &leaf_vertices_[copy_of], sizeof(Triangle)) != 0)
+    errors.push_back(fmt::format("padding entry {} is not a copy of entry {}", entry, copy_of));
+}
+
 std::vector<std::string> StructureTally::finish(const Bvh4Stats& stats, int max_depth) {
   for (std::size_t i = 0; i < seen_node_.size(); ++i)
     if (!seen_node_[i]) errors.push_back(fmt::format("node {} unreachable", i));
   for (std::size_t i = 0; i < seen_entry_.size(); ++i)
     if (seen_entry_[i] != 1) errors.push_back(fmt::format("leaf entry {} reached {} times", i, seen_entry_[i]));
-  if (leaf_vertices_.size() != stats.references) errors.push_back("leaf entries are not the references");
+  if (leaf_vertices_.size() - padding_ != stats.references) errors.push_back("leaf entries are not the references");
   for (std::size_t i = 0; i < seen_triangle_.size(); ++i)
     if (seen_triangle_[i] < 1 || seen_triangle_[i] > 64)
       errors.push_back(fmt::format("triangle {} in {} leaves", i, seen_triangle_[i]));

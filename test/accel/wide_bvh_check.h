@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <functional>
@@ -36,7 +37,9 @@ std::vector<std::string> structure_errors(const Bvh8f& bvh, const KdTree& kept);
 // depth within the traversal's stack. The walk adds its layout's own errors to `errors`.
 class StructureTally {
  public:
-  StructureTally(std::size_t node_count, const std::vector<Triangle>& leaf_vertices, const KdTree& kept);
+  // `leaf_vertices`: the leaves' entries as the 4-wide BVH stores them (each a copy of its kept
+  // triangle with the triangle's index in v0.w); a layout that stores them otherwise converts them.
+  StructureTally(std::size_t node_count, std::vector<Triangle> leaf_vertices, const KdTree& kept);
 
   // Counts a visit of node `index` at `depth` (the root's children are at depth 1); false, with an
   // error, when the node is out of range or was reached before.
@@ -46,13 +49,17 @@ class StructureTally {
   void box(std::uint32_t index, int lane, const float lo[3], const float hi[3], const float* plo, const float* phi);
   // Checks a leaf's entries [first, first + count), at most max_count, against the leaf's box.
   void leaf(std::uint32_t first, std::uint32_t count, std::uint32_t max_count, const float lo[3], const float hi[3]);
+  // Entry `entry` is padding that no leaf names (an unused lane of a block): it must be a copy of
+  // entry `copy_of`, and it is not counted among the references.
+  void padding(std::uint32_t entry, std::uint32_t copy_of);
   // The walk's errors and those of the totals, the first ten.
   std::vector<std::string> finish(const Bvh4Stats& stats, int max_depth);
 
   std::vector<std::string> errors;
 
  private:
-  const std::vector<Triangle>& leaf_vertices_;
+  const std::vector<Triangle> leaf_vertices_;
+  std::size_t padding_ = 0;
   const KdTree& kept_;
   std::vector<int> seen_node_, seen_entry_, seen_triangle_;
   std::size_t leaves_ = 0;
@@ -84,6 +91,16 @@ struct Bvh8fTraits : WideBvhTraits<Bvh8f, Bvh8fView, build_bvh8f, bvh8f_trace_st
   static constexpr const char* kDescription = "8-wide BVH with float planes";
   static constexpr int kMaxDepth = BVH4_MAX_DEPTH;
 };
+
+// A wide BVH's leaves as bytes: the 4-wide and compressed BVHs' entries, the 8-wide one with float
+// planes' blocks of four triangles.
+template <class Tree>
+std::span<const std::byte> leaf_bytes(const Tree& tree) {
+  if constexpr (requires { tree.leaf_blocks; })
+    return std::as_bytes(std::span(tree.leaf_blocks));
+  else
+    return std::as_bytes(std::span(tree.leaf_vertices));
+}
 
 // A tree and its host view (which points into the tree, so neither is copied).
 template <typename Traits>

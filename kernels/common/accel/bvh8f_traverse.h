@@ -25,7 +25,7 @@
 
 typedef struct Bvh8fView {
   const CO_GLOBAL Bvh8fNode* nodes;
-  const CO_GLOBAL Triangle* leaf_triangles; /* each a kept triangle's copy, its index in v0.w */
+  const CO_GLOBAL Triangle4* leaf_blocks; /* the leaves' kept triangles, four to a block */
 #if defined(COHORT_FEATURE_ALPHA)
   AlphaView alpha; /* set by make_scene_view */
 #endif
@@ -36,19 +36,18 @@ typedef struct Bvh8fView {
 CO_INLINE Bvh8fView make_bvh8f_view(const CO_GLOBAL KdNode* nodes, const CO_GLOBAL uint32_t* leaf_lists) {
   Bvh8fView b;
   b.nodes = (const CO_GLOBAL Bvh8fNode*)nodes;
-  b.leaf_triangles = (const CO_GLOBAL Triangle*)leaf_lists;
+  b.leaf_blocks = (const CO_GLOBAL Triangle4*)leaf_lists;
   return b;
 }
 
 /* Starts loading a pushed child's cache lines for when it is popped (bvh4_prefetch says why): a
- * leaf's as the 4-wide walk does, an inner node's four. */
+ * leaf's blocks (the lines of the first and last byte and the one between), an inner node's four. */
 CO_INLINE void bvh8f_prefetch(const Bvh8fView* bvh, uint32_t ref) {
   if (bvh4_is_leaf(ref)) {
-    const CO_GLOBAL char* first = (const CO_GLOBAL char*)&bvh->leaf_triangles[bvh4_leaf_first(ref)];
-    const CO_GLOBAL char* last = first + bvh4_leaf_count(ref) * sizeof(Triangle) - 1u;
+    const CO_GLOBAL char* first = (const CO_GLOBAL char*)&bvh->leaf_blocks[bvh4_leaf_first(ref)];
     co_prefetch(first);
-    if (bvh4_leaf_count(ref) > 2u) co_prefetch(first + 64);
-    co_prefetch(last);
+    co_prefetch(first + 64);
+    co_prefetch(first + bvh8f_leaf_blocks(bvh4_leaf_count(ref)) * sizeof(Triangle4) - 1u);
   } else {
     const CO_GLOBAL char* node = (const CO_GLOBAL char*)&bvh->nodes[ref];
     co_prefetch(node);
@@ -143,6 +142,24 @@ CO_FORCE_INLINE void bvh8f_descend(const Bvh8fView* bvh, const CO_GLOBAL Bvh8fNo
   *sp = top;
 }
 
+/* The `count` triangles of the leaf whose blocks start at `block`, four at a time
+ * (intersect_triangle4), each lane hit taken in lane order as the triangle after triangle of
+ * consider_triangle would take it (record_hit); the unused lanes of the last block are masked off. */
+CO_INLINE int bvh8f_intersect_leaf(const CO_GLOBAL Triangle4* block, uint32_t count, const WatertightRay* wr,
+                                   float ray_tmin, HitOut* hit, int any_hit) {
+  for (uint32_t first = 0; first < count; first += 4u, ++block) {
+    float t[4], u[4], v[4];
+    uint32_t lanes = intersect_triangle4(wr, block, ray_tmin, any_hit ? hit->t : INFINITY, t, u, v);
+    if (count - first < 4u) lanes &= (1u << (count - first)) - 1u;
+    while (lanes != 0u) {
+      const uint32_t lane = bvh8f_lowest(lanes);
+      lanes &= lanes - 1u;
+      if (record_hit(wr, block->index[lane], t[lane], u[lane], v[lane], hit, any_hit)) return 1;
+    }
+  }
+  return 0;
+}
+
 /* A walk in progress: the ray, its best hit so far, the node it stands at and its stack. The walk is
  * a loop of bvh8f_walk_step calls, so that a work item can step two walks in turn (bvh8f_trace_pair). */
 typedef struct Bvh8fWalk {
@@ -180,7 +197,7 @@ CO_FORCE_INLINE int bvh8f_walk_step(const Bvh8fView* bvh, Bvh8fWalk* w) {
   if (!kd_beyond_hit(w->hit.t, w->ref_t)) {
     ++w->count;
     if (bvh4_is_leaf(w->ref)) {
-      if (bvh4_intersect_leaf(&bvh->leaf_triangles[bvh4_leaf_first(w->ref)], bvh4_leaf_count(w->ref), &w->r.wr, w->tmin,
+      if (bvh8f_intersect_leaf(&bvh->leaf_blocks[bvh4_leaf_first(w->ref)], bvh4_leaf_count(w->ref), &w->r.wr, w->tmin,
                               &w->hit, w->any_hit))
         return 0;
     } else {

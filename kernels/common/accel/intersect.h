@@ -66,6 +66,43 @@ CO_INLINE int intersect_triangle(const WatertightRay* r, co_vec3 p0, co_vec3 p1,
   return 1;
 }
 
+/* intersect_triangle on the four triangles of a block (types.h, Triangle4) at once: each lane does
+ * intersect_triangle's operations in its order, so each lane's t, u and v are the bits that test
+ * gives that triangle alone. A lane whose det is 0 needs no test of its own: its t is NaN or
+ * infinite, which tmin < t < tmax rejects. Returns the mask of the lanes hit in (tmin, tmax), lane
+ * i in bit i, and writes every lane's t, u and v. */
+CO_INLINE uint32_t intersect_triangle4(const WatertightRay* r, const CO_GLOBAL Triangle4* q, float tmin, float tmax,
+                                       float* t_out, float* u_out, float* v_out) {
+  const co_float4 ox = co_f4_splat(r->org.x), oy = co_f4_splat(r->org.y), oz = co_f4_splat(r->org.z);
+  /* v3_dot's order: (x * row.x + y * row.y) + z * row.z */
+#define CO_ROW_DOT4(X, Y, Z, row) \
+  co_f4_add(co_f4_add(co_f4_scale((X), (row).x), co_f4_scale((Y), (row).y)), co_f4_scale((Z), (row).z))
+  const co_float4 pax = co_f4_sub(q->v0x, ox), pay = co_f4_sub(q->v0y, oy), paz = co_f4_sub(q->v0z, oz);
+  const co_float4 pbx = co_f4_sub(q->v1x, ox), pby = co_f4_sub(q->v1y, oy), pbz = co_f4_sub(q->v1z, oz);
+  const co_float4 pcx = co_f4_sub(q->v2x, ox), pcy = co_f4_sub(q->v2y, oy), pcz = co_f4_sub(q->v2z, oz);
+  const co_float4 ax = CO_ROW_DOT4(pax, pay, paz, r->row_x), ay = CO_ROW_DOT4(pax, pay, paz, r->row_y);
+  const co_float4 bx = CO_ROW_DOT4(pbx, pby, pbz, r->row_x), by = CO_ROW_DOT4(pbx, pby, pbz, r->row_y);
+  const co_float4 cx = CO_ROW_DOT4(pcx, pcy, pcz, r->row_x), cy = CO_ROW_DOT4(pcx, pcy, pcz, r->row_y);
+  const co_float4 az = CO_ROW_DOT4(pax, pay, paz, r->row_z), bz = CO_ROW_DOT4(pbx, pby, pbz, r->row_z);
+  const co_float4 cz = CO_ROW_DOT4(pcx, pcy, pcz, r->row_z);
+#undef CO_ROW_DOT4
+  const co_float4 eu = co_f4_sub(co_f4_mul(cx, by), co_f4_mul(cy, bx));
+  const co_float4 ev = co_f4_sub(co_f4_mul(ax, cy), co_f4_mul(ay, cx));
+  const co_float4 ew = co_f4_sub(co_f4_mul(bx, ay), co_f4_mul(by, ax));
+  const co_float4 zero = co_f4_splat(0.0f);
+  const uint32_t negative = co_f4_less(eu, zero) | co_f4_less(ev, zero) | co_f4_less(ew, zero);
+  const uint32_t positive = co_f4_less(zero, eu) | co_f4_less(zero, ev) | co_f4_less(zero, ew);
+  const co_float4 det = co_f4_add(co_f4_add(eu, ev), ew);
+  const co_float4 tscaled =
+      co_f4_scale(co_f4_add(co_f4_add(co_f4_mul(eu, az), co_f4_mul(ev, bz)), co_f4_mul(ew, cz)), r->sz);
+  const co_float4 inv_det = co_f4_div(co_f4_splat(1.0f), det);
+  const co_float4 t = co_f4_mul(tscaled, inv_det);
+  co_f4_store(t, t_out);
+  co_f4_store(co_f4_mul(ev, inv_det), u_out);
+  co_f4_store(co_f4_mul(ew, inv_det), v_out);
+  return ~(negative & positive) & co_f4_less(co_f4_splat(tmin), t) & co_f4_less(t, co_f4_splat(tmax)) & 15u;
+}
+
 /* Slab test; returns 1 and the clipped interval when the ray meets the box within [*t0, *t1]. */
 CO_INLINE int intersect_box(co_vec3 org, co_vec3 inv_dir, co_vec3 lo, co_vec3 hi, float* t0, float* t1) {
   float tx0 = (lo.x - org.x) * inv_dir.x, tx1 = (hi.x - org.x) * inv_dir.x;

@@ -69,25 +69,35 @@ CO_INLINE int kd_stack_unordered(const KdStackEntry* stack, int sp) {
 /* True when a cell entered at t0 lies wholly beyond the closest hit so far, hit_t. */
 CO_INLINE int kd_beyond_hit(float hit_t, float t0) { return hit_t * KD_TERMINATION_SLACK < t0; }
 
-/* Tests triangle `tri` (at tp), narrowing *hit to the least (t, index); any_hit keeps the first hit
- * before hit->t and returns 1 there. The KD-tree's leaves and the BVH's (bvh4_traverse.h) both go
- * through it, so they find the same hits. */
-CO_INLINE int consider_triangle(const WatertightRay* wr, CO_GLOBAL const Triangle* tp, uint32_t tri, float ray_tmin,
-                                HitOut* hit, int any_hit) {
-  float t, u, v;
+/* Takes triangle `tri`'s hit at (t, u, v), found in (tmin, any_hit ? hit->t : infinity), into *hit
+ * where it is the least (t, index) so far; any_hit keeps the first hit and returns 1 there. Every
+ * leaf test of every tree (consider_triangle; the 8-wide BVH with float planes' four-triangle
+ * test, bvh8f_traverse.h) decides through it, so they all keep the same hits. */
+CO_INLINE int record_hit(const WatertightRay* wr, uint32_t tri, float t, float u, float v, HitOut* hit, int any_hit) {
   /* closest hit: also t equal to the best, which then goes to the lower index; a ray's own
    * tmax (no triangle yet) stays exclusive */
-  if (intersect_triangle(wr, v3_from4(tp->v0), v3_from4(tp->v1), v3_from4(tp->v2), ray_tmin,
-                         any_hit ? hit->t : INFINITY, &t, &u, &v) &&
-      (t < hit->t || (t == hit->t && tri < hit->triangle && hit->triangle != HIT_NONE))) {
+  if (t < hit->t || (t == hit->t && tri < hit->triangle && hit->triangle != HIT_NONE)) {
 #if defined(COHORT_FEATURE_ALPHA)
     /* a cut-out or passed-through hit (alpha.h) is as if the triangle were not there */
     if (alpha_skips(wr->alpha, wr->alpha_seed, tri, u, v)) return 0;
+#else
+    (void)wr;
 #endif
     hit->t = t; hit->u = u; hit->v = v; hit->triangle = tri;
     if (any_hit) return 1;
   }
   return 0;
+}
+
+/* Tests triangle `tri` (at tp), narrowing *hit to the least (t, index); any_hit keeps the first hit
+ * before hit->t and returns 1 there. The KD-tree's leaves and the BVHs' (bvh4_traverse.h) go
+ * through it, so they find the same hits. */
+CO_INLINE int consider_triangle(const WatertightRay* wr, CO_GLOBAL const Triangle* tp, uint32_t tri, float ray_tmin,
+                                HitOut* hit, int any_hit) {
+  float t, u, v;
+  return intersect_triangle(wr, v3_from4(tp->v0), v3_from4(tp->v1), v3_from4(tp->v2), ray_tmin,
+                            any_hit ? hit->t : INFINITY, &t, &u, &v) &&
+         record_hit(wr, tri, t, u, v, hit, any_hit);
 }
 
 /* The `count` triangles listed from `first` in a leaf list, through consider_triangle. */

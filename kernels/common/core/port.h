@@ -165,9 +165,10 @@ inline uint32_t co_atomic_xchg(uint32_t* p, uint32_t v) { uint32_t old = *p; *p 
 inline uint32_t co_atomic_load(const uint32_t* p) { return *p; }
 #endif
 
-/* Four-lane float arithmetic for the 4-wide BVH's box tests: OpenCL's float4 operators (one SIMD
- * instruction each on a CPU), lane by lane elsewhere. min and max are plain compares, not fmin and
- * fmax: their callers never pass NaN. co_f4_less gives a 4-bit mask, lane x in bit 0. */
+/* Four-lane float arithmetic for the 4-wide BVH's box tests and the four-triangle test: OpenCL's
+ * float4 operators (one SIMD instruction each on a CPU), lane by lane elsewhere. min and max are
+ * plain compares, not fmin and fmax: their callers never pass NaN. co_f4_less gives a 4-bit mask,
+ * lane x in bit 0; co_f4_store writes the four lanes to p[0-3]. */
 #if defined(__OPENCL_VERSION__)
 #define co_f4_splat(s) ((float4)(s))
 #define co_f4_add(a, b) ((a) + (b))
@@ -177,8 +178,16 @@ inline uint32_t co_atomic_load(const uint32_t* p) { return *p; }
 #define co_f4_fma(a, b, c) fma((a), (b), (c))
 #define co_f4_min(a, b) select((b), (a), (a) < (b))
 #define co_f4_max(a, b) select((b), (a), (a) > (b))
+#define co_f4_div(a, b) ((a) / (b))
+#define co_f4_store(v, p) vstore4((v), 0, (p))
 CO_INLINE uint32_t co_f4_less(float4 a, float4 b) {
   int4 m = a < b;
+#if defined(__clang__) && defined(__SSE__) && defined(__has_builtin)
+#if __has_builtin(__builtin_ia32_movmskps)
+  /* as co_f8_less: one movmskps of the lanes' sign bits where Clang compiles for an x86 host */
+  return (uint32_t)__builtin_ia32_movmskps(as_float4(m));
+#endif
+#endif
   return (uint32_t)((m.x & 1) | (m.y & 2) | (m.z & 4) | (m.w & 8));
 }
 #else
@@ -198,6 +207,8 @@ CO_INLINE co_float4 co_f4_min(co_float4 a, co_float4 b) {
 CO_INLINE co_float4 co_f4_max(co_float4 a, co_float4 b) {
   return co_make_float4(co_f_max(a.x, b.x), co_f_max(a.y, b.y), co_f_max(a.z, b.z), co_f_max(a.w, b.w));
 }
+CO_INLINE co_float4 co_f4_div(co_float4 a, co_float4 b) { return co_make_float4(a.x / b.x, a.y / b.y, a.z / b.z, a.w / b.w); }
+CO_INLINE void co_f4_store(co_float4 v, float* p) { p[0] = v.x; p[1] = v.y; p[2] = v.z; p[3] = v.w; }
 CO_INLINE uint32_t co_f4_less(co_float4 a, co_float4 b) {
   return (a.x < b.x ? 1u : 0u) | (a.y < b.y ? 2u : 0u) | (a.z < b.z ? 4u : 0u) | (a.w < b.w ? 8u : 0u);
 }

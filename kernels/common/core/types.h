@@ -95,6 +95,23 @@ typedef struct Triangle {
 } Triangle;
 CO_STATIC_ASSERT(sizeof(Triangle) == 48, "Triangle must stay 48 bytes");
 
+/* ---- Four triangles of a leaf, lane by lane (the 8-wide BVH with float planes' leaves) -------
+ * A leaf's triangles in blocks of four, each coordinate of each vertex one row of four floats
+ * (triangle i in lane i), so the watertight test runs on all four in float4 operations
+ * (intersect_triangle4); then the kept triangles' indices. A leaf of n triangles takes
+ * ceil(n / 4) consecutive blocks; the unused lanes of its last block repeat its last triangle, and
+ * the walk masks them off. 160 bytes. */
+typedef struct Triangle4 {
+  co_float4 v0x, v0y, v0z;
+  co_float4 v1x, v1y, v1z;
+  co_float4 v2x, v2y, v2z;
+  uint32_t index[4];
+} Triangle4;
+CO_STATIC_ASSERT(sizeof(Triangle4) == 160, "Triangle4 must stay 160 bytes");
+
+/* The blocks a leaf of `count` triangles takes. */
+CO_INLINE uint32_t bvh8f_leaf_blocks(uint32_t count) { return (count + 3u) >> 2; }
+
 /* ---- Materials ------------------------------------------------------------------------------
  * The glTF metallic-roughness parameters, mapped to a BSDF by bsdf_from_gltf (bsdf.h), and
  * emission as a one-sided (or two-sided) area light. Texture indices refer to the TextureDesc

@@ -441,7 +441,7 @@ TraversalArrays traversal_arrays(const KdTree& tree, WideBvh bvh) {
     return {"BVH", b->nodes.data(), bytes_of(b->nodes), b->leaf_vertices.data(), bytes_of(b->leaf_vertices),
             "-DCOHORT_ACCEL_BVH8"};
   if (const Bvh8f* b = bvh.bvh8f)
-    return {"BVH", b->nodes.data(), bytes_of(b->nodes), b->leaf_vertices.data(), bytes_of(b->leaf_vertices),
+    return {"BVH", b->nodes.data(), bytes_of(b->nodes), b->leaf_blocks.data(), bytes_of(b->leaf_blocks),
             "-DCOHORT_ACCEL_BVH8F"};
   return {"KD-tree", tree.nodes.data(), bytes_of(tree.nodes), tree.leaf_triangles.data(), bytes_of(tree.leaf_triangles),
           ""};
