@@ -3,14 +3,14 @@
  * walk as scalar code, so the only SIMD a walk gets is from explicit vector types: the 4-wide node
  * test is SSE-wide, and an AVX CPU tests eight boxes in the same instructions with float8 (one
  * vsubps, vmulps, vmaxps or vminps per plane row). The nodes are the 4-wide ones' with eight lanes
- * (six rows of eight floats, then the eight references), built by the same collapse of the same
- * binary SAH tree (runtime/accel/bvh4.cpp), and the leaves are the 4-wide BVH's: consecutive
- * triangle copies, the kept-triangle index in v0.w.
+ * (six rows of eight floats, then the eight references), built by the same collapse of a binary SAH
+ * tree (runtime/accel/wide_collapse.h) whose leaves are blocks of four triangles (Triangle4), tested
+ * four to a float4 step (intersect_triangle4).
  *
  * The hit is the one every other tree gives, bit for bit (docs/design.md, "The closest hit does not
- * depend on the tree"): the same watertight test (consider_triangle) on the same kept triangles, the
- * least (t, triangle index) over every triangle the ray meets, and each box tested lane for lane
- * with BVH4_ENTER's operations: the boxes padded as the 4-wide BVH's, a zero direction component
+ * depend on the tree"): the same watertight test lane for lane, taken as consider_triangle takes it
+ * (record_hit), on the same kept triangles, the least (t, triangle index) over every triangle the ray
+ * meets, and each box tested lane for lane with BVH4_ENTER's operations: the boxes padded as the 4-wide BVH's, a zero direction component
  * taken as 1e-18 (bvh4_inverse), the exit widened by a few ulps, a box skipped only when it starts
  * beyond the best t by more than KD_TERMINATION_SLACK. The order of the children changes visits,
  * never the hit. */
