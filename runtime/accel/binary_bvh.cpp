@@ -140,21 +140,17 @@ struct Builder {
   // starts one after the root, its right child's after the left's 2 n_left - 1. Unused slots stay
   // unwritten.
   std::unique_ptr<Node[]> nodes;
-  std::uint32_t max_leaf;
-  std::uint32_t block;
-
-  // The SAH cost of testing n references: one triangle test per block.
-  float tests(std::uint32_t n) const { return block == 1u ? float(n) : float((n + block - 1u) / block); }
+  LeafShape shape;
+  float tests(std::uint32_t n) const { return shape.tests(n); }
 
   // The references of the chunks in chunk order, each chunk copied by its own task.
-  Builder(const ReferenceChunks& references, LeafShape shape)
+  Builder(const ReferenceChunks& references, LeafShape shape_)
       : size(references.size),
         box(std::make_unique_for_overwrite<RefBox[]>(size)),
         refs(std::make_unique_for_overwrite<std::uint32_t[]>(size)),
         triangle(std::make_unique_for_overwrite<std::uint32_t[]>(size)),
         nodes(std::make_unique_for_overwrite<Node[]>(2 * size - 1)),
-        max_leaf(shape.max_leaf),
-        block(shape.block) {
+        shape(shape_) {
     const auto& chunks = references.chunks;
     std::vector<std::size_t> offset(chunks.size() + 1, 0);
     for (std::size_t c = 0; c < chunks.size(); ++c) offset[c + 1] = offset[c] + chunks[c].size();
@@ -302,7 +298,7 @@ struct Builder {
     const Split split = depth < kMedianDepth ? best_split(first, count, centroids) : Split{};
     if (split.axis >= 0) {
       const float area = node.box().area();
-      if (count <= max_leaf && area * tests(count) <= kNodeCost * area + split.cost) return;
+      if (count <= shape.max_leaf && area * tests(count) <= kNodeCost * area + split.cost) return;
       const int axis = split.axis;
       const float lo = centroids.lo[axis];
       const float scale = kBins / (centroids.hi[axis] - lo);
@@ -310,7 +306,7 @@ struct Builder {
         return std::min(kBins - 1, static_cast<int>((centroid_of(r)[axis] - lo) * scale)) <= split.bin;
       };
       mid = partition(first, first + count, in_left, left_bounds, right_bounds);
-    } else if (count <= max_leaf) {
+    } else if (count <= shape.max_leaf) {
       return;  // every centroid in one point, or below the median depth: a leaf when small enough
     } else {
       if (depth >= kMedianDepth) median_split(first, count, mid, centroids);

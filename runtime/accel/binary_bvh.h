@@ -93,11 +93,19 @@ struct Tree {
 };
 
 // What a leaf may hold and what testing it costs: at most `max_leaf` references, tested `block` at a
-// time (a leaf of n costs ceil(n / block) triangle tests: 1 for the GPU's trees, which test one
-// triangle after another, 4 for the CPU's, whose leaves are tested four triangles to a float4 step).
+// time. A leaf of n costs n triangle tests where block is 1 (the GPU's trees, which test one triangle
+// after another); otherwise a full block costs one test, of which `per_triangle` for each triangle
+// it holds and the rest for the block's loads and set-up (the CPU's tree, whose leaves are tested
+// four triangles to a float4 step: block 4, per_triangle 1/8, so a leaf of one triangle costs 5/8).
 struct LeafShape {
   std::uint32_t max_leaf = 4;
   std::uint32_t block = 1;
+  float per_triangle = 0.0f;
+  // The SAH cost of a leaf of n references, in triangle tests.
+  float tests(std::uint32_t n) const {
+    if (block == 1u) return float(n);
+    return float((n + block - 1u) / block) * (1.0f - float(block) * per_triangle) + per_triangle * float(n);
+  }
 };
 
 // Binned SAH over reference centroids (Wald, "On fast construction of SAH-based bounding volume

@@ -58,6 +58,7 @@ struct Collapser {
   // Per reference entry that starts a leaf: the leaf's first block of four triangles, for a layout
   // whose leaves are blocks (Bvh8f); null where a leaf names its first entry.
   const std::uint32_t* leaf_block = nullptr;
+  binary_bvh::LeafShape shape;  // what the leaves cost, for the SAH figure
 
   using Sums = binary_bvh::SubtreeSums;
   using Kids = std::array<std::uint32_t, Width>;
@@ -136,7 +137,7 @@ struct Collapser {
       if (k.count) {
         child = bvh4_leaf_ref(leaf_block ? leaf_block[k.first] : k.first, k.count);
         ++sums.leaves;
-        sums.sah += k.box().area() * (leaf_block ? bvh8f_leaf_blocks(k.count) : k.count);  // triangle tests
+        sums.sah += k.box().area() * shape.tests(k.count);
       }
       sums.add(lane_sums[lane]);
       set_lane(node, lane, k.box(), child, pad);
@@ -187,10 +188,9 @@ inline void make_leaf_blocks(const binary_bvh::Tree& binary, std::span<const Tri
       for (std::uint32_t lane = 0; lane < 4; ++lane) {
         const std::uint32_t tri = binary.triangle_of(first + std::min(4 * b + lane, count - 1));
         const Triangle& t = triangles[tri];
-        const float* rows[9] = {&t.v0.x, &t.v0.y, &t.v0.z, &t.v1.x, &t.v1.y, &t.v1.z, &t.v2.x, &t.v2.y, &t.v2.z};
-        co_float4* out[9] = {&block.v0x, &block.v0y, &block.v0z, &block.v1x, &block.v1y,
-                             &block.v1z, &block.v2x, &block.v2y, &block.v2z};
-        for (int r = 0; r < 9; ++r) (&out[r]->x)[lane] = *rows[r];
+        const co_float4* vertex[3] = {&t.v0, &t.v1, &t.v2};
+        for (int v = 0; v < 3; ++v)
+          for (int axis = 0; axis < 3; ++axis) (&block.v[v][axis].x)[lane] = (&vertex[v]->x)[axis];
         block.index[lane] = tri;
       }
       blocks.push_back(block);
@@ -216,10 +216,12 @@ void build(Bvh& bvh, std::span<const Triangle> triangles, const char* tree) {
     throw InputError(fmt::format("the scene's {} triangles make {} BVH references; the {} takes at most {}: use "
                                  "--tree deep or compact",
                                  triangles.size(), references.size, tree, BVH4_LEAF_FIRST_MAX));
-  // leaves tested four triangles at a time cost a test per block of four (LeafShape)
+  // leaves tested four triangles at a time cost about one triangle test per block (LeafShape)
   constexpr bool kBlocks = requires { bvh.leaf_blocks; };
-  const binary_bvh::Tree binary = binary_bvh::build(references, {kMaxLeaf, kBlocks ? 4u : 1u});
+  const binary_bvh::LeafShape shape = kBlocks ? binary_bvh::LeafShape{kMaxLeaf, 4u, 0.125f} : binary_bvh::LeafShape{kMaxLeaf};
+  const binary_bvh::Tree binary = binary_bvh::build(references, shape);
   Collapser<Node, Width> collapser{binary, binary.pad()};
+  collapser.shape = shape;
   std::vector<std::uint32_t> first_block;
   std::size_t leaf_bytes = 0;
   if constexpr (kBlocks) {

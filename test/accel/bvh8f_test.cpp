@@ -26,9 +26,10 @@ std::vector<Triangle> leaf_entries(const Bvh8f& bvh) {
     const Triangle4& q = bvh.leaf_blocks[b];
     for (int i = 0; i < 4; ++i) {
       const auto lane = [i](const co_float4& row) { return (&row.x)[i]; };
-      entries[4 * b + i] = {co_make_float4(lane(q.v0x), lane(q.v0y), lane(q.v0z), co_as_float(q.index[i])),
-                            co_make_float4(lane(q.v1x), lane(q.v1y), lane(q.v1z), 0.0f),
-                            co_make_float4(lane(q.v2x), lane(q.v2y), lane(q.v2z), 0.0f)};
+      const auto vertex = [&](int v, float w) {
+        return co_make_float4(lane(q.v[v][0]), lane(q.v[v][1]), lane(q.v[v][2]), w);
+      };
+      entries[4 * b + i] = {vertex(0, co_as_float(q.index[i])), vertex(1, 0.0f), vertex(2, 0.0f)};
     }
   }
   return entries;
@@ -109,12 +110,19 @@ TEST(Bvh8f, FourTriangleTestIsTheOneTriangleTestLaneForLane) {
     if (trial % 11 == 0) p[2][1] = p[2][0];                                                    // a repeated vertex
     Triangle4 q{};
     for (int i = 0; i < 4; ++i) {
-      (&q.v0x.x)[i] = p[i][0].x; (&q.v0y.x)[i] = p[i][0].y; (&q.v0z.x)[i] = p[i][0].z;
-      (&q.v1x.x)[i] = p[i][1].x; (&q.v1y.x)[i] = p[i][1].y; (&q.v1z.x)[i] = p[i][1].z;
-      (&q.v2x.x)[i] = p[i][2].x; (&q.v2y.x)[i] = p[i][2].y; (&q.v2z.x)[i] = p[i][2].z;
+      for (int v = 0; v < 3; ++v) {
+        (&q.v[v][0].x)[i] = p[i][v].x;
+        (&q.v[v][1].x)[i] = p[i][v].y;
+        (&q.v[v][2].x)[i] = p[i][v].z;
+      }
     }
-    const co_vec3 org = v3_scale(point(), 3.0f);
+    co_vec3 org = v3_scale(point(), 3.0f);
     const int target = trial % 4;
+    if (trial % 17 == 0) {  // signed zeros: a vertex at x = -0 seen from an origin at x = +0
+      org.x = 0.0f;
+      p[target][0].x = -0.0f;
+      (&q.v[0][0].x)[target] = -0.0f;
+    }
     co_vec3 at = p[target][0];  // a vertex, an edge's midpoint, or a point inside
     if (trial % 3 == 1) at = v3_scale(v3_add(p[target][0], p[target][1]), 0.5f);
     if (trial % 3 == 2) at = v3_scale(v3_add(v3_add(p[target][0], p[target][1]), p[target][2]), 1.0f / 3.0f);

@@ -77,9 +77,9 @@ CO_INLINE uint32_t intersect_triangle4(const WatertightRay* r, const CO_GLOBAL T
   /* v3_dot's order: (x * row.x + y * row.y) + z * row.z */
 #define CO_ROW_DOT4(X, Y, Z, row) \
   co_f4_add(co_f4_add(co_f4_scale((X), (row).x), co_f4_scale((Y), (row).y)), co_f4_scale((Z), (row).z))
-  const co_float4 pax = co_f4_sub(q->v0x, ox), pay = co_f4_sub(q->v0y, oy), paz = co_f4_sub(q->v0z, oz);
-  const co_float4 pbx = co_f4_sub(q->v1x, ox), pby = co_f4_sub(q->v1y, oy), pbz = co_f4_sub(q->v1z, oz);
-  const co_float4 pcx = co_f4_sub(q->v2x, ox), pcy = co_f4_sub(q->v2y, oy), pcz = co_f4_sub(q->v2z, oz);
+  const co_float4 pax = co_f4_sub(q->v[0][0], ox), pay = co_f4_sub(q->v[0][1], oy), paz = co_f4_sub(q->v[0][2], oz);
+  const co_float4 pbx = co_f4_sub(q->v[1][0], ox), pby = co_f4_sub(q->v[1][1], oy), pbz = co_f4_sub(q->v[1][2], oz);
+  const co_float4 pcx = co_f4_sub(q->v[2][0], ox), pcy = co_f4_sub(q->v[2][1], oy), pcz = co_f4_sub(q->v[2][2], oz);
   const co_float4 ax = CO_ROW_DOT4(pax, pay, paz, r->row_x), ay = CO_ROW_DOT4(pax, pay, paz, r->row_y);
   const co_float4 bx = CO_ROW_DOT4(pbx, pby, pbz, r->row_x), by = CO_ROW_DOT4(pbx, pby, pbz, r->row_y);
   const co_float4 cx = CO_ROW_DOT4(pcx, pcy, pcz, r->row_x), cy = CO_ROW_DOT4(pcx, pcy, pcz, r->row_y);

@@ -102,9 +102,7 @@ CO_STATIC_ASSERT(sizeof(Triangle) == 48, "Triangle must stay 48 bytes");
  * ceil(n / 4) consecutive blocks; the unused lanes of its last block repeat its last triangle, and
  * the walk masks them off. 160 bytes. */
 typedef struct Triangle4 {
-  co_float4 v0x, v0y, v0z;
-  co_float4 v1x, v1y, v1z;
-  co_float4 v2x, v2y, v2z;
+  co_float4 v[3][3]; /* v[vertex][axis]: that coordinate of that vertex of each lane's triangle */
   uint32_t index[4];
 } Triangle4;
 CO_STATIC_ASSERT(sizeof(Triangle4) == 160, "Triangle4 must stay 160 bytes");

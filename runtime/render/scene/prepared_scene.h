@@ -72,8 +72,8 @@ struct TreeChoice {
 
 // The structure a render traces with (`--tree`): "bvh4" (a 4-wide BVH: 1.6-2.3x the KD-tree's
 // samples per CPU second on PoCL, 1.1-2.1x its rays/s on the H200 for naive and sc; 0.9x on the
-// conference; docs/results.md), "bvh8f" (the 8-wide BVH with float planes: on PoCL 1.05-1.12x the
-// 4-wide BVH's path tracing samples per CPU second; docs/design.md), "deep" (the KD-tree built for GPUs), "compact"
+// conference; docs/results.md), "bvh8f" (the 8-wide BVH with float planes and leaves of four triangles
+// tested in one float4 step, for CPUs; docs/design.md), "deep" (the KD-tree built for GPUs), "compact"
 // (KdBuildOptions::compact: 0.55-0.67x the nodes and 0.74-0.83x the bytes) or "auto": a KD-tree when
 // one is asked for (`needs_kd`: --tree-budget, --speculative: compact when no device is a GPU, deep
 // when one is), else bvh8f when every device is a CPU and the method is not hash or pth (`sorts`:
