@@ -47,7 +47,7 @@ PreparedScene build_render_trees(const RenderInput& input, const std::vector<Dev
   PreparedScene prepared = build(tree);
   // a BVH has no depth to trade for bytes: where auto's does not fit, it falls back to the KD-tree,
   // trimmed below to fit (no other BVH would: the 8-wide one with blocks of four triangles, the CPU's,
-  // is the smallest, 0.7-0.8x the 4-wide one's bytes, and a GPU walks the KD-tree faster than it)
+  // is the smallest, about 0.8x the 4-wide one's bytes, and a GPU walks the KD-tree faster than it)
   if (input.memory_limit && input.tree == "auto" && tree.bvh() &&
       scene_memory(prepared.tree, prepared.tables, prepared.bvh()).total() > input.memory_limit)
     prepared = build(TreeChoice{tree.kd});
