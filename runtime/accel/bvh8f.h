@@ -1,8 +1,9 @@
 // An 8-wide BVH with float planes over the KD-tree's kept triangles, in the device layout of
 // kernels/common/core/types.h (Bvh8fNode, 256 bytes): --tree bvh8f, traced by
 // kernels/common/accel/bvh8f_traverse.h with eight boxes per float8 step and four triangles per
-// float4 step, for CPUs. The 4-wide BVH's collapse at width 8, its leaves the 4-wide BVH's triangles
-// in blocks of four (Triangle4), so every ray gets the same hit from it as from any other tree.
+// float4 step, for CPUs. The 4-wide BVH's collapse at width 8 of a binary SAH tree whose leaves hold
+// up to four of the kept triangles in a block (Triangle4), so every ray gets the same hit from it as
+// from any other tree.
 #pragma once
 
 #include <span>
@@ -26,9 +27,9 @@ struct Bvh8f {
   Bvh8fStats stats;
 };
 
-// The binary SAH tree of runtime/accel/binary_bvh.h (leaves of at most four references, as the
-// 4-wide BVH's) collapsed into 8-wide nodes (runtime/accel/wide_collapse.h). The same tree for any
-// thread count. Throws InputError for an empty input or more references than a leaf can name.
+// The binary SAH tree of runtime/accel/binary_bvh.h (leaves of at most four references, costed as
+// one block of four: binary_bvh::LeafShape) collapsed into 8-wide nodes (runtime/accel/wide_collapse.h).
+// The same tree for any thread count. Throws InputError for an empty input or more references than a leaf can name.
 Bvh8f build_bvh8f(std::span<const Triangle> triangles);
 
 }  // namespace cohort

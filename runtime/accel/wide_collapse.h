@@ -166,22 +166,25 @@ inline constexpr std::uint32_t kMaxLeaf = 4;
 // few milliseconds per million references).
 inline void make_leaf_blocks(const binary_bvh::Tree& binary, std::span<const Triangle> triangles,
                              std::vector<std::uint32_t>& first_block, std::vector<Triangle4>& blocks) {
-  std::vector<std::uint32_t> count_at(binary.size, 0u);
+  // each leaf's entry count at its first entry (overwritten by its first block below)
+  first_block.assign(binary.size, 0u);
+  std::size_t block_count = 0;
   std::vector<std::uint32_t> stack{0u};
-  while (!stack.empty()) {  // each leaf's entry range
+  while (!stack.empty()) {
     const binary_bvh::Node& n = binary.nodes[stack.back()];
     stack.pop_back();
     if (n.count) {
-      count_at[n.first] = n.count;
+      first_block[n.first] = n.count;
+      block_count += bvh8f_leaf_blocks(n.count);
     } else {
       stack.push_back(n.left);
       stack.push_back(n.right);
     }
   }
-  first_block.assign(binary.size, 0u);
   blocks.clear();
-  for (std::size_t first = 0; first < binary.size; first += count_at[first]) {
-    const std::uint32_t count = count_at[first];
+  blocks.reserve(block_count);
+  for (std::size_t first = 0; first < binary.size;) {
+    const std::uint32_t count = first_block[first];
     first_block[first] = static_cast<std::uint32_t>(blocks.size());
     for (std::uint32_t b = 0; b < bvh8f_leaf_blocks(count); ++b) {
       Triangle4 block{};
@@ -195,6 +198,7 @@ inline void make_leaf_blocks(const binary_bvh::Tree& binary, std::span<const Tri
       }
       blocks.push_back(block);
     }
+    first += count;
   }
 }
 
@@ -218,7 +222,8 @@ void build(Bvh& bvh, std::span<const Triangle> triangles, const char* tree) {
                                  triangles.size(), references.size, tree, BVH4_LEAF_FIRST_MAX));
   // leaves tested four triangles at a time cost about one triangle test per block (LeafShape)
   constexpr bool kBlocks = requires { bvh.leaf_blocks; };
-  const binary_bvh::LeafShape shape = kBlocks ? binary_bvh::LeafShape{kMaxLeaf, 4u, 0.125f} : binary_bvh::LeafShape{kMaxLeaf};
+  const binary_bvh::LeafShape shape =
+      kBlocks ? binary_bvh::LeafShape{kMaxLeaf, 4u, 0.125f} : binary_bvh::LeafShape{kMaxLeaf};
   const binary_bvh::Tree binary = binary_bvh::build(references, shape);
   Collapser<Node, Width> collapser{binary, binary.pad()};
   collapser.shape = shape;

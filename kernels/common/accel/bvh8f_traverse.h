@@ -10,9 +10,9 @@
  * The hit is the one every other tree gives, bit for bit (docs/design.md, "The closest hit does not
  * depend on the tree"): the same watertight test lane for lane, taken as consider_triangle takes it
  * (record_hit), on the same kept triangles, the least (t, triangle index) over every triangle the ray
- * meets, and each box tested lane for lane with BVH4_ENTER's operations: the boxes padded as the 4-wide BVH's, a zero direction component
- * taken as 1e-18 (bvh4_inverse), the exit widened by a few ulps, a box skipped only when it starts
- * beyond the best t by more than KD_TERMINATION_SLACK. The order of the children changes visits,
+ * meets, and each box tested lane for lane with BVH4_ENTER's operations: the boxes padded as the
+ * 4-wide BVH's, a zero direction component taken as 1e-18 (bvh4_inverse), the exit widened by a few
+ * ulps, a box skipped only when it starts beyond the best t by more than KD_TERMINATION_SLACK. The order of the children changes visits,
  * never the hit. */
 #ifndef COHORT_BVH8F_TRAVERSE_H
 #define COHORT_BVH8F_TRAVERSE_H
