@@ -12,8 +12,8 @@
  * (record_hit), on the same kept triangles, the least (t, triangle index) over every triangle the ray
  * meets, and each box tested lane for lane with BVH4_ENTER's operations: the boxes padded as the
  * 4-wide BVH's, a zero direction component taken as 1e-18 (bvh4_inverse), the exit widened by a few
- * ulps, a box skipped only when it starts beyond the best t by more than KD_TERMINATION_SLACK. The order of the children changes visits,
- * never the hit. */
+ * ulps, a box skipped only when it starts beyond the best t by more than KD_TERMINATION_SLACK. The
+ * order of the children changes visits, never the hit. */
 #ifndef COHORT_BVH8F_TRAVERSE_H
 #define COHORT_BVH8F_TRAVERSE_H
 
@@ -197,8 +197,8 @@ CO_FORCE_INLINE int bvh8f_walk_step(const Bvh8fView* bvh, Bvh8fWalk* w) {
   if (!kd_beyond_hit(w->hit.t, w->ref_t)) {
     ++w->count;
     if (bvh4_is_leaf(w->ref)) {
-      if (bvh8f_intersect_leaf(&bvh->leaf_blocks[bvh4_leaf_first(w->ref)], bvh4_leaf_count(w->ref), &w->r.wr, w->tmin,
-                              &w->hit, w->any_hit))
+      if (bvh8f_intersect_leaf(&bvh->leaf_blocks[bvh4_leaf_first(w->ref)], bvh4_leaf_count(w->ref), &w->r.wr,
+                               w->tmin, &w->hit, w->any_hit))
         return 0;
     } else {
       const CO_GLOBAL Bvh8fNode* n = &bvh->nodes[w->ref];
