@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """scripts/bench-suite: every suite file expands to commands; the GPU portability suite names its
 outputs as the H200 record of 2026-12-05 has them; a run with a stand-in `cohort` alternates the
-binaries in rounds, records every command, and its summary takes medians of the JSON figures."""
+binaries in rounds (or at every step), records every command, and its summary takes medians of the
+JSON figures."""
 import importlib.machinery
 import importlib.util
 import json
@@ -86,6 +87,31 @@ class BenchSuite(unittest.TestCase):
             self.assertIn("| trav-cohort | s.obj | interior | primary | 300 | 100 | 500 | 3 |", table)
             self.assertIn("| trav-cohort-base | s.obj | interior | primary | 401 | 201 | 601 | 3 |", table)
             self.assertIn("| trav-cohort | s.obj | interior | naive | 7 | 7 | 7 | 3 |", table)
+
+    def test_alternate_step_gives_each_step_to_every_binary_in_turn(self):
+        steps = [{"name": f"{s}-{{binary}}-{{model}}", "kind": "bench", "scene": "x.obj", "for": {"model": ["a", "b"]}}
+                 for s in ("naive", "rays")]
+        suite = {"about": "test", "binaries": ["cohort", "cohort-base"], "steps": steps}
+        by_round = [r["name"] for r in bs.plan(suite, 1, Path("/b"), Path("/m"), Path("/out"))]
+        self.assertEqual(by_round, ["naive-cohort-a-1", "naive-cohort-b-1", "rays-cohort-a-1", "rays-cohort-b-1",
+                                    "naive-cohort-base-a-1", "naive-cohort-base-b-1", "rays-cohort-base-a-1",
+                                    "rays-cohort-base-b-1"])
+        suite["alternate"] = "step"
+        by_step = [r["name"] for r in bs.plan(suite, 1, Path("/b"), Path("/m"), Path("/out"))]
+        self.assertEqual(by_step, ["naive-cohort-a-1", "naive-cohort-base-a-1", "naive-cohort-b-1",
+                                   "naive-cohort-base-b-1", "rays-cohort-a-1", "rays-cohort-base-a-1",
+                                   "rays-cohort-b-1", "rays-cohort-base-b-1"])
+        with tempfile.TemporaryDirectory() as tmp:
+            bad = Path(tmp) / "bad.json"
+            bad.write_text(json.dumps(dict(suite, alternate="model")))
+            with self.assertRaises(SystemExit):
+                bs.load_suite(str(bad))
+
+    def test_path_tracing_figures_include_samples_per_cpu_second(self):
+        doc = {"scenes": [{"name": "s.obj", "views": [{"view": "exterior", "path_tracing": {"naive": {
+            "mrays_per_second": {"median": 7.0}, "msamples_per_cpu_second": {"median": 2.5}}}}]}]}
+        self.assertEqual(bs.figures(doc), {("s.obj", "exterior", "naive"): 7.0,
+                                           ("s.obj", "exterior", "naive Msamples/CPU s"): 2.5})
 
 
 if __name__ == "__main__":
