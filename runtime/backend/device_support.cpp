@@ -40,6 +40,10 @@ DeviceSupport device_support(const DeviceInfo& device) {
   // but not on OpenCL GPUs, where NVIDIA's compiler traced diffuse rays at 0.95x and sc+rg at 0.99x
   // with it, and not on Oclgrind, so that CI's checks run the unfused form too
   s.fused_slabs = device.fma && !(device.is_gpu && device.platform_name != "CUDA") && !is_oclgrind(device);
+  // on GPUs the lanes of a warp enter different numbers of children, and the CPU's branches on that
+  // count split the warp (H100, 2026-12-06: naive 1.02-1.03x, sc+rg 1.01x without them); Oclgrind
+  // takes the GPU's form so that CI's checks cover it (CUDA devices always do: bvh4_traverse.h)
+  s.branch_free_descend = device.is_gpu || is_oclgrind(device);
   if (device.platform_name == "rusticl" || device.platform_name == "Clover") {
     s.sorts = false;
     s.sort_refusal = fmt::format("{} ({}) does not run the work-groups of a launch independently, which the "

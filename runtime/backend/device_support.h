@@ -25,6 +25,9 @@ struct DeviceSupport {
   // the BVH box tests compute each slab in one fused multiply-add (kernels/common/accel/bvh4_traverse.h,
   // BVH_SLAB4); without it the host passes -DCOHORT_UNFUSED_SLABS. The same hits either way.
   bool fused_slabs = true;
+  // the 4-wide BVH's step sorts every node's entered children, with no branch on how many there are
+  // (kernels/common/accel/bvh4_traverse.h, bvh4_descend): the host passes -DCOHORT_BRANCH_FREE_DESCEND
+  bool branch_free_descend = false;
   // The device radix sort (hash, pth, the gate benchmark) hands tiles from one work-group to the next
   // within a launch (decoupled look-back), which needs the groups of a launch to make progress
   // independently. OpenCL reports no such property; Mesa's OpenCL (rusticl, clover) was measured

@@ -35,6 +35,7 @@ std::string base_build_options(const DeviceInfo& device) {
   if (support.prefetch) options += " -DCOHORT_PREFETCH";
   if (support.paired_walks) options += " -DCOHORT_PAIRED_WALKS";
   if (!support.fused_slabs) options += " -DCOHORT_UNFUSED_SLABS";
+  if (support.branch_free_descend) options += " -DCOHORT_BRANCH_FREE_DESCEND";
   return options;
 }
 

@@ -3,6 +3,7 @@
 // same tree for any thread count, degenerate inputs) run on it in wide_bvh_common_test.cpp.
 #include <fmt/format.h>
 
+#include <bit>
 #include <cmath>
 #include <functional>
 
@@ -47,6 +48,44 @@ std::vector<std::string> structure_errors(const Bvh4& bvh, const KdTree& kept) {
   };
   walk(0, 1, nullptr, nullptr);
   return tally.finish(bvh.stats, BVH4_MAX_DEPTH);
+}
+
+// The step GPUs take (bvh4_descend_sorted: every mask through the sorting network, pushes by count)
+// against the CPUs' (bvh4_descend, which takes one or two entered children without it): for every
+// mask and entry distances with ties, the same child goes on and the same children are pushed in the
+// same order, so both walks visit the same nodes in the same order.
+TEST(Bvh4, SortedDescendIsTheBranchingOneForEveryMask) {
+  std::vector<Bvh4Node> nodes(4);  // the children's references point here (the host's prefetch reads nothing)
+  Bvh4View view{};
+  view.nodes = nodes.data();
+  const float values[] = {0.0f, 1.0f, 1.0f, 2.5f, -0.0f, 7.0f};
+  int cases = 0;
+  for (std::uint32_t mask = 1; mask < 16; ++mask)
+    for (int a = 0; a < 6; ++a)
+      for (int b = 0; b < 6; ++b)
+        for (int c = 0; c < 6; ++c) {
+          const co_float4 enter = {values[a], values[b], values[c], values[(a + b + c) % 6]};
+          const co_uint4 child = {0u, 1u, 2u, 3u};
+          std::uint32_t ref[2] = {9u, 9u};
+          float ref_t[2] = {-1.0f, -1.0f};
+          std::uint32_t stack_ref[2][8] = {};
+          float stack_t[2][8] = {};
+          int sp[2] = {1, 1};  // an entry below, untouched by both
+          bvh4_descend(&view, mask, enter, child, &ref[0], &ref_t[0], stack_ref[0], stack_t[0], &sp[0]);
+          bvh4_descend_sorted(&view, mask, enter, child, &ref[1], &ref_t[1], stack_ref[1], stack_t[1], &sp[1]);
+          const std::string what = fmt::format("mask {:x}, entries {} {} {} {}", mask, enter.x, enter.y, enter.z, enter.w);
+          ASSERT_EQ(ref[0], ref[1]) << what;
+          ASSERT_EQ(std::bit_cast<std::uint32_t>(ref_t[0]), std::bit_cast<std::uint32_t>(ref_t[1])) << what;
+          ASSERT_EQ(sp[0], sp[1]) << what;
+          ASSERT_EQ(sp[0], 1 + std::popcount(mask) - 1) << what;
+          for (int i = 1; i < sp[0]; ++i) {
+            ASSERT_EQ(stack_ref[0][i], stack_ref[1][i]) << what << ", entry " << i;
+            ASSERT_EQ(std::bit_cast<std::uint32_t>(stack_t[0][i]), std::bit_cast<std::uint32_t>(stack_t[1][i]))
+                << what << ", entry " << i;
+          }
+          ++cases;
+        }
+  EXPECT_EQ(cases, 15 * 216);
 }
 
 }  // namespace cohort::test

@@ -32,6 +32,10 @@ bool pairs(const DeviceInfo& d) { return base_build_options(d).find("-DCOHORT_PA
 
 bool unfused(const DeviceInfo& d) { return base_build_options(d).find("-DCOHORT_UNFUSED_SLABS") != std::string::npos; }
 
+bool branch_free(const DeviceInfo& d) {
+  return base_build_options(d).find("-DCOHORT_BRANCH_FREE_DESCEND") != std::string::npos;
+}
+
 }  // namespace
 
 TEST(BuildOptions, PairedWalksOnPoclsCpuDriverAndOclgrind) {
@@ -58,6 +62,16 @@ TEST(BuildOptions, FusedSlabsWhereTheCpuHasAnFmaAndOnCuda) {
   EXPECT_TRUE(unfused(no_fma));
   DeviceInfo cuda = device("CUDA", false);
   EXPECT_TRUE(device_support(cuda).fused_slabs);  // the CUDA backend always fuses (every NVIDIA GPU has an fma)
+}
+
+TEST(BuildOptions, BranchFreeDescendOnGpusAndOclgrind) {
+  EXPECT_TRUE(branch_free(device("NVIDIA CUDA", false)));
+  EXPECT_TRUE(branch_free(device("Portable Computing Language", false)));  // PoCL's CUDA or Level Zero driver
+  EXPECT_TRUE(branch_free(device("Oclgrind", true)));                      // CI checks the GPU's form there
+  EXPECT_FALSE(branch_free(device("Portable Computing Language", true)));
+  EXPECT_FALSE(branch_free(device("Intel(R) OpenCL", true)));
+  EXPECT_FALSE(branch_free(device("rusticl", true)));
+  EXPECT_TRUE(device_support(device("CUDA", false)).branch_free_descend);
 }
 
 TEST(BuildOptions, PrefetchWhereLocalMemoryIsTheCache) {

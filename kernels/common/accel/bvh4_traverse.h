@@ -196,12 +196,41 @@ CO_INLINE Bvh4Ray bvh4_ray(co_vec3 org, co_vec3 dir CO_ALPHA_PARAM) {
     (mask) = co_f4_less((enter), co_f4_scale(leave_, 1.0000004f));                                            \
   } while (0)
 
-/* One step down from a node whose lanes `mask` (not 0) the ray enters at `enter`: goes on with the
- * nearest child (*ref, *ref_t) and pushes the others, farthest first. */
+/* One step down from a node whose lanes `mask` (not 0) the ray enters at `enter`, by a sorting
+ * network on (entry, child) over all four lanes, those not entered at +infinity so that they sort
+ * last, then the entered ones but the nearest pushed by their count: the nearest goes on (*ref,
+ * *ref_t), the others are pushed farthest first. No indexed private arrays (registers). */
+CO_FORCE_INLINE void bvh4_descend_sorted(const Bvh4View* bvh, uint32_t mask, co_float4 enter, co_uint4 c,
+                                         uint32_t* ref, float* ref_t, uint32_t* stack_ref, float* stack_t,
+                                         int* sp) {
+  float t0 = (mask & 1u) ? enter.x : INFINITY, t1 = (mask & 2u) ? enter.y : INFINITY;
+  float t2 = (mask & 4u) ? enter.z : INFINITY, t3 = (mask & 8u) ? enter.w : INFINITY;
+  uint32_t r0 = c.x, r1 = c.y, r2 = c.z, r3 = c.w;
+  BVH4_ORDER(t0, r0, t1, r1);
+  BVH4_ORDER(t2, r2, t3, r3);
+  BVH4_ORDER(t0, r0, t2, r2);
+  BVH4_ORDER(t1, r1, t3, r3);
+  BVH4_ORDER(t1, r1, t2, r2);
+  const uint32_t entered = co_popcount(mask);
+  if (entered == 4u) { bvh4_prefetch(bvh, r3); stack_ref[*sp] = r3; stack_t[*sp] = t3; ++*sp; }
+  if (entered >= 3u) { bvh4_prefetch(bvh, r2); stack_ref[*sp] = r2; stack_t[*sp] = t2; ++*sp; }
+  if (entered >= 2u) { bvh4_prefetch(bvh, r1); stack_ref[*sp] = r1; stack_t[*sp] = t1; ++*sp; }
+  *ref = r0; *ref_t = t0;
+}
+
+/* One step down, as bvh4_descend_sorted; where a work item runs as scalar code of its own (CPUs), a
+ * step that enters one or two children (most steps) takes them without the network: one branch on
+ * the count instead of five data-dependent compare-exchanges. On GPUs (COHORT_BRANCH_FREE_DESCEND:
+ * the host passes it for OpenCL GPUs and Oclgrind; every CUDA device) the lanes of a warp take
+ * different counts, so those branches split the warp: there every step sorts (H100, 2026-12-06:
+ * naive path tracing 1.02-1.03x, sc+rg 1.01x, primary rays 0.97x; docs/design.md). Either way the
+ * same children are pushed, nearest on top, so the walk finds the same hit. */
+#if defined(__CUDACC__) && !defined(COHORT_BRANCH_FREE_DESCEND)
+#define COHORT_BRANCH_FREE_DESCEND 1
+#endif
 CO_FORCE_INLINE void bvh4_descend(const Bvh4View* bvh, uint32_t mask, co_float4 enter, co_uint4 c, uint32_t* ref,
-                            float* ref_t, uint32_t* stack_ref, float* stack_t, int* sp) {
-  /* one or two lanes entered (most steps): no sorting network, and one branch on the count
-   * instead of five data-dependent ones */
+                                  float* ref_t, uint32_t* stack_ref, float* stack_t, int* sp) {
+#if !defined(COHORT_BRANCH_FREE_DESCEND)
   uint32_t rest = mask & (mask - 1u);
   if (rest == 0u) {
     *ref = mask == 1u ? c.x : mask == 2u ? c.y : mask == 4u ? c.z : c.w;
@@ -220,22 +249,8 @@ CO_FORCE_INLINE void bvh4_descend(const Bvh4View* bvh, uint32_t mask, co_float4 
     *ref = ra; *ref_t = ta;
     return;
   }
-  /* three or four: a sorting network on (entry, child), the lanes not entered at +infinity so
-   * that they sort last; no indexed private arrays (registers) */
-  float t0 = (mask & 1u) ? enter.x : INFINITY, t1 = (mask & 2u) ? enter.y : INFINITY;
-  float t2 = (mask & 4u) ? enter.z : INFINITY, t3 = (mask & 8u) ? enter.w : INFINITY;
-  uint32_t r0 = c.x, r1 = c.y, r2 = c.z, r3 = c.w;
-  BVH4_ORDER(t0, r0, t1, r1);
-  BVH4_ORDER(t2, r2, t3, r3);
-  BVH4_ORDER(t0, r0, t2, r2);
-  BVH4_ORDER(t1, r1, t3, r3);
-  BVH4_ORDER(t1, r1, t2, r2);
-  bvh4_prefetch(bvh, r1);
-  bvh4_prefetch(bvh, r2);
-  if (mask == 15u) { bvh4_prefetch(bvh, r3); stack_ref[*sp] = r3; stack_t[*sp] = t3; ++*sp; }
-  stack_ref[*sp] = r2; stack_t[*sp] = t2; ++*sp;
-  stack_ref[*sp] = r1; stack_t[*sp] = t1; ++*sp;
-  *ref = r0; *ref_t = t0;
+#endif
+  bvh4_descend_sorted(bvh, mask, enter, c, ref, ref_t, stack_ref, stack_t, sp);
 }
 
 /* Continues a closest-hit (any_hit = 0) or any-hit (any_hit = 1) traversal at node or leaf `ref`,

@@ -311,8 +311,8 @@ CO_INLINE uint32_t co_f8_less(co_float8 a, co_float8 b) {
 #define co_prefetch(p) __builtin_prefetch(p)
 #endif
 
-/* Bit counts on 32-bit words (the 8-wide BVH's hit masks): OpenCL C 1.2's popcount and clz, CUDA's
- * __popc and __clz, C++20's <bit> on the host. co_clz(0) is 32 on every side. */
+/* Bit counts on 32-bit words (the 8-wide BVH's hit masks, the 4-wide one's entered lanes): OpenCL C 1.2's
+ * popcount and clz, CUDA's __popc and __clz, C++20's <bit> on the host. co_clz(0) is 32 on every side. */
 #if defined(__OPENCL_VERSION__)
 #define co_popcount(x) ((uint32_t)popcount((uint32_t)(x)))
 #define co_clz(x) ((uint32_t)clz((uint32_t)(x)))
