@@ -140,8 +140,7 @@ struct Builder {
   // starts one after the root, its right child's after the left's 2 n_left - 1. Unused slots stay
   // unwritten.
   std::unique_ptr<Node[]> nodes;
-  LeafShape shape;
-  float tests(std::uint32_t n) const { return shape.tests(n); }
+  LeafShape shape;  // what a leaf may hold and what its triangle tests cost
 
   // The references of the chunks in chunk order, each chunk copied by its own task.
   Builder(const ReferenceChunks& references, LeafShape shape_)
@@ -245,7 +244,7 @@ struct Builder {
       for (int j = 0; j < m - 1; ++j) {
         extend(acc, bin_box[a][full[j]]);
         n += bin_count[a][full[j]];
-        const float cost = area_of(acc) * tests(n) + right_area[j + 1] * tests(right_count[j + 1]);
+        const float cost = area_of(acc) * shape.tests(n) + right_area[j + 1] * shape.tests(right_count[j + 1]);
         if (cost < best.cost) best = {a, full[j], cost};
       }
     }
@@ -298,7 +297,7 @@ struct Builder {
     const Split split = depth < kMedianDepth ? best_split(first, count, centroids) : Split{};
     if (split.axis >= 0) {
       const float area = node.box().area();
-      if (count <= shape.max_leaf && area * tests(count) <= kNodeCost * area + split.cost) return;
+      if (count <= shape.max_leaf && area * shape.tests(count) <= kNodeCost * area + split.cost) return;
       const int axis = split.axis;
       const float lo = centroids.lo[axis];
       const float scale = kBins / (centroids.hi[axis] - lo);
