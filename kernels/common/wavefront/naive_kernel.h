@@ -27,19 +27,27 @@ CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
 
   co_float4 acc = film[pixel];
   uint32_t rays = 0u, dropped = 0u, max_steps = 0u;
-  for (uint32_t i = 0u; i < p.samples_per_pass; ++i) {
 #if defined(COHORT_NAIVE_PAIRS)
-    if (i + 1u < p.samples_per_pass) {
+  for (uint32_t i = 0u; i < p.samples_per_pass; i += PATH_START_BATCH) {
+    uint32_t m = co_umin(PATH_START_BATCH, p.samples_per_pass - i), j = 0u;
+    PathState start[PATH_START_BATCH];
+    path_start_batch(&p, pixel, p.sample_offset + i, start);
+    for (j = 0u; j + 1u < m; j += 2u) {
       PathResult first, second;
-      trace_path_pair(&s, &p, pixel, p.sample_offset + i, &first, &second);
+      trace_path_pair(&s, &p, pixel, p.sample_offset + i + j, start[j], start[j + 1u], &first, &second);
       naive_add_sample(&acc, &rays, &max_steps, &dropped, first);
       naive_add_sample(&acc, &rays, &max_steps, &dropped, second);
-      ++i;
-      continue;
     }
-#endif
-    naive_add_sample(&acc, &rays, &max_steps, &dropped, trace_path(&s, &p, pixel, p.sample_offset + i));
+    if (j < m) {
+      PathResult last = path_result_none();
+      path_continue(&s, &p, &start[j], pixel, p.sample_offset + i + j, &last);
+      naive_add_sample(&acc, &rays, &max_steps, &dropped, last);
+    }
   }
+#else
+  for (uint32_t i = 0u; i < p.samples_per_pass; ++i)
+    naive_add_sample(&acc, &rays, &max_steps, &dropped, trace_path(&s, &p, pixel, p.sample_offset + i));
+#endif
   film[pixel] = acc;
   co_atomic_add(&counters[NAIVE_COUNTER_RAYS], rays);
   co_atomic_max(&counters[NAIVE_COUNTER_MAX_STEPS], max_steps);

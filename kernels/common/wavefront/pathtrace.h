@@ -70,13 +70,18 @@ CO_INLINE uint32_t pass_pixel(uint32_t k, CO_GLOBAL const uint32_t* pixel_list, 
   return p->active_pixels ? pixel_list[k] : k;
 }
 
-CO_INLINE PathState path_start(const RenderParams* p, uint32_t pixel, uint32_t sample) {
-  PathState st;
-  uint32_t x = pixel % p->width, y = pixel / p->width;
+/* The camera ray's direction of a pixel's sample: its jitter from the sample's camera stream. */
+CO_INLINE co_vec3 path_camera_direction(const RenderParams* p, uint32_t pixel, uint32_t sample) {
   Rng cam_rng = rng_make(p->seed, pixel, sample, 0u, RNG_CAMERA);
   float jx = rng_next(&cam_rng), jy = rng_next(&cam_rng);
+  return camera_direction(&p->camera, p->width, p->height, pixel % p->width, pixel / p->width, jx, jy);
+}
+
+/* A path at the camera, about to trace the camera ray along `dir`. */
+CO_INLINE PathState path_start_along(const RenderParams* p, uint32_t pixel, uint32_t sample, co_vec3 dir) {
+  PathState st;
   st.org = v3_from4(p->camera.eye);
-  st.dir = camera_direction(&p->camera, p->width, p->height, x, y, jx, jy);
+  st.dir = dir;
   st.throughput = v3_splat(1.0f);
   st.radiance = v3_splat(0.0f);
   st.prev_pos = st.org;
@@ -85,11 +90,34 @@ CO_INLINE PathState path_start(const RenderParams* p, uint32_t pixel, uint32_t s
   st.status = PATH_ALIVE;
 #if defined(COHORT_FEATURE_ALPHA)
   st.alpha_seed = alpha_ray_seed(p->seed, pixel, sample, 1u, RNG_ALPHA);
+#else
+  (void)pixel;
+  (void)sample;
 #endif
 #if defined(COHORT_FEATURE_VOLUME)
   st.medium = MEDIUM_NONE; /* the camera is outside every volume (docs/bsdf.md, "Volumes") */
 #endif
   return st;
+}
+
+CO_INLINE PathState path_start(const RenderParams* p, uint32_t pixel, uint32_t sample) {
+  return path_start_along(p, pixel, sample, path_camera_direction(p, pixel, sample));
+}
+
+/* path_start for PATH_START_BATCH consecutive samples of one pixel, from `sample`: the camera
+ * directions first, lane by lane in loops of a fixed count over plain arrays, which a CPU compiler
+ * can turn into one vector operation per step for all the samples (each lane runs
+ * path_camera_direction's operations: the same bits). For CPUs, where each work item is scalar
+ * code: one sample's camera ray alone is a chain of six dependent hashes, two divisions and a
+ * square root. */
+#define PATH_START_BATCH 8u
+CO_INLINE void path_start_batch(const RenderParams* p, uint32_t pixel, uint32_t sample, PathState* out) {
+  float dx[PATH_START_BATCH], dy[PATH_START_BATCH], dz[PATH_START_BATCH];
+  for (uint32_t l = 0u; l < PATH_START_BATCH; ++l) {
+    co_vec3 d = path_camera_direction(p, pixel, sample + l);
+    dx[l] = d.x; dy[l] = d.y; dz[l] = d.z;
+  }
+  for (uint32_t l = 0u; l < PATH_START_BATCH; ++l) out[l] = path_start_along(p, pixel, sample + l, v3(dx[l], dy[l], dz[l]));
 }
 
 /* Unit direction *dir and distance from `from` to `to`; 0 when they are not farther apart than
@@ -535,10 +563,9 @@ CO_INLINE PathResult trace_path(const SceneView* s, const RenderParams* p, uint3
  * independent chains of arithmetic in one stream. Each path computes exactly what trace_path
  * computes for it; once one ends, the other goes on alone. */
 CO_INLINE void trace_path_pair(const SceneView* s, const RenderParams* p, uint32_t pixel, uint32_t sample,
-                               PathResult* ra, PathResult* rb) {
+                               PathState a, PathState b, PathResult* ra, PathResult* rb) {
   *ra = path_result_none();
   *rb = path_result_none();
-  PathState a = path_start(p, pixel, sample), b = path_start(p, pixel, sample + 1u);
   while (a.status == PATH_ALIVE && b.status == PATH_ALIVE) {
     Bvh8fWalk wa, wb;
     bvh8f_walk_start(&s->tree, &wa, a.org, a.dir, 0.0f, INFINITY, 0 CO_ALPHA_ARG(a.alpha_seed));
