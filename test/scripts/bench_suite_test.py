@@ -7,6 +7,7 @@ import importlib.machinery
 import importlib.util
 import json
 import os
+import shutil
 import stat
 import subprocess
 import sys
@@ -106,6 +107,29 @@ class BenchSuite(unittest.TestCase):
             bad.write_text(json.dumps(dict(suite, alternate="model")))
             with self.assertRaises(SystemExit):
                 bs.load_suite(str(bad))
+
+    def test_a_gpu_machine_unpacks_the_archived_bundle_where_the_folder_is_missing(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            root = Path(tmp)
+            src = root / "src" / "gpu-bundle" / "bin"
+            src.mkdir(parents=True)
+            (src / "cohort").write_text("stand-in")
+            subprocess.run(["tar", "-C", str(root / "src"), "-cJf", str(root / "gpu-bundle.tar.xz"), "gpu-bundle"],
+                           check=True)
+            self.assertEqual(bs.unpack_bundle(root), root / "gpu-bundle")
+            self.assertEqual((root / "gpu-bundle" / "bin" / "cohort").read_text(), "stand-in")
+            # a folder already there is used as it is
+            (root / "gpu-bundle" / "bin" / "cohort").write_text("newer")
+            bs.unpack_bundle(root)
+            self.assertEqual((root / "gpu-bundle" / "bin" / "cohort").read_text(), "newer")
+            # an archive with anything outside gpu-bundle/ is refused, nothing unpacked
+            shutil.rmtree(root / "gpu-bundle")
+            (root / "src" / "other").write_text("x")
+            subprocess.run(["tar", "-C", str(root / "src"), "-cJf", str(root / "gpu-bundle.tar.xz"), "gpu-bundle",
+                            "other"], check=True)
+            with self.assertRaises(SystemExit):
+                bs.unpack_bundle(root)
+            self.assertFalse((root / "gpu-bundle").exists())
 
     def test_path_tracing_figures_include_samples_per_cpu_second(self):
         doc = {"scenes": [{"name": "s.obj", "views": [{"view": "exterior", "path_tracing": {"naive": {
