@@ -109,7 +109,8 @@ CO_INLINE PathState path_start(const RenderParams* p, uint32_t pixel, uint32_t s
  * can turn into one vector operation per step for all the samples (each lane runs
  * path_camera_direction's operations: the same bits). For CPUs, where each work item is scalar
  * code: one sample's camera ray alone is a chain of six dependent hashes, two divisions and a
- * square root. */
+ * square root. All eight are made even where the pass has fewer samples left: the fixed count is
+ * what the compiler vectorises, and the caller uses only the ones it traces. */
 #define PATH_START_BATCH 8u
 CO_INLINE void path_start_batch(const RenderParams* p, uint32_t pixel, uint32_t sample, PathState* out) {
   float dx[PATH_START_BATCH], dy[PATH_START_BATCH], dz[PATH_START_BATCH];
@@ -560,8 +561,9 @@ CO_INLINE PathResult trace_path(const SceneView* s, const RenderParams* p, uint3
 #define COHORT_NAIVE_PAIRS 1
 /* Two samples' paths in lock step, for CPUs: their rays walk the tree in turn (bvh8f_trace_pair),
  * so the core waits on two chains of node loads at once, and their set-up and shading are two
- * independent chains of arithmetic in one stream. Each path computes exactly what trace_path
- * computes for it; once one ends, the other goes on alone. */
+ * independent chains of arithmetic in one stream. `a` and `b` are the started paths (path_start)
+ * of samples `sample` and `sample + 1`; each computes exactly what trace_path computes for it, and
+ * once one ends, the other goes on alone. */
 CO_INLINE void trace_path_pair(const SceneView* s, const RenderParams* p, uint32_t pixel, uint32_t sample,
                                PathState a, PathState b, PathResult* ra, PathResult* rb) {
   *ra = path_result_none();
