@@ -30,6 +30,7 @@ COHORT_PACKAGES=(
   python3-dev                       # Python's headers: the Python module (nanobind from PyPI)
   openmpi-bin libopenmpi-dev        # mpirun cohort render: several machines (optional at build time)
   oclgrind                          # scripts/test-oclgrind: every kernel on a checking simulator (CI)
+  xz-utils                          # scripts/remote/gpu-bundle --archive: the GPU bundle as .tar.xz
 )
 # Wanted but not needed to build and test: installed when apt can, else the feature is skipped.
 COHORT_OPTIONAL_PACKAGES=(

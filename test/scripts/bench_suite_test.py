@@ -11,6 +11,7 @@ import shutil
 import stat
 import subprocess
 import sys
+import tarfile
 import tempfile
 import unittest
 from pathlib import Path
@@ -114,8 +115,8 @@ class BenchSuite(unittest.TestCase):
             src = root / "src" / "gpu-bundle" / "bin"
             src.mkdir(parents=True)
             (src / "cohort").write_text("stand-in")
-            subprocess.run(["tar", "-C", str(root / "src"), "-cJf", str(root / "gpu-bundle.tar.xz"), "gpu-bundle"],
-                           check=True)
+            with tarfile.open(root / "gpu-bundle.tar.xz", "w:xz") as tar:
+                tar.add(root / "src" / "gpu-bundle", arcname="gpu-bundle")
             self.assertEqual(bs.unpack_bundle(root), root / "gpu-bundle")
             self.assertEqual((root / "gpu-bundle" / "bin" / "cohort").read_text(), "stand-in")
             # a folder already there is used as it is
@@ -125,8 +126,9 @@ class BenchSuite(unittest.TestCase):
             # an archive with anything outside gpu-bundle/ is refused, nothing unpacked
             shutil.rmtree(root / "gpu-bundle")
             (root / "src" / "other").write_text("x")
-            subprocess.run(["tar", "-C", str(root / "src"), "-cJf", str(root / "gpu-bundle.tar.xz"), "gpu-bundle",
-                            "other"], check=True)
+            with tarfile.open(root / "gpu-bundle.tar.xz", "w:xz") as tar:
+                tar.add(root / "src" / "gpu-bundle", arcname="gpu-bundle")
+                tar.add(root / "src" / "other", arcname="other")
             with self.assertRaises(SystemExit):
                 bs.unpack_bundle(root)
             self.assertFalse((root / "gpu-bundle").exists())
