@@ -29,20 +29,30 @@ CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
   uint32_t rays = 0u, dropped = 0u, max_steps = 0u;
 #if defined(COHORT_NAIVE_PAIRS)
   for (uint32_t i = 0u; i < p.samples_per_pass; i += PATH_START_BATCH) {
-    uint32_t m = co_umin(PATH_START_BATCH, p.samples_per_pass - i), j = 0u;
+    uint32_t m = co_umin(PATH_START_BATCH, p.samples_per_pass - i), first = p.sample_offset + i;
     PathState start[PATH_START_BATCH];
-    path_start_batch(&p, pixel, p.sample_offset + i, start);
-    for (j = 0u; j + 1u < m; j += 2u) {
-      PathResult first, second;
-      trace_path_pair(&s, &p, pixel, p.sample_offset + i + j, start[j], start[j + 1u], &first, &second);
-      naive_add_sample(&acc, &rays, &max_steps, &dropped, first);
-      naive_add_sample(&acc, &rays, &max_steps, &dropped, second);
+    PathResult results[PATH_START_BATCH];
+    uint32_t walked[PATH_START_BATCH], n = 0u;
+    uint32_t outside = path_start_batch(&p, pixel, first, start);
+    /* camera rays that miss the scene end at once; the others are traced in pairs, an odd one alone,
+     * and every sample reaches the film in sample order */
+    for (uint32_t j = 0u; j < m; ++j) {
+      if ((outside >> j) & 1u)
+        results[j] = trace_path_outside(&s, &p, start[j], pixel, first + j);
+      else
+        walked[n++] = j;
     }
-    if (j < m) {
-      PathResult last = path_result_none();
-      path_continue(&s, &p, &start[j], pixel, p.sample_offset + i + j, &last);
-      naive_add_sample(&acc, &rays, &max_steps, &dropped, last);
+    uint32_t k = 0u;
+    for (; k + 1u < n; k += 2u) {
+      uint32_t a = walked[k], b = walked[k + 1u];
+      trace_path_pair(&s, &p, pixel, first + a, first + b, start[a], start[b], &results[a], &results[b]);
     }
+    if (k < n) {
+      uint32_t a = walked[k];
+      results[a] = path_result_none();
+      path_continue(&s, &p, &start[a], pixel, first + a, &results[a]);
+    }
+    for (uint32_t j = 0u; j < m; ++j) naive_add_sample(&acc, &rays, &max_steps, &dropped, results[j]);
   }
 #else
   for (uint32_t i = 0u; i < p.samples_per_pass; ++i)

@@ -110,15 +110,29 @@ CO_INLINE PathState path_start(const RenderParams* p, uint32_t pixel, uint32_t s
  * path_camera_direction's operations: the same bits). For CPUs, where each work item is scalar
  * code: one sample's camera ray alone is a chain of six dependent hashes, two divisions and a
  * square root. All eight are made even where the pass has fewer samples left: the fixed count is
- * what the compiler vectorises, and the caller uses only the ones it traces. */
+ * what the compiler vectorises, and the caller uses only the ones it traces. Returns the mask of the
+ * camera rays that miss the scene's box (bit l for sample + l), in the same vector loops:
+ * intersect_box with the KD-tree's inverse is the test the KD-tree clips every ray with, so such a
+ * ray hits nothing on any tree, and its walk (the ray's set-up, the root's box test) can be skipped. */
 #define PATH_START_BATCH 8u
-CO_INLINE void path_start_batch(const RenderParams* p, uint32_t pixel, uint32_t sample, PathState* out) {
+CO_INLINE uint32_t path_start_batch(const RenderParams* p, uint32_t pixel, uint32_t sample, PathState* out) {
   float dx[PATH_START_BATCH], dy[PATH_START_BATCH], dz[PATH_START_BATCH];
+  uint32_t outside[PATH_START_BATCH];
   for (uint32_t l = 0u; l < PATH_START_BATCH; ++l) {
     co_vec3 d = path_camera_direction(p, pixel, sample + l);
     dx[l] = d.x; dy[l] = d.y; dz[l] = d.z;
   }
-  for (uint32_t l = 0u; l < PATH_START_BATCH; ++l) out[l] = path_start_along(p, pixel, sample + l, v3(dx[l], dy[l], dz[l]));
+  const co_vec3 eye = v3_from4(p->camera.eye), lo = v3_from4(p->scene_min), hi = v3_from4(p->scene_max);
+  for (uint32_t l = 0u; l < PATH_START_BATCH; ++l) {
+    float t0 = 0.0f, t1 = INFINITY;
+    outside[l] = intersect_box(eye, kd_inverse(v3(dx[l], dy[l], dz[l])), lo, hi, &t0, &t1) ? 0u : 1u;
+  }
+  uint32_t mask = 0u;
+  for (uint32_t l = 0u; l < PATH_START_BATCH; ++l) {
+    out[l] = path_start_along(p, pixel, sample + l, v3(dx[l], dy[l], dz[l]));
+    mask |= outside[l] << l;
+  }
+  return mask;
 }
 
 /* Unit direction *dir and distance from `from` to `to`; 0 when they are not farther apart than
@@ -562,10 +576,10 @@ CO_INLINE PathResult trace_path(const SceneView* s, const RenderParams* p, uint3
 /* Two samples' paths in lock step, for CPUs: their rays walk the tree in turn (bvh8f_trace_pair),
  * so the core waits on two chains of node loads at once, and their set-up and shading are two
  * independent chains of arithmetic in one stream. `a` and `b` are the started paths (path_start)
- * of samples `sample` and `sample + 1`; each computes exactly what trace_path computes for it, and
+ * of samples `sample_a` and `sample_b`; each computes exactly what trace_path computes for it, and
  * once one ends, the other goes on alone. */
-CO_INLINE void trace_path_pair(const SceneView* s, const RenderParams* p, uint32_t pixel, uint32_t sample,
-                               PathState a, PathState b, PathResult* ra, PathResult* rb) {
+CO_INLINE void trace_path_pair(const SceneView* s, const RenderParams* p, uint32_t pixel, uint32_t sample_a,
+                               uint32_t sample_b, PathState a, PathState b, PathResult* ra, PathResult* rb) {
   *ra = path_result_none();
   *rb = path_result_none();
   while (a.status == PATH_ALIVE && b.status == PATH_ALIVE) {
@@ -575,8 +589,8 @@ CO_INLINE void trace_path_pair(const SceneView* s, const RenderParams* p, uint32
     bvh8f_trace_pair(&s->tree, &wa, &wb);
     path_count_ray(ra, wa.count);
     path_count_ray(rb, wb.count);
-    ShadowRay sa = path_shade(s, p, &a, wa.hit, pixel, sample);
-    ShadowRay sb = path_shade(s, p, &b, wb.hit, pixel, sample + 1u);
+    ShadowRay sa = path_shade(s, p, &a, wa.hit, pixel, sample_a);
+    ShadowRay sb = path_shade(s, p, &b, wb.hit, pixel, sample_b);
     if (sa.valid || sb.valid) {
       if (sa.valid) bvh8f_walk_start(&s->tree, &wa, sa.org, sa.dir, 0.0f, sa.tmax, 1 CO_ALPHA_ARG(sa.alpha_seed));
       if (sb.valid) bvh8f_walk_start(&s->tree, &wb, sb.org, sb.dir, 0.0f, sb.tmax, 1 CO_ALPHA_ARG(sb.alpha_seed));
@@ -595,8 +609,21 @@ CO_INLINE void trace_path_pair(const SceneView* s, const RenderParams* p, uint32
       }
     }
   }
-  path_continue(s, p, &a, pixel, sample, ra);
-  path_continue(s, p, &b, pixel, sample + 1u, rb);
+  path_continue(s, p, &a, pixel, sample_a, ra);
+  path_continue(s, p, &b, pixel, sample_b, rb);
+}
+
+/* A started path whose camera ray misses the scene's box (path_start_batch): what trace_path gives
+ * it without the walk, which would visit the root and enter none of its children. */
+CO_INLINE PathResult trace_path_outside(const SceneView* s, const RenderParams* p, PathState st, uint32_t pixel,
+                                        uint32_t sample) {
+  PathResult result = path_result_none();
+  HitOut none;
+  none.t = INFINITY; none.u = 0.0f; none.v = 0.0f; none.triangle = HIT_NONE;
+  path_count_ray(&result, 1u);
+  path_shade(s, p, &st, none, pixel, sample); /* the sky: the path ends */
+  result.radiance = st.radiance;
+  return result;
 }
 #endif
 
