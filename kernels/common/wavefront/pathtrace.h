@@ -614,7 +614,9 @@ CO_INLINE void trace_path_pair(const SceneView* s, const RenderParams* p, uint32
 }
 
 /* A started path whose camera ray misses the scene's box (path_start_batch): what trace_path gives
- * it without the walk, which would visit the root and enter none of its children. */
+ * it, without the walk, which finds no triangle for it. The ray counts one node visit, the root's
+ * (a ray grazing the padding of the root's child boxes would have counted a few more: a statistic,
+ * never the image). */
 CO_INLINE PathResult trace_path_outside(const SceneView* s, const RenderParams* p, PathState st, uint32_t pixel,
                                         uint32_t sample) {
   PathResult result = path_result_none();
