@@ -47,11 +47,7 @@ CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
       uint32_t a = walked[k], b = walked[k + 1u];
       trace_path_pair(&s, &p, pixel, first + a, first + b, start[a], start[b], &results[a], &results[b]);
     }
-    if (k < n) {
-      uint32_t a = walked[k];
-      results[a] = path_result_none();
-      path_continue(&s, &p, &start[a], pixel, first + a, &results[a]);
-    }
+    if (k < n) results[walked[k]] = trace_started_path(&s, &p, start[walked[k]], pixel, first + walked[k]);
     for (uint32_t j = 0u; j < m; ++j) naive_add_sample(&acc, &rays, &max_steps, &dropped, results[j]);
   }
 #else
