@@ -14,6 +14,7 @@
 #include <random>
 
 #include "accel/test_meshes.h"
+#include "accel/tree_check.h"
 #include "accel/wide_bvh_check.h"
 
 namespace cohort::test {
@@ -144,6 +145,79 @@ TEST(Bvh8f, FourTriangleTestIsTheOneTriangleTestLaneForLane) {
     }
   }
   EXPECT_GT(lanes_hit, checked / 5);  // the rays aimed at a lane hit it most of the time
+}
+
+// bvh8f_trace_packet against bvh8f_trace_steps ray by ray, bit for bit: camera-like packets (one
+// origin, directions within a small cone, eight or fewer rays), packets of rays from scattered
+// origins in one octant with wide directions, and rays aimed at vertices and edges, where the
+// closest-hit tie rule decides between triangles; on a random soup, a grid of coplanar cells and the
+// voxel terrain (axis-aligned faces shared by many boxes). A ray's node count is at least one (the
+// root) where it has one at all.
+TEST(Bvh8f, PacketGivesEachRayItsOwnWalksHit) {
+  const std::vector<std::vector<glm::vec3>> meshes = {random_soup(5'000, 3), coplanar_grid(30, 30),
+                                                      load_shipped("voxel-terrain.gltf")};
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<float> u01(0.0f, 1.0f);
+  std::size_t rays = 0, hits = 0, ties_possible = 0;
+  for (const auto& mesh : meshes) {
+    const KdTree kept = kept_triangles(mesh);
+    const Bvh8f bvh = build_bvh8f(kept.triangles);
+    const Bvh8fView view = host_view(bvh);
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (const glm::vec3& v : mesh) lo = glm::min(lo, v), hi = glm::max(hi, v);
+    const glm::vec3 size = hi - lo;
+    const auto inside = [&] { return lo + size * glm::vec3(u01(rng), u01(rng), u01(rng)); };
+    const auto around = [&] { return lo + size * glm::vec3(3.0f * u01(rng) - 1.0f, 3.0f * u01(rng) - 1.0f, 2.0f); };
+    for (int trial = 0; trial < 600; ++trial) {
+      const int kind = trial % 3;
+      const glm::vec3 eye = kind == 1 ? inside() : around();
+      const glm::vec3 aim = inside() - eye;
+      co_vec3 orgs[BVH8F_PACKET], dirs[BVH8F_PACKET];
+      for (int l = 0; l < BVH8F_PACKET; ++l) {
+        glm::vec3 org = eye, dir = aim;
+        if (kind == 0) dir += 0.01f * glm::length(aim) * glm::vec3(u01(rng) - 0.5f, u01(rng) - 0.5f, u01(rng) - 0.5f);
+        if (kind == 1) {  // scattered origins, directions anywhere in the aim's octant
+          org = inside();
+          dir = glm::sign(aim) * glm::vec3(u01(rng), u01(rng), u01(rng));
+        }
+        if (kind == 2) {  // at a vertex or an edge's midpoint of a random triangle
+          const std::size_t t = std::uniform_int_distribution<std::size_t>(0, mesh.size() / 3 - 1)(rng);
+          const glm::vec3 a = mesh[3 * t], b = mesh[3 * t + 1];
+          dir = (l % 2 ? a : 0.5f * (a + b)) - org;
+          ++ties_possible;
+        }
+        orgs[l] = v3(org.x, org.y, org.z);
+        dirs[l] = v3(dir.x, dir.y, dir.z);
+      }
+      Bvh8fPacket packet;
+      bvh8f_packet_begin(&packet, dirs[0]);
+      const int lanes = trial % 4 == 3 ? 1 + trial % BVH8F_PACKET : BVH8F_PACKET;
+      std::vector<int> lane_of_ray;
+      for (int l = 0; l < lanes; ++l) {
+        if (!bvh8f_packet_fits(&packet, dirs[l])) continue;  // only a ray of the packet's octant joins
+        bvh8f_packet_add(&view, &packet, std::uint32_t(lane_of_ray.size()), orgs[l], dirs[l]);
+        lane_of_ray.push_back(l);
+      }
+      bvh8f_trace_packet(&view, &packet);
+      for (std::size_t lane = 0; lane < lane_of_ray.size(); ++lane) {
+        const int l = lane_of_ray[lane];
+        std::uint32_t steps = 0;
+        const HitOut alone = bvh8f_trace_steps(&view, orgs[l], dirs[l], 0.0f, INFINITY, 0, &steps);
+        const HitOut& packed = packet.hit[lane];
+        const auto bits = [](float f) { return std::bit_cast<std::uint32_t>(f); };
+        ASSERT_EQ(alone.triangle, packed.triangle) << "trial " << trial << " lane " << lane;
+        EXPECT_EQ(bits(alone.t), bits(packed.t)) << "trial " << trial << " lane " << lane;
+        EXPECT_EQ(bits(alone.u), bits(packed.u)) << "trial " << trial << " lane " << lane;
+        EXPECT_EQ(bits(alone.v), bits(packed.v)) << "trial " << trial << " lane " << lane;
+        EXPECT_GE(packet.count[lane], 1u);
+        ++rays;
+        if (alone.triangle != HIT_NONE) ++hits;
+      }
+    }
+  }
+  EXPECT_GT(rays, 8'000u);
+  EXPECT_GT(hits, rays / 3);  // most packets are aimed at the mesh
+  EXPECT_GT(ties_possible, 1'000u);
 }
 
 }  // namespace

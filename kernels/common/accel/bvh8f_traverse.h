@@ -243,4 +243,144 @@ CO_INLINE void bvh8f_trace_pair(const Bvh8fView* bvh, Bvh8fWalk* a, Bvh8fWalk* b
   while (more_b) more_b = bvh8f_walk_step(bvh, b);
 }
 
+/* ---- Packets: eight rays of one octant walked together ---------------------------------------
+ * Rays that start together (a pixel's camera rays: one eye, directions within the pixel) meet the
+ * same nodes. A packet walks the tree once for all of them: one stack, one order of the children and
+ * one load of a node, each box tested against the eight rays at once (a float8 across the rays, where
+ * a ray's own walk has the eight boxes across the lanes). Each lane computes its ray's own
+ * bvh8f_enter operations (the same entry plane rows, as the packet's rays share their direction
+ * signs), and each ray tests the leaves' triangles with its own watertight ray, so it keeps its own
+ * hit: the order of the visits changes nodes visited, never the hit. A child goes on the stack with
+ * the rays that enter it and where each enters, so a ray leaves a popped node that its best hit so
+ * far lies before (kd_beyond_hit), as its own walk would skip it. */
+#define BVH8F_PACKET 8
+
+typedef struct Bvh8fPacket {
+  WatertightRay wr[BVH8F_PACKET];
+  float near_o[3][BVH8F_PACKET], far_o[3][BVH8F_PACKET], inv[3][BVH8F_PACKET]; /* axis by axis, lane l = ray l */
+  HitOut hit[BVH8F_PACKET];
+  uint32_t count[BVH8F_PACKET]; /* nodes and leaves each ray visited */
+  uint32_t lanes;               /* the rays in the packet, lane i in bit i */
+  int near_x, near_y, near_z;   /* the plane rows its rays enter a box through (Bvh8fRay) */
+} Bvh8fPacket;
+
+/* An empty packet whose rays will enter boxes through the rows of direction `dir`'s signs. */
+CO_INLINE void bvh8f_packet_begin(Bvh8fPacket* k, co_vec3 dir) {
+  for (int a = 0; a < 3; ++a) { /* lanes without a ray compute on finite values, then are masked off */
+    co_f8_store(co_f8_splat(0.0f), k->near_o[a]);
+    co_f8_store(co_f8_splat(0.0f), k->far_o[a]);
+    co_f8_store(co_f8_splat(1.0f), k->inv[a]);
+  }
+  k->lanes = 0u;
+  k->near_x = dir.x < 0.0f ? 1 : 0; k->near_y = dir.y < 0.0f ? 3 : 2; k->near_z = dir.z < 0.0f ? 5 : 4;
+}
+
+/* Whether a ray of direction `dir` enters boxes through the packet's rows. */
+CO_INLINE int bvh8f_packet_fits(const Bvh8fPacket* k, co_vec3 dir) {
+  return (dir.x < 0.0f ? 1 : 0) == k->near_x && (dir.y < 0.0f ? 3 : 2) == k->near_y &&
+         (dir.z < 0.0f ? 5 : 4) == k->near_z;
+}
+
+/* Lane `lane` of packet `k` takes the closest-hit ray (org, dir) in (0, infinity); it must fit. */
+CO_INLINE void bvh8f_packet_add(const Bvh8fView* bvh, Bvh8fPacket* k, uint32_t lane, co_vec3 org,
+                                co_vec3 dir CO_ALPHA_PARAM) {
+  k->wr[lane] = watertight_ray(org, dir);
+#if defined(COHORT_FEATURE_ALPHA)
+  k->wr[lane].alpha = &bvh->alpha;
+  k->wr[lane].alpha_seed = alpha_seed;
+#else
+  (void)bvh;
+#endif
+  co_vec3 o, inv, n, f;
+  bvh_slab_ray(org, dir, &o, &inv);
+  bvh_slab_offsets(o, inv, &n, &f);
+  k->near_o[0][lane] = n.x; k->near_o[1][lane] = n.y; k->near_o[2][lane] = n.z;
+  k->far_o[0][lane] = f.x; k->far_o[1][lane] = f.y; k->far_o[2][lane] = f.z;
+  k->inv[0][lane] = inv.x; k->inv[1][lane] = inv.y; k->inv[2][lane] = inv.z;
+  k->hit[lane].t = INFINITY; k->hit[lane].u = 0.0f; k->hit[lane].v = 0.0f; k->hit[lane].triangle = HIT_NONE;
+  k->count[lane] = 0u;
+  k->lanes |= 1u << lane;
+}
+
+/* The closest hits of the packet's rays, each the one bvh8f_trace_steps gives it. */
+CO_INLINE void bvh8f_trace_packet(const Bvh8fView* bvh, Bvh8fPacket* k) {
+  uint32_t stack_ref[BVH8F_STACK], stack_lanes[BVH8F_STACK];
+  float stack_t[BVH8F_STACK][BVH8F_PACKET];
+  float best[BVH8F_PACKET], ref_t[BVH8F_PACKET];
+  for (int l = 0; l < BVH8F_PACKET; ++l) best[l] = k->hit[l].t;
+  co_f8_store(co_f8_splat(0.0f), ref_t);
+  const co_float8 nox = co_f8_load(k->near_o[0]), noy = co_f8_load(k->near_o[1]), noz = co_f8_load(k->near_o[2]);
+  const co_float8 fox = co_f8_load(k->far_o[0]), foy = co_f8_load(k->far_o[1]), foz = co_f8_load(k->far_o[2]);
+  const co_float8 ix = co_f8_load(k->inv[0]), iy = co_f8_load(k->inv[1]), iz = co_f8_load(k->inv[2]);
+  const int rx = k->near_x, ry = k->near_y, rz = k->near_z;
+  int sp = 0;
+  uint32_t ref = 0u, lanes = k->lanes;
+  for (;;) {
+    /* the rays whose own walk would visit this node */
+    const co_float8 limit = co_f8_scale(co_f8_load(best), KD_TERMINATION_SLACK);
+    const uint32_t live = lanes & ~co_f8_less(limit, co_f8_load(ref_t));
+    for (uint32_t rest = live; rest != 0u; rest &= rest - 1u) ++k->count[bvh8f_lowest(rest)];
+    if (live != 0u) {
+      if (bvh4_is_leaf(ref)) {
+        const CO_GLOBAL Triangle4* block = &bvh->leaf_blocks[bvh4_leaf_first(ref)];
+        for (uint32_t rest = live; rest != 0u; rest &= rest - 1u) {
+          const uint32_t l = bvh8f_lowest(rest);
+          bvh8f_intersect_leaf(block, bvh4_leaf_count(ref), &k->wr[l], 0.0f, &k->hit[l], 0);
+          best[l] = k->hit[l].t;
+        }
+      } else {
+        const CO_GLOBAL Bvh8fNode* n = &bvh->nodes[ref];
+        uint32_t child_ref[8], child_lanes[8], order[8], entered = 0u;
+        float child_t[8][BVH8F_PACKET], key[8];
+        for (uint32_t c = 0u; c < 8u; ++c) {
+          if (n->child[c] == BVH4_EMPTY) break; /* the collapse fills lanes from 0 (wide_collapse.h) */
+          /* bvh8f_enter's operations, lane l for ray l */
+          const co_float8 e =
+              co_f8_max(co_f8_max(BVH_SLAB8(co_f8_splat(n->planes[rx][c]), ix, nox),
+                                  BVH_SLAB8(co_f8_splat(n->planes[ry][c]), iy, noy)),
+                        co_f8_max(BVH_SLAB8(co_f8_splat(n->planes[rz][c]), iz, noz), co_f8_splat(0.0f)));
+          const co_float8 x =
+              co_f8_min(co_f8_min(BVH_SLAB8(co_f8_splat(n->planes[rx ^ 1][c]), ix, fox),
+                                  BVH_SLAB8(co_f8_splat(n->planes[ry ^ 1][c]), iy, foy)),
+                        co_f8_min(BVH_SLAB8(co_f8_splat(n->planes[rz ^ 1][c]), iz, foz), limit));
+          const uint32_t m = co_f8_less(e, co_f8_scale(x, 1.0000004f)) & live;
+          if (m == 0u) continue;
+          /* an insertion sort by the entry of the child's first ray, nearest last */
+          const uint32_t slot = entered++;
+          co_f8_store(e, child_t[slot]);
+          child_ref[slot] = n->child[c];
+          child_lanes[slot] = m;
+          key[slot] = child_t[slot][bvh8f_lowest(m)];
+          uint32_t j = slot;
+          while (j > 0u && key[order[j - 1u]] < key[slot]) {
+            order[j] = order[j - 1u];
+            --j;
+          }
+          order[j] = slot;
+        }
+        if (entered != 0u) {
+          for (uint32_t j = 0u; j + 1u < entered; ++j) {
+            const uint32_t slot = order[j];
+            stack_ref[sp] = child_ref[slot];
+            stack_lanes[sp] = child_lanes[slot];
+            co_f8_store(co_f8_load(child_t[slot]), stack_t[sp]);
+            bvh8f_prefetch(bvh, stack_ref[sp]);
+            ++sp;
+          }
+          const uint32_t slot = order[entered - 1u];
+          ref = child_ref[slot];
+          lanes = child_lanes[slot];
+          co_f8_store(co_f8_load(child_t[slot]), ref_t);
+          continue;
+        }
+      }
+    }
+    if (sp == 0) return;
+    --sp;
+    ref = stack_ref[sp];
+    lanes = stack_lanes[sp];
+    co_f8_store(co_f8_load(stack_t[sp]), ref_t);
+  }
+}
+
 #endif

@@ -538,19 +538,25 @@ CO_INLINE void path_count_ray(PathResult* result, uint32_t steps) {
   result->max_steps = co_umax(result->max_steps, steps);
 }
 
+/* A path's ray met `hit` after visiting `steps` nodes: counted, shaded, its shadow ray traced. */
+CO_INLINE void path_take_hit(const SceneView* s, const RenderParams* p, PathState* st, HitOut hit, uint32_t steps,
+                             uint32_t pixel, uint32_t sample, PathResult* result) {
+  path_count_ray(result, steps);
+  ShadowRay sr = path_shade(s, p, st, hit, pixel, sample);
+  if (sr.valid) {
+    path_resolve_shadow(st, &sr,
+                        scene_trace_steps(&s->tree, sr.org, sr.dir, 0.0f, sr.tmax, 1, &steps CO_ALPHA_ARG(sr.alpha_seed)));
+    path_count_ray(result, steps);
+  }
+}
+
 /* A started path to its end, one ray and its shadow ray at a time. */
 CO_INLINE void path_continue(const SceneView* s, const RenderParams* p, PathState* st, uint32_t pixel, uint32_t sample,
                              PathResult* result) {
   while (st->status == PATH_ALIVE) {
     uint32_t steps = 0u;
     HitOut hit = scene_trace_steps(&s->tree, st->org, st->dir, 0.0f, INFINITY, 0, &steps CO_ALPHA_ARG(st->alpha_seed));
-    path_count_ray(result, steps);
-    ShadowRay sr = path_shade(s, p, st, hit, pixel, sample);
-    if (sr.valid) {
-      path_resolve_shadow(st, &sr,
-                          scene_trace_steps(&s->tree, sr.org, sr.dir, 0.0f, sr.tmax, 1, &steps CO_ALPHA_ARG(sr.alpha_seed)));
-      path_count_ray(result, steps);
-    }
+    path_take_hit(s, p, st, hit, steps, pixel, sample, result);
   }
   result->radiance = st->radiance;
 }
@@ -581,21 +587,20 @@ CO_INLINE PathResult trace_path(const SceneView* s, const RenderParams* p, uint3
 /* Two samples' paths in lock step, for CPUs: their rays walk the tree in turn (bvh8f_trace_pair),
  * so the core waits on two chains of node loads at once, and their set-up and shading are two
  * independent chains of arithmetic in one stream. `a` and `b` are the started paths (path_start)
- * of samples `sample_a` and `sample_b`; each computes exactly what trace_path computes for it, and
- * once one ends, the other goes on alone. */
+ * of samples `sample_a` and `sample_b`, whose camera rays met hit_a and hit_b after visiting
+ * steps_a and steps_b nodes (bvh8f_trace_packet); each computes exactly what trace_path computes
+ * for it, and once one ends, the other goes on alone. */
 CO_INLINE void trace_path_pair(const SceneView* s, const RenderParams* p, uint32_t pixel, uint32_t sample_a,
-                               uint32_t sample_b, PathState a, PathState b, PathResult* ra, PathResult* rb) {
+                               uint32_t sample_b, PathState a, PathState b, HitOut hit_a, HitOut hit_b,
+                               uint32_t steps_a, uint32_t steps_b, PathResult* ra, PathResult* rb) {
   *ra = path_result_none();
   *rb = path_result_none();
-  while (a.status == PATH_ALIVE && b.status == PATH_ALIVE) {
+  for (;;) {
+    path_count_ray(ra, steps_a);
+    path_count_ray(rb, steps_b);
+    ShadowRay sa = path_shade(s, p, &a, hit_a, pixel, sample_a);
+    ShadowRay sb = path_shade(s, p, &b, hit_b, pixel, sample_b);
     Bvh8fWalk wa, wb;
-    bvh8f_walk_start(&s->tree, &wa, a.org, a.dir, 0.0f, INFINITY, 0 CO_ALPHA_ARG(a.alpha_seed));
-    bvh8f_walk_start(&s->tree, &wb, b.org, b.dir, 0.0f, INFINITY, 0 CO_ALPHA_ARG(b.alpha_seed));
-    bvh8f_trace_pair(&s->tree, &wa, &wb);
-    path_count_ray(ra, wa.count);
-    path_count_ray(rb, wb.count);
-    ShadowRay sa = path_shade(s, p, &a, wa.hit, pixel, sample_a);
-    ShadowRay sb = path_shade(s, p, &b, wb.hit, pixel, sample_b);
     if (sa.valid || sb.valid) {
       if (sa.valid) bvh8f_walk_start(&s->tree, &wa, sa.org, sa.dir, 0.0f, sa.tmax, 1 CO_ALPHA_ARG(sa.alpha_seed));
       if (sb.valid) bvh8f_walk_start(&s->tree, &wb, sb.org, sb.dir, 0.0f, sb.tmax, 1 CO_ALPHA_ARG(sb.alpha_seed));
@@ -613,9 +618,26 @@ CO_INLINE void trace_path_pair(const SceneView* s, const RenderParams* p, uint32
         path_count_ray(rb, wb.count);
       }
     }
+    if (a.status != PATH_ALIVE || b.status != PATH_ALIVE) break;
+    bvh8f_walk_start(&s->tree, &wa, a.org, a.dir, 0.0f, INFINITY, 0 CO_ALPHA_ARG(a.alpha_seed));
+    bvh8f_walk_start(&s->tree, &wb, b.org, b.dir, 0.0f, INFINITY, 0 CO_ALPHA_ARG(b.alpha_seed));
+    bvh8f_trace_pair(&s->tree, &wa, &wb);
+    hit_a = wa.hit;
+    hit_b = wb.hit;
+    steps_a = wa.count;
+    steps_b = wb.count;
   }
   path_continue(s, p, &a, pixel, sample_a, ra);
   path_continue(s, p, &b, pixel, sample_b, rb);
+}
+
+/* A started path whose camera ray met `hit` after `steps` nodes (bvh8f_trace_packet) to its end. */
+CO_INLINE PathResult trace_path_from_hit(const SceneView* s, const RenderParams* p, PathState st, HitOut hit,
+                                         uint32_t steps, uint32_t pixel, uint32_t sample) {
+  PathResult result = path_result_none();
+  path_take_hit(s, p, &st, hit, steps, pixel, sample, &result);
+  path_continue(s, p, &st, pixel, sample, &result);
+  return result;
 }
 
 /* A started path whose camera ray misses the scene's box (path_start_batch): what trace_path gives
