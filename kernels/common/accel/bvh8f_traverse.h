@@ -271,6 +271,10 @@ CO_INLINE void bvh8f_packet_begin(Bvh8fPacket* k, co_vec3 dir) {
     co_f8_store(co_f8_splat(0.0f), k->far_o[a]);
     co_f8_store(co_f8_splat(1.0f), k->inv[a]);
   }
+  for (int l = 0; l < BVH8F_PACKET; ++l) {
+    k->hit[l].t = INFINITY; k->hit[l].u = 0.0f; k->hit[l].v = 0.0f; k->hit[l].triangle = HIT_NONE;
+    k->count[l] = 0u;
+  }
   k->lanes = 0u;
   k->near_x = dir.x < 0.0f ? 1 : 0; k->near_y = dir.y < 0.0f ? 3 : 2; k->near_z = dir.z < 0.0f ? 5 : 4;
 }
@@ -281,7 +285,8 @@ CO_INLINE int bvh8f_packet_fits(const Bvh8fPacket* k, co_vec3 dir) {
          (dir.z < 0.0f ? 5 : 4) == k->near_z;
 }
 
-/* Lane `lane` of packet `k` takes the closest-hit ray (org, dir) in (0, infinity); it must fit. */
+/* Lane `lane` (not yet taken) of packet `k` takes the closest-hit ray (org, dir) in (0, infinity); it
+ * must fit. */
 CO_INLINE void bvh8f_packet_add(const Bvh8fView* bvh, Bvh8fPacket* k, uint32_t lane, co_vec3 org,
                                 co_vec3 dir CO_ALPHA_PARAM) {
   k->wr[lane] = watertight_ray(org, dir);
@@ -297,8 +302,6 @@ CO_INLINE void bvh8f_packet_add(const Bvh8fView* bvh, Bvh8fPacket* k, uint32_t l
   k->near_o[0][lane] = n.x; k->near_o[1][lane] = n.y; k->near_o[2][lane] = n.z;
   k->far_o[0][lane] = f.x; k->far_o[1][lane] = f.y; k->far_o[2][lane] = f.z;
   k->inv[0][lane] = inv.x; k->inv[1][lane] = inv.y; k->inv[2][lane] = inv.z;
-  k->hit[lane].t = INFINITY; k->hit[lane].u = 0.0f; k->hit[lane].v = 0.0f; k->hit[lane].triangle = HIT_NONE;
-  k->count[lane] = 0u;
   k->lanes |= 1u << lane;
 }
 
