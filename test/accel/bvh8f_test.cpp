@@ -38,7 +38,7 @@ std::vector<Triangle> leaf_entries(const Bvh8f& bvh) {
 
 // Walks the tree from the root (with StructureTally's checks): each node in depth-first order (each
 // node before its children, a lane's subtree after the lanes before it); leaves of at most four
-// triangles, in the lanes of their blocks, the unused lanes copies of the last; unused lanes BVH4_EMPTY at +infinity (all six planes); reserved words zero; no node
+// triangles, in the lanes of their blocks, the unused lanes copies of the last; unused lanes BVH4_EMPTY at +infinity (all six planes), after the used ones; reserved words zero; no node
 // without children.
 std::vector<std::string> structure_errors(const Bvh8f& bvh, const KdTree& kept) {
   StructureTally tally(bvh.nodes.size(), leaf_entries(bvh), kept);
@@ -57,6 +57,9 @@ std::vector<std::string> structure_errors(const Bvh8f& bvh, const KdTree& kept) 
       const float lo[3] = {n.planes[0][lane], n.planes[2][lane], n.planes[4][lane]};
       const float hi[3] = {n.planes[1][lane], n.planes[3][lane], n.planes[5][lane]};
       if (ref == BVH4_EMPTY) {
+        // the packet walk stops at a node's first empty lane (bvh8f_trace_packet)
+        if (lane + 1 < 8 && n.child[lane + 1] != BVH4_EMPTY)
+          errors.push_back(fmt::format("node {} lane {}: an empty lane before a used one", index, lane));
         for (int a = 0; a < 3; ++a)
           if (lo[a] != INFINITY || hi[a] != INFINITY)
             errors.push_back(fmt::format("node {} lane {}: empty lane with a box", index, lane));
