@@ -37,39 +37,36 @@ CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
     /* camera rays that miss the scene end at once; the others walk the tree as one packet (where
      * they share an octant, else each alone), then their paths go on in pairs, an odd one alone, and
      * every sample reaches the film in sample order */
-    Bvh8fPacket camera;
-    bvh8f_packet_begin(&camera, start[0].dir);
-    int one_octant = 1;
     for (uint32_t j = 0u; j < m; ++j) {
-      if ((outside >> j) & 1u) {
+      if ((outside >> j) & 1u)
         results[j] = trace_path_outside(&s, &p, start[j], pixel, first + j);
-      } else {
-        one_octant &= bvh8f_packet_fits(&camera, start[j].dir);
+      else
         walked[n++] = j;
-      }
     }
-    if (one_octant) {
+    if (n != 0u) { /* a pixel of the background has none */
+      Bvh8fPacket camera;
+      bvh8f_packet_begin(&camera, start[walked[0]].dir);
+      int one_octant = 1;
+      for (uint32_t j = 1u; j < n; ++j) one_octant &= bvh8f_packet_fits(&camera, start[walked[j]].dir);
       for (uint32_t j = 0u; j < n; ++j) {
         const PathState* st = &start[walked[j]];
-        bvh8f_packet_add(&s.tree, &camera, j, st->org, st->dir CO_ALPHA_ARG(st->alpha_seed));
+        if (one_octant)
+          bvh8f_packet_add(&s.tree, &camera, j, st->org, st->dir CO_ALPHA_ARG(st->alpha_seed));
+        else
+          camera.hit[j] = scene_trace_steps(&s.tree, st->org, st->dir, 0.0f, INFINITY, 0,
+                                            &camera.count[j] CO_ALPHA_ARG(st->alpha_seed));
       }
-      bvh8f_trace_packet(&s.tree, &camera);
-    } else {
-      for (uint32_t j = 0u; j < n; ++j) {
-        const PathState* st = &start[walked[j]];
-        camera.hit[j] = scene_trace_steps(&s.tree, st->org, st->dir, 0.0f, INFINITY, 0,
-                                          &camera.count[j] CO_ALPHA_ARG(st->alpha_seed));
+      if (one_octant) bvh8f_trace_packet(&s.tree, &camera);
+      uint32_t k = 0u;
+      for (; k + 1u < n; k += 2u) {
+        uint32_t a = walked[k], b = walked[k + 1u];
+        trace_path_pair(&s, &p, pixel, first + a, first + b, start[a], start[b], camera.hit[k],
+                        camera.hit[k + 1u], camera.count[k], camera.count[k + 1u], &results[a], &results[b]);
       }
+      if (k < n)
+        results[walked[k]] =
+            trace_path_from_hit(&s, &p, start[walked[k]], camera.hit[k], camera.count[k], pixel, first + walked[k]);
     }
-    uint32_t k = 0u;
-    for (; k + 1u < n; k += 2u) {
-      uint32_t a = walked[k], b = walked[k + 1u];
-      trace_path_pair(&s, &p, pixel, first + a, first + b, start[a], start[b], camera.hit[k], camera.hit[k + 1u],
-                      camera.count[k], camera.count[k + 1u], &results[a], &results[b]);
-    }
-    if (k < n)
-      results[walked[k]] =
-          trace_path_from_hit(&s, &p, start[walked[k]], camera.hit[k], camera.count[k], pixel, first + walked[k]);
     for (uint32_t j = 0u; j < m; ++j) naive_add_sample(&acc, &rays, &max_steps, &dropped, results[j]);
   }
 #else
