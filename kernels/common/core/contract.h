@@ -38,10 +38,16 @@
 #define BOUNCE_ROWS 64u
 #define COUNTER_WORDS (COUNTER_COUNT + BOUNCE_ROWS * BOUNCE_FIGURES)
 
-/* The megakernel's counters[]. */
+/* The megakernel's counters[]: NAIVE_COUNTER_SLOTS copies, a 64-byte line apart, each work-group adding
+ * to the copy of its group index modulo the slot count (the host sums the rays and takes the most of
+ * the steps over the slots). One shared line, written by every work item of every core, cost the CPU
+ * a line transfer per pixel and pass. */
 #define NAIVE_COUNTER_RAYS 0      /* rays traced */
 #define NAIVE_COUNTER_MAX_STEPS 1 /* the most KD-tree nodes one ray visited */
 #define NAIVE_COUNTER_COUNT 2
+#define NAIVE_COUNTER_STRIDE 16u  /* words from one slot to the next: a 64-byte line */
+#define NAIVE_COUNTER_SLOTS 16u
+#define NAIVE_COUNTER_WORDS (NAIVE_COUNTER_STRIDE * NAIVE_COUNTER_SLOTS)
 
 /* ---- Limits ---------------------------------------------------------------------------------- */
 #define PTH_MAX_LEVELS 16 /* the deepest subtree pth_walk_and_code walks (its private stack) */

@@ -74,8 +74,9 @@ CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
     naive_add_sample(&acc, &rays, &max_steps, &dropped, trace_path(&s, &p, pixel, p.sample_offset + i));
 #endif
   film[pixel] = acc;
-  co_atomic_add(&counters[NAIVE_COUNTER_RAYS], rays);
-  co_atomic_max(&counters[NAIVE_COUNTER_MAX_STEPS], max_steps);
+  CO_GLOBAL uint32_t* slot = &counters[(co_group_id() % NAIVE_COUNTER_SLOTS) * NAIVE_COUNTER_STRIDE];
+  co_atomic_add(&slot[NAIVE_COUNTER_RAYS], rays);
+  co_atomic_max(&slot[NAIVE_COUNTER_MAX_STEPS], max_steps);
   if (dropped) co_atomic_add(dropped_samples, dropped);
 }
 

@@ -37,10 +37,15 @@ class NaiveMethod final : public PassLauncher {
     args_.bind(kernel_);
     LaunchLog log;
     log.launch(cl_, kernel_, "render_naive", pass_pixel_count(&p));
-    std::array<std::uint32_t, NAIVE_COUNTER_COUNT> read{};
+    std::array<std::uint32_t, NAIVE_COUNTER_WORDS> read{};
     cl_.read(counters_, 0, sizeof(read), read.data());
     cl_.write(counters_, 0, sizeof(kZeros), kZeros.data(), false);
-    PassOutput out{read[NAIVE_COUNTER_RAYS], log.collect(), read[NAIVE_COUNTER_MAX_STEPS]};
+    std::uint32_t rays = 0, max_steps = 0;  // the slots' sum stays below 2^32 (max_per_launch_)
+    for (std::uint32_t slot = 0; slot < NAIVE_COUNTER_WORDS; slot += NAIVE_COUNTER_STRIDE) {
+      rays += read[slot + NAIVE_COUNTER_RAYS];
+      max_steps = std::max(max_steps, read[slot + NAIVE_COUNTER_MAX_STEPS]);
+    }
+    PassOutput out{rays, log.collect(), max_steps};
     out.host_reads = 1;  // the counters, once the megakernel is done
     return out;
   }
@@ -51,7 +56,7 @@ class NaiveMethod final : public PassLauncher {
   }
 
  private:
-  static constexpr std::array<std::uint32_t, NAIVE_COUNTER_COUNT> kZeros{};
+  static constexpr std::array<std::uint32_t, NAIVE_COUNTER_WORDS> kZeros{};
   const Device& cl_;
   DeviceProgram program_;
   DeviceKernel kernel_;
