@@ -298,8 +298,7 @@ CO_INLINE void bvh4_continue(const Bvh4View* bvh, const Bvh4Ray* r, float tmin, 
  * receives the number of nodes and leaves visited. */
 CO_INLINE HitOut bvh4_trace_steps(const Bvh4View* bvh, co_vec3 org, co_vec3 dir, float tmin, float tmax,
                                   int any_hit, uint32_t* steps CO_ALPHA_PARAM) {
-  HitOut hit;
-  hit.t = tmax; hit.u = 0.0f; hit.v = 0.0f; hit.triangle = HIT_NONE;
+  HitOut hit = hit_none(tmax);
   Bvh4Ray r = bvh4_ray(org, dir CO_ALPHA_ARG(alpha_seed));
   uint32_t stack_ref[BVH4_STACK];
   float stack_t[BVH4_STACK];

@@ -161,8 +161,7 @@ CO_INLINE uint32_t bvh8_node_hits(const Bvh8Ray* r, co_uint4 h, co_uint4 ix, co_
  * the triangles tested. */
 CO_INLINE HitOut bvh8_trace_steps(const Bvh8View* bvh, co_vec3 org, co_vec3 dir, float tmin, float tmax,
                                   int any_hit, uint32_t* steps CO_ALPHA_PARAM) {
-  HitOut hit;
-  hit.t = tmax; hit.u = 0.0f; hit.v = 0.0f; hit.triangle = HIT_NONE;
+  HitOut hit = hit_none(tmax);
   Bvh8Ray r = bvh8_ray(org, dir CO_ALPHA_ARG(alpha_seed));
 #if defined(COHORT_FEATURE_ALPHA)
   r.wr.alpha = &bvh->alpha;

@@ -177,7 +177,7 @@ typedef struct Bvh8fWalk {
 
 CO_FORCE_INLINE void bvh8f_walk_start(const Bvh8fView* bvh, Bvh8fWalk* w, co_vec3 org, co_vec3 dir, float tmin,
                                       float tmax, int any_hit CO_ALPHA_PARAM) {
-  w->hit.t = tmax; w->hit.u = 0.0f; w->hit.v = 0.0f; w->hit.triangle = HIT_NONE;
+  w->hit = hit_none(tmax);
   w->r = bvh8f_ray(org, dir CO_ALPHA_ARG(alpha_seed));
 #if defined(COHORT_FEATURE_ALPHA)
   w->r.wr.alpha = &bvh->alpha;
@@ -272,7 +272,7 @@ CO_INLINE void bvh8f_packet_begin(Bvh8fPacket* k, co_vec3 dir) {
     co_f8_store(co_f8_splat(1.0f), k->inv[a]);
   }
   for (int l = 0; l < BVH8F_PACKET; ++l) {
-    k->hit[l].t = INFINITY; k->hit[l].u = 0.0f; k->hit[l].v = 0.0f; k->hit[l].triangle = HIT_NONE;
+    k->hit[l] = hit_none(INFINITY);
     k->count[l] = 0u;
   }
   k->lanes = 0u;

@@ -193,8 +193,7 @@ CO_INLINE co_vec3 kd_inverse(co_vec3 dir) { return v3(1.0f / dir.x, 1.0f / dir.y
 CO_INLINE HitOut kd_resume(const KdTreeView* tree, co_vec3 org, co_vec3 dir, float tmin, float tmax, int any_hit,
                            uint32_t node_index, float t0, float t1, KdStackEntry* stack, int sp,
                            uint32_t* steps CO_ALPHA_PARAM) {
-  HitOut hit;
-  hit.t = tmax; hit.u = 0.0f; hit.v = 0.0f; hit.triangle = HIT_NONE;
+  HitOut hit = hit_none(tmax);
   co_vec3 inv_dir = kd_inverse(dir);
   WatertightRay wr = watertight_ray(org, dir);
 #if defined(COHORT_FEATURE_ALPHA)
@@ -237,10 +236,8 @@ CO_INLINE HitOut kd_trace_steps(const KdTreeView* tree, co_vec3 org, co_vec3 dir
                                 uint32_t* steps CO_ALPHA_PARAM) {
   float t0, t1;
   if (!kd_begin(tree, org, kd_inverse(dir), tmin, tmax, &t0, &t1)) {
-    HitOut miss;
-    miss.t = tmax; miss.u = 0.0f; miss.v = 0.0f; miss.triangle = HIT_NONE;
     if (steps) *steps = 0u;
-    return miss;
+    return hit_none(tmax);
   }
   KdStackEntry stack[KD_MAX_DEPTH];
   return kd_resume(tree, org, dir, tmin, tmax, any_hit, 0u, t0, t1, stack, 0, steps CO_ALPHA_ARG(alpha_seed));

@@ -368,4 +368,11 @@ typedef struct HitOut {
 } HitOut;
 CO_STATIC_ASSERT(sizeof(HitOut) == 16, "HitOut must stay 16 bytes");
 
+/* No triangle (yet) for a ray in (tmin, tmax): where every traversal starts and what a miss returns. */
+CO_INLINE HitOut hit_none(float tmax) {
+  HitOut hit;
+  hit.t = tmax; hit.u = 0.0f; hit.v = 0.0f; hit.triangle = HIT_NONE;
+  return hit;
+}
+
 #endif

@@ -113,7 +113,7 @@ CO_INLINE void kd_spec_start(KdSpeculativeRay* r, int active, co_vec3 org, co_ve
   r->sp = sp;
   r->unordered = 0;  /* a restored stack: the caller sets it (kd_stack_unordered) */
   r->visited = 0u;
-  r->hit.t = tmax; r->hit.u = 0.0f; r->hit.v = 0.0f; r->hit.triangle = HIT_NONE;
+  r->hit = hit_none(tmax);
 }
 
 #if defined(__OPENCL_VERSION__) && defined(cl_khr_subgroups)

@@ -25,12 +25,7 @@ CO_INLINE uint64_t pth_skip(CO_GLOBAL TraversalState* traversal, uint32_t slot, 
 }
 
 CO_INLINE void pth_miss(CO_GLOBAL HitOut* hits, uint32_t slot) {
-  HitOut miss;
-  miss.t = INFINITY;
-  miss.u = 0.0f;
-  miss.v = 0.0f;
-  miss.triangle = HIT_NONE;
-  hits[slot] = miss;
+  hits[slot] = hit_none(INFINITY);
 }
 
 /* The walk of launch index i (< count): saves where the traversal stopped and returns the ray's
@@ -187,8 +182,7 @@ CO_KERNEL pth_resume(CO_PARAMS(PTH_RESUME_PARAMS)) {
     }
     /* with COHORT_FEATURE_ALPHA the origin's w is the ray's alpha seed (PATH_SLOT, core/path_slot.h) */
     Bvh4Ray r = bvh4_ray(org, dir CO_ALPHA_ARG(alpha_seed_from_float(path_org[from].w)));
-    HitOut hit;
-    hit.t = INFINITY; hit.u = 0.0f; hit.v = 0.0f; hit.triangle = HIT_NONE;
+    HitOut hit = hit_none(INFINITY);
     bvh4_continue(&s.tree, &r, 0.0f, 0, &hit, state.node, state.tmin, stack_ref, stack_t, (int)state.depth, &visited);
     hits[slot] = hit;
 #else

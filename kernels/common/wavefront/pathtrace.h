@@ -647,10 +647,8 @@ CO_INLINE PathResult trace_path_from_hit(const SceneView* s, const RenderParams*
 CO_INLINE PathResult trace_path_outside(const SceneView* s, const RenderParams* p, PathState st, uint32_t pixel,
                                         uint32_t sample) {
   PathResult result = path_result_none();
-  HitOut none;
-  none.t = INFINITY; none.u = 0.0f; none.v = 0.0f; none.triangle = HIT_NONE;
   path_count_ray(&result, 1u);
-  path_shade(s, p, &st, none, pixel, sample); /* the sky: the path ends */
+  path_shade(s, p, &st, hit_none(INFINITY), pixel, sample); /* the sky: the path ends */
   result.radiance = st.radiance;
   return result;
 }

@@ -65,11 +65,7 @@ CO_KERNEL trace_rays_pth(CO_PARAMS(TRACE_RAYS_PTH_PARAMS)) {
   co_vec3 org = v3_from4(r.origin), dir = v3_from4(r.dir);
   co_vec3 inv_dir = kd_inverse(dir);
   float t0, t1;
-  HitOut hit;
-  hit.t = r.dir.w;
-  hit.u = 0.0f;
-  hit.v = 0.0f;
-  hit.triangle = HIT_NONE;
+  HitOut hit = hit_none(r.dir.w);
   uint32_t bits = 0u;
   if (kd_begin(&tree, org, inv_dir, r.origin.w, r.dir.w, &t0, &t1)) {
     KdStackEntry stack[KD_MAX_DEPTH];
