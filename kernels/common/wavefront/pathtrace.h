@@ -569,17 +569,12 @@ CO_INLINE PathResult path_result_none(void) {
   return result;
 }
 
-/* A started path (path_start, path_start_batch) to its end. */
-CO_INLINE PathResult trace_started_path(const SceneView* s, const RenderParams* p, PathState st, uint32_t pixel,
-                                        uint32_t sample) {
-  PathResult result = path_result_none();
-  path_continue(s, p, &st, pixel, sample, &result);
-  return result;
-}
-
 /* The whole path in one call: what the NAIVE megakernel runs per sample. */
 CO_INLINE PathResult trace_path(const SceneView* s, const RenderParams* p, uint32_t pixel, uint32_t sample) {
-  return trace_started_path(s, p, path_start(p, pixel, sample), pixel, sample);
+  PathResult result = path_result_none();
+  PathState st = path_start(p, pixel, sample);
+  path_continue(s, p, &st, pixel, sample, &result);
+  return result;
 }
 
 #if defined(COHORT_PAIRED_WALKS) && defined(COHORT_ACCEL_BVH8F)
