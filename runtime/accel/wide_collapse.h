@@ -64,37 +64,83 @@ struct Collapser {
   using Kids = std::array<std::uint32_t, Width>;
 
   Collapser(const binary_bvh::Tree& builder, float pad_)
-      : b(builder), pad(pad_), subtree_nodes(std::make_unique_for_overwrite<std::uint32_t[]>(2 * b.size - 1)) {}
+      : b(builder),
+        pad(pad_),
+        subtree_nodes(std::make_unique_for_overwrite<std::uint32_t[]>(2 * b.size - 1)),
+        open_lanes(std::make_unique_for_overwrite<std::uint32_t[]>(2 * b.size - 1)) {}
 
-  // The lanes of the wide node at binary node `slot`: its children, then the inner child of
-  // largest area opened until every lane is full.
+  // Which binary nodes become the lanes of each wide node: the choice that minimises the tree's SAH
+  // (the cost emit sums), made bottom-up over the binary tree before the collapse (plan). For a
+  // subtree x and a budget of j lanes, D(x, j) is the least cost of covering x with at most j lanes:
+  // x itself in one lane (a leaf, or an inner node that roots a wide node of its own: kNodeCost times
+  // its area plus its children spread over Width lanes) or x opened, its children sharing the j lanes
+  // k and j - k. A lane's subtree gets at most Width - 1 of its parent's lanes, so D is kept for
+  // budgets 1 to Width - 1. `open_lanes` keeps, per inner slot, the best k for each budget j of 2 to
+  // Width (3 bits each, from bit 0) and for j below Width whether one lane did better (a bit each,
+  // from bit kWholeBits).
+  static_assert(Width >= 2 && Width <= 8, "open_lanes packs 4 bits per lane budget");
+  static constexpr int kWholeBits = 3 * (Width - 1);
+  using Costs = std::array<double, Width>;  // D(x, j) at [j], j = 1..Width - 1
+  std::unique_ptr<std::uint32_t[]> open_lanes;
+
+  static int split_of(std::uint32_t packed, int j) { return int((packed >> (3 * (j - 2))) & 7u) + 1; }
+  static bool whole_at(std::uint32_t packed, int j) { return (packed >> (kWholeBits + j - 2)) & 1u; }
+
+  Costs plan(std::uint32_t slot) {
+    const binary_bvh::Node& x = b.nodes[slot];
+    Costs d{};
+    if (x.count) {
+      d.fill(double(x.box().area()) * shape.tests(x.count));
+      return d;
+    }
+    std::array<Costs, 2> kid;
+    const std::uint32_t kids[2] = {x.left, x.right};
+    binary_bvh::for_children(x.references, 2, [&](int i) { kid[i] = plan(kids[i]); });
+    std::uint32_t packed = 0;
+    std::array<double, Width + 1> opened{};  // x opened into at most j lanes, at [j]
+    for (int j = 2; j <= Width; ++j) {
+      int best_k = 1;
+      double best = kid[0][1] + kid[1][j - 1];
+      for (int k = 2; k < j; ++k) {
+        const double c = kid[0][k] + kid[1][j - k];
+        if (c < best) { best = c; best_k = k; }
+      }
+      opened[j] = best;
+      packed |= std::uint32_t(best_k - 1) << (3 * (j - 2));
+    }
+    const double whole = binary_bvh::kNodeCost * double(x.box().area()) + opened[Width];
+    d[1] = whole;
+    for (int j = 2; j < Width; ++j) {
+      d[j] = std::min(whole, opened[j]);
+      if (whole <= opened[j]) packed |= 1u << (kWholeBits + j - 2);
+    }
+    open_lanes[slot] = packed;
+    return d;
+  }
+
+  // Adds the lanes that cover subtree `slot` with at most `budget` lanes, as plan chose, to kids.
+  void spread(std::uint32_t slot, int budget, Kids& kids, int& n) const {
+    const binary_bvh::Node& x = b.nodes[slot];
+    if (x.count || budget == 1 || whole_at(open_lanes[slot], budget)) {
+      kids[n++] = slot;
+      return;
+    }
+    const int k = split_of(open_lanes[slot], budget);
+    spread(x.left, k, kids, n);
+    spread(x.right, budget - k, kids, n);
+  }
+
+  // The lanes of the wide node at binary node `slot`: its subtree spread over Width lanes as plan
+  // chose (a root that is a leaf: one lane).
   int lanes(std::uint32_t slot, Kids& kids) const {
     int n = 0;
     if (b.nodes[slot].count) {
-      kids[n++] = slot;  // a root that is a leaf: one lane
-    } else {
-      kids[n++] = b.nodes[slot].left;
-      kids[n++] = b.nodes[slot].right;
+      kids[n++] = slot;
+      return n;
     }
-    // each kid's area once (a leaf's is never compared)
-    std::array<float, Width> area{};
-    const auto measure = [&](int i) {
-      const binary_bvh::Node& k = b.nodes[kids[i]];
-      area[i] = k.count ? -1.0f : k.box().area();
-    };
-    for (int i = 0; i < n; ++i) measure(i);
-    while (n < Width) {
-      int widest = -1;
-      for (int i = 0; i < n; ++i) {
-        if (!(area[i] < 0.0f) && (widest < 0 || area[i] > area[widest])) widest = i;
-      }
-      if (widest < 0) break;
-      const binary_bvh::Node& k = b.nodes[kids[widest]];
-      kids[widest] = k.left;
-      kids[n] = k.right;
-      measure(widest);
-      measure(n++);
-    }
+    const int k = split_of(open_lanes[slot], Width);
+    spread(b.nodes[slot].left, k, kids, n);
+    spread(b.nodes[slot].right, Width - k, kids, n);
     return n;
   }
 
@@ -148,6 +194,7 @@ struct Collapser {
 
   // The wide tree into `nodes` (resized to fit).
   Sums collapse(std::vector<WideNode>& nodes) {
+    plan(0);
     nodes.resize(count(0));
     out = nodes.data();
     return emit(0, 0, 1);
