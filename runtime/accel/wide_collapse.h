@@ -66,11 +66,12 @@ struct Collapser {
   Collapser(const binary_bvh::Tree& builder, float pad_)
       : b(builder),
         pad(pad_),
-        subtree_nodes(std::make_unique_for_overwrite<std::uint32_t[]>(2 * b.size - 1)),
-        open_lanes(std::make_unique_for_overwrite<std::uint32_t[]>(2 * b.size - 1)) {}
+        subtree_nodes(std::make_unique_for_overwrite<std::uint32_t[]>(2 * b.size - 1)) {}
 
-  // Which binary nodes become the lanes of each wide node: the choice that minimises the tree's SAH
-  // (the cost emit sums), made bottom-up over the binary tree before the collapse (plan). For a
+  // Which binary nodes become the lanes of each wide node. With least_sah (the 8-wide BVH with float
+  // planes, for CPUs): the choice that minimises the tree's SAH (the cost emit sums), made bottom-up
+  // over the binary tree before the collapse (plan). The 4-wide BVH keeps the widest-first rule,
+  // which traced 1-4 % faster on a GPU (docs/design.md, "Collapsing the binary tree"). For a
   // subtree x and a budget of j lanes, D(x, j) is the least cost of covering x with at most j lanes:
   // x itself in one lane (a leaf, or an inner node that roots a wide node of its own: kNodeCost times
   // its area plus its children spread over Width lanes) or x opened, its children sharing the j lanes
@@ -81,7 +82,8 @@ struct Collapser {
   static_assert(Width >= 2 && Width <= 8, "open_lanes packs 4 bits per lane budget");
   static constexpr int kWholeBits = 3 * (Width - 1);
   using Costs = std::array<double, Width>;  // D(x, j) at [j], j = 1..Width - 1
-  std::unique_ptr<std::uint32_t[]> open_lanes;
+  bool least_sah = false;
+  std::unique_ptr<std::uint32_t[]> open_lanes;  // plan's choices, with least_sah
 
   static int split_of(std::uint32_t packed, int j) { return int((packed >> (3 * (j - 2))) & 7u) + 1; }
   static bool whole_at(std::uint32_t packed, int j) { return (packed >> (kWholeBits + j - 2)) & 1u; }
@@ -130,17 +132,42 @@ struct Collapser {
     spread(x.right, budget - k, kids, n);
   }
 
-  // The lanes of the wide node at binary node `slot`: its subtree spread over Width lanes as plan
-  // chose (a root that is a leaf: one lane).
+  // The lanes of the wide node at binary node `slot` (a root that is a leaf: one lane): with
+  // least_sah its subtree spread over Width lanes as plan chose; else its children, then the inner
+  // child of largest area opened until every lane is full (Embree's rule).
   int lanes(std::uint32_t slot, Kids& kids) const {
     int n = 0;
     if (b.nodes[slot].count) {
       kids[n++] = slot;
       return n;
     }
-    const int k = split_of(open_lanes[slot], Width);
-    spread(b.nodes[slot].left, k, kids, n);
-    spread(b.nodes[slot].right, Width - k, kids, n);
+    if (least_sah) {
+      const int k = split_of(open_lanes[slot], Width);
+      spread(b.nodes[slot].left, k, kids, n);
+      spread(b.nodes[slot].right, Width - k, kids, n);
+      return n;
+    }
+    kids[n++] = b.nodes[slot].left;
+    kids[n++] = b.nodes[slot].right;
+    // each kid's area once (a leaf's is never compared)
+    std::array<float, Width> area{};
+    const auto measure = [&](int i) {
+      const binary_bvh::Node& k = b.nodes[kids[i]];
+      area[i] = k.count ? -1.0f : k.box().area();
+    };
+    for (int i = 0; i < n; ++i) measure(i);
+    while (n < Width) {
+      int widest = -1;
+      for (int i = 0; i < n; ++i) {
+        if (!(area[i] < 0.0f) && (widest < 0 || area[i] > area[widest])) widest = i;
+      }
+      if (widest < 0) break;
+      const binary_bvh::Node& k = b.nodes[kids[widest]];
+      kids[widest] = k.left;
+      kids[n] = k.right;
+      measure(widest);
+      measure(n++);
+    }
     return n;
   }
 
@@ -194,7 +221,10 @@ struct Collapser {
 
   // The wide tree into `nodes` (resized to fit).
   Sums collapse(std::vector<WideNode>& nodes) {
-    plan(0);
+    if (least_sah) {
+      open_lanes = std::make_unique_for_overwrite<std::uint32_t[]>(2 * b.size - 1);
+      plan(0);
+    }
     nodes.resize(count(0));
     out = nodes.data();
     return emit(0, 0, 1);
@@ -274,6 +304,7 @@ void build(Bvh& bvh, std::span<const Triangle> triangles, const char* tree) {
   const binary_bvh::Tree binary = binary_bvh::build(references, shape);
   Collapser<Node, Width> collapser{binary, binary.pad()};
   collapser.shape = shape;
+  collapser.least_sah = kBlocks;  // the CPU's tree (the Collapser's lanes say why not the GPU's)
   std::vector<std::uint32_t> first_block;
   std::size_t leaf_bytes = 0;
   if constexpr (kBlocks) {

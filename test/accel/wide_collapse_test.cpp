@@ -78,6 +78,7 @@ void expect_least_sah(const std::vector<glm::vec3>& positions, binary_bvh::LeafS
   const binary_bvh::Tree binary = binary_bvh::build(binary_bvh::make_references(kept.triangles), shape);
   wide_collapse::Collapser<WideNode, Width> collapser{binary, binary.pad()};
   collapser.shape = shape;
+  collapser.least_sah = true;
   std::vector<WideNode> nodes;
   const double sah = collapser.collapse(nodes).sah;
   const double least = BruteForceCollapse<Width>(binary, shape).best_tree(0);
