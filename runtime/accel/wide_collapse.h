@@ -64,9 +64,7 @@ struct Collapser {
   using Kids = std::array<std::uint32_t, Width>;
 
   Collapser(const binary_bvh::Tree& builder, float pad_)
-      : b(builder),
-        pad(pad_),
-        subtree_nodes(std::make_unique_for_overwrite<std::uint32_t[]>(2 * b.size - 1)) {}
+      : b(builder), pad(pad_), subtree_nodes(std::make_unique_for_overwrite<std::uint32_t[]>(2 * b.size - 1)) {}
 
   // Which binary nodes become the lanes of each wide node. With least_sah (the 8-wide BVH with float
   // planes, for CPUs): the choice that minimises the tree's SAH (the cost emit sums), made bottom-up
@@ -96,8 +94,8 @@ struct Collapser {
       return d;
     }
     std::array<Costs, 2> kid;
-    const std::uint32_t kids[2] = {x.left, x.right};
-    binary_bvh::for_children(x.references, 2, [&](int i) { kid[i] = plan(kids[i]); });
+    const std::uint32_t children[2] = {x.left, x.right};
+    binary_bvh::for_children(x.references, 2, [&](int i) { kid[i] = plan(children[i]); });
     std::uint32_t packed = 0;
     std::array<double, Width + 1> opened{};  // x opened into at most j lanes, at [j]
     for (int j = 2; j <= Width; ++j) {
@@ -122,14 +120,18 @@ struct Collapser {
 
   // Adds the lanes that cover subtree `slot` with at most `budget` lanes, as plan chose, to kids.
   void spread(std::uint32_t slot, int budget, Kids& kids, int& n) const {
-    const binary_bvh::Node& x = b.nodes[slot];
-    if (x.count || budget == 1 || whole_at(open_lanes[slot], budget)) {
+    if (b.nodes[slot].count || budget == 1 || whole_at(open_lanes[slot], budget)) {
       kids[n++] = slot;
       return;
     }
+    open(slot, budget, kids, n);
+  }
+
+  // Adds the lanes of inner node `slot` opened: its children sharing `budget` lanes as plan chose.
+  void open(std::uint32_t slot, int budget, Kids& kids, int& n) const {
     const int k = split_of(open_lanes[slot], budget);
-    spread(x.left, k, kids, n);
-    spread(x.right, budget - k, kids, n);
+    spread(b.nodes[slot].left, k, kids, n);
+    spread(b.nodes[slot].right, budget - k, kids, n);
   }
 
   // The lanes of the wide node at binary node `slot` (a root that is a leaf: one lane): with
@@ -142,9 +144,7 @@ struct Collapser {
       return n;
     }
     if (least_sah) {
-      const int k = split_of(open_lanes[slot], Width);
-      spread(b.nodes[slot].left, k, kids, n);
-      spread(b.nodes[slot].right, Width - k, kids, n);
+      open(slot, Width, kids, n);
       return n;
     }
     kids[n++] = b.nodes[slot].left;
