@@ -160,20 +160,33 @@ CO_INLINE int bvh8f_intersect_leaf(const CO_GLOBAL Triangle4* block, uint32_t co
   return 0;
 }
 
-/* A walk in progress: the ray, its best hit so far, the node it stands at and its stack. The walk is
- * a loop of bvh8f_walk_step calls, so that a work item can step two walks in turn (bvh8f_trace_pair). */
+/* A walk's ray and its answer: the ray, its best hit so far and the nodes and leaves it visited. The
+ * walk itself runs inside one function (bvh8f_walk_run, bvh8f_trace_pair) from a Bvh8fAt and a
+ * Bvh8fStack of that function's own, so that a work item can step two walks in turn. */
 typedef struct Bvh8fWalk {
   Bvh8fRay r;
   HitOut hit;
   float tmin;
   int any_hit;
-  uint32_t ref; /* the node or leaf to visit next */
-  float ref_t;  /* where the ray enters it */
-  int sp;
   uint32_t count; /* nodes and leaves visited */
-  uint32_t stack_ref[BVH8F_STACK];
-  float stack_t[BVH8F_STACK];
 } Bvh8fWalk;
+
+/* Where a walk stands: the node or leaf to visit next, where the ray enters it, the stack's depth
+ * and the visits so far. Kept apart from the stack's arrays and from the Bvh8fWalk that the caller
+ * holds, in a local whose address only the forced-inline step sees, so that the compiler holds it in
+ * registers: reached through a pointer, or beside an array indexed at run time, it stayed in memory,
+ * a store and a reload on every link of the walk's chain of dependent loads. */
+typedef struct Bvh8fAt {
+  uint32_t ref;
+  float ref_t;
+  int sp;
+  uint32_t count;
+} Bvh8fAt;
+
+typedef struct Bvh8fStack {
+  uint32_t ref[BVH8F_STACK];
+  float t[BVH8F_STACK];
+} Bvh8fStack;
 
 CO_FORCE_INLINE void bvh8f_walk_start(const Bvh8fView* bvh, Bvh8fWalk* w, co_vec3 org, co_vec3 dir, float tmin,
                                       float tmax, int any_hit CO_ALPHA_PARAM) {
@@ -186,35 +199,51 @@ CO_FORCE_INLINE void bvh8f_walk_start(const Bvh8fView* bvh, Bvh8fWalk* w, co_vec
 #endif
   w->tmin = tmin;
   w->any_hit = any_hit;
-  w->ref = 0u; /* the root */
-  w->ref_t = tmin;
-  w->sp = 0;
   w->count = 0u;
 }
 
+/* A started walk at the root. */
+CO_FORCE_INLINE Bvh8fAt bvh8f_walk_root(const Bvh8fWalk* w) {
+  Bvh8fAt at;
+  at.ref = 0u;
+  at.ref_t = w->tmin;
+  at.sp = 0;
+  at.count = 0u;
+  return at;
+}
+
 /* Visits the walk's next node or leaf (or pops one it need not visit); 0 when the walk is over. */
-CO_FORCE_INLINE int bvh8f_walk_step(const Bvh8fView* bvh, Bvh8fWalk* w) {
-  if (!kd_beyond_hit(w->hit.t, w->ref_t)) {
-    ++w->count;
-    if (bvh4_is_leaf(w->ref)) {
-      if (bvh8f_intersect_leaf(&bvh->leaf_blocks[bvh4_leaf_first(w->ref)], bvh4_leaf_count(w->ref), &w->r.wr,
+CO_FORCE_INLINE int bvh8f_walk_step(const Bvh8fView* bvh, Bvh8fWalk* w, Bvh8fAt* at, Bvh8fStack* stack) {
+  if (!kd_beyond_hit(w->hit.t, at->ref_t)) {
+    ++at->count;
+    if (bvh4_is_leaf(at->ref)) {
+      if (bvh8f_intersect_leaf(&bvh->leaf_blocks[bvh4_leaf_first(at->ref)], bvh4_leaf_count(at->ref), &w->r.wr,
                                w->tmin, &w->hit, w->any_hit))
         return 0;
     } else {
-      const CO_GLOBAL Bvh8fNode* n = &bvh->nodes[w->ref];
+      const CO_GLOBAL Bvh8fNode* n = &bvh->nodes[at->ref];
       float enter[8];
       uint32_t mask = bvh8f_enter(n, &w->r, w->tmin, w->hit.t * KD_TERMINATION_SLACK, enter);
       if (mask != 0u) {
-        bvh8f_descend(bvh, n, mask, enter, &w->ref, &w->ref_t, w->stack_ref, w->stack_t, &w->sp);
+        bvh8f_descend(bvh, n, mask, enter, &at->ref, &at->ref_t, stack->ref, stack->t, &at->sp);
         return 1;
       }
     }
   }
-  if (w->sp == 0) return 0;
-  --w->sp;
-  w->ref = w->stack_ref[w->sp];
-  w->ref_t = w->stack_t[w->sp];
+  if (at->sp == 0) return 0;
+  --at->sp;
+  at->ref = stack->ref[at->sp];
+  at->ref_t = stack->t[at->sp];
   return 1;
+}
+
+/* A started walk to its end: w->hit is then its hit and w->count its visits. */
+CO_INLINE void bvh8f_walk_run(const Bvh8fView* bvh, Bvh8fWalk* w) {
+  Bvh8fAt at = bvh8f_walk_root(w);
+  Bvh8fStack stack;
+  while (bvh8f_walk_step(bvh, w, &at, &stack)) {
+  }
+  w->count = at.count;
 }
 
 /* Closest hit (any_hit = 0) or any hit (any_hit = 1) in (tmin, tmax), as kd_trace_steps (with its
@@ -224,8 +253,7 @@ CO_INLINE HitOut bvh8f_trace_steps(const Bvh8fView* bvh, co_vec3 org, co_vec3 di
                                    int any_hit, uint32_t* steps CO_ALPHA_PARAM) {
   Bvh8fWalk w;
   bvh8f_walk_start(bvh, &w, org, dir, tmin, tmax, any_hit CO_ALPHA_ARG(alpha_seed));
-  while (bvh8f_walk_step(bvh, &w)) {
-  }
+  bvh8f_walk_run(bvh, &w);
   if (steps) *steps = w.count;
   return w.hit;
 }
@@ -234,13 +262,17 @@ CO_INLINE HitOut bvh8f_trace_steps(const Bvh8fView* bvh, co_vec3 org, co_vec3 di
  * loads, and two chains in one instruction stream let the core wait on both nodes' loads at once.
  * Each walk visits what it visits alone, so each gets bvh8f_trace_steps' hit. */
 CO_INLINE void bvh8f_trace_pair(const Bvh8fView* bvh, Bvh8fWalk* a, Bvh8fWalk* b) {
+  Bvh8fAt at_a = bvh8f_walk_root(a), at_b = bvh8f_walk_root(b);
+  Bvh8fStack stack_a, stack_b;
   int more_a = 1, more_b = 1;
   while (more_a && more_b) {
-    more_a = bvh8f_walk_step(bvh, a);
-    more_b = bvh8f_walk_step(bvh, b);
+    more_a = bvh8f_walk_step(bvh, a, &at_a, &stack_a);
+    more_b = bvh8f_walk_step(bvh, b, &at_b, &stack_b);
   }
-  while (more_a) more_a = bvh8f_walk_step(bvh, a);
-  while (more_b) more_b = bvh8f_walk_step(bvh, b);
+  while (more_a) more_a = bvh8f_walk_step(bvh, a, &at_a, &stack_a);
+  while (more_b) more_b = bvh8f_walk_step(bvh, b, &at_b, &stack_b);
+  a->count = at_a.count;
+  b->count = at_b.count;
 }
 
 /* ---- Packets: eight rays of one octant walked together ---------------------------------------

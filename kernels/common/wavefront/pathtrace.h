@@ -602,8 +602,7 @@ CO_INLINE void trace_path_pair(const SceneView* s, const RenderParams* p, uint32
       if (sa.valid && sb.valid)
         bvh8f_trace_pair(&s->tree, &wa, &wb);
       else
-        while (bvh8f_walk_step(&s->tree, sa.valid ? &wa : &wb)) {
-        }
+        bvh8f_walk_run(&s->tree, sa.valid ? &wa : &wb);
       if (sa.valid) {
         path_resolve_shadow(&a, &sa, wa.hit);
         path_count_ray(ra, wa.count);
