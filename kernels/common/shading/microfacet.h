@@ -32,11 +32,11 @@ CO_INLINE void co_sincos_2pi(float u, float* s, float* c) {
                   x2 * (1.0f / 362880.0f + x2 * (-1.0f / 39916800.0f))))));
   float cx = 1.0f + x2 * (-0.5f + x2 * (1.0f / 24.0f + x2 * (-1.0f / 720.0f + x2 * (1.0f / 40320.0f +
                   x2 * (-1.0f / 3628800.0f + x2 * (1.0f / 479001600.0f))))));
-  k &= 3;
-  if (k == 0) { *s = sx; *c = cx; }
-  else if (k == 1) { *s = cx; *c = -sx; }
-  else if (k == 2) { *s = -sx; *c = -cx; }
-  else { *s = -cx; *c = sx; }
+  /* the quadrant by selects rather than branches: k is as random as u, so a branch on it missed
+   * about every other time (quadrants 0-3: sin sx, cx, -sx, -cx; cos cx, -sx, -cx, sx) */
+  float sin_r = (k & 1) ? cx : sx, cos_r = (k & 1) ? sx : cx;
+  *s = (k & 2) ? -sin_r : sin_r;
+  *c = ((k + 1) & 2) ? -cos_r : cos_r;
 }
 
 CO_INLINE float co_safe_sqrt(float x) { return sqrt(fmax(x, 0.0f)); }
