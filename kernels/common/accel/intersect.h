@@ -70,7 +70,7 @@ CO_INLINE int intersect_triangle(const WatertightRay* r, co_vec3 p0, co_vec3 p1,
  * intersect_triangle's operations in its order, so each lane's t, u and v are the bits that test
  * gives that triangle alone. A lane whose det is 0 needs no test of its own: its t is NaN or
  * infinite, which tmin < t < tmax rejects. Returns the mask of the lanes hit in (tmin, tmax), lane
- * i in bit i, and writes every lane's t, u and v. */
+ * i in bit i, and writes every lane's t, u and v unless the mask is 0. */
 CO_INLINE uint32_t intersect_triangle4(const WatertightRay* r, const CO_GLOBAL Triangle4* q, float tmin, float tmax,
                                        float* t_out, float* u_out, float* v_out) {
   const co_float4 ox = co_f4_splat(r->org.x), oy = co_f4_splat(r->org.y), oz = co_f4_splat(r->org.z);
@@ -92,6 +92,10 @@ CO_INLINE uint32_t intersect_triangle4(const WatertightRay* r, const CO_GLOBAL T
   const co_float4 zero = co_f4_splat(0.0f);
   const uint32_t negative = co_f4_less(eu, zero) | co_f4_less(ev, zero) | co_f4_less(ew, zero);
   const uint32_t positive = co_f4_less(zero, eu) | co_f4_less(zero, ev) | co_f4_less(zero, ew);
+  const uint32_t inside = ~(negative & positive) & 15u;
+  /* most leaves a ray enters hold no triangle it meets: then no lane needs its t, u and v (the
+   * division and the seven multiplies below), and none is written */
+  if (inside == 0u) return 0u;
   const co_float4 det = co_f4_add(co_f4_add(eu, ev), ew);
   const co_float4 tscaled =
       co_f4_scale(co_f4_add(co_f4_add(co_f4_mul(eu, az), co_f4_mul(ev, bz)), co_f4_mul(ew, cz)), r->sz);
@@ -100,7 +104,7 @@ CO_INLINE uint32_t intersect_triangle4(const WatertightRay* r, const CO_GLOBAL T
   co_f4_store(t, t_out);
   co_f4_store(co_f4_mul(ev, inv_det), u_out);
   co_f4_store(co_f4_mul(ew, inv_det), v_out);
-  return ~(negative & positive) & co_f4_less(co_f4_splat(tmin), t) & co_f4_less(t, co_f4_splat(tmax)) & 15u;
+  return inside & co_f4_less(co_f4_splat(tmin), t) & co_f4_less(t, co_f4_splat(tmax));
 }
 
 /* Slab test; returns 1 and the clipped interval when the ray meets the box within [*t0, *t1]. */
