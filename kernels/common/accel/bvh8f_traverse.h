@@ -202,14 +202,13 @@ CO_FORCE_INLINE void bvh8f_walk_start(const Bvh8fView* bvh, Bvh8fWalk* w, co_vec
   w->count = 0u;
 }
 
-/* A started walk at the root. */
-CO_FORCE_INLINE Bvh8fAt bvh8f_walk_root(const Bvh8fWalk* w) {
-  Bvh8fAt at;
-  at.ref = 0u;
-  at.ref_t = w->tmin;
-  at.sp = 0;
-  at.count = 0u;
-  return at;
+/* A started walk at the root. (An out parameter, not a returned struct: a forced-inline function
+ * returning one leaves a noalias scope declaration behind, which Oclgrind cannot run.) */
+CO_FORCE_INLINE void bvh8f_walk_root(const Bvh8fWalk* w, Bvh8fAt* at) {
+  at->ref = 0u;
+  at->ref_t = w->tmin;
+  at->sp = 0;
+  at->count = 0u;
 }
 
 /* Visits the walk's next node or leaf (or pops one it need not visit); 0 when the walk is over. */
@@ -239,8 +238,9 @@ CO_FORCE_INLINE int bvh8f_walk_step(const Bvh8fView* bvh, Bvh8fWalk* w, Bvh8fAt*
 
 /* A started walk to its end: w->hit is then its hit and w->count its visits. */
 CO_INLINE void bvh8f_walk_run(const Bvh8fView* bvh, Bvh8fWalk* w) {
-  Bvh8fAt at = bvh8f_walk_root(w);
+  Bvh8fAt at;
   Bvh8fStack stack;
+  bvh8f_walk_root(w, &at);
   while (bvh8f_walk_step(bvh, w, &at, &stack)) {
   }
   w->count = at.count;
@@ -262,8 +262,10 @@ CO_INLINE HitOut bvh8f_trace_steps(const Bvh8fView* bvh, co_vec3 org, co_vec3 di
  * loads, and two chains in one instruction stream let the core wait on both nodes' loads at once.
  * Each walk visits what it visits alone, so each gets bvh8f_trace_steps' hit. */
 CO_INLINE void bvh8f_trace_pair(const Bvh8fView* bvh, Bvh8fWalk* a, Bvh8fWalk* b) {
-  Bvh8fAt at_a = bvh8f_walk_root(a), at_b = bvh8f_walk_root(b);
+  Bvh8fAt at_a, at_b;
   Bvh8fStack stack_a, stack_b;
+  bvh8f_walk_root(a, &at_a);
+  bvh8f_walk_root(b, &at_b);
   int more_a = 1, more_b = 1;
   while (more_a && more_b) {
     more_a = bvh8f_walk_step(bvh, a, &at_a, &stack_a);
