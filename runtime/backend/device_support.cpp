@@ -44,6 +44,10 @@ DeviceSupport device_support(const DeviceInfo& device) {
   // count split the warp (H100, 2026-12-06: naive 1.02-1.03x, sc+rg 1.01x without them); Oclgrind
   // takes the GPU's form so that CI's checks cover it (CUDA devices always do: bvh4_traverse.h)
   s.branch_free_descend = device.is_gpu || is_oclgrind(device);
+  // a GPU's min and max instructions in the naive and trace programs' box tests (H100, 2026-12-07:
+  // docs/design.md, "Box tests"); not in the wavefront extension kernel, which ran slower with
+  // them; Oclgrind again so that CI's checks cover them (CUDA devices always do: port.h)
+  s.gpu_minmax = s.branch_free_descend;
   if (device.platform_name == "rusticl" || device.platform_name == "Clover") {
     s.sorts = false;
     s.sort_refusal = fmt::format("{} ({}) does not run the work-groups of a launch independently, which the "

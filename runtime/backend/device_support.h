@@ -28,6 +28,10 @@ struct DeviceSupport {
   // the 4-wide BVH's step sorts every node's entered children, with no branch on how many there are
   // (kernels/common/accel/bvh4_traverse.h, bvh4_descend): the host passes -DCOHORT_BRANCH_FREE_DESCEND
   bool branch_free_descend = false;
+  // the box tests of the programs that opt in (naive, trace) take min and max instructions, one each
+  // where a compare and a select took two (kernels/common/core/port.h): the host passes
+  // -DCOHORT_GPU_MINMAX. The same values, so the same hits either way.
+  bool gpu_minmax = false;
   // The device radix sort (hash, pth, the gate benchmark) hands tiles from one work-group to the next
   // within a launch (decoupled look-back), which needs the groups of a launch to make progress
   // independently. OpenCL reports no such property; Mesa's OpenCL (rusticl, clover) was measured

@@ -36,6 +36,7 @@ std::string base_build_options(const DeviceInfo& device) {
   if (support.paired_walks) options += " -DCOHORT_PAIRED_WALKS";
   if (!support.fused_slabs) options += " -DCOHORT_UNFUSED_SLABS";
   if (support.branch_free_descend) options += " -DCOHORT_BRANCH_FREE_DESCEND";
+  if (support.gpu_minmax) options += " -DCOHORT_GPU_MINMAX";
   return options;
 }
 

@@ -36,6 +36,8 @@ bool branch_free(const DeviceInfo& d) {
   return base_build_options(d).find("-DCOHORT_BRANCH_FREE_DESCEND") != std::string::npos;
 }
 
+bool gpu_minmax(const DeviceInfo& d) { return base_build_options(d).find("-DCOHORT_GPU_MINMAX") != std::string::npos; }
+
 }  // namespace
 
 TEST(BuildOptions, PairedWalksOnPoclsCpuDriverAndOclgrind) {
@@ -72,6 +74,16 @@ TEST(BuildOptions, BranchFreeDescendOnGpusAndOclgrind) {
   EXPECT_FALSE(branch_free(device("Intel(R) OpenCL", true)));
   EXPECT_FALSE(branch_free(device("rusticl", true)));
   EXPECT_TRUE(device_support(device("CUDA", false)).branch_free_descend);
+}
+
+TEST(BuildOptions, MinMaxInstructionsOnGpusAndOclgrind) {
+  EXPECT_TRUE(gpu_minmax(device("NVIDIA CUDA", false)));
+  EXPECT_TRUE(gpu_minmax(device("Portable Computing Language", false)));  // PoCL's CUDA or Level Zero driver
+  EXPECT_TRUE(gpu_minmax(device("Oclgrind", true)));                      // CI checks the GPU's form there
+  EXPECT_FALSE(gpu_minmax(device("Portable Computing Language", true)));  // minps/maxps are the select already
+  EXPECT_FALSE(gpu_minmax(device("Intel(R) OpenCL", true)));
+  EXPECT_FALSE(gpu_minmax(device("rusticl", true)));
+  EXPECT_TRUE(device_support(device("CUDA", false)).gpu_minmax);
 }
 
 TEST(BuildOptions, PrefetchWhereLocalMemoryIsTheCache) {

@@ -166,9 +166,18 @@ inline uint32_t co_atomic_load(const uint32_t* p) { return *p; }
 #endif
 
 /* Four-lane float arithmetic for the 4-wide BVH's box tests and the four-triangle test: OpenCL's
- * float4 operators (one SIMD instruction each on a CPU), lane by lane elsewhere. min and max are
- * plain compares, not fmin and fmax: their callers never pass NaN. co_f4_less gives a 4-bit mask,
- * lane x in bit 0; co_f4_store writes the four lanes to p[0-3]. */
+ * float4 operators (one SIMD instruction each on a CPU), lane by lane elsewhere. co_f4_less gives a
+ * 4-bit mask, lane x in bit 0; co_f4_store writes the four lanes to p[0-3].
+ * min and max (only the box tests take them, and no NaN reaches them there) are a compare and a
+ * select, or with CO_MINMAX_INSTRUCTIONS fmin and fmax, one instruction each on a GPU where the
+ * compare and select take two: the same values. A program opts in (COHORT_PROGRAM_MINMAX, before
+ * its first include: naive and trace) and the device must be a GPU (every CUDA device; the host's
+ * -DCOHORT_GPU_MINMAX for OpenCL GPUs and for Oclgrind, so that CI's checks run it). On an H100 the
+ * instructions traced primary rays 1.16-1.20x faster, but the wavefront extension kernel, which the
+ * default sc+rg spends most of its time in, ran slower with them (docs/design.md, "Box tests"). */
+#if defined(COHORT_PROGRAM_MINMAX) && (defined(COHORT_GPU_MINMAX) || defined(__CUDACC__))
+#define CO_MINMAX_INSTRUCTIONS 1
+#endif
 #if defined(__OPENCL_VERSION__)
 #define co_f4_splat(s) ((float4)(s))
 #define co_f4_add(a, b) ((a) + (b))
@@ -176,8 +185,13 @@ inline uint32_t co_atomic_load(const uint32_t* p) { return *p; }
 #define co_f4_mul(a, b) ((a) * (b))
 #define co_f4_scale(a, s) ((a) * (s))
 #define co_f4_fma(a, b, c) fma((a), (b), (c))
+#if defined(CO_MINMAX_INSTRUCTIONS)
+#define co_f4_min(a, b) fmin((a), (b))
+#define co_f4_max(a, b) fmax((a), (b))
+#else
 #define co_f4_min(a, b) select((b), (a), (a) < (b))
 #define co_f4_max(a, b) select((b), (a), (a) > (b))
+#endif
 #define co_f4_div(a, b) ((a) / (b))
 #define co_f4_store(v, p) vstore4((v), 0, (p))
 CO_INLINE uint32_t co_f4_less(float4 a, float4 b) {
@@ -199,8 +213,13 @@ CO_INLINE co_float4 co_f4_scale(co_float4 a, float s) { return co_make_float4(a.
 CO_INLINE co_float4 co_f4_fma(co_float4 a, co_float4 b, co_float4 c) {
   return co_make_float4(fmaf(a.x, b.x, c.x), fmaf(a.y, b.y, c.y), fmaf(a.z, b.z, c.z), fmaf(a.w, b.w, c.w));
 }
+#if defined(CO_MINMAX_INSTRUCTIONS)
+CO_INLINE float co_f_min(float a, float b) { return fminf(a, b); }
+CO_INLINE float co_f_max(float a, float b) { return fmaxf(a, b); }
+#else
 CO_INLINE float co_f_min(float a, float b) { return a < b ? a : b; }
 CO_INLINE float co_f_max(float a, float b) { return a > b ? a : b; }
+#endif
 CO_INLINE co_float4 co_f4_min(co_float4 a, co_float4 b) {
   return co_make_float4(co_f_min(a.x, b.x), co_f_min(a.y, b.y), co_f_min(a.z, b.z), co_f_min(a.w, b.w));
 }
