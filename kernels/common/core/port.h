@@ -172,8 +172,8 @@ inline uint32_t co_atomic_load(const uint32_t* p) { return *p; }
  * select, or with CO_MINMAX_INSTRUCTIONS fmin and fmax, one instruction each on a GPU where the
  * compare and select take two: the same values. A program opts in (COHORT_PROGRAM_MINMAX, before
  * its first include: naive and trace) and the device must be a GPU (every CUDA device; the host's
- * -DCOHORT_GPU_MINMAX for OpenCL GPUs and for Oclgrind, so that CI's checks run it). On an H100 the
- * instructions traced primary rays 1.16-1.20x faster, but the wavefront extension kernel, which the
+ * -DCOHORT_GPU_MINMAX for OpenCL GPUs and for Oclgrind, so that CI's checks run it). On an H100 they
+ * traced primary rays 1.09-1.14x faster (2026-12-07), but the wavefront extension kernel, which the
  * default sc+rg spends most of its time in, ran slower with them (docs/design.md, "Box tests"). */
 #if defined(COHORT_PROGRAM_MINMAX) && (defined(COHORT_GPU_MINMAX) || defined(__CUDACC__))
 #define CO_MINMAX_INSTRUCTIONS 1
