@@ -7,7 +7,9 @@
 // run as scalar code of their own, and on Oclgrind (so that its checks cover them); that they change no
 // bit is Methods.PairedWalks*. The box tests' fused slabs (one fma each) where the device has a
 // hardware fma, except on OpenCL GPUs and Oclgrind (-DCOHORT_UNFUSED_SLABS); that neither form changes a
-// hit is TraceKernel.Bvh* on PoCL (fused) and scripts/test-oclgrind (unfused).
+// hit is TraceKernel.Bvh* on PoCL (fused) and scripts/test-oclgrind (unfused). On GPUs and Oclgrind the
+// branch-free descend and the min/max instructions of the naive and trace programs' box tests
+// (-DCOHORT_GPU_MINMAX), which scripts/test-oclgrind renders to PoCL's bits.
 #include <gtest/gtest.h>
 
 #include "runtime/backend/device_support.h"
@@ -26,17 +28,16 @@ DeviceInfo device(const char* platform, bool cpu) {
   return d;
 }
 
-bool prefetches(const DeviceInfo& d) { return base_build_options(d).find("-DCOHORT_PREFETCH") != std::string::npos; }
-
-bool pairs(const DeviceInfo& d) { return base_build_options(d).find("-DCOHORT_PAIRED_WALKS") != std::string::npos; }
-
-bool unfused(const DeviceInfo& d) { return base_build_options(d).find("-DCOHORT_UNFUSED_SLABS") != std::string::npos; }
-
-bool branch_free(const DeviceInfo& d) {
-  return base_build_options(d).find("-DCOHORT_BRANCH_FREE_DESCEND") != std::string::npos;
+// Whether the options every program gets on `d` define `define`.
+bool builds_with(const DeviceInfo& d, const char* define) {
+  return base_build_options(d).find(define) != std::string::npos;
 }
 
-bool gpu_minmax(const DeviceInfo& d) { return base_build_options(d).find("-DCOHORT_GPU_MINMAX") != std::string::npos; }
+bool prefetches(const DeviceInfo& d) { return builds_with(d, "-DCOHORT_PREFETCH"); }
+bool pairs(const DeviceInfo& d) { return builds_with(d, "-DCOHORT_PAIRED_WALKS"); }
+bool unfused(const DeviceInfo& d) { return builds_with(d, "-DCOHORT_UNFUSED_SLABS"); }
+bool branch_free(const DeviceInfo& d) { return builds_with(d, "-DCOHORT_BRANCH_FREE_DESCEND"); }
+bool gpu_minmax(const DeviceInfo& d) { return builds_with(d, "-DCOHORT_GPU_MINMAX"); }
 
 }  // namespace
 
