@@ -48,6 +48,9 @@ DeviceSupport device_support(const DeviceInfo& device) {
   // docs/design.md, "Box tests"); not in the wavefront extension kernel, which ran slower with
   // them; Oclgrind again so that CI's checks cover them (CUDA devices always do: port.h)
   s.gpu_minmax = s.branch_free_descend;
+  // camera rays in 8x4 pixel tiles on GPUs (docs/design.md, "Pixel order"); Oclgrind too, so that
+  // CI renders through the tiled order to PoCL's bits (CUDA devices always do: port.h)
+  s.pixel_tiles = s.branch_free_descend;
   if (device.platform_name == "rusticl" || device.platform_name == "Clover") {
     s.sorts = false;
     s.sort_refusal = fmt::format("{} ({}) does not run the work-groups of a launch independently, which the "

@@ -32,6 +32,10 @@ struct DeviceSupport {
   // where a compare and a select took two (kernels/common/core/port.h): the host passes
   // -DCOHORT_GPU_MINMAX. The same values, so the same hits either way.
   bool gpu_minmax = false;
+  // a pass's work items take the image's pixels in 8x4 tiles, so that a warp's camera rays are one
+  // compact patch (kernels/common/core/types.h, tiled_pixel): the host passes -DCOHORT_PIXEL_TILES,
+  // and the bench traces the protocol's rays in that order. The same samples either way.
+  bool pixel_tiles = false;
   // The device radix sort (hash, pth, the gate benchmark) hands tiles from one work-group to the next
   // within a launch (decoupled look-back), which needs the groups of a launch to make progress
   // independently. OpenCL reports no such property; Mesa's OpenCL (rusticl, clover) was measured

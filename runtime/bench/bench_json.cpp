@@ -1,5 +1,6 @@
 #include "runtime/bench/bench_json.h"
 
+#include "runtime/backend/device_support.h"
 #include "runtime/bench/build_info.h"
 
 namespace cohort {
@@ -109,7 +110,9 @@ nlohmann::json bench_json(const BenchDevice& d, const BenchOptions& o, const std
                  {"compute_units", device.compute_units}};
   j["settings"] = sort_json(o.sort);
   j["settings"].update({{"trace_res", o.trace_res}, {"res", o.res}, {"spp", o.spp}, {"reps", o.reps},
-                        {"methods", o.methods}, {"workload", "white sky (docs/bench-protocol.md)"}, {"max_depth", 5}});
+                        {"methods", o.methods}, {"workload", "white sky (docs/bench-protocol.md)"}, {"max_depth", 5},
+                        // the order the protocol's rays are traced in, as the device's renders launch camera rays
+                        {"trace_order", device_support(device).pixel_tiles ? "8x4 pixel tiles" : "rows"}});
   j["scenes"] = scenes_json(scenes);
   return j;
 }

@@ -15,26 +15,41 @@ std::uint32_t protocol_pcg(std::uint32_t v) {
 
 float protocol_unit(std::uint32_t h) { return float(h >> 8u) * (1.0f / 16777216.0f); }
 
-std::vector<RayIn> protocol_primary_rays(const SceneCamera& camera, std::uint32_t res) {
+std::vector<std::uint32_t> protocol_pixel_order(std::uint32_t res, bool tiles) {
+  std::vector<std::uint32_t> order(std::size_t(res) * res);
+  for (std::uint32_t k = 0; k < order.size(); ++k) order[k] = tiles ? tiled_pixel(k, res, res) : k;
+  return order;
+}
+
+std::vector<RayIn> protocol_primary_rays(const SceneCamera& camera, std::uint32_t res,
+                                         std::span<const std::uint32_t> order) {
+  if (!order.empty() && order.size() != std::size_t(res) * res)
+    throw std::invalid_argument("protocol_primary_rays: one pixel per ray");
   const glm::vec3 fwd = glm::normalize(camera.target - camera.eye);
   const glm::vec3 right = glm::normalize(glm::cross(fwd, glm::vec3(0.f, 1.f, 0.f)));
   const glm::vec3 up = glm::cross(right, fwd);
   const float tan_half = std::tan(glm::radians(camera.vfov_degrees) * 0.5f);
   const float inf = std::numeric_limits<float>::infinity();
-  std::vector<RayIn> rays(std::size_t(res) * res);
+  std::vector<RayIn> pixel_rays(std::size_t(res) * res);
   for (std::uint32_t y = 0; y < res; ++y)
     for (std::uint32_t x = 0; x < res; ++x) {
       const float px = (float(x) + 0.5f) / float(res) * 2.f - 1.f;
       const float py = 1.f - (float(y) + 0.5f) / float(res) * 2.f;
       const glm::vec3 d = glm::normalize(fwd + right * (px * tan_half) + up * (py * tan_half));
-      rays[std::size_t(y) * res + x] = RayIn{{camera.eye.x, camera.eye.y, camera.eye.z, 0.f}, {d.x, d.y, d.z, inf}};
+      pixel_rays[std::size_t(y) * res + x] = RayIn{{camera.eye.x, camera.eye.y, camera.eye.z, 0.f}, {d.x, d.y, d.z, inf}};
     }
+  if (order.empty()) return pixel_rays;
+  std::vector<RayIn> rays(pixel_rays.size());
+  for (std::size_t k = 0; k < rays.size(); ++k) rays[k] = pixel_rays.at(order[k]);
   return rays;
 }
 
 std::vector<RayIn> protocol_diffuse_rays(std::span<const RayIn> primary, std::span<const ProtocolHit> hits,
-                                         std::span<const glm::vec3> positions, float diag) {
+                                         std::span<const glm::vec3> positions, float diag,
+                                         std::span<const std::uint32_t> order) {
   if (hits.size() != primary.size()) throw std::invalid_argument("protocol_diffuse_rays: one hit per primary ray");
+  if (!order.empty() && order.size() != primary.size())
+    throw std::invalid_argument("protocol_diffuse_rays: one pixel per primary ray");
   const float inf = std::numeric_limits<float>::infinity();
   const float offset = 1e-4f * diag;
   std::vector<RayIn> rays;
@@ -47,7 +62,8 @@ std::vector<RayIn> protocol_diffuse_rays(std::span<const RayIn> primary, std::sp
     glm::vec3 n = glm::normalize(glm::cross(v[1] - v[0], v[2] - v[0]));
     if (glm::dot(n, dir) > 0.f) n = -n;
     const glm::vec3 p = org + h.t * dir + offset * n;
-    const std::uint32_t h1 = protocol_pcg(2u * std::uint32_t(i) + 1u);
+    const std::uint32_t pixel = order.empty() ? std::uint32_t(i) : order[i];
+    const std::uint32_t h1 = protocol_pcg(2u * pixel + 1u);
     const std::uint32_t h2 = protocol_pcg(h1);
     const float u1 = protocol_unit(h1), u2 = protocol_unit(h2);
     const float r = std::sqrt(u1), phi = 2.f * 3.14159265358979f * u2;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <ctime>
 
+#include "runtime/backend/device_support.h"
 #include "runtime/bench/trace_bench.h"
 #include "runtime/render/run/render_run.h"
 #include "runtime/render/workloads.h"
@@ -136,8 +137,12 @@ SceneFigures bench_scene(const OpenedDevices& devices, const std::filesystem::pa
       }
     }
   } release{pool, tracer};
+  bool pixel_tiles = false;
   if (options.traversal)
-    pool.run_on(0, [&](const Device& device) { tracer.emplace(device, render.cache, prepared.tree, prepared.bvh()); });
+    pool.run_on(0, [&](const Device& device) {
+      tracer.emplace(device, render.cache, prepared.tree, prepared.bvh());
+      pixel_tiles = device_support(device.info()).pixel_tiles;
+    });
   // uploaded before any clock starts (a render's own upload is not rendering)
   if (!options.methods.empty()) pool.run_on(0, prepared, [](const Device&, const DeviceScene&) {});
   const auto team = solo_render_team();
@@ -147,13 +152,15 @@ SceneFigures bench_scene(const OpenedDevices& devices, const std::filesystem::pa
     vf.view = view;
     vf.camera = view_camera(out.bounds, view);
     if (tracer) {
-      const auto primary = protocol_primary_rays(vf.camera, options.trace_res);
+      // in the order the device's renders launch camera rays (rows, or tiles on GPUs)
+      const auto order = protocol_pixel_order(options.trace_res, pixel_tiles);
+      const auto primary = protocol_primary_rays(vf.camera, options.trace_res, order);
       pool.run_on(0, [&](const Device&) { vf.primary = tracer->trace(primary, options.reps); });
       log(fmt::format("  {} primary: {:.2f} Mrays/s median, {:.2f} best, {} hits", view.name,
                       vf.primary->rays_per_second.median() * 1e-6, vf.primary->rays_per_second.best() * 1e-6,
                       vf.primary->hits));
       const auto diffuse =
-          protocol_diffuse_rays(primary, vf.primary->closest, prepared.scene.positions, out.bounds.diagonal());
+          protocol_diffuse_rays(primary, vf.primary->closest, prepared.scene.positions, out.bounds.diagonal(), order);
       vf.primary->closest.clear();
       pool.run_on(0, [&](const Device&) { vf.diffuse = tracer->trace(diffuse, options.reps); });
       vf.diffuse->closest.clear();

@@ -37,6 +37,7 @@ std::string base_build_options(const DeviceInfo& device) {
   if (!support.fused_slabs) options += " -DCOHORT_UNFUSED_SLABS";
   if (support.branch_free_descend) options += " -DCOHORT_BRANCH_FREE_DESCEND";
   if (support.gpu_minmax) options += " -DCOHORT_GPU_MINMAX";
+  if (support.pixel_tiles) options += " -DCOHORT_PIXEL_TILES";
   return options;
 }
 

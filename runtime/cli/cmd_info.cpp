@@ -116,10 +116,10 @@ void print_support(const DeviceSupport& s) {
   }
   fmt::print("    Cohort: runs; work-groups of up to {} items (each kernel's own limit applies), PTH subtree {} levels "
              "in {} KiB of local memory, BVH prefetch {}, paired walks {}, fused box slabs {}, branch-free BVH "
-             "descend {}, GPU min/max in box tests {}\n",
+             "descend {}, GPU min/max in box tests {}, camera rays in 8x4 pixel tiles {}\n",
              s.work_group, s.pth_levels, s.local_budget / 1024, s.prefetch ? "on" : "off",
              s.paired_walks ? "on" : "off", s.fused_slabs ? "on" : "off", s.branch_free_descend ? "on" : "off",
-             s.gpu_minmax ? "on" : "off");
+             s.gpu_minmax ? "on" : "off", s.pixel_tiles ? "on" : "off");
   if (!s.sorts) fmt::print("    Cohort: no sorting methods (hash, pth): {}\n", s.sort_refusal);
 }
 }  // namespace

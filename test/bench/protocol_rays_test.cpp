@@ -101,6 +101,75 @@ TEST(ProtocolRays, DiffuseDirectionsAreCosineDistributed) {
   EXPECT_NEAR(sum_x / double(diffuse.size()), 0.0, 0.01);
 }
 
+// GPUs launch a pass's pixels in 8x4 tiles (tiled_pixel, kernels/common/core/types.h): every pixel
+// exactly once for any image size, whole tiles where the image has room for them.
+TEST(PixelOrder, TilesArePermutationsOfThePixelsForAnySize) {
+  for (const auto& [w, h] : std::vector<std::pair<std::uint32_t, std::uint32_t>>{
+           {1, 1}, {7, 3}, {8, 4}, {9, 5}, {13, 1}, {1, 13}, {16, 8}, {100, 37}, {256, 256}, {1023, 1025}}) {
+    std::vector<int> seen(std::size_t(w) * h, 0);
+    for (std::uint32_t k = 0; k < w * h; ++k) {
+      const std::uint32_t pixel = tiled_pixel(k, w, h);
+      ASSERT_LT(pixel, w * h) << w << "x" << h << " item " << k;
+      ++seen[pixel];
+    }
+    for (std::size_t p = 0; p < seen.size(); ++p) ASSERT_EQ(seen[p], 1) << w << "x" << h << " pixel " << p;
+  }
+  // 32 consecutive items (a warp) are one 8x4 tile, tiles left to right, then the next band
+  const std::uint32_t w = 24, h = 8;
+  for (std::uint32_t k = 0; k < w * h; ++k) {
+    const std::uint32_t tile = k / 32, x = tiled_pixel(k, w, h) % w, y = tiled_pixel(k, w, h) / w;
+    EXPECT_EQ(x / 8, tile % 3) << k;
+    EXPECT_EQ(y / 4, tile / 3) << k;
+    EXPECT_EQ(x % 8 + 8 * (y % 4), k % 32) << k;  // a tile's pixels row by row
+  }
+  // a narrow last column of tiles and a short last band: 10x6 has tiles 8x4, 2x4, 8x2, 2x2
+  EXPECT_EQ(tiled_pixel(31, 10, 6), 3u * 10u + 7u);
+  EXPECT_EQ(tiled_pixel(32, 10, 6), 8u);
+  EXPECT_EQ(tiled_pixel(39, 10, 6), 3u * 10u + 9u);
+  EXPECT_EQ(tiled_pixel(40, 10, 6), 4u * 10u);
+  EXPECT_EQ(tiled_pixel(56, 10, 6), 4u * 10u + 8u);
+  EXPECT_EQ(tiled_pixel(59, 10, 6), 5u * 10u + 9u);
+}
+
+// The bench traces the protocol's rays in the device's launch order: the same rays, and each diffuse
+// ray drawn from its own pixel's hash, whatever the order.
+TEST(PixelOrder, TiledProtocolRaysAreTheRowOrdersRaysPermuted) {
+  SceneCamera cam;
+  cam.eye = {0.f, 0.f, 3.f};
+  cam.target = {0.f, 0.f, 0.f};
+  cam.vfov_degrees = 50.f;
+  const std::uint32_t res = 20;
+  const auto rows = protocol_primary_rays(cam, res);
+  const auto order = protocol_pixel_order(res, true);
+  EXPECT_EQ(protocol_pixel_order(res, false)[57], 57u);
+  const auto tiled = protocol_primary_rays(cam, res, order);
+  ASSERT_EQ(tiled.size(), rows.size());
+  const std::vector<glm::vec3> positions = {{-5, -5, 0}, {5, -5, 0}, {0, 5, 0}};
+  std::vector<ProtocolHit> row_hits(rows.size()), tiled_hits(rows.size());
+  for (std::uint32_t k = 0; k < rows.size(); ++k) {
+    EXPECT_EQ(dir_of(tiled[k]), dir_of(rows[order[k]])) << k;
+    // every third pixel misses; the hit lies on z = 0
+    const std::uint32_t p = order[k];
+    row_hits[p] = p % 3 == 0 ? ProtocolHit{} : ProtocolHit{3.f / -rows[p].dir.z, 0u};
+    tiled_hits[k] = row_hits[p];
+  }
+  const auto row_diffuse = protocol_diffuse_rays(rows, row_hits, positions, 10.f);
+  const auto tiled_diffuse = protocol_diffuse_rays(tiled, tiled_hits, positions, 10.f, order);
+  ASSERT_EQ(tiled_diffuse.size(), row_diffuse.size());
+  // the row order's diffuse rays in pixel order, matched to the tiled ones through their pixels
+  std::vector<std::uint32_t> row_index(rows.size(), HIT_NONE);
+  for (std::uint32_t p = 0, i = 0; p < rows.size(); ++p)
+    if (row_hits[p].triangle != HIT_NONE) row_index[p] = i++;
+  std::size_t j = 0;
+  for (std::uint32_t k = 0; k < tiled.size(); ++k) {
+    if (tiled_hits[k].triangle == HIT_NONE) continue;
+    const RayIn& a = tiled_diffuse[j++];
+    const RayIn& b = row_diffuse[row_index[order[k]]];
+    EXPECT_EQ(org_of(a), org_of(b)) << k;
+    EXPECT_EQ(dir_of(a), dir_of(b)) << k;
+  }
+}
+
 TEST(ProtocolRays, ViewCamerasFollowTheProtocol) {
   Bounds b;
   b.extend(glm::vec3(0.f));

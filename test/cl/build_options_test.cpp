@@ -8,8 +8,9 @@
 // bit is Methods.PairedWalks*. The box tests' fused slabs (one fma each) where the device has a
 // hardware fma, except on OpenCL GPUs and Oclgrind (-DCOHORT_UNFUSED_SLABS); that neither form changes a
 // hit is TraceKernel.Bvh* on PoCL (fused) and scripts/test-oclgrind (unfused). On GPUs and Oclgrind the
-// branch-free descend and the min/max instructions of the naive and trace programs' box tests
-// (-DCOHORT_GPU_MINMAX), which scripts/test-oclgrind renders to PoCL's bits.
+// branch-free descend, the min/max instructions of the naive and trace programs' box tests
+// (-DCOHORT_GPU_MINMAX) and the pixel tiles (-DCOHORT_PIXEL_TILES), which scripts/test-oclgrind renders
+// to PoCL's bits.
 #include <gtest/gtest.h>
 
 #include "runtime/backend/device_support.h"
@@ -36,8 +37,6 @@ bool builds_with(const DeviceInfo& d, const char* define) {
 bool prefetches(const DeviceInfo& d) { return builds_with(d, "-DCOHORT_PREFETCH"); }
 bool pairs(const DeviceInfo& d) { return builds_with(d, "-DCOHORT_PAIRED_WALKS"); }
 bool unfused(const DeviceInfo& d) { return builds_with(d, "-DCOHORT_UNFUSED_SLABS"); }
-bool branch_free(const DeviceInfo& d) { return builds_with(d, "-DCOHORT_BRANCH_FREE_DESCEND"); }
-bool gpu_minmax(const DeviceInfo& d) { return builds_with(d, "-DCOHORT_GPU_MINMAX"); }
 
 }  // namespace
 
@@ -67,24 +66,21 @@ TEST(BuildOptions, FusedSlabsWhereTheCpuHasAnFmaAndOnCuda) {
   EXPECT_TRUE(device_support(cuda).fused_slabs);  // the CUDA backend always fuses (every NVIDIA GPU has an fma)
 }
 
-TEST(BuildOptions, BranchFreeDescendOnGpusAndOclgrind) {
-  EXPECT_TRUE(branch_free(device("NVIDIA CUDA", false)));
-  EXPECT_TRUE(branch_free(device("Portable Computing Language", false)));  // PoCL's CUDA or Level Zero driver
-  EXPECT_TRUE(branch_free(device("Oclgrind", true)));                      // CI checks the GPU's form there
-  EXPECT_FALSE(branch_free(device("Portable Computing Language", true)));
-  EXPECT_FALSE(branch_free(device("Intel(R) OpenCL", true)));
-  EXPECT_FALSE(branch_free(device("rusticl", true)));
-  EXPECT_TRUE(device_support(device("CUDA", false)).branch_free_descend);
-}
-
-TEST(BuildOptions, MinMaxInstructionsOnGpusAndOclgrind) {
-  EXPECT_TRUE(gpu_minmax(device("NVIDIA CUDA", false)));
-  EXPECT_TRUE(gpu_minmax(device("Portable Computing Language", false)));  // PoCL's CUDA or Level Zero driver
-  EXPECT_TRUE(gpu_minmax(device("Oclgrind", true)));                      // CI checks the GPU's form there
-  EXPECT_FALSE(gpu_minmax(device("Portable Computing Language", true)));  // minps/maxps are the select already
-  EXPECT_FALSE(gpu_minmax(device("Intel(R) OpenCL", true)));
-  EXPECT_FALSE(gpu_minmax(device("rusticl", true)));
-  EXPECT_TRUE(device_support(device("CUDA", false)).gpu_minmax);
+// The GPU's forms: the branch-free descend, the min/max instructions of the naive and trace programs'
+// box tests, and camera rays in 8x4 pixel tiles
+TEST(BuildOptions, GpuFormsOnGpusAndOclgrind) {
+  for (const char* define : {"-DCOHORT_BRANCH_FREE_DESCEND", "-DCOHORT_GPU_MINMAX", "-DCOHORT_PIXEL_TILES"}) {
+    EXPECT_TRUE(builds_with(device("NVIDIA CUDA", false), define)) << define;
+    EXPECT_TRUE(builds_with(device("Portable Computing Language", false), define)) << define;  // PoCL's GPU drivers
+    EXPECT_TRUE(builds_with(device("Oclgrind", true), define)) << define;  // CI checks the GPU's form there
+    EXPECT_FALSE(builds_with(device("Portable Computing Language", true), define)) << define;
+    EXPECT_FALSE(builds_with(device("Intel(R) OpenCL", true), define)) << define;
+    EXPECT_FALSE(builds_with(device("rusticl", true), define)) << define;
+  }
+  const DeviceSupport cuda = device_support(device("CUDA", false));  // the CUDA build takes all three
+  EXPECT_TRUE(cuda.branch_free_descend);
+  EXPECT_TRUE(cuda.gpu_minmax);
+  EXPECT_TRUE(cuda.pixel_tiles);
 }
 
 TEST(BuildOptions, PrefetchWhereLocalMemoryIsTheCache) {

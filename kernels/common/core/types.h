@@ -316,6 +316,26 @@ CO_INLINE uint32_t pass_pixel_count(const RenderParams* p) {
   return p->active_pixels ? p->active_pixels : p->width * p->height;
 }
 
+/* The pixel of a pass's k-th work item where camera rays are launched in tiles (GPUs: port.h,
+ * CO_PIXEL_TILES): the image in bands of PIXEL_TILE_H rows, each band in tiles of PIXEL_TILE_W
+ * columns, a tile's pixels row by row, so that a warp's 32 camera rays cover an 8x4 patch rather
+ * than 32 pixels of a row (a third of the perimeter: fewer warps split at an object's edge). The
+ * last band and the last tile of a band are as high and as wide as the image leaves them, so it is
+ * a permutation of the pixels for any size; which item renders a pixel changes nothing in its
+ * samples (their random numbers come from the pixel and the sample). The host's bench traces the
+ * protocol's rays in this order on such devices (runtime/bench/protocol_rays.h). */
+#define PIXEL_TILE_W 8u
+#define PIXEL_TILE_H 4u
+CO_INLINE uint32_t tiled_pixel(uint32_t k, uint32_t width, uint32_t height) {
+  uint32_t y0 = k / (width * PIXEL_TILE_H) * PIXEL_TILE_H;
+  uint32_t rows = co_umin(PIXEL_TILE_H, height - y0);
+  uint32_t in_band = k - y0 * width;
+  uint32_t x0 = in_band / (PIXEL_TILE_W * rows) * PIXEL_TILE_W;
+  uint32_t cols = co_umin(PIXEL_TILE_W, width - x0);
+  uint32_t in_tile = in_band - x0 * rows; /* the band's tiles left of x0 are full */
+  return (y0 + in_tile / cols) * width + x0 + in_tile % cols;
+}
+
 /* ---- KHR_lights_punctual: point and spot lights (delta lights, NEE only) ---------------------- */
 #define PUNCTUAL_POINT 0u
 #define PUNCTUAL_SPOT 1u

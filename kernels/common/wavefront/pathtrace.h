@@ -65,9 +65,13 @@ CO_INLINE ShadowRay shadow_ray_towards(ShadowRay sr, co_vec3 org, co_vec3 dir, f
 
 /* The pixels a pass renders: every pixel, or (adaptive sampling) the first p->active_pixels entries
  * of `pixel_list` (pass_pixel_count, types.h). Work item or item k of a pass stands for the pass's
- * k-th pixel. */
+ * k-th pixel: in 8x4 tiles on GPUs (tiled_pixel, types.h), row by row elsewhere. */
 CO_INLINE uint32_t pass_pixel(uint32_t k, CO_GLOBAL const uint32_t* pixel_list, const RenderParams* p) {
+#if defined(CO_PIXEL_TILES)
+  return p->active_pixels ? pixel_list[k] : tiled_pixel(k, p->width, p->height);
+#else
   return p->active_pixels ? pixel_list[k] : k;
+#endif
 }
 
 /* The camera ray's direction of a pixel's sample: its jitter from the sample's camera stream. */
