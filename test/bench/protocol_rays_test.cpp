@@ -16,6 +16,14 @@ namespace {
 glm::vec3 org_of(const RayIn& r) { return {r.origin.x, r.origin.y, r.origin.z}; }
 glm::vec3 dir_of(const RayIn& r) { return {r.dir.x, r.dir.y, r.dir.z}; }
 
+SceneCamera pinhole(glm::vec3 eye, glm::vec3 target, float vfov_degrees) {
+  SceneCamera cam;
+  cam.eye = eye;
+  cam.target = target;
+  cam.vfov_degrees = vfov_degrees;
+  return cam;
+}
+
 }  // namespace
 
 TEST(ProtocolRays, PcgMatchesTheProtocolFormula) {
@@ -30,10 +38,7 @@ TEST(ProtocolRays, PcgMatchesTheProtocolFormula) {
 }
 
 TEST(ProtocolRays, PrimaryRaysThroughPixelCentresFromTheEye) {
-  SceneCamera cam;
-  cam.eye = {1.f, 2.f, 10.f};
-  cam.target = {1.f, 2.f, 0.f};
-  cam.vfov_degrees = 45.f;
+  const SceneCamera cam = pinhole({1.f, 2.f, 10.f}, {1.f, 2.f, 0.f}, 45.f);
   const std::uint32_t res = 5;
   const auto rays = protocol_primary_rays(cam, res);
   ASSERT_EQ(rays.size(), 25u);
@@ -134,10 +139,7 @@ TEST(PixelOrder, TilesArePermutationsOfThePixelsForAnySize) {
 // The bench traces the protocol's rays in the device's launch order: the same rays, and each diffuse
 // ray drawn from its own pixel's hash, whatever the order.
 TEST(PixelOrder, TiledProtocolRaysAreTheRowOrdersRaysPermuted) {
-  SceneCamera cam;
-  cam.eye = {0.f, 0.f, 3.f};
-  cam.target = {0.f, 0.f, 0.f};
-  cam.vfov_degrees = 50.f;
+  const SceneCamera cam = pinhole({0.f, 0.f, 3.f}, {0.f, 0.f, 0.f}, 50.f);
   const std::uint32_t res = 20;
   const auto rows = protocol_primary_rays(cam, res);
   const auto order = protocol_pixel_order(res, true);
