@@ -180,8 +180,8 @@ inline uint32_t co_atomic_load(const uint32_t* p) { return *p; }
 #endif
 /* A pass's work items take its pixels in 8x4 tiles (tiled_pixel, types.h) on GPUs: every CUDA
  * device, and the host's -DCOHORT_PIXEL_TILES for OpenCL GPUs and for Oclgrind (so that CI renders
- * through it to PoCL's bits). CPUs keep rows: a work item there runs alone, and its neighbours in a
- * row share its cache lines as a tile's would. */
+ * through it to PoCL's bits). CPUs keep rows: PoCL measured no gain from the tiles (docs/design.md,
+ * "Pixel order"). */
 #if defined(COHORT_PIXEL_TILES) || defined(__CUDACC__)
 #define CO_PIXEL_TILES 1
 #endif
