@@ -7,6 +7,15 @@
 
 namespace cohort {
 
+namespace {
+
+// The protocol's pixel index of launch index k: order[k], or k where the order is rows (empty).
+std::uint32_t pixel_of(std::span<const std::uint32_t> order, std::size_t k) {
+  return order.empty() ? std::uint32_t(k) : order[k];
+}
+
+}  // namespace
+
 std::uint32_t protocol_pcg(std::uint32_t v) {
   const std::uint32_t s = v * 747796405u + 2891336453u;
   const std::uint32_t w = ((s >> ((s >> 28u) + 4u)) ^ s) * 277803737u;
@@ -30,17 +39,16 @@ std::vector<RayIn> protocol_primary_rays(const SceneCamera& camera, std::uint32_
   const glm::vec3 up = glm::cross(right, fwd);
   const float tan_half = std::tan(glm::radians(camera.vfov_degrees) * 0.5f);
   const float inf = std::numeric_limits<float>::infinity();
-  std::vector<RayIn> pixel_rays(std::size_t(res) * res);
-  for (std::uint32_t y = 0; y < res; ++y)
-    for (std::uint32_t x = 0; x < res; ++x) {
-      const float px = (float(x) + 0.5f) / float(res) * 2.f - 1.f;
-      const float py = 1.f - (float(y) + 0.5f) / float(res) * 2.f;
-      const glm::vec3 d = glm::normalize(fwd + right * (px * tan_half) + up * (py * tan_half));
-      pixel_rays[std::size_t(y) * res + x] = RayIn{{camera.eye.x, camera.eye.y, camera.eye.z, 0.f}, {d.x, d.y, d.z, inf}};
-    }
-  if (order.empty()) return pixel_rays;
-  std::vector<RayIn> rays(pixel_rays.size());
-  for (std::size_t k = 0; k < rays.size(); ++k) rays[k] = pixel_rays.at(order[k]);
+  std::vector<RayIn> rays(std::size_t(res) * res);
+  for (std::size_t k = 0; k < rays.size(); ++k) {
+    const std::uint32_t pixel = pixel_of(order, k);
+    if (pixel >= rays.size()) throw std::invalid_argument("protocol_primary_rays: a pixel outside the image");
+    const std::uint32_t x = pixel % res, y = pixel / res;
+    const float px = (float(x) + 0.5f) / float(res) * 2.f - 1.f;
+    const float py = 1.f - (float(y) + 0.5f) / float(res) * 2.f;
+    const glm::vec3 d = glm::normalize(fwd + right * (px * tan_half) + up * (py * tan_half));
+    rays[k] = RayIn{{camera.eye.x, camera.eye.y, camera.eye.z, 0.f}, {d.x, d.y, d.z, inf}};
+  }
   return rays;
 }
 
@@ -62,8 +70,7 @@ std::vector<RayIn> protocol_diffuse_rays(std::span<const RayIn> primary, std::sp
     glm::vec3 n = glm::normalize(glm::cross(v[1] - v[0], v[2] - v[0]));
     if (glm::dot(n, dir) > 0.f) n = -n;
     const glm::vec3 p = org + h.t * dir + offset * n;
-    const std::uint32_t pixel = order.empty() ? std::uint32_t(i) : order[i];
-    const std::uint32_t h1 = protocol_pcg(2u * pixel + 1u);
+    const std::uint32_t h1 = protocol_pcg(2u * pixel_of(order, i) + 1u);
     const std::uint32_t h2 = protocol_pcg(h1);
     const float u1 = protocol_unit(h1), u2 = protocol_unit(h2);
     const float r = std::sqrt(u1), phi = 2.f * 3.14159265358979f * u2;
