@@ -174,7 +174,8 @@ inline uint32_t co_atomic_load(const uint32_t* p) { return *p; }
  * its first include: naive and trace) and the device must be a GPU (every CUDA device; the host's
  * -DCOHORT_GPU_MINMAX for OpenCL GPUs and for Oclgrind, so that CI's checks run it). On an H100 they
  * traced primary rays 1.09-1.14x faster (2026-12-07), but the wavefront extension kernel, which the
- * default sc+rg spends most of its time in, ran slower with them (docs/design.md, "Box tests"). */
+ * default sc+rg spends most of its time in, and the pth program (hash and pth 0.96x) ran slower with
+ * them (docs/design.md, "Box tests"). */
 #if defined(COHORT_PROGRAM_MINMAX) && (defined(COHORT_GPU_MINMAX) || defined(__CUDACC__))
 #define CO_MINMAX_INSTRUCTIONS 1
 #endif
