@@ -1,8 +1,10 @@
 // The OpenCL traversal kernel (kernels/trace.cl on the default device, PoCL in CI) against a
-// brute-force loop over every triangle on the host: >= 100k rays on three scenes.
+// brute-force loop over every triangle on the host (culled by bounding spheres, re-checked without
+// the culling on every 50th ray): >= 100k rays on three scenes.
 #include <gtest/gtest.h>
 
 #include <array>
+#include <atomic>
 
 #include <cmath>
 #include <cstring>
@@ -68,8 +70,18 @@ void check_scene(const fs::path& path, std::size_t ray_count) {
   const auto closest = trace_on_device(tree, rays, false, unbounded);
   std::vector<HitOut> expected(rays.size());
   std::vector<float> half(rays.size()), beyond(rays.size());
-  tbb::parallel_for(std::size_t(0), rays.size(),
-                    [&](std::size_t i) { expected[i] = brute_force(tree, rays[i], 0.f, INFINITY); });
+  // every triangle, less those whose bounding sphere the ray misses (ray_check.h); every 50th ray
+  // also through the plain loop, which must give the same hit (as check_against_brute_force does)
+  const SphereCulledBruteForce brute(tree);
+  constexpr std::size_t recheck_every = 50;
+  std::atomic<std::size_t> culling_errors{0};
+  tbb::parallel_for(std::size_t(0), rays.size(), [&](std::size_t i) {
+    expected[i] = brute.trace(rays[i], 0.f, INFINITY);
+    if (i % recheck_every != 0) return;
+    const HitOut plain = brute_force(tree, rays[i], 0.f, INFINITY);
+    if (plain.triangle != expected[i].triangle || plain.t != expected[i].t) ++culling_errors;
+  });
+  EXPECT_EQ(culling_errors.load(), 0u) << "the culled brute force missed a hit of the plain one";
   std::size_t hits = 0, ties = 0, mismatches = 0;
   for (std::size_t i = 0; i < rays.size(); ++i) {
     const HitOut& e = expected[i];
