@@ -82,13 +82,11 @@ bool occluded(const KdTreeView& view, const TestRay& ray, float tmax, Traversal 
 }
 
 RayResult check_ray(const KdTree& tree, const KdTreeView& view, const SphereCulledBruteForce& brute,
-                    const TestRay& ray, bool recheck, const CheckOptions& options) {
+                    const TestRay& ray, std::size_t index, const CheckOptions& options) {
   RayResult r;
-  const HitOut expected = brute.trace(ray, 0.f, kInf);
-  if (recheck) {
-    const HitOut plain = brute_force(tree, ray, 0.f, kInf);
-    r.culling_ok = plain.triangle == expected.triangle && plain.t == expected.t;
-  }
+  const RecheckedHit rechecked = brute.closest_rechecked(ray, index);
+  const HitOut expected = rechecked.hit;
+  r.culling_ok = rechecked.culling_ok;
   const HitOut got = trace(view, ray, kInf, false, options.traversal);
   r.hit = expected.triangle != HIT_NONE;
   r.closest = compare_closest(tree, ray, expected, got, options.ties);
@@ -314,6 +312,15 @@ HitOut SphereCulledBruteForce::trace(const TestRay& ray, float tmin, float tmax)
   return hit;
 }
 
+RecheckedHit SphereCulledBruteForce::closest_rechecked(const TestRay& ray, std::size_t index) const {
+  RecheckedHit r{trace(ray, 0.f, kInf)};
+  if (index % kRecheckEvery == 0) {
+    const HitOut plain = brute_force(tree_, ray, 0.f, kInf);
+    r.culling_ok = plain.triangle == r.hit.triangle && plain.t == r.hit.t;
+  }
+  return r;
+}
+
 RayCheck check_against_brute_force(const KdTree& tree, std::span<const TestRay> rays,
                                    CheckOptions options) {
   const KdTreeView view = view_of(tree);
@@ -323,7 +330,7 @@ RayCheck check_against_brute_force(const KdTree& tree, std::span<const TestRay> 
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t i = range.begin(); i != range.end(); ++i) {
                         results[i] =
-                            check_ray(tree, view, brute, rays[i], i % kRecheckEvery == 0, options);
+                            check_ray(tree, view, brute, rays[i], i, options);
                       }
                     });
   RayCheck check;

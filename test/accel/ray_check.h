@@ -44,13 +44,22 @@ KdTreeView view_of(const KdTree& tree);
 // equal t the lowest triangle index.
 HitOut brute_force(const KdTree& tree, const TestRay& ray, float tmin, float tmax);
 
+// The closest hit on (0, infinity) and, on the rays that were re-checked, whether brute_force agreed.
+struct RecheckedHit {
+  HitOut hit;
+  bool culling_ok = true;
+};
+
 // The same answer, faster: a triangle whose generous bounding sphere the ray (a half-line from the
 // origin) misses is skipped before intersect_triangle. The margins make it conservative, and
-// check_against_brute_force re-checks it against brute_force on every 50th ray.
+// closest_rechecked re-checks it against brute_force on every 50th ray.
 class SphereCulledBruteForce {
  public:
   explicit SphereCulledBruteForce(const KdTree& tree);
   HitOut trace(const TestRay& ray, float tmin, float tmax) const;
+  // trace(ray, 0, infinity); where `index` (the ray's place in its batch) is a multiple of 50, also
+  // brute_force's closest hit, which must be the same t and triangle.
+  RecheckedHit closest_rechecked(const TestRay& ray, std::size_t index) const;
 
  private:
   struct Sphere {
