@@ -43,15 +43,17 @@ struct Grid {
 // The grid for planes in [lo, hi] (the node's padded box on one axis): the paper's exponent,
 // ceil(log2((hi - lo) / 255)), raised where needed so that every multiple of 2^e the node uses is a
 // float (then origin + q * 2^e is exact in float, with or without fma) and so that hi still fits in
-// 255 steps above the origin rounded down onto the grid.
+// 255 steps above the origin rounded down onto the grid. The exponent is at least -100: the node test
+// multiplies 2^e by the ray's inverse direction (bvh8_traverse.h, bvh8_grid), which must not be
+// subnormal, as GPUs flush those to zero.
 Grid grid_for(float lo, float hi) {
   const double extent = double(hi) - double(lo);
   Grid g;
-  g.exponent = extent > 0 ? std::ilogb(extent / 255.0) : -126;
+  g.exponent = extent > 0 ? std::ilogb(extent / 255.0) : -100;
   while (std::ldexp(255.0, g.exponent) < extent) ++g.exponent;
   const float largest = std::max(std::fabs(lo), std::fabs(hi));
   if (largest > 0) g.exponent = std::max(g.exponent, std::ilogb(largest) - 23);
-  g.exponent = std::max(g.exponent, -126);
+  g.exponent = std::max(g.exponent, -100);
   for (;; ++g.exponent) {
     if (g.exponent > 127) throw std::logic_error("bvh8: a box too large for a float exponent");
     const double s = g.step();

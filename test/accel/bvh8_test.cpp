@@ -10,9 +10,12 @@
 #include <bit>
 #include <cmath>
 #include <functional>
+#include <limits>
+#include <random>
 
 #include "accel/test_meshes.h"
 #include "accel/wide_bvh_check.h"
+#include "kernels/common/accel/bvh8_traverse.h"
 
 namespace cohort::test {
 namespace {
@@ -84,6 +87,68 @@ TEST(Bvh8, QuantisesSmallBoxesFarFromTheOrigin) {
   std::vector<glm::vec3> positions = random_soup(2000, 11);
   for (glm::vec3& p : positions) p = p * 100.0f + glm::vec3(3.0e4f, -7.0e3f, 1.0e5f);
   expect_same_hits<Bvh8Traits>(positions, "far soup");
+}
+
+// The node test's slab distances (bvh8_grid, then q * step + offset) bound the exact ones, (origin +
+// q 2^e - o) * inverse in double, from the safe side before the last rounding: an entry distance never
+// above the exact one rounded up, an exit never below it rounded down, fused (as the host and most
+// devices run it) and unfused (two roundings, as NVIDIA's OpenCL and Oclgrind run it). Rays from near
+// and far origins, grids from fine to coarse, nodes near to and far from the origin.
+TEST(Bvh8, NodeTestBoundsTheExactSlabDistances) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> unit(-1.f, 1.f);
+  std::uniform_int_distribution<int> exponent(-24, 12), byte(0, 255), scale_pow(-3, 18);
+  auto up = [](double x) {
+    float f = float(x);
+    return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+  };
+  auto down = [](double x) {
+    float f = float(x);
+    return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+  };
+  int checked = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const float node_scale = std::ldexp(1.f, scale_pow(rng)), ray_scale = std::ldexp(1.f, scale_pow(rng));
+    co_uint4 h{};
+    std::array<int, 3> e{};
+    std::array<float, 3> origin{};
+    for (int a = 0; a < 3; ++a) {
+      e[a] = exponent(rng);
+      origin[a] = std::ldexp(std::floor(std::ldexp(unit(rng) * node_scale, -e[a])), e[a]);
+    }
+    h.x = co_as_uint(origin[0]); h.y = co_as_uint(origin[1]); h.z = co_as_uint(origin[2]);
+    h.w = std::uint32_t(e[0] + 127) | std::uint32_t(e[1] + 127) << 8 | std::uint32_t(e[2] + 127) << 16;
+    co_vec3 org = v3(unit(rng) * ray_scale, unit(rng) * ray_scale, unit(rng) * ray_scale);
+    co_vec3 dir = v3_normalize(v3(unit(rng), unit(rng), unit(rng)));
+    if (trial % 7 == 0) dir.y = 0.f;  // an axis-parallel ray: inverse 1e18
+    const Bvh8Ray r = bvh8_ray(org, dir);
+    const Bvh8Grid g = bvh8_grid(&r, h);
+    const float o[3] = {r.o.x, r.o.y, r.o.z}, inv[3] = {r.inv.x, r.inv.y, r.inv.z};
+    const float step[3] = {g.step.x, g.step.y, g.step.z}, near[3] = {g.near.x, g.near.y, g.near.z};
+    const float far[3] = {g.far.x, g.far.y, g.far.z};
+    for (int a = 0; a < 3; ++a)
+      for (int k = 0; k < 4; ++k) {
+        const int q = k < 2 ? k * 255 : byte(rng);
+        const double exact = (double(origin[a]) + std::ldexp(double(q), e[a]) - double(o[a])) * double(inv[a]);
+        const float fused_near = std::fma(float(q), step[a], near[a]), fused_far = std::fma(float(q), step[a], far[a]);
+        const float unfused_near = float(q) * step[a] + near[a], unfused_far = float(q) * step[a] + far[a];
+        ASSERT_LE(fused_near, up(exact)) << "trial " << trial << " axis " << a << " q " << q;
+        ASSERT_LE(unfused_near, up(exact)) << "trial " << trial << " axis " << a << " q " << q;
+        ASSERT_GE(fused_far, down(exact)) << "trial " << trial << " axis " << a << " q " << q;
+        ASSERT_GE(unfused_far, down(exact)) << "trial " << trial << " axis " << a << " q " << q;
+        ++checked;
+      }
+  }
+  EXPECT_EQ(checked, 20000 * 12);
+  // bvh_slab_ray's non-finite origin: every plane at +infinity, none NaN, so no box is entered
+  const Bvh8Ray lost = bvh8_ray(v3(INFINITY, 0.f, 0.f), v3(0.f, 0.f, 1.f));
+  co_uint4 h{};
+  h.w = 127u | 127u << 8 | 127u << 16;
+  const Bvh8Grid g = bvh8_grid(&lost, h);
+  for (float q : {0.f, 255.f}) {
+    EXPECT_EQ(std::fma(q, g.step.x, g.near.x), INFINITY);
+    EXPECT_EQ(q * g.step.z + g.far.z, INFINITY);
+  }
 }
 
 // The octant order: a ray along the diagonal of octant s meets, of a node's children, first the one

@@ -20,10 +20,10 @@
  * the least (t, triangle index) over every triangle the ray meets, and a child box skipped only
  * when the ray enters it beyond the best t by more than KD_TERMINATION_SLACK. The boxes only have to
  * be conservative: the builder pads them as the 4-wide BVH's (bvh4_traverse.h says why), then rounds
- * lower planes down and upper planes up onto the node's grid, and a decoded plane, origin + q * 2^e,
- * is exact in float with or without fma (the builder checks it). The slab arithmetic after the
- * decode is bvh4_traverse.h's: (plane - origin) * inverse, a zero direction component taken as
- * 1e-18, the exit widened by a few ulps. A popped group is dropped only when its least entry
+ * lower planes down and upper planes up onto the node's grid, and the node test (bvh8_grid) moves
+ * each slab's distance outwards by more than its roundings, so a box is entered more often than
+ * exactly, never less. A zero direction component is taken as 1e-18 and the exit is widened by a few
+ * ulps, as the 4-wide BVH's. A popped group is dropped only when its least entry
  * distance is beyond the best t by more than KD_TERMINATION_SLACK, as a box would be; its other
  * children are tested against the best t when entered. The order of the children changes visits,
  * never the hit. */
@@ -54,13 +54,12 @@ CO_INLINE Bvh8View make_bvh8_view(const CO_GLOBAL KdNode* nodes, const CO_GLOBAL
   return b;
 }
 
-/* What a walk keeps of its ray: the watertight set-up, the origin and inverse direction splatted
- * over four lanes (four slots per box test), which plane of each axis the ray enters through (the
- * upper one for a negative component) and the octant's inverse, 7 ^ octant (bit a set for a
- * negative component on axis a). */
+/* What a walk keeps of its ray: the watertight set-up, the origin and inverse direction
+ * (bvh_slab_ray), which plane of each axis the ray enters through (the upper one for a negative
+ * component) and the octant's inverse, 7 ^ octant (bit a set for a negative component on axis a). */
 typedef struct Bvh8Ray {
   WatertightRay wr;
-  co_float4 ox, oy, oz, ix, iy, iz;
+  co_vec3 o, inv;
   int neg_x, neg_y, neg_z;
   uint32_t oct_inv;
 } Bvh8Ray;
@@ -73,10 +72,7 @@ CO_INLINE Bvh8Ray bvh8_ray(co_vec3 org, co_vec3 dir CO_ALPHA_PARAM) {
   r.wr.alpha = 0; /* bvh8_trace_steps points a copy at its tree's */
   r.wr.alpha_seed = alpha_seed;
 #endif
-  co_vec3 o, inv;
-  bvh_slab_ray(org, dir, &o, &inv);
-  r.ox = co_f4_splat(o.x); r.oy = co_f4_splat(o.y); r.oz = co_f4_splat(o.z);
-  r.ix = co_f4_splat(inv.x); r.iy = co_f4_splat(inv.y); r.iz = co_f4_splat(inv.z);
+  bvh_slab_ray(org, dir, &r.o, &r.inv);
   r.neg_x = dir.x < 0.0f; r.neg_y = dir.y < 0.0f; r.neg_z = dir.z < 0.0f;
   r.oct_inv = 7u ^ ((uint32_t)r.neg_x | ((uint32_t)r.neg_y << 1) | ((uint32_t)r.neg_z << 2));
   return r;
@@ -87,27 +83,63 @@ CO_INLINE co_float4 bvh8_bytes(uint32_t w) {
   return co_make_float4((float)(w & 255u), (float)((w >> 8) & 255u), (float)((w >> 16) & 255u), (float)(w >> 24));
 }
 
-/* Distances to four slots' planes on one axis: (origin + q * scale - o) * inverse. origin + q * scale
- * is the exact plane, so this rounds as bvh4's (plane - o) * inverse. */
-CO_INLINE co_float4 bvh8_plane_t(uint32_t q, float origin, float scale, co_float4 o, co_float4 inverse) {
-  return co_f4_mul(co_f4_sub(co_f4_add(co_f4_splat(origin), co_f4_scale(bvh8_bytes(q), scale)), o), inverse);
+/* A node's grid as the ray sees it, one axis a component: the distance to plane q of an axis is
+ * q * step + near for the planes the ray enters through and q * step + far for those it leaves
+ * through. The exact distance is (origin + q 2^e - o) * inverse = q * (2^e inverse) + (origin - o) *
+ * inverse: step is exact (a power of two times the inverse; the builder keeps 2^e at least 2^-100,
+ * so no product is subnormal for a direction component up to 2^26), and the offset b = (origin - o) *
+ * inverse is rounded twice, within 2^-23 |b|. near and far move b by s = 2^-21 (|b| + 256 |step|):
+ * enough for b's roundings, their own and, unfused, the rounding of q * step (at most 2^-24 255
+ * |step|), so before the last rounding (the fma's, or the add's) the entry distance is never above
+ * and the exit never below the exact one, and the exit's widening by a few ulps covers that last
+ * rounding as it does the 4-wide BVH's (bvh4_traverse.h, bvh_slab_offsets). The boxes grow by about
+ * 2^-21 of the distance from the node's origin to the ray's in space, far below their padding: more
+ * visits now and then, never a box missed, so the hit does not change. One fma a plane (Ylitie et
+ * al.'s decode) where it was a conversion and four float operations. s is held below FLT_MAX so that
+ * bvh_slab_ray's -infinity origin (b = +infinity) puts every plane at +infinity, not NaN; b itself
+ * stays finite for scenes within 2e20 of the origin (|o inverse| <= 1e38, |inverse| <= 1e18). */
+typedef struct Bvh8Grid {
+  co_vec3 step, near, far;
+} Bvh8Grid;
+
+CO_INLINE float bvh8_slack(float b, float step) {
+  float s = (fabs(b) + fabs(step) * 256.0f) * 4.76837158203125e-7f; /* 2^-21 */
+  return s < 3.40282347e38f ? s : 3.40282347e38f; /* FLT_MAX */
 }
 
-/* The hit-mask bits of four slots (`half` 0: slots 0-3, 1: slots 4-7) of node `n` (its words
- * loaded: header h, meta word `meta`, the six plane words of the half), as bvh4's BVH4_ENTER decides
- * a lane: entered at least at tmin, before `limit`, the exit widened by a few ulps. */
-CO_INLINE uint32_t bvh8_half_hits(const Bvh8Ray* r, co_uint4 h, uint32_t meta, uint32_t lo_x, uint32_t lo_y,
+CO_INLINE Bvh8Grid bvh8_grid(const Bvh8Ray* r, co_uint4 h) {
+  Bvh8Grid g;
+  co_vec3 scale = v3(co_as_float((h.w & 255u) << 23), co_as_float(((h.w >> 8) & 255u) << 23),
+                     co_as_float(((h.w >> 16) & 255u) << 23));
+  co_vec3 origin = v3(co_as_float(h.x), co_as_float(h.y), co_as_float(h.z));
+  g.step = v3_mul(scale, r->inv);
+  co_vec3 b = v3_mul(v3_sub(origin, r->o), r->inv);
+  co_vec3 s = v3(bvh8_slack(b.x, g.step.x), bvh8_slack(b.y, g.step.y), bvh8_slack(b.z, g.step.z));
+  g.near = v3_sub(b, s);
+  g.far = v3_add(b, s);
+  return g;
+}
+
+/* Distances to four slots' planes on one axis (their bytes in q): q * step + offset, in one rounding
+ * where the device fuses the slabs, in two where it does not (bvh4_traverse.h, BVH_SLAB4). */
+#if defined(COHORT_UNFUSED_SLABS)
+#define BVH8_PLANE_T(q, step, offset) co_f4_add(co_f4_scale(bvh8_bytes(q), (step)), co_f4_splat(offset))
+#else
+#define BVH8_PLANE_T(q, step, offset) co_f4_fma(bvh8_bytes(q), co_f4_splat(step), co_f4_splat(offset))
+#endif
+
+/* The hit-mask bits of four slots (`half` 0: slots 0-3, 1: slots 4-7) of a node (its grid `g`, its
+ * meta word `meta`, the six plane words of the half), as bvh4's BVH4_ENTER decides a lane: entered
+ * at least at tmin, before `limit`, the exit widened by a few ulps. */
+CO_INLINE uint32_t bvh8_half_hits(const Bvh8Ray* r, const Bvh8Grid* g, uint32_t meta, uint32_t lo_x, uint32_t lo_y,
                                   uint32_t lo_z, uint32_t hi_x, uint32_t hi_y, uint32_t hi_z, float tmin,
                                   float limit, co_float4* inner_enter) {
-  float sx = co_as_float((h.w & 255u) << 23), sy = co_as_float(((h.w >> 8) & 255u) << 23);
-  float sz = co_as_float(((h.w >> 16) & 255u) << 23);
-  float px = co_as_float(h.x), py = co_as_float(h.y), pz = co_as_float(h.z);
-  co_float4 near_x = bvh8_plane_t(r->neg_x ? hi_x : lo_x, px, sx, r->ox, r->ix);
-  co_float4 far_x = bvh8_plane_t(r->neg_x ? lo_x : hi_x, px, sx, r->ox, r->ix);
-  co_float4 near_y = bvh8_plane_t(r->neg_y ? hi_y : lo_y, py, sy, r->oy, r->iy);
-  co_float4 far_y = bvh8_plane_t(r->neg_y ? lo_y : hi_y, py, sy, r->oy, r->iy);
-  co_float4 near_z = bvh8_plane_t(r->neg_z ? hi_z : lo_z, pz, sz, r->oz, r->iz);
-  co_float4 far_z = bvh8_plane_t(r->neg_z ? lo_z : hi_z, pz, sz, r->oz, r->iz);
+  co_float4 near_x = BVH8_PLANE_T(r->neg_x ? hi_x : lo_x, g->step.x, g->near.x);
+  co_float4 far_x = BVH8_PLANE_T(r->neg_x ? lo_x : hi_x, g->step.x, g->far.x);
+  co_float4 near_y = BVH8_PLANE_T(r->neg_y ? hi_y : lo_y, g->step.y, g->near.y);
+  co_float4 far_y = BVH8_PLANE_T(r->neg_y ? lo_y : hi_y, g->step.y, g->far.y);
+  co_float4 near_z = BVH8_PLANE_T(r->neg_z ? hi_z : lo_z, g->step.z, g->near.z);
+  co_float4 far_z = BVH8_PLANE_T(r->neg_z ? lo_z : hi_z, g->step.z, g->far.z);
   co_float4 enter = co_f4_max(co_f4_max(near_x, near_y), co_f4_max(near_z, co_f4_splat(tmin)));
   co_float4 leave = co_f4_min(co_f4_min(far_x, far_y), co_f4_min(far_z, co_f4_splat(limit)));
   uint32_t mask = co_f4_less(enter, co_f4_scale(leave, 1.0000004f));
@@ -133,8 +165,9 @@ CO_INLINE uint32_t bvh8_half_hits(const Bvh8Ray* r, co_uint4 h, uint32_t meta, u
 CO_INLINE uint32_t bvh8_node_hits(const Bvh8Ray* r, co_uint4 h, co_uint4 ix, co_uint4 q0, co_uint4 q1, co_uint4 q2,
                                   float tmin, float limit, float* rest_t, uint32_t* first_bit) {
   co_float4 e0, e1;
-  uint32_t hits = bvh8_half_hits(r, h, ix.z, q0.x, q0.z, q1.x, q1.z, q2.x, q2.z, tmin, limit, &e0) |
-                  bvh8_half_hits(r, h, ix.w, q0.y, q0.w, q1.y, q1.w, q2.y, q2.w, tmin, limit, &e1);
+  Bvh8Grid g = bvh8_grid(r, h);
+  uint32_t hits = bvh8_half_hits(r, &g, ix.z, q0.x, q0.z, q1.x, q1.z, q2.x, q2.z, tmin, limit, &e0) |
+                  bvh8_half_hits(r, &g, ix.w, q0.y, q0.w, q1.y, q1.w, q2.y, q2.w, tmin, limit, &e1);
   /* the nearest inner child entered */
   float best = e0.x;
   uint32_t first = 0u;
