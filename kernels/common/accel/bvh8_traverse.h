@@ -143,16 +143,17 @@ CO_INLINE uint32_t bvh8_half_hits(const Bvh8Ray* r, const Bvh8Grid* g, uint32_t 
   co_float4 enter = co_f4_max(co_f4_max(near_x, near_y), co_f4_max(near_z, co_f4_splat(tmin)));
   co_float4 leave = co_f4_min(co_f4_min(far_x, far_y), co_f4_min(far_z, co_f4_splat(limit)));
   uint32_t mask = co_f4_less(enter, co_f4_scale(leave, 1.0000004f));
-  uint32_t bits = 0u, inner = 0u;
-  for (uint32_t j = 0u; j < 4u; ++j) {
-    uint32_t m = (meta >> (8u * j)) & 255u;
-    /* an inner child's bit (24 + slot) goes to its place in the ray's octant order; an unused slot
-     * (meta 0) sets nothing */
-    uint32_t is_inner = (m & 0x18u) == 0x18u;
-    uint32_t at = (m & 31u) ^ (is_inner ? r->oct_inv : 0u);
-    bits |= ((mask >> j) & 1u) ? (m >> 5) << at : 0u;
-    inner |= is_inner << j;
-  }
+  /* the four meta bytes at once (the paper's byte-wise form): an inner child (bits 3 and 4 set) has
+   * its bit, 24 + slot, moved to its place in the ray's octant order; a leaf its triangles' bits (a
+   * unary count in the top 3 bits) at its offset; an unused slot (meta 0) sets nothing */
+  uint32_t is_inner4 = meta & (meta << 1) & 0x10101010u;
+  uint32_t octant4 = (r->oct_inv * 0x01010101u) & ((is_inner4 >> 4) * 0xffu);
+  uint32_t at4 = (meta ^ octant4) & 0x1f1f1f1fu, count4 = (meta >> 5) & 0x07070707u;
+  uint32_t bits = 0u;
+  for (uint32_t j = 0u; j < 4u; ++j)
+    bits |= ((mask >> j) & 1u) ? ((count4 >> (8u * j)) & 7u) << ((at4 >> (8u * j)) & 31u) : 0u;
+  uint32_t inner =
+      ((is_inner4 >> 4) & 1u) | ((is_inner4 >> 11) & 2u) | ((is_inner4 >> 18) & 4u) | ((is_inner4 >> 25) & 8u);
   inner &= mask;
   *inner_enter = co_make_float4((inner & 1u) ? enter.x : INFINITY, (inner & 2u) ? enter.y : INFINITY,
                                 (inner & 4u) ? enter.z : INFINITY, (inner & 8u) ? enter.w : INFINITY);
