@@ -287,6 +287,15 @@ std::array<float, 6> bvh8_child_box(const Bvh8Node& node, int slot) {
 Bvh8 build_bvh8(std::span<const Triangle> triangles) {
   const auto start = std::chrono::steady_clock::now();
   if (triangles.empty()) throw InputError("a BVH needs at least one triangle");
+  // The node test's products stay finite within this bound (bvh8_traverse.h, bvh8_grid): a ray's
+  // distance to a plane is q * 2^e * inverse + (origin - o) * inverse with |inverse| up to 1e18.
+  constexpr float kFarthest = 1e19f;
+  for (const Triangle& t : triangles)
+    for (const co_float4& v : {t.v0, t.v1, t.v2})
+      if (!(std::fabs(v.x) <= kFarthest && std::fabs(v.y) <= kFarthest && std::fabs(v.z) <= kFarthest))
+        throw InputError(fmt::format("the 8-wide BVH (--tree bvh8) takes vertices within {:g} of the origin; the "
+                                     "scene reaches ({:g}, {:g}, {:g}): use --tree bvh4",
+                                     kFarthest, v.x, v.y, v.z));
   const binary_bvh::ReferenceChunks references = binary_bvh::make_references(triangles);
   constexpr std::size_t kMost = (std::size_t{1} << 31) - 1;  // binary slots 2n - 1 in 32 bits
   if (references.size > kMost)

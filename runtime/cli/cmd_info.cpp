@@ -30,9 +30,13 @@ void print_layouts(const PreparedScene& p, bool all) {
   fmt::print("{}\n", describe_tree(p));
   fmt::print("device memory: {}\n", describe(scene_memory(p.tree, p.tables, p.bvh()), triangles));
   if (!all) return;
-  const Bvh8 bvh8 = build_bvh8(p.tree.triangles);
-  fmt::print("{}\n", describe_bvh("compressed 8-wide BVH", bvh8.stats, triangles, p.tree.stats.build_seconds));
-  fmt::print("device memory: {}\n", describe(scene_memory(p.tree, p.tables, &bvh8), triangles));
+  try {  // a scene beyond the compressed BVH's bound still gets the other layouts
+    const Bvh8 bvh8 = build_bvh8(p.tree.triangles);
+    fmt::print("{}\n", describe_bvh("compressed 8-wide BVH", bvh8.stats, triangles, p.tree.stats.build_seconds));
+    fmt::print("device memory: {}\n", describe(scene_memory(p.tree, p.tables, &bvh8), triangles));
+  } catch (const InputError& e) {
+    fmt::print("compressed 8-wide BVH: not built: {}\n", e.what());
+  }
   const Bvh8f bvh8f = build_bvh8f(p.tree.triangles);
   fmt::print("{}\n", describe_bvh("8-wide BVH (float planes)", bvh8f.stats, triangles, p.tree.stats.build_seconds));
   fmt::print("device memory: {}\n", describe(scene_memory(p.tree, p.tables, &bvh8f), triangles));

@@ -16,6 +16,7 @@
 #include "accel/test_meshes.h"
 #include "accel/wide_bvh_check.h"
 #include "kernels/common/accel/bvh8_traverse.h"
+#include "runtime/util/error.h"
 
 namespace cohort::test {
 namespace {
@@ -149,6 +150,16 @@ TEST(Bvh8, NodeTestBoundsTheExactSlabDistances) {
     EXPECT_EQ(std::fma(q, g.step.x, g.near.x), INFINITY);
     EXPECT_EQ(q * g.step.z + g.far.z, INFINITY);
   }
+}
+
+// Beyond 1e19 from the origin the node test's products could overflow: the build refuses such a
+// scene with an input error rather than trace it wrongly; at the bound it builds.
+TEST(Bvh8, RefusesVerticesBeyondItsBound) {
+  std::vector<glm::vec3> near = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1e19f, 0, 0}, {-1e19f, 1, 0}, {-1e19f, 0, 1}};
+  EXPECT_NO_THROW(build_bvh8(kept_triangles(near).triangles));
+  std::vector<glm::vec3> far = near;
+  far[4].y = 3e19f;
+  EXPECT_THROW(build_bvh8(kept_triangles(far).triangles), InputError);
 }
 
 // The octant order: a ray along the diagonal of octant s meets, of a node's children, first the one

@@ -315,6 +315,29 @@ TEST(Cli, AutoFallsBackToTheKdTreeWhereItsBvhDoesNotFit) {
   }
 }
 
+// A scene beyond the compressed 8-wide BVH's bound (1e19 from the origin): --tree bvh8 refuses it
+// with the file's name and exit 2, writing nothing; the 4-wide BVH renders it; info --tree all says
+// why the compressed BVH is missing and lists the others.
+TEST(Cli, TheCompressedBvhRefusesASceneBeyondItsBound) {
+  TempDir dir;
+  const fs::path obj = dir.path / "far.obj";
+  std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 3e20 0 0\nv 3e20 1 0\nv 3e20 0 1\nf 1 2 3\nf 4 5 6\n";
+  const CommandResult refused = run("render " + obj.string() + " --tree bvh8 --res 8x8 --spp 1 -o " +
+                                    (dir.path / "a").string());
+  EXPECT_EQ(refused.code, 2) << refused.output;
+  EXPECT_NE(refused.output.find(obj.string() + ": the 8-wide BVH (--tree bvh8) takes vertices within"),
+            std::string::npos)
+      << refused.output;
+  EXPECT_FALSE(fs::exists(dir.path / "a.exr"));
+  const CommandResult wide4 = run("render " + obj.string() + " --tree bvh4 --res 8x8 --spp 1 -o " +
+                                  (dir.path / "b").string());
+  EXPECT_EQ(wide4.code, 0) << wide4.output;
+  const CommandResult info = run("info " + obj.string() + " --tree all");
+  EXPECT_EQ(info.code, 0) << info.output;
+  EXPECT_NE(info.output.find("compressed 8-wide BVH: not built: "), std::string::npos) << info.output;
+  EXPECT_NE(info.output.find("8-wide BVH (float planes): depth"), std::string::npos) << info.output;
+}
+
 TEST(Cli, TimeLimitStopsTheRender) {
   TempDir dir;
   const CommandResult r = run("render " + scene("cornell-box.gltf") + " --res 16x16 --spp 0 --time 0.5 -o " +

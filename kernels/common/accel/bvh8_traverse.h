@@ -96,8 +96,10 @@ CO_INLINE co_float4 bvh8_bytes(uint32_t w) {
  * 2^-21 of the distance from the node's origin to the ray's in space, far below their padding: more
  * visits now and then, never a box missed, so the hit does not change. One fma a plane (Ylitie et
  * al.'s decode) where it was a conversion and four float operations. s is held below FLT_MAX so that
- * bvh_slab_ray's -infinity origin (b = +infinity) puts every plane at +infinity, not NaN; b itself
- * stays finite for scenes within 2e20 of the origin (|o inverse| <= 1e38, |inverse| <= 1e18). */
+ * bvh_slab_ray's -infinity origin (b = +infinity) puts every plane at +infinity, not NaN. The builder
+ * takes vertices within 1e19 of the origin, so q * step (at most twice a node's extent times
+ * |inverse| <= 1e18) and b (|o inverse| <= 1e38 by bvh_slab_ray) stay finite, and so does their sum
+ * for any node a finite hit can lie in. */
 typedef struct Bvh8Grid {
   co_vec3 step, near, far;
 } Bvh8Grid;

@@ -87,9 +87,13 @@ PreparedScene prepare_loaded_scene(const std::filesystem::path& path, Scene scen
     throw InputError(fmt::format("{}: nothing to render: all {} triangles are degenerate (zero area) or have "
                                  "non-finite corners",
                                  path.string(), p.scene.triangle_count()));
-  if (choice.bvh4) p.bvh4 = build_bvh4(p.tree.triangles);
-  if (choice.bvh8) p.bvh8 = build_bvh8(p.tree.triangles);
-  if (choice.bvh8f) p.bvh8f = build_bvh8f(p.tree.triangles);
+  try {  // a tree that cannot take the scene says so with the file's name
+    if (choice.bvh4) p.bvh4 = build_bvh4(p.tree.triangles);
+    if (choice.bvh8) p.bvh8 = build_bvh8(p.tree.triangles);
+    if (choice.bvh8f) p.bvh8f = build_bvh8f(p.tree.triangles);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", path.string(), e.what()));
+  }
   p.tables = make_scene_tables(p.scene, p.tree);
   p.camera = p.scene.camera ? *p.scene.camera : framing_camera(p.scene.bounds());
   return p;
