@@ -253,6 +253,16 @@ CO_FORCE_INLINE void bvh4_descend(const Bvh4View* bvh, uint32_t mask, co_float4 
   bvh4_descend_sorted(bvh, mask, enter, c, ref, ref_t, stack_ref, stack_t, sp);
 }
 
+/* The order of an any-hit walk (shadow rays): farthest child first. Its answer is whether some
+ * triangle blocks the segment, the same in any order, and a stacked child is never dropped (the
+ * limit, tmax, only changes when the walk ends), so the descent sorts the entry distances negated
+ * and the stack holds them so. Nearest first explores the clutter around the ray's origin, where a
+ * shadow ray leaving a surface mostly escapes, before the far geometry that blocks it: host counts
+ * on the Sponza interior's shadow rays to the sky (97 % blocked) gave 8.7 inner nodes a ray against
+ * 19.3 on the 4-wide BVH and 5.3 against 12.4 on the 8-wide BVH with float planes, and exterior
+ * views (7-21 % blocked) 2-12 % fewer (docs/design.md, "Any-hit order"). The image is the same. */
+CO_INLINE co_float4 bvh_any_hit_order(co_float4 enter) { return co_f4_scale(enter, -1.0f); }
+
 /* Continues a closest-hit (any_hit = 0) or any-hit (any_hit = 1) traversal at node or leaf `ref`,
  * entered at `ref_t`, with `sp` entries on the stack, into `hit` (its t the current limit).
  * `visited`, when not null, receives the number of nodes and leaves visited. */
@@ -280,6 +290,7 @@ CO_INLINE void bvh4_continue(const Bvh4View* bvh, const Bvh4Ray* r, float tmin, 
         uint32_t mask;
         BVH4_ENTER(&n->lo_x, r, enter_min, hit->t * KD_TERMINATION_SLACK, enter, mask);
         if (mask != 0u) {
+          if (any_hit) enter = bvh_any_hit_order(enter);
           bvh4_descend(bvh, mask, enter, n->child, &ref, &ref_t, stack_ref, stack_t, &sp);
           continue;
         }

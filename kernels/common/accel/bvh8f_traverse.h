@@ -224,6 +224,9 @@ CO_FORCE_INLINE int bvh8f_walk_step(const Bvh8fView* bvh, Bvh8fWalk* w, Bvh8fAt*
       float enter[8];
       uint32_t mask = bvh8f_enter(n, &w->r, w->tmin, w->hit.t * KD_TERMINATION_SLACK, enter);
       if (mask != 0u) {
+        /* an any-hit walk takes the farthest child first (bvh4_traverse.h, bvh_any_hit_order) */
+        if (w->any_hit)
+          for (int k = 0; k < 8; ++k) enter[k] = -enter[k];
         bvh8f_descend(bvh, n, mask, enter, &at->ref, &at->ref_t, stack->ref, stack->t, &at->sp);
         return 1;
       }
