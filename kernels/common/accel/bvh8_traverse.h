@@ -130,7 +130,7 @@ CO_INLINE Bvh8Grid bvh8_grid(const Bvh8Ray* r, co_uint4 h) {
 #define BVH8_PLANE_T(q, step, offset) co_f4_fma(bvh8_bytes(q), co_f4_splat(step), co_f4_splat(offset))
 #endif
 
-/* The hit-mask bits of four slots (`half` 0: slots 0-3, 1: slots 4-7) of a node (its grid `g`, its
+/* The hit-mask bits of four slots (slots 0-3 or 4-7) of a node (its grid `g`, the half's
  * meta word `meta`, the six plane words of the half), as bvh4's BVH4_ENTER decides a lane: entered
  * at least at tmin, before `limit`, the exit widened by a few ulps. */
 CO_INLINE uint32_t bvh8_half_hits(const Bvh8Ray* r, const Bvh8Grid* g, uint32_t meta, uint32_t lo_x, uint32_t lo_y,
