@@ -131,7 +131,10 @@ TEST(Bvh8, NodeTestBoundsTheExactSlabDistances) {
       for (int k = 0; k < 4; ++k) {
         const int q = k < 2 ? k * 255 : byte(rng);
         const double exact = (double(origin[a]) + std::ldexp(double(q), e[a]) - double(o[a])) * double(inv[a]);
-        const float fused_near = std::fma(float(q), step[a], near[a]), fused_far = std::fma(float(q), step[a], far[a]);
+        // fused: the kernel's own BVH8_PLANE_T (the host builds its fused form), q in the word's first
+        // byte; unfused: that macro's other form, a multiply and an add
+        const float fused_near = BVH8_PLANE_T(std::uint32_t(q), step[a], near[a]).x;
+        const float fused_far = BVH8_PLANE_T(std::uint32_t(q), step[a], far[a]).x;
         const float unfused_near = float(q) * step[a] + near[a], unfused_far = float(q) * step[a] + far[a];
         ASSERT_LE(fused_near, up(exact)) << "trial " << trial << " axis " << a << " q " << q;
         ASSERT_LE(unfused_near, up(exact)) << "trial " << trial << " axis " << a << " q " << q;
