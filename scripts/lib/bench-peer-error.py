@@ -15,7 +15,8 @@ to Cohort's, per ladder point, is how many times sooner Cohort gets there (above
 
 Times: Cohort's render_seconds (`cohort render --stats`: load, build and compile excluded),
 Mitsuba's mi.render wall time after an untimed render at the same spp (its JIT). Images: the
-ladder's first round. Writes OUT/MODEL/*.exr and *.json, OUT/peer-error.json (every figure),
+ladder's first round. Writes OUT/MODEL/*.exr and *.json with OUT/MODEL/result.json (the model's
+figures), OUT/peer-error.json (all of them),
 OUT/summary.md (medians) and the chart OUT/peer-error-vs-time.png (--chart elsewhere).
 
 Run through `scripts/bench peer-error OUT [--rounds 3] [--models a,b] [--ladder 0.125,0.5,2]
@@ -43,6 +44,7 @@ def arguments():
     ap.add_argument("--scenes", default=os.environ.get("COHORT_SHARED_SCENES",
                                                        os.path.join(ROOT, "..", "shared", "scenes")))
     ap.add_argument("--chart", default="", help="where the chart goes (default OUT/peer-error-vs-time.png)")
+    ap.add_argument("--replot", action="store_true", help="only redraw the chart and summary from OUT/peer-error.json")
     return ap.parse_args()
 
 
@@ -167,8 +169,12 @@ def measure_model(model, args, ladder_factors, log):
 
 
 def chart(results, path):
-    fig, axes = plt.subplots(1, len(results), figsize=(4.2 * len(results), 4), squeeze=False)
-    for ax, res in zip(axes[0], results):
+    cols = min(3, len(results))
+    rows = (len(results) + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(4.4 * cols, 3.9 * rows), squeeze=False)
+    for ax in axes.flat[len(results):]:
+        ax.set_visible(False)
+    for ax, res in zip(axes.flat, results):
         for who, style, label in (("cohort", "o-", "Cohort (PoCL, default)"), ("mitsuba", "s--", "Mitsuba 3 llvm_ad_rgb")):
             xs = [r[who]["seconds"] for r in res["rows"]]
             ys = [r[who]["rel_rmse"] for r in res["rows"]]
@@ -178,6 +184,7 @@ def chart(results, path):
                             textcoords="offset points", xytext=(3, 3))
         ax.set_xscale("log")
         ax.set_yscale("log")
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
         ax.set_xlabel("render seconds (medians of the rounds)")
         ax.set_ylabel("relative RMSE to the reference")
         ax.set_title(f"{res['model']} ({res['view']}, {res['res']}x{res['res']})\ntime to an equal error, "
@@ -205,6 +212,12 @@ def summary(results, rounds):
 def main():
     args = ARGS
     mi.set_variant("llvm_ad_rgb")
+    if args.replot:
+        with open(os.path.join(args.out, "peer-error.json")) as f:
+            doc = json.load(f)
+        chart(doc["models"], args.chart or os.path.join(args.out, "peer-error-vs-time.png"))
+        sys.stdout.write(summary(doc["models"], doc["rounds"]))
+        return
     os.makedirs(args.out, exist_ok=True)
     models = suite_models()
     if args.models:
@@ -217,7 +230,11 @@ def main():
     if not factors or min(factors) <= 0:
         raise SystemExit(f"bench-peer-error: --ladder {args.ladder}: expected positive factors")
     log = os.path.join(args.out, "log.txt")
-    results = [measure_model(m, args, factors, log) for m in models]
+    results = []
+    for m in models:
+        results.append(measure_model(m, args, factors, log))
+        with open(os.path.join(args.out, m["name"], "result.json"), "w") as f:
+            json.dump(results[-1], f, indent=1)
     with open(os.path.join(args.out, "peer-error.json"), "w") as f:
         json.dump({"rounds": args.rounds, "cohort": args.cohort, "mitsuba": mi.__version__,
                    "threads": dr.thread_count(), "models": results}, f, indent=1)
