@@ -12,7 +12,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 SCRIPTS = ROOT / "scripts"
-SUBCOMMANDS = ("large", "scaling", "tree-budget", "runtimes")
+SUBCOMMANDS = ("large", "scaling", "tree-budget", "runtimes", "peer-error")
 
 
 def entries():
