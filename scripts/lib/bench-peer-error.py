@@ -23,12 +23,13 @@ Run through `scripts/bench peer-error OUT [--rounds 3] [--models a,b] [--ladder 
 [--ref-factor 16] [--chart PATH]`, which provides the venv (numpy, matplotlib, mitsuba) and
 DRJIT_LIBLLVM_PATH. The ladder's factors multiply each model's spp in the cpu-peers suite."""
 import argparse
+import importlib.machinery
+import importlib.util
 import json
 import os
 import statistics
 import subprocess
 import sys
-import time
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 
@@ -84,29 +85,21 @@ def rel_rmse(image, reference):
     return float(np.sqrt(np.mean((image - reference) ** 2)) / np.mean(reference))
 
 
-def mitsuba_scene(mesh, camera, res):
-    """The white-sky scene of scripts/lib/bench-mitsuba.py."""
-    return mi.load_dict({
-        "type": "scene",
-        "integrator": {"type": "path", "max_depth": 5, "rr_depth": 1 << 30},
-        "sensor": {"type": "perspective", "fov": camera["vfov_degrees"], "fov_axis": "y",
-                   "to_world": mi.ScalarTransform4f().look_at(origin=camera["eye"], target=camera["target"],
-                                                              up=[0, 1, 0]),
-                   "film": {"type": "hdrfilm", "width": res, "height": res, "rfilter": {"type": "box"},
-                            "pixel_format": "rgb"},
-                   "sampler": {"type": "independent", "sample_count": 1}},
-        "sky": {"type": "constant", "radiance": {"type": "rgb", "value": 1.0}},
-        "mesh": {"type": "ply", "filename": mesh, "face_normals": True,
-                 "bsdf": {"type": "twosided",
-                          "material": {"type": "diffuse", "reflectance": {"type": "rgb", "value": 0.5}}}}})
+def mitsuba_harness():
+    """scripts/lib/bench-mitsuba.py as a module: its white-sky scene and its timed render."""
+    loader = importlib.machinery.SourceFileLoader("bench_mitsuba", os.path.join(ROOT, "scripts", "lib", "bench-mitsuba.py"))
+    spec = importlib.util.spec_from_loader("bench_mitsuba", loader)
+    module = importlib.util.module_from_spec(spec)
+    loader.exec_module(module)
+    return module
+
+
+MITSUBA = mitsuba_harness()
 
 
 def mitsuba_render(scene, spp, seed):
-    start = time.perf_counter()
-    image = mi.render(scene, spp=spp, seed=seed)
-    dr.eval(image)
-    dr.sync_thread()
-    return np.array(image, dtype=np.float64)[..., :3], time.perf_counter() - start
+    image, seconds, _ = MITSUBA.timed_render(scene, spp, seed)
+    return np.array(image, dtype=np.float64)[..., :3], seconds
 
 
 def measure_model(model, args, ladder_factors, log):
@@ -127,7 +120,7 @@ def measure_model(model, args, ladder_factors, log):
     run(cohort + ["--spp", str(ref_spp), "--seed", "7", "-o", os.path.join(d, "reference")], log)
     reference = read_exr(os.path.join(d, "reference.exr"))
 
-    mscene = mitsuba_scene(mesh, camera, res)
+    mscene = mi.load_dict(MITSUBA.white_sky_scene(mesh, camera, res, ladder[0]))
     for spp in ladder:  # Dr.Jit's compile, untimed
         mitsuba_render(mscene, spp, 999)
     points = {"cohort": {s: [] for s in ladder}, "mitsuba": {s: [] for s in ladder}}
