@@ -135,9 +135,10 @@ def measure_model(model, args, ladder_factors, log):
             image, seconds = mitsuba_render(mscene, spp, 200 + r)
             points["mitsuba"][spp].append({"seconds": seconds, "rel_rmse": rel_rmse(image, reference)})
             means.append(float(np.mean(image)))
-            if r > 1:
+            if r > 1:  # the first round's images stay
                 os.remove(stem + ".exr")
-            os.remove(stem + ".png") if os.path.exists(stem + ".png") else None
+            if os.path.exists(stem + ".png"):
+                os.remove(stem + ".png")
         print(f"{name}: round {r} of {args.rounds}", flush=True)
     os.remove(mesh)
 
@@ -206,11 +207,15 @@ def main():
     args = ARGS
     mi.set_variant("llvm_ad_rgb")
     if args.replot:
+        if not os.path.exists(os.path.join(args.out, "peer-error.json")):
+            raise SystemExit(f"bench-peer-error: --replot: {args.out} holds no peer-error.json")
         with open(os.path.join(args.out, "peer-error.json")) as f:
             doc = json.load(f)
         chart(doc["models"], args.chart or os.path.join(args.out, "peer-error-vs-time.png"))
         sys.stdout.write(summary(doc["models"], doc["rounds"]))
         return
+    if not os.access(args.cohort, os.X_OK):
+        raise SystemExit(f"bench-peer-error: {args.cohort} is not an executable Cohort (build it, or pass --cohort)")
     os.makedirs(args.out, exist_ok=True)
     models = suite_models()
     if args.models:
