@@ -18,6 +18,9 @@ constexpr int kBins = 32;
 constexpr int kMedianDepth = 32;                 // below this, object-median splits bound the depth
 constexpr double kSplitAreaFactor = 1.0;         // split references whose box area is over the mean
 constexpr int kMaxSplitDepth = 6;                // at most 64 references per triangle
+constexpr int kSpatialBins = 16;                 // spatial split planes: the borders of this many bins
+constexpr double kSpatialBudget = 0.25;          // spatial splits add at most this share of references
+constexpr float kSpatialOverlap = 1e-5f;         // ... where the object split's children overlap so much
 static_assert(kMedianDepth + 27 == kMaxDepth, "object medians below kMedianDepth halve at most 2^27 references");
 
 Box triangle_box(const Triangle& t) {
@@ -127,28 +130,35 @@ struct NodeBounds {
 };
 
 struct Builder {
-  // Per reference, in tree order: the partitions move a reference's box with its index, so every
-  // pass over a node reads its boxes in sequence (indices into one array of boxes made the top
-  // levels' passes a gather over the whole scene).
+  // Per reference position, in tree order: the partitions move a reference's box with its triangle,
+  // so every pass over a node reads its boxes in sequence (indices into one array of boxes made the
+  // top levels' passes a gather over the whole scene).
   // Arrays of trivial types allocated without clearing (filled in parallel below, or written by
   // the build before they are read): clearing them was a serial pass over 200 MB for 1.6M references.
-  std::size_t size;
+  // A subtree owns `cap` positions from its first (at least its references; spatial splits add
+  // references into the rest) and the 2 cap - 1 node slots from its root's: its left child's subtree
+  // starts one after the root, its right child's after the left's 2 cap_left - 1. Unused positions
+  // and slots stay unwritten; `compact` closes the gaps.
+  std::size_t size;      // references made by early split clipping
+  std::size_t capacity;  // positions: size and the spatial splits' budget
   std::unique_ptr<RefBox[]> box;
-  std::unique_ptr<std::uint32_t[]> refs;       // reference indices, partitioned into the leaves
-  std::unique_ptr<std::uint32_t[]> triangle;   // per reference index
-  // A subtree of n references owns the 2n - 1 slots from its root's: its left child's subtree
-  // starts one after the root, its right child's after the left's 2 n_left - 1. Unused slots stay
-  // unwritten.
+  std::unique_ptr<std::uint32_t[]> tri;  // per position: the reference's triangle
   std::unique_ptr<Node[]> nodes;
+  std::span<const Triangle> triangles;
   LeafShape shape;  // what a leaf may hold and what its triangle tests cost
+  float root_area = 0;
 
   // The references of the chunks in chunk order, each chunk copied by its own task.
-  Builder(const ReferenceChunks& references, LeafShape shape_)
+  Builder(const ReferenceChunks& references, std::span<const Triangle> triangles_, LeafShape shape_,
+          bool spatial_splits)
       : size(references.size),
-        box(std::make_unique_for_overwrite<RefBox[]>(size)),
-        refs(std::make_unique_for_overwrite<std::uint32_t[]>(size)),
-        triangle(std::make_unique_for_overwrite<std::uint32_t[]>(size)),
-        nodes(std::make_unique_for_overwrite<Node[]>(2 * size - 1)),
+        capacity(spatial_splits ? std::min<std::size_t>(size + static_cast<std::size_t>(kSpatialBudget * double(size)),
+                                                        0x7fffffffu)
+                                : size),
+        box(std::make_unique_for_overwrite<RefBox[]>(capacity)),
+        tri(std::make_unique_for_overwrite<std::uint32_t[]>(capacity)),
+        nodes(std::make_unique_for_overwrite<Node[]>(2 * capacity - 1)),
+        triangles(triangles_),
         shape(shape_) {
     const auto& chunks = references.chunks;
     std::vector<std::size_t> offset(chunks.size() + 1, 0);
@@ -158,8 +168,7 @@ struct Builder {
         const std::size_t i = offset[c] + j;
         const Box& b = chunks[c][j].box;
         box[i] = {Vec4{b.lo[0], b.lo[1], b.lo[2], 0.0f}, Vec4{b.hi[0], b.hi[1], b.hi[2], 0.0f}};
-        triangle[i] = chunks[c][j].triangle;
-        refs[i] = static_cast<std::uint32_t>(i);
+        tri[i] = chunks[c][j].triangle;
       }
     });
   }
@@ -172,13 +181,14 @@ struct Builder {
 
   void swap_references(std::uint32_t i, std::uint32_t j) {
     std::swap(box[i], box[j]);
-    std::swap(refs[i], refs[j]);
+    std::swap(tri[i], tri[j]);
   }
 
   struct Split {
     int axis = -1;
     int bin = 0;
     float cost = INFINITY;
+    RefBox left = kEmptyRefBox, right = kEmptyRefBox;  // the two children's boxes
   };
 
   Split best_split(std::uint32_t first, std::uint32_t count, const Box& centroids) const {
@@ -230,6 +240,7 @@ struct Builder {
       int m = 0;
       for (std::uint32_t bits = occupied[a]; bits; bits &= bits - 1) full[m++] = std::countr_zero(bits);
       std::array<float, kBins> right_area;  // [1, m) written before read
+      std::array<RefBox, kBins> right_box;
       std::array<std::uint32_t, kBins> right_count;
       RefBox acc = kEmptyRefBox;
       std::uint32_t n = 0;
@@ -237,6 +248,7 @@ struct Builder {
         extend(acc, bin_box[a][full[j]]);
         n += bin_count[a][full[j]];
         right_area[j] = area_of(acc);
+        right_box[j] = acc;
         right_count[j] = n;
       }
       acc = kEmptyRefBox;
@@ -245,7 +257,7 @@ struct Builder {
         extend(acc, bin_box[a][full[j]]);
         n += bin_count[a][full[j]];
         const float cost = area_of(acc) * shape.tests(n) + right_area[j + 1] * shape.tests(right_count[j + 1]);
-        if (cost < best.cost) best = {a, full[j], cost};
+        if (cost < best.cost) best = {a, full[j], cost, acc, right_box[j + 1]};
       }
     }
     return best;
@@ -282,7 +294,144 @@ struct Builder {
     }
   }
 
-  void build(std::uint32_t slot, std::uint32_t first, std::uint32_t count, int depth,
+  // A spatial split (Stich, Friedrich & Dietrich, "Spatial Splits in Bounding Volume Hierarchies",
+  // 2009): a plane at a bin border of the node's box, each reference that straddles it cut in two
+  // (kd::split_triangle_bounds, conservative), so both children may hold a part of one triangle.
+  struct SpatialSplit {
+    int axis = -1;
+    float plane = 0;
+    float cost = INFINITY;
+  };
+
+  static Bounds to_bounds(const RefBox& r) {
+    Bounds b;
+    b.lo = {r.lo[0], r.lo[1], r.lo[2]};
+    b.hi = {r.hi[0], r.hi[1], r.hi[2]};
+    return b;
+  }
+  static RefBox to_ref_box(const Bounds& b) {
+    return {Vec4{b.lo.x, b.lo.y, b.lo.z, 0.0f}, Vec4{b.hi.x, b.hi.y, b.hi.z, 0.0f}};
+  }
+
+  // The part of reference `p`'s triangle on each side of x[axis] = plane, within its box.
+  std::array<Bounds, 2> cut(std::uint32_t p, const Bounds& cell, int axis, float plane) const {
+    const Triangle& t = triangles[tri[p]];
+    return kd::split_triangle_bounds({t.v0.x, t.v0.y, t.v0.z}, {t.v1.x, t.v1.y, t.v1.z}, {t.v2.x, t.v2.y, t.v2.z},
+                                     cell, cell, axis, plane);
+  }
+
+  // The plane of bin border b (1 .. kSpatialBins - 1) of an axis from lo in steps of width: one
+  // expression, so the binning and the split cut at the same float.
+  static float border(float lo, float width, int b) { return lo + width * static_cast<float>(b); }
+
+  SpatialSplit best_spatial(std::uint32_t first, std::uint32_t count, const Box& node) const {
+    SpatialSplit best;
+    for (int a = 0; a < 3; ++a) {
+      const float lo = node.lo[a], width = (node.hi[a] - node.lo[a]) / kSpatialBins;
+      if (!(width > 0.0f)) continue;
+      std::array<RefBox, kSpatialBins> bin;
+      bin.fill(kEmptyRefBox);
+      std::array<std::uint32_t, kSpatialBins> enter{}, leave{};
+      const float inverse = kSpatialBins / (node.hi[a] - node.lo[a]);
+      const auto bin_of = [&](float x) {
+        return std::clamp(static_cast<int>((x - lo) * inverse), 0, kSpatialBins - 1);
+      };
+      for (std::uint32_t p = first; p < first + count; ++p) {
+        const int b0 = bin_of(box[p].lo[a]), b1 = std::max(b0, bin_of(box[p].hi[a]));
+        ++enter[b0];
+        ++leave[b1];
+        if (b0 == b1) {
+          extend(bin[b0], box[p]);
+          continue;
+        }
+        // the reference's box cut at the bin borders, not its triangle: an estimate for the SAH
+        // (clipping the triangle at every border was most of a build's time); the split itself cuts
+        // the triangle
+        for (int b = b0; b <= b1; ++b) {
+          RefBox part = box[p];
+          if (b > b0) part.lo[a] = border(lo, width, b);
+          if (b < b1) part.hi[a] = border(lo, width, b + 1);
+          extend(bin[b], part);
+        }
+      }
+      std::array<RefBox, kSpatialBins> right;
+      std::array<std::uint32_t, kSpatialBins> right_count;
+      RefBox acc = kEmptyRefBox;
+      std::uint32_t n = 0;
+      for (int b = kSpatialBins - 1; b > 0; --b) {
+        extend(acc, bin[b]);
+        n += leave[b];
+        right[b] = acc;
+        right_count[b] = n;
+      }
+      acc = kEmptyRefBox;
+      n = 0;
+      for (int b = 0; b + 1 < kSpatialBins; ++b) {
+        extend(acc, bin[b]);
+        n += enter[b];
+        if (n == 0 || right_count[b + 1] == 0) continue;
+        const float cost = area_of(acc) * shape.tests(n) + area_of(right[b + 1]) * shape.tests(right_count[b + 1]);
+        if (cost < best.cost) best = {a, border(lo, width, b + 1), cost};
+      }
+    }
+    return best;
+  }
+
+  // Moves the references [from, from + n) to start at `to` (>= from), boxes with their triangles.
+  void shift(std::uint32_t from, std::uint32_t n, std::uint32_t to) {
+    if (to == from) return;
+    std::copy_backward(box.get() + from, box.get() + from + n, box.get() + to + n);
+    std::copy_backward(tri.get() + from, tri.get() + from + n, tri.get() + to + n);
+  }
+
+  // Performs `split` on [first, first + count) within `cap` positions: the left side's references
+  // from first, the right side's from first + its share of the positions; returns the two counts, or
+  // {0, 0} (nothing changed) where one side would be empty or the positions are too few.
+  std::array<std::uint32_t, 2> spatial_partition(std::uint32_t first, std::uint32_t count, std::uint32_t cap,
+                                                 const SpatialSplit& split, std::uint32_t& right_first,
+                                                 NodeBounds& left_bounds, NodeBounds& right_bounds) {
+    std::vector<RefBox> side_box[2];
+    std::vector<std::uint32_t> side_tri[2];
+    for (std::uint32_t p = first; p < first + count; ++p) {
+      const RefBox& r = box[p];
+      if (r.hi[split.axis] <= split.plane || r.lo[split.axis] >= split.plane) {
+        const int side = r.hi[split.axis] <= split.plane ? 0 : 1;
+        side_box[side].push_back(r);
+        side_tri[side].push_back(tri[p]);
+        continue;
+      }
+      const auto halves = cut(p, to_bounds(r), split.axis, split.plane);
+      for (int side = 0; side < 2; ++side) {
+        if (halves[side].empty()) continue;
+        side_box[side].push_back(to_ref_box(halves[side]));
+        side_tri[side].push_back(tri[p]);
+      }
+    }
+    const std::uint32_t nl = static_cast<std::uint32_t>(side_box[0].size());
+    const std::uint32_t nr = static_cast<std::uint32_t>(side_box[1].size());
+    if (nl == 0 || nr == 0 || nl + nr > cap) return {0u, 0u};
+    right_first = first + share(nl, nr, cap);
+    for (std::uint32_t i = 0; i < nl; ++i) {
+      box[first + i] = side_box[0][i];
+      tri[first + i] = side_tri[0][i];
+      left_bounds.add(side_box[0][i]);
+    }
+    for (std::uint32_t i = 0; i < nr; ++i) {
+      box[right_first + i] = side_box[1][i];
+      tri[right_first + i] = side_tri[1][i];
+      right_bounds.add(side_box[1][i]);
+    }
+    return {nl, nr};
+  }
+
+  // The positions of `cap` that the left child of nl and nr references gets: its own and the share of
+  // the spare ones in proportion to its references.
+  static std::uint32_t share(std::uint32_t nl, std::uint32_t nr, std::uint32_t cap) {
+    const std::uint64_t spare = cap - nl - nr;
+    return nl + static_cast<std::uint32_t>(spare * nl / (std::uint64_t(nl) + nr));
+  }
+
+  void build(std::uint32_t slot, std::uint32_t first, std::uint32_t count, std::uint32_t cap, int depth,
              const NodeBounds& bounds) {
     Node& node = nodes[slot];
     node.lo = {bounds.box.lo[0], bounds.box.lo[1], bounds.box.lo[2]};
@@ -295,16 +444,36 @@ struct Builder {
     std::uint32_t mid = first + count / 2;
     NodeBounds left_bounds, right_bounds;
     const Split split = depth < kMedianDepth ? best_split(first, count, centroids) : Split{};
+    std::uint32_t left_count = 0, right_count = 0, right_first = 0;
+    bool done = false;
     if (split.axis >= 0) {
       const float area = node.box().area();
-      if (count <= shape.max_leaf && area * shape.tests(count) <= kNodeCost * area + split.cost) return;
-      const int axis = split.axis;
-      const float lo = centroids.lo[axis];
-      const float scale = kBins / (centroids.hi[axis] - lo);
-      const auto in_left = [&](const RefBox& r) {
-        return std::min(kBins - 1, static_cast<int>((centroid_of(r)[axis] - lo) * scale)) <= split.bin;
-      };
-      mid = partition(first, first + count, in_left, left_bounds, right_bounds);
+      // a spatial split is looked for where the object split's children overlap (Stich et al.'s
+      // alpha) and the subtree has positions to spare
+      SpatialSplit spatial;
+      if (cap > count) {
+        RefBox overlap{vmax(split.left.lo, split.right.lo), vmin(split.left.hi, split.right.hi)};
+        if (area_of(overlap) > kSpatialOverlap * root_area) spatial = best_spatial(first, count, node.box());
+      }
+      const float best = std::min(split.cost, spatial.cost);
+      if (count <= shape.max_leaf && area * shape.tests(count) <= kNodeCost * area + best) return;
+      if (spatial.cost < split.cost) {
+        const auto n = spatial_partition(first, count, cap, spatial, right_first, left_bounds, right_bounds);
+        left_count = n[0];
+        right_count = n[1];
+        done = left_count != 0;
+      }
+      if (!done) {
+        const int axis = split.axis;
+        const float lo = centroids.lo[axis];
+        const float scale = kBins / (centroids.hi[axis] - lo);
+        const auto in_left = [&](const RefBox& r) {
+          return std::min(kBins - 1, static_cast<int>((centroid_of(r)[axis] - lo) * scale)) <= split.bin;
+        };
+        left_bounds = NodeBounds{};
+        right_bounds = NodeBounds{};
+        mid = partition(first, first + count, in_left, left_bounds, right_bounds);
+      }
     } else if (count <= shape.max_leaf) {
       return;  // every centroid in one point, or below the median depth: a leaf when small enough
     } else {
@@ -312,12 +481,19 @@ struct Builder {
       left_bounds = bounds_of(first, mid - first);
       right_bounds = bounds_of(mid, first + count - mid);
     }
+    if (!done) {
+      left_count = mid - first;
+      right_count = first + count - mid;
+      right_first = first + share(left_count, right_count, cap);
+      shift(mid, right_count, right_first);
+    }
+    const std::uint32_t left_cap = right_first - first, right_cap = cap - left_cap;
     node.count = 0;
-    const std::uint32_t left_count = mid - first, right_count = first + count - mid;
+    node.references = left_count + right_count;
     node.left = slot + 1;
-    node.right = slot + 2 * left_count;
-    const auto left = [&] { build(slot + 1, first, left_count, depth + 1, left_bounds); };
-    const auto right = [&] { build(slot + 2 * left_count, mid, right_count, depth + 1, right_bounds); };
+    node.right = slot + 2 * left_cap;
+    const auto left = [&] { build(slot + 1, first, left_count, left_cap, depth + 1, left_bounds); };
+    const auto right = [&] { build(node.right, right_first, right_count, right_cap, depth + 1, right_bounds); };
     if (count >= kParallelTriangles) {
       tbb::parallel_invoke(left, right);
     } else {
@@ -328,8 +504,8 @@ struct Builder {
 
   // From depth kMedianDepth on, the object median along the widest centroid axis: halves the count,
   // so the depth stays bounded. nth_element over the positions with the references' order
-  // (centroid, then index) moves them as it would move the indices themselves; boxes and indices
-  // are then put in that order.
+  // (centroid, then triangle, then position) moves them as it would move the indices themselves;
+  // boxes and triangles are then put in that order.
   void median_split(std::uint32_t first, std::uint32_t count, std::uint32_t mid, const Box& centroids) {
     int axis = 0;
     for (int a = 1; a < 3; ++a)
@@ -339,16 +515,47 @@ struct Builder {
     std::nth_element(order.begin(), order.begin() + (mid - first), order.end(),
                      [&](std::uint32_t x, std::uint32_t y) {
                        const float cx = centroid_of(box[x])[axis], cy = centroid_of(box[y])[axis];
-                       return cx < cy || (cx == cy && refs[x] < refs[y]);
+                       return cx < cy || (cx == cy && (tri[x] < tri[y] || (tri[x] == tri[y] && x < y)));
                      });
     std::vector<RefBox> moved_box(count);
-    std::vector<std::uint32_t> moved_refs(count);
+    std::vector<std::uint32_t> moved_tri(count);
     for (std::uint32_t i = 0; i < count; ++i) {
       moved_box[i] = box[order[i]];
-      moved_refs[i] = refs[order[i]];
+      moved_tri[i] = tri[order[i]];
     }
     std::copy(moved_box.begin(), moved_box.end(), box.get() + first);
-    std::copy(moved_refs.begin(), moved_refs.end(), refs.get() + first);
+    std::copy(moved_tri.begin(), moved_tri.end(), tri.get() + first);
+  }
+
+  // The tree with its references in leaf order and no gaps: every node's first and references name
+  // its subtree's entries in one run (depth first, left before right).
+  Tree compact() {
+    Tree tree;
+    std::vector<std::uint32_t> order;  // positions in leaf order
+    order.reserve(capacity);
+    const auto visit = [&](auto& self, std::uint32_t slot) -> void {
+      Node& n = nodes[slot];
+      const std::uint32_t start = static_cast<std::uint32_t>(order.size());
+      if (n.count > 0) {
+        for (std::uint32_t i = 0; i < n.count; ++i) order.push_back(n.first + i);
+      } else {
+        self(self, n.left);
+        self(self, n.right);
+      }
+      n.first = start;
+      n.references = static_cast<std::uint32_t>(order.size()) - start;
+    };
+    visit(visit, 0u);
+    tree.size = order.size();
+    tree.refs = std::make_unique_for_overwrite<std::uint32_t[]>(tree.size);
+    tree.triangle = std::make_unique_for_overwrite<std::uint32_t[]>(tree.size);
+    for (std::size_t i = 0; i < tree.size; ++i) {
+      tree.refs[i] = static_cast<std::uint32_t>(i);
+      tree.triangle[i] = tri[order[i]];
+    }
+    tree.slots = 2 * capacity - 1;
+    tree.nodes = std::move(nodes);
+    return tree;
   }
 };
 
@@ -361,16 +568,14 @@ float Tree::pad() const {
   return std::ldexp(std::max(largest, 1e-20f), -20);
 }
 
-Tree build(const ReferenceChunks& references, LeafShape shape) {
-  Builder builder(references, shape);
+Tree build(const ReferenceChunks& references, std::span<const Triangle> triangles, LeafShape shape,
+           bool spatial_splits) {
+  Builder builder(references, triangles, shape, spatial_splits);
   const auto count = static_cast<std::uint32_t>(references.size);
-  builder.build(0u, 0u, count, 0, builder.bounds_of(0u, count));
-  Tree tree;
-  tree.size = builder.size;
-  tree.nodes = std::move(builder.nodes);
-  tree.refs = std::move(builder.refs);
-  tree.triangle = std::move(builder.triangle);
-  return tree;
+  const NodeBounds root = builder.bounds_of(0u, count);
+  builder.root_area = area_of(root.box);
+  builder.build(0u, 0u, count, static_cast<std::uint32_t>(builder.capacity), 0, root);
+  return builder.compact();
 }
 
 }  // namespace cohort::binary_bvh

@@ -82,7 +82,8 @@ struct SubtreeSums {
 
 struct Tree {
   std::size_t size = 0;                       // references
-  std::unique_ptr<Node[]> nodes;              // node 0 is the root; a subtree of n references owns 2n - 1 slots
+  std::size_t slots = 0;                      // node slots, some unused: what per-slot arrays need
+  std::unique_ptr<Node[]> nodes;              // node 0 is the root; the slots of a subtree follow it
   std::unique_ptr<std::uint32_t[]> refs;      // reference indices in leaf order
   std::unique_ptr<std::uint32_t[]> triangle;  // per reference index: its triangle
   // The triangle of leaf entry i (the leaves name entries [first, first + count)).
@@ -109,9 +110,12 @@ struct LeafShape {
 };
 
 // Binned SAH over reference centroids (Wald, "On fast construction of SAH-based bounding volume
-// hierarchies", 2007), leaves as `shape` says, object-median splits from depth 32 on (so at most 59
-// levels). The same tree for any thread count.
-Tree build(const ReferenceChunks& references, LeafShape shape);
+// hierarchies", 2007), with spatial splits where the SAH prefers them (binary_bvh.cpp), leaves as
+// `shape` says, object-median splits from depth 32 on (so at most 59 levels). `triangles` are the
+// references' triangles; `spatial_splits` false builds with object splits alone (the tests compare
+// the two). The same tree for any thread count.
+Tree build(const ReferenceChunks& references, std::span<const Triangle> triangles, LeafShape shape,
+           bool spatial_splits = true);
 
 // f(i) for every i below n, in parallel over chunks of kParallelTriangles.
 template <class F>

@@ -85,7 +85,7 @@ struct Bvh8Collapser {
 
   Bvh8Collapser(const binary_bvh::Tree& tree, std::span<const Triangle> tris)
       : b(tree), triangles(tris), pad(tree.pad()),
-        subtree_nodes(std::make_unique_for_overwrite<std::uint32_t[]>(2 * b.size - 1)) {}
+        subtree_nodes(std::make_unique_for_overwrite<std::uint32_t[]>(b.slots)) {}
 
   // The children of the 8-wide node at binary node `slot`: its two children, then the inner child of
   // largest area opened until eight are there; an inner child left with no more references than a
@@ -302,15 +302,15 @@ Bvh8 build_bvh8(std::span<const Triangle> triangles) {
     throw InputError(fmt::format("the scene's {} triangles make {} BVH references; the 8-wide BVH (--tree bvh8) "
                                  "takes at most {}: use --tree deep or compact",
                                  triangles.size(), references.size, kMost));
-  const binary_bvh::Tree binary = binary_bvh::build(references, {BVH8_LEAF_MAX, 1u});
+  const binary_bvh::Tree binary = binary_bvh::build(references, triangles, {BVH8_LEAF_MAX, 1u}, false);
   Bvh8 bvh;
   Bvh8Collapser collapser(binary, triangles);
   const Bvh8Collapser::Sums sums = collapser.collapse(bvh);
   bvh.stats.node_count = bvh.nodes.size();
-  bvh.stats.references = references.size;
+  bvh.stats.references = binary.size;
   bvh.stats.leaf_count = sums.leaves;
   bvh.stats.depth = sums.depth;
-  bvh.stats.average_leaf_triangles = double(references.size) / double(bvh.stats.leaf_count);
+  bvh.stats.average_leaf_triangles = double(binary.size) / double(bvh.stats.leaf_count);
   const float root_area = binary.nodes[0].box().area();
   bvh.stats.sah_cost = root_area > 0 ? sums.sah / root_area : 0.0;
   bvh.stats.bytes = bvh.nodes.size() * sizeof(Bvh8Node) + bvh.leaf_vertices.size() * sizeof(Triangle);

@@ -16,6 +16,7 @@
 #include "accel/test_meshes.h"
 #include "accel/tree_check.h"
 #include "accel/wide_bvh_check.h"
+#include "runtime/accel/binary_bvh.h"
 
 namespace cohort::test {
 
@@ -90,7 +91,13 @@ TEST(Bvh8f, LeavesOfFourTrianglesInFewerNodes) {
   const KdTree kept = kept_triangles(random_soup(20'000, 5));
   const Bvh8f wide = build_bvh8f(kept.triangles);
   const Bvh4 narrow = build_bvh4(kept.triangles);
-  EXPECT_EQ(wide.stats.references, narrow.stats.references);
+  // the same references before the build; spatial splits add at most a quarter, where each tree's
+  // SAH prefers them
+  const std::size_t before = binary_bvh::make_references(kept.triangles).size;
+  for (const std::size_t references : {wide.stats.references, narrow.stats.references}) {
+    EXPECT_GE(references, before);
+    EXPECT_LE(references, before + before / 4);
+  }
   EXPECT_GT(wide.stats.average_leaf_triangles, 3.0);  // 3.8 on this soup, against 1.5
   EXPECT_LT(wide.stats.leaf_count, narrow.stats.leaf_count / 2);
   EXPECT_LT(wide.stats.node_count, narrow.stats.node_count / 3);

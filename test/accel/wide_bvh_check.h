@@ -32,8 +32,8 @@ std::vector<std::string> structure_errors(const Bvh8f& bvh, const KdTree& kept);
 // What the three walks check alike: each node reached once; each child's box not inverted and
 // inside its parent's; leaves of at most the layout's entries, each entry in range, reached once, a
 // copy of a kept triangle with that triangle's index in v0.w (what the device reads) and overlapping
-// its leaf's box; every kept triangle in 1-64 leaves (a large triangle is split into at most 64
-// parts, each in a leaf of its own); the leaf count, the references and the depth the stats say, the
+// its leaf's box; every kept triangle in at least one leaf (early split clipping and spatial splits
+// put parts of one triangle in several); the leaf count, the references and the depth the stats say, the
 // depth within the traversal's stack. The walk adds its layout's own errors to `errors`.
 class StructureTally {
  public:

@@ -77,7 +77,7 @@ class BruteForceCollapse {
 template <class WideNode, int Width>
 void expect_least_sah(const std::vector<glm::vec3>& positions, binary_bvh::LeafShape shape, const std::string& name) {
   const KdTree kept = kept_triangles(positions);
-  const binary_bvh::Tree binary = binary_bvh::build(binary_bvh::make_references(kept.triangles), shape);
+  const binary_bvh::Tree binary = binary_bvh::build(binary_bvh::make_references(kept.triangles), kept.triangles, shape);
   wide_collapse::Collapser<WideNode, Width> collapser{binary, binary.pad()};
   collapser.shape = shape;
   collapser.least_sah = true;
@@ -127,9 +127,49 @@ TEST(WideCollapse, FourWideLanesGiveTheLeastSah) {
 TEST(WideCollapse, TheCpuTreeHasTheLeastSah) {
   const KdTree kept = kept_triangles(random_soup(2'000, 4));
   const binary_bvh::LeafShape shape{wide_collapse::kMaxLeaf, 4u, 0.125f};
-  const binary_bvh::Tree binary = binary_bvh::build(binary_bvh::make_references(kept.triangles), shape);
+  const binary_bvh::Tree binary = binary_bvh::build(binary_bvh::make_references(kept.triangles), kept.triangles, shape);
   const double least = BruteForceCollapse<8>(binary, shape).best_tree(0) / double(binary.nodes[0].box().area());
   EXPECT_NEAR(build_bvh8f(kept.triangles).stats.sah_cost, least, 1e-6 * least);
+}
+
+// The binary tree's SAH cost over its root's area (a node kNodeCost, a leaf its tests).
+double binary_sah(const binary_bvh::Tree& tree, binary_bvh::LeafShape shape) {
+  double sum = 0;
+  std::vector<std::uint32_t> stack{0u};
+  while (!stack.empty()) {
+    const binary_bvh::Node& n = tree.nodes[stack.back()];
+    stack.pop_back();
+    if (n.count) {
+      sum += double(n.box().area()) * shape.tests(n.count);
+    } else {
+      sum += binary_bvh::kNodeCost * double(n.box().area());
+      stack.push_back(n.left);
+      stack.push_back(n.right);
+    }
+  }
+  return sum / double(tree.nodes[0].box().area());
+}
+
+// Spatial splits (binary_bvh.cpp) cut long triangles whose boxes overlap: on crossing sticks the
+// tree's SAH cost falls below the object splits' alone (0.92x), on a random soup it is no higher
+// (0.997x), for at most a quarter more references; where nothing overlaps (a grid of cells) they
+// add none.
+TEST(BinaryBvh, SpatialSplitsLowerTheSahWhereBoxesOverlap) {
+  const binary_bvh::LeafShape shape{wide_collapse::kMaxLeaf};
+  const auto compare = [&](const std::vector<glm::vec3>& positions, const char* name, double most_ratio) {
+    const KdTree kept = kept_triangles(positions);
+    const binary_bvh::ReferenceChunks references = binary_bvh::make_references(kept.triangles);
+    const binary_bvh::Tree with = binary_bvh::build(references, kept.triangles, shape);
+    const binary_bvh::Tree without = binary_bvh::build(references, kept.triangles, shape, false);
+    EXPECT_EQ(without.size, references.size) << name;
+    EXPECT_LE(with.size, references.size + references.size / 4) << name;
+    const double ratio = binary_sah(with, shape) / binary_sah(without, shape);
+    EXPECT_LE(ratio, most_ratio) << name << ": " << with.size << " references against " << without.size;
+    return with.size - without.size;
+  };
+  EXPECT_GT(compare(crossing_sticks(3'000), "crossing sticks", 0.95), 0u);
+  EXPECT_GT(compare(random_soup(5'000, 7), "random soup", 1.0), 0u);
+  EXPECT_EQ(compare(coplanar_grid(30, 30), "coplanar grid", 1.0), 0u);
 }
 
 TEST(WideCollapse, EightWideLanesGiveTheLeastSah) {
