@@ -302,6 +302,7 @@ Bvh8 build_bvh8(std::span<const Triangle> triangles) {
     throw InputError(fmt::format("the scene's {} triangles make {} BVH references; the 8-wide BVH (--tree bvh8) "
                                  "takes at most {}: use --tree deep or compact",
                                  triangles.size(), references.size, kMost));
+  // object splits alone: spatial splits were measured on the other two BVHs, not on this one
   const binary_bvh::Tree binary = binary_bvh::build(references, triangles, {BVH8_LEAF_MAX, 1u}, false);
   Bvh8 bvh;
   Bvh8Collapser collapser(binary, triangles);

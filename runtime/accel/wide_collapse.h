@@ -301,9 +301,10 @@ void build(Bvh& bvh, std::span<const Triangle> triangles, const char* tree) {
   constexpr bool kBlocks = requires { bvh.leaf_blocks; };
   const binary_bvh::LeafShape shape =
       kBlocks ? binary_bvh::LeafShape{kMaxLeaf, 4u, 0.125f} : binary_bvh::LeafShape{kMaxLeaf};
-  // spatial splits on the CPU's tree, where they were measured (1.14x on the Sponza interior on PoCL,
-  // the same elsewhere); the GPUs' 4-wide BVH keeps object splits until a GPU has measured them
-  const binary_bvh::Tree binary = binary_bvh::build(references, triangles, shape, kBlocks);
+  // spatial splits in both wide BVHs of this collapse, where they were measured: the CPU's (the
+  // Sponza interior 1.14x on PoCL, the same elsewhere) and the GPUs' 4-wide one (the Sponza interior
+  // on an H100: path tracing 1.12-1.16x, diffuse rays 1.20x); docs/design.md, "Spatial splits"
+  const binary_bvh::Tree binary = binary_bvh::build(references, triangles, shape);
   if (binary.size > BVH4_LEAF_FIRST_MAX)
     throw InputError(fmt::format("the scene's {} triangles make {} BVH references; the {} takes at most {}: use "
                                  "--tree deep or compact",
