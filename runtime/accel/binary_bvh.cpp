@@ -1,6 +1,6 @@
-// The binary BVH both wide BVHs collapse: references by early split clipping, then a binned-SAH
-// tree built in parallel into slots fixed by the reference counts (so the tree does not depend on
-// the thread count).
+// The binary BVH the wide BVHs collapse: references by early split clipping, then a binned-SAH
+// tree with spatial splits, built in parallel into positions and slots each subtree owns before it
+// starts (so the tree does not depend on the thread count), then compacted.
 #include "runtime/accel/binary_bvh.h"
 
 #include <tbb/parallel_invoke.h>
