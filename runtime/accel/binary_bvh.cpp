@@ -321,7 +321,7 @@ struct Builder {
   }
 
   // The plane of bin border b (1 .. kSpatialBins - 1) of an axis from lo in steps of width: one
-  // expression, so the binning and the split cut at the same float.
+  // expression, so the boxes the bins price and the split the node makes cut at the same float.
   static float border(float lo, float width, int b) { return lo + width * static_cast<float>(b); }
 
   SpatialSplit best_spatial(std::uint32_t first, std::uint32_t count, const Box& node) const {
@@ -386,7 +386,8 @@ struct Builder {
 
   // Performs `split` on [first, first + count) within `cap` positions: the left side's references
   // from first, the right side's from first + its share of the positions; returns the two counts, or
-  // {0, 0} (nothing changed) where one side would be empty or the positions are too few.
+  // {0, 0} (nothing changed, the bounds untouched) where one side would be empty or the positions are
+  // too few.
   std::array<std::uint32_t, 2> spatial_partition(std::uint32_t first, std::uint32_t count, std::uint32_t cap,
                                                  const SpatialSplit& split, std::uint32_t& right_first,
                                                  NodeBounds& left_bounds, NodeBounds& right_bounds) {
@@ -470,8 +471,6 @@ struct Builder {
         const auto in_left = [&](const RefBox& r) {
           return std::min(kBins - 1, static_cast<int>((centroid_of(r)[axis] - lo) * scale)) <= split.bin;
         };
-        left_bounds = NodeBounds{};
-        right_bounds = NodeBounds{};
         mid = partition(first, first + count, in_left, left_bounds, right_bounds);
       }
     } else if (count <= shape.max_leaf) {
@@ -488,8 +487,7 @@ struct Builder {
       shift(mid, right_count, right_first);
     }
     const std::uint32_t left_cap = right_first - first, right_cap = cap - left_cap;
-    node.count = 0;
-    node.references = left_count + right_count;
+    node.count = 0;  // `compact` sets every node's first and references
     node.left = slot + 1;
     node.right = slot + 2 * left_cap;
     const auto left = [&] { build(slot + 1, first, left_count, left_cap, depth + 1, left_bounds); };
@@ -547,12 +545,8 @@ struct Builder {
     };
     visit(visit, 0u);
     tree.size = order.size();
-    tree.refs = std::make_unique_for_overwrite<std::uint32_t[]>(tree.size);
     tree.triangle = std::make_unique_for_overwrite<std::uint32_t[]>(tree.size);
-    for (std::size_t i = 0; i < tree.size; ++i) {
-      tree.refs[i] = static_cast<std::uint32_t>(i);
-      tree.triangle[i] = tri[order[i]];
-    }
+    for (std::size_t i = 0; i < tree.size; ++i) tree.triangle[i] = tri[order[i]];
     tree.slots = 2 * capacity - 1;
     tree.nodes = std::move(nodes);
     return tree;

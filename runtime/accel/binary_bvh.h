@@ -84,10 +84,9 @@ struct Tree {
   std::size_t size = 0;                       // references
   std::size_t slots = 0;                      // node slots, some unused: what per-slot arrays need
   std::unique_ptr<Node[]> nodes;              // node 0 is the root; the slots of a subtree follow it
-  std::unique_ptr<std::uint32_t[]> refs;      // reference indices in leaf order
-  std::unique_ptr<std::uint32_t[]> triangle;  // per reference index: its triangle
+  std::unique_ptr<std::uint32_t[]> triangle;  // per leaf entry, in leaf order: its triangle
   // The triangle of leaf entry i (the leaves name entries [first, first + count)).
-  std::uint32_t triangle_of(std::size_t entry) const { return triangle[refs[entry]]; }
+  std::uint32_t triangle_of(std::size_t entry) const { return triangle[entry]; }
   // 2^-20 of the largest coordinate of the root's box: what the wide nodes pad their boxes by (far
   // above the rounding of any vertex; bvh4_traverse.h says why a box needs it).
   float pad() const;

@@ -292,11 +292,16 @@ void build(Bvh& bvh, std::span<const Triangle> triangles, const char* tree) {
   if (triangles.size() > BVH4_LEAF_FIRST_MAX)
     throw InputError(fmt::format("the scene has {} triangles; the {} takes at most {}: use --tree deep or compact",
                                  triangles.size(), tree, BVH4_LEAF_FIRST_MAX));
+  // before the build (which takes at most the positions it can name) and after it (spatial splits
+  // add references)
+  const auto check_references = [&](std::size_t references) {
+    if (references > BVH4_LEAF_FIRST_MAX)
+      throw InputError(fmt::format("the scene's {} triangles make {} BVH references; the {} takes at most {}: use "
+                                   "--tree deep or compact",
+                                   triangles.size(), references, tree, BVH4_LEAF_FIRST_MAX));
+  };
   const binary_bvh::ReferenceChunks references = binary_bvh::make_references(triangles);
-  if (references.size > BVH4_LEAF_FIRST_MAX)
-    throw InputError(fmt::format("the scene's {} triangles make {} BVH references; the {} takes at most {}: use "
-                                 "--tree deep or compact",
-                                 triangles.size(), references.size, tree, BVH4_LEAF_FIRST_MAX));
+  check_references(references.size);
   // leaves tested four triangles at a time cost about one triangle test per block (LeafShape)
   constexpr bool kBlocks = requires { bvh.leaf_blocks; };
   const binary_bvh::LeafShape shape =
@@ -305,10 +310,7 @@ void build(Bvh& bvh, std::span<const Triangle> triangles, const char* tree) {
   // Sponza interior 1.14x on PoCL, the same elsewhere) and the GPUs' 4-wide one (the Sponza interior
   // on an H100: path tracing 1.12-1.16x, diffuse rays 1.20x); docs/design.md, "Spatial splits"
   const binary_bvh::Tree binary = binary_bvh::build(references, triangles, shape);
-  if (binary.size > BVH4_LEAF_FIRST_MAX)
-    throw InputError(fmt::format("the scene's {} triangles make {} BVH references; the {} takes at most {}: use "
-                                 "--tree deep or compact",
-                                 triangles.size(), binary.size, tree, BVH4_LEAF_FIRST_MAX));
+  check_references(binary.size);
   Collapser<Node, Width> collapser{binary, binary.pad()};
   collapser.shape = shape;
   collapser.least_sah = kBlocks;  // the CPU's tree (the Collapser's lanes say why not the GPU's)
