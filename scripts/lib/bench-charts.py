@@ -33,17 +33,10 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import mitsuba as mi  # noqa: E402
 import numpy as np  # noqa: E402
+from image_error import read_exr, rel_rmse  # noqa: E402
 
 mi.set_variant("scalar_rgb")
 COLORS = dict(zip(METHODS + ["mitsuba"], plt.get_cmap("tab10").colors))
-
-
-def read_exr(path):
-    return np.array(mi.Bitmap(path), dtype=np.float64)[..., :3]
-
-
-def rel_rmse(image, reference):
-    return float(np.sqrt(np.mean((image - reference) ** 2)) / max(np.mean(reference), 1e-12))
 
 
 def device_label(cohort):

@@ -59,6 +59,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import mitsuba as mi  # noqa: E402
 import numpy as np  # noqa: E402
+from image_error import read_exr, rel_rmse  # noqa: E402
 
 
 def suite_models():
@@ -75,14 +76,6 @@ def run(argv, log):
         done = subprocess.run(argv, stdout=f, stderr=subprocess.STDOUT, timeout=1800)
     if done.returncode != 0:
         raise SystemExit(f"bench-peer-error: {' '.join(argv)} failed ({done.returncode}); see {log}")
-
-
-def read_exr(path):
-    return np.array(mi.Bitmap(path), dtype=np.float64)[..., :3]
-
-
-def rel_rmse(image, reference):
-    return float(np.sqrt(np.mean((image - reference) ** 2)) / np.mean(reference))
 
 
 def mitsuba_harness():
