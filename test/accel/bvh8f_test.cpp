@@ -230,5 +230,56 @@ TEST(Bvh8f, PacketGivesEachRayItsOwnWalksHit) {
   EXPECT_GT(ties_possible, 1'000u);
 }
 
+// bvh8f_packet_add_all (the camera rays' set-ups side by side) fills a packet with the bits that
+// bvh8f_packet_add gives lane after lane, for 1 to 8 rays: direction components of 0, below the
+// inverse's 1e-18 floor and of either sign, origins far out (beyond what the slabs can offset) and
+// not finite, so that every select of watertight_ray, bvh4_inverse and bvh_slab_ray is taken.
+TEST(Bvh8f, PacketAddAllFillsLaneByLanesBits) {
+  const Bvh8fView view{};
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  const auto bits = [](float f) { return std::bit_cast<std::uint32_t>(f); };
+  const auto same = [&](co_vec3 a, co_vec3 b) { return bits(a.x) == bits(b.x) && bits(a.y) == bits(b.y) && bits(a.z) == bits(b.z); };
+  int special = 0;
+  for (int trial = 0; trial < 4'000; ++trial) {
+    const glm::vec3 signs(u(rng) < 0 ? -1.0f : 1.0f, u(rng) < 0 ? -1.0f : 1.0f, u(rng) < 0 ? -1.0f : 1.0f);
+    const std::uint32_t n = 1u + std::uint32_t(trial % BVH8F_PACKET);
+    float ox[BVH8F_PACKET], oy[BVH8F_PACKET], oz[BVH8F_PACKET], dx[BVH8F_PACKET], dy[BVH8F_PACKET], dz[BVH8F_PACKET];
+    for (std::uint32_t l = 0; l < BVH8F_PACKET; ++l) {
+      glm::vec3 o(10.0f * u(rng), 10.0f * u(rng), 10.0f * u(rng));
+      glm::vec3 d = signs * glm::abs(glm::vec3(u(rng), u(rng), u(rng)));
+      const int axis = int(rng() % 3);
+      switch (rng() % 8) {  // the cases the selects are for, one lane in two
+        case 0: d[axis] = 0.0f; ++special; break;
+        case 1: d[axis] = signs[axis] * 1e-20f; ++special; break;
+        case 2: o[axis] = 3e21f; ++special; break;  // beyond what a fused slab can offset
+        case 3: o[axis] = l % 2 ? NAN : -INFINITY; ++special; break;
+        default: break;
+      }
+      ox[l] = o.x, oy[l] = o.y, oz[l] = o.z, dx[l] = d.x, dy[l] = d.y, dz[l] = d.z;
+    }
+    Bvh8fPacket one_by_one, all;
+    bvh8f_packet_begin(&one_by_one, v3(dx[0], dy[0], dz[0]));
+    bvh8f_packet_begin(&all, v3(dx[0], dy[0], dz[0]));
+    for (std::uint32_t l = 0; l < n; ++l)
+      bvh8f_packet_add(&view, &one_by_one, l, v3(ox[l], oy[l], oz[l]), v3(dx[l], dy[l], dz[l]));
+    bvh8f_packet_add_all(&view, &all, n, ox, oy, oz, dx, dy, dz);
+    ASSERT_EQ(one_by_one.lanes, all.lanes) << "trial " << trial;
+    for (std::uint32_t l = 0; l < BVH8F_PACKET; ++l) {
+      for (int a = 0; a < 3; ++a) {
+        ASSERT_EQ(bits(one_by_one.near_o[a][l]), bits(all.near_o[a][l])) << "trial " << trial << " lane " << l;
+        ASSERT_EQ(bits(one_by_one.far_o[a][l]), bits(all.far_o[a][l])) << "trial " << trial << " lane " << l;
+        ASSERT_EQ(bits(one_by_one.inv[a][l]), bits(all.inv[a][l])) << "trial " << trial << " lane " << l;
+      }
+      if (l >= n) continue;
+      const WatertightRay &a = one_by_one.wr[l], &b = all.wr[l];
+      ASSERT_TRUE(same(a.org, b.org) && same(a.row_x, b.row_x) && same(a.row_y, b.row_y) && same(a.row_z, b.row_z) &&
+                  bits(a.sz) == bits(b.sz))
+          << "trial " << trial << " lane " << l;
+    }
+  }
+  EXPECT_GT(special, 8'000);
+}
+
 }  // namespace
 }  // namespace cohort::test

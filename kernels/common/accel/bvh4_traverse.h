@@ -107,14 +107,14 @@ typedef struct Bvh4Ray {
   int near_x, near_y, near_z;
 } Bvh4Ray;
 
-/* What every BVH ray splats over its lanes: the origin and the inverse direction (bvh4_inverse). An
+/* What every BVH ray splats over its lanes: the origin and the inverse direction (bvh4_inverse; the
+ * inverses made beforehand: bvh_slab_ray_inverted, for set-ups that divide several rays at once). An
  * origin that is not finite hits nothing: it becomes -infinity with unit inverses, so every plane is
  * +infinity away and no box is entered (NaN slabs would enter every lane, the unused ones too, whose
  * references are no nodes). So does an origin whose product with the inverse overflows (a coordinate
  * beyond 1e20: |inverse| is at most 1e18), which the fused slabs (bvh_slab_offsets) cannot offset;
  * unfused or fused, every device gives such a ray the same answer. */
-CO_INLINE void bvh_slab_ray(co_vec3 org, co_vec3 dir, co_vec3* origin, co_vec3* inverse) {
-  co_vec3 inv = v3(bvh4_inverse(dir.x), bvh4_inverse(dir.y), bvh4_inverse(dir.z));
+CO_INLINE void bvh_slab_ray_inverted(co_vec3 org, co_vec3 inv, co_vec3* origin, co_vec3* inverse) {
   if (v3_is_finite(org) && fabs(org.x * inv.x) <= 1e38f && fabs(org.y * inv.y) <= 1e38f &&
       fabs(org.z * inv.z) <= 1e38f) {
     *origin = org;
@@ -123,6 +123,9 @@ CO_INLINE void bvh_slab_ray(co_vec3 org, co_vec3 dir, co_vec3* origin, co_vec3* 
     *origin = v3_splat(-INFINITY);
     *inverse = v3_splat(1.0f);
   }
+}
+CO_INLINE void bvh_slab_ray(co_vec3 org, co_vec3 dir, co_vec3* origin, co_vec3* inverse) {
+  bvh_slab_ray_inverted(org, v3(bvh4_inverse(dir.x), bvh4_inverse(dir.y), bvh4_inverse(dir.z)), origin, inverse);
 }
 
 /* A slab's distance, fma(plane, inverse, offset) in one rounding where the device fuses (the host's

@@ -342,6 +342,71 @@ CO_INLINE void bvh8f_packet_add(const Bvh8fView* bvh, Bvh8fPacket* k, uint32_t l
   k->lanes |= 1u << lane;
 }
 
+#if defined(COHORT_FEATURE_ALPHA)
+#define BVH8F_ALPHA_SEEDS_PARAM , const uint32_t* alpha_seeds
+#else
+#define BVH8F_ALPHA_SEEDS_PARAM
+#endif
+
+/* Lanes 0 to n-1 (n from 1 to BVH8F_PACKET) of an empty packet `k` take the closest-hit rays from
+ * (ox, oy, oz)[l] along (dx, dy, dz)[l] in (0, infinity), as bvh8f_packet_add would one lane after
+ * the other; every ray must fit. The arrays hold BVH8F_PACKET entries: those from n on are any
+ * finite ray (the caller repeats lane 0's), computed and dropped. Why: on a CPU each work item is
+ * scalar code, and a ray's set-up is a chain of six divisions, selects and products that one ray
+ * at a time leaves the core waiting on (perf: 8.6 % of the DamagedHelmet's render samples in
+ * bvh8f_packet_add, a fifth of them on its first division). Here the lanes' set-ups run in loops
+ * of a fixed count over plain arrays, which a CPU compiler makes one vector operation per step;
+ * each lane runs watertight_ray's, bvh_slab_ray's (its divisions in a loop of their own) and
+ * bvh_slab_offsets' operations, so the packet holds the same bits. */
+CO_INLINE void bvh8f_packet_add_all(const Bvh8fView* bvh, Bvh8fPacket* k, uint32_t n, const float* ox, const float* oy,
+                                    const float* oz, const float* dx, const float* dy,
+                                    const float* dz BVH8F_ALPHA_SEEDS_PARAM) {
+  float row[10][BVH8F_PACKET]; /* row_x, row_y, row_z and sz of each lane's watertight ray */
+  float near_o[3][BVH8F_PACKET], far_o[3][BVH8F_PACKET], inv[3][BVH8F_PACKET];
+  for (uint32_t l = 0u; l < BVH8F_PACKET; ++l) {
+    const WatertightRay w = watertight_ray(v3(ox[l], oy[l], oz[l]), v3(dx[l], dy[l], dz[l]));
+    row[0][l] = w.row_x.x; row[1][l] = w.row_x.y; row[2][l] = w.row_x.z;
+    row[3][l] = w.row_y.x; row[4][l] = w.row_y.y; row[5][l] = w.row_y.z;
+    row[6][l] = w.row_z.x; row[7][l] = w.row_z.y; row[8][l] = w.row_z.z;
+    row[9][l] = w.sz;
+  }
+  float div[3][BVH8F_PACKET]; /* bvh_slab_ray's divisions, then the rest of it */
+  for (uint32_t l = 0u; l < BVH8F_PACKET; ++l) {
+    div[0][l] = bvh4_inverse(dx[l]);
+    div[1][l] = bvh4_inverse(dy[l]);
+    div[2][l] = bvh4_inverse(dz[l]);
+  }
+  for (uint32_t l = 0u; l < BVH8F_PACKET; ++l) {
+    co_vec3 o, iv, nn, f;
+    bvh_slab_ray_inverted(v3(ox[l], oy[l], oz[l]), v3(div[0][l], div[1][l], div[2][l]), &o, &iv);
+    bvh_slab_offsets(o, iv, &nn, &f);
+    near_o[0][l] = nn.x; near_o[1][l] = nn.y; near_o[2][l] = nn.z;
+    far_o[0][l] = f.x; far_o[1][l] = f.y; far_o[2][l] = f.z;
+    inv[0][l] = iv.x; inv[1][l] = iv.y; inv[2][l] = iv.z;
+  }
+  for (uint32_t l = 0u; l < n; ++l) {
+    WatertightRay* w = &k->wr[l];
+    w->org = v3(ox[l], oy[l], oz[l]);
+    w->row_x = v3(row[0][l], row[1][l], row[2][l]);
+    w->row_y = v3(row[3][l], row[4][l], row[5][l]);
+    w->row_z = v3(row[6][l], row[7][l], row[8][l]);
+    w->sz = row[9][l];
+#if defined(COHORT_FEATURE_ALPHA)
+    w->alpha = &bvh->alpha;
+    w->alpha_seed = alpha_seeds[l];
+#endif
+    for (int a = 0; a < 3; ++a) {
+      k->near_o[a][l] = near_o[a][l];
+      k->far_o[a][l] = far_o[a][l];
+      k->inv[a][l] = inv[a][l];
+    }
+  }
+#if !defined(COHORT_FEATURE_ALPHA)
+  (void)bvh;
+#endif
+  k->lanes = (1u << n) - 1u;
+}
+
 /* The closest hits of the packet's rays, each the one bvh8f_trace_steps gives it. */
 CO_INLINE void bvh8f_trace_packet(const Bvh8fView* bvh, Bvh8fPacket* k) {
   uint32_t stack_ref[BVH8F_STACK], stack_lanes[BVH8F_STACK];

@@ -48,15 +48,30 @@ CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
       bvh8f_packet_begin(&camera, start[walked[0]].dir);
       int one_octant = 1;
       for (uint32_t j = 1u; j < n; ++j) one_octant &= bvh8f_packet_fits(&camera, start[walked[j]].dir);
-      for (uint32_t j = 0u; j < n; ++j) {
-        const PathState* st = &start[walked[j]];
-        if (one_octant)
-          bvh8f_packet_add(&s.tree, &camera, j, st->org, st->dir CO_ALPHA_ARG(st->alpha_seed));
-        else
+      if (one_octant) {
+        /* the rays' set-ups side by side (bvh8f_packet_add_all); lanes from n on repeat the first */
+        float ox[BVH8F_PACKET], oy[BVH8F_PACKET], oz[BVH8F_PACKET];
+        float dx[BVH8F_PACKET], dy[BVH8F_PACKET], dz[BVH8F_PACKET];
+#if defined(COHORT_FEATURE_ALPHA)
+        uint32_t seeds[BVH8F_PACKET];
+#endif
+        for (uint32_t j = 0u; j < BVH8F_PACKET; ++j) {
+          const PathState* st = &start[walked[j < n ? j : 0u]];
+          ox[j] = st->org.x; oy[j] = st->org.y; oz[j] = st->org.z;
+          dx[j] = st->dir.x; dy[j] = st->dir.y; dz[j] = st->dir.z;
+#if defined(COHORT_FEATURE_ALPHA)
+          seeds[j] = st->alpha_seed;
+#endif
+        }
+        bvh8f_packet_add_all(&s.tree, &camera, n, ox, oy, oz, dx, dy, dz CO_ALPHA_ARG(seeds));
+        bvh8f_trace_packet(&s.tree, &camera);
+      } else {
+        for (uint32_t j = 0u; j < n; ++j) {
+          const PathState* st = &start[walked[j]];
           camera.hit[j] = scene_trace_steps(&s.tree, st->org, st->dir, 0.0f, INFINITY, 0,
                                             &camera.count[j] CO_ALPHA_ARG(st->alpha_seed));
+        }
       }
-      if (one_octant) bvh8f_trace_packet(&s.tree, &camera);
       uint32_t k = 0u;
       for (; k + 1u < n; k += 2u) {
         uint32_t a = walked[k], b = walked[k + 1u];
