@@ -19,6 +19,8 @@
 #include "runtime/render/methods/methods.h"
 #include "runtime/render/workloads.h"
 #include "runtime/util/error.h"
+#include "kernels/common/shading/camera.h"
+#include "runtime/render/scene/camera_params.h"
 
 using namespace cohort;
 using namespace cohort::test;
@@ -508,4 +510,46 @@ TEST(Methods, PairedWalksGiveEachPathItsOwnWalksImage) {
       EXPECT_GT(sum, 0.0) << what << ": a black image proves nothing";
     }
   }
+}
+
+// The paired naive kernel gives a pixel that no ray of it can meet the scene through (the background
+// of a view from afar, camera_pixel_misses_box) its sky sample by sample without tracing: the same
+// bits as the naive kernel that traces every sample (4-wide BVH) and as sc+rg, under a coloured
+// sky, with the scene small in the frame so that most pixels are such pixels.
+TEST(Methods, BackgroundPixelsGiveTheTracedImage) {
+  const ClContext cl(select_device(""));
+  if (!device_support(cl.info()).paired_walks) GTEST_SKIP() << cl.info().name << " runs no paired walks";
+  const ProgramCache cache(ProgramCache::default_directory());
+  const auto path = shipped_scene("reference/alpha-mask.gltf");
+  PreparedScene wide = prepare_scene(path, TreeChoice{.kd = KdBuildOptions{}, .bvh8f = true});
+  PreparedScene four = prepare_scene(path, TreeChoice{KdBuildOptions{}, true});
+  const DeviceScene wide_scene = upload_scene(cl, wide.tree, wide.tables, wide.bvh());
+  const DeviceScene four_scene = upload_scene(cl, four.tree, four.tables, four.bvh());
+  // from afar and aslant, the scene's box a few tens of degrees wide in a 45-degree frame
+  const Bounds& b = wide_scene.bounds;
+  const glm::vec3 lo(b.lo.x, b.lo.y, b.lo.z), hi(b.hi.x, b.hi.y, b.hi.z);
+  SceneCamera far;
+  far.target = 0.5f * (lo + hi);
+  far.eye = far.target + 1.6f * glm::length(hi - lo) * glm::normalize(glm::vec3(0.3f, 0.5f, 0.8f));
+  RenderSettings s;
+  s.width = 40;
+  s.height = 30;
+  s.spp = 9;
+  s.seed = 3;
+  s.environment = glm::vec3(0.7f, 0.9f, 1.3f);
+  s.method = "naive";
+  const RenderResult reference = render(cl, cache, four_scene, far, s);
+  const RenderResult paired = render(cl, cache, wide_scene, far, s);
+  s.method = "sc+rg";
+  const RenderResult single = render(cl, cache, wide_scene, far, s);
+  expect_bitwise_equal(reference, paired, "paired naive with background pixels");
+  expect_bitwise_equal(reference, single, "sc+rg with background pixels");
+  const CameraParams cam = make_camera_params(far, s.width, s.height);
+  int background = 0;
+  for (std::uint32_t y = 0; y < s.height; ++y)
+    for (std::uint32_t x = 0; x < s.width; ++x)
+      background += camera_pixel_misses_box(&cam, s.width, s.height, x, y, v3(b.lo.x, b.lo.y, b.lo.z),
+                                            v3(b.hi.x, b.hi.y, b.hi.z));
+  EXPECT_GT(background, int(s.width * s.height) / 2) << "the view must have a background for the test to mean anything";
+  EXPECT_LT(background, int(s.width * s.height)) << "and the scene in it";
 }

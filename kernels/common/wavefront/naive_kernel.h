@@ -28,7 +28,18 @@ CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
   co_float4 acc = film[pixel];
   uint32_t rays = 0u, dropped = 0u, max_steps = 0u;
 #if defined(COHORT_NAIVE_PAIRS)
-  for (uint32_t i = 0u; i < p.samples_per_pass; i += PATH_START_BATCH) {
+  /* A pixel none of whose rays can meet the scene (the background of a view from outside): under a
+   * constant sky every sample is the same path, which leaves at once (trace_path_outside: what a
+   * camera ray outside the scene's box gives, or one inside it that meets no triangle), added as
+   * often as the pixel has samples, in order, without a camera ray, a hash or a division each. */
+  const int background = !(p.flags & RENDER_FLAG_ENVIRONMENT_MAP) &&
+                         camera_pixel_misses_box(&p.camera, p.width, p.height, pixel % p.width, pixel / p.width,
+                                                 v3_from4(p.scene_min), v3_from4(p.scene_max));
+  if (background) {
+    const PathResult sky = trace_path_outside(&s, &p, path_start(&p, pixel, p.sample_offset), pixel, p.sample_offset);
+    for (uint32_t i = 0u; i < p.samples_per_pass; ++i) naive_add_sample(&acc, &rays, &max_steps, &dropped, sky);
+  }
+  for (uint32_t i = 0u; !background && i < p.samples_per_pass; i += PATH_START_BATCH) {
     uint32_t m = co_umin(PATH_START_BATCH, p.samples_per_pass - i), first = p.sample_offset + i;
     PathState start[PATH_START_BATCH];
     PathResult results[PATH_START_BATCH];
