@@ -34,8 +34,6 @@ SceneMaterial with_alpha(SceneMaterial m, AlphaMode mode, float cutoff = 0.5f) {
   return m;
 }
 
-double mean_of(const Image& image, int channel = 0) { return channel_stats(image, channel).mean; }
-
 // ---- Camera rays: a quad that fills the view under a white sky, emitters seen directly only ------
 
 const SceneCamera kFacingQuad{{0.f, 0.f, 2.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 20.f};

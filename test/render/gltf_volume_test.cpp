@@ -45,8 +45,6 @@ SceneMaterial absorbing_glass(glm::vec3 sigma, float ior = 1.f, float roughness 
   return m;
 }
 
-double mean_of(const Image& image, int channel) { return channel_stats(image, channel).mean; }
-
 // The camera looks down -z through a narrow field at the slab's front face (z = 0).
 const SceneCamera kThroughSlab{{0.f, 0.f, 3.f}, {0.f, 0.f, 0.f}, {0.f, 1.f, 0.f}, 1.f};
 

@@ -66,6 +66,9 @@ inline PixelStats channel_stats(const Image& image, int channel) {
   return {mean, std::sqrt(variance / n)};
 }
 
+// The image's mean in one channel.
+inline double mean_of(const Image& image, int channel = 0) { return channel_stats(image, channel).mean; }
+
 // Mean difference (a - b) over a block of pixels of one channel, with the standard error of that
 // mean from the per-pixel spread of the difference (pixels are independent estimates), and the
 // mean of b there.
