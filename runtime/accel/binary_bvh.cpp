@@ -29,6 +29,13 @@ Box triangle_box(const Triangle& t) {
   return b;
 }
 
+// The parts of triangle t within `cell` on each side of x[axis] = plane (kd::split_triangle_bounds,
+// conservative): what early split clipping and the spatial splits cut references with.
+std::array<Bounds, 2> split_triangle(const Triangle& t, const Bounds& cell, int axis, float plane) {
+  return kd::split_triangle_bounds({t.v0.x, t.v0.y, t.v0.z}, {t.v1.x, t.v1.y, t.v1.z}, {t.v2.x, t.v2.y, t.v2.z}, cell,
+                                   cell, axis, plane);
+}
+
 
 }  // namespace
 
@@ -68,9 +75,7 @@ ReferenceChunks make_references(std::span<const Triangle> triangles) {
       cell.lo = {box.lo[0], box.lo[1], box.lo[2]};
       cell.hi = {box.hi[0], box.hi[1], box.hi[2]};
       const float mid = 0.5f * (box.lo[axis] + box.hi[axis]);
-      const auto halves = kd::split_triangle_bounds({t.v0.x, t.v0.y, t.v0.z}, {t.v1.x, t.v1.y, t.v1.z},
-                                                    {t.v2.x, t.v2.y, t.v2.z}, cell, cell, axis, mid);
-      for (const Bounds& h : halves) {
+      for (const Bounds& h : split_triangle(t, cell, axis, mid)) {
         if (h.empty()) continue;
         self(self, t, index, Box{{h.lo.x, h.lo.y, h.lo.z}, {h.hi.x, h.hi.y, h.hi.z}}, depth + 1);
       }
@@ -313,13 +318,6 @@ struct Builder {
     return {Vec4{b.lo.x, b.lo.y, b.lo.z, 0.0f}, Vec4{b.hi.x, b.hi.y, b.hi.z, 0.0f}};
   }
 
-  // The part of reference `p`'s triangle on each side of x[axis] = plane, within its box.
-  std::array<Bounds, 2> cut(std::uint32_t p, const Bounds& cell, int axis, float plane) const {
-    const Triangle& t = triangles[tri[p]];
-    return kd::split_triangle_bounds({t.v0.x, t.v0.y, t.v0.z}, {t.v1.x, t.v1.y, t.v1.z}, {t.v2.x, t.v2.y, t.v2.z},
-                                     cell, cell, axis, plane);
-  }
-
   // The plane of bin border b (1 .. kSpatialBins - 1) of an axis from lo in steps of width: one
   // expression, so the boxes the bins price and the split the node makes cut at the same float.
   static float border(float lo, float width, int b) { return lo + width * static_cast<float>(b); }
@@ -401,7 +399,7 @@ struct Builder {
         side_tri[side].push_back(tri[p]);
         continue;
       }
-      const auto halves = cut(p, to_bounds(r), split.axis, split.plane);
+      const auto halves = split_triangle(triangles[tri[p]], to_bounds(r), split.axis, split.plane);
       for (int side = 0; side < 2; ++side) {
         if (halves[side].empty()) continue;
         side_box[side].push_back(to_ref_box(halves[side]));
