@@ -5,14 +5,17 @@
 #include "common/core/types.h"
 #include "common/core/vec.h"
 
+/* The unnormalised direction through the image-plane point (px, py) in [-1, 1]^2 (y up). */
+CO_INLINE co_vec3 camera_plane_point(const CameraParams* cam, float px, float py) {
+  return v3_add(v3_add(v3_from4(cam->forward), v3_scale(v3_from4(cam->right), px)), v3_scale(v3_from4(cam->up), py));
+}
+
 /* (jx, jy) in [0,1)^2 is the position inside the pixel; 0.5 is its centre. */
 CO_INLINE co_vec3 camera_direction(const CameraParams* cam, uint32_t width, uint32_t height, uint32_t x,
                                    uint32_t y, float jx, float jy) {
   float px = ((float)x + jx) / (float)width * 2.0f - 1.0f;
   float py = 1.0f - ((float)y + jy) / (float)height * 2.0f;
-  co_vec3 d = v3_add(v3_from4(cam->forward), v3_scale(v3_from4(cam->right), px));
-  d = v3_add(d, v3_scale(v3_from4(cam->up), py));
-  return v3_normalize(d);
+  return v3_normalize(camera_plane_point(cam, px, py));
 }
 
 /* 1 when no ray through pixel (x, y), for any (jx, jy), can meet the box [lo, hi]: the box lies
@@ -23,17 +26,16 @@ CO_INLINE co_vec3 camera_direction(const CameraParams* cam, uint32_t width, uint
  * that only an edge of the pixel's pyramid passes). */
 CO_INLINE int camera_pixel_misses_box(const CameraParams* cam, uint32_t width, uint32_t height, uint32_t x,
                                       uint32_t y, co_vec3 lo, co_vec3 hi) {
-  /* the corners' directions, unnormalised: camera_direction's image-plane point at jx, jy = 0 and 1,
-   * each coordinate within a few ulps of its own (the margin covers them) */
+  /* the corners' directions, unnormalised: camera_direction's image-plane points at jx, jy = 0 and
+   * 1, each coordinate within a few ulps of its own (the margin covers them) */
   const float sx = 2.0f / (float)width, sy = 2.0f / (float)height;
   const float px0 = (float)x * sx - 1.0f, px1 = (float)(x + 1u) * sx - 1.0f;
   const float py0 = 1.0f - (float)y * sy, py1 = 1.0f - (float)(y + 1u) * sy;
-  const co_vec3 f = v3_from4(cam->forward), r = v3_from4(cam->right), u = v3_from4(cam->up);
   co_vec3 corner[4];
-  corner[0] = v3_add(v3_add(f, v3_scale(r, px0)), v3_scale(u, py0));
-  corner[1] = v3_add(v3_add(f, v3_scale(r, px1)), v3_scale(u, py0));
-  corner[2] = v3_add(v3_add(f, v3_scale(r, px1)), v3_scale(u, py1));
-  corner[3] = v3_add(v3_add(f, v3_scale(r, px0)), v3_scale(u, py1));
+  corner[0] = camera_plane_point(cam, px0, py0);
+  corner[1] = camera_plane_point(cam, px1, py0);
+  corner[2] = camera_plane_point(cam, px1, py1);
+  corner[3] = camera_plane_point(cam, px0, py1);
   co_vec3 centre = v3_add(v3_add(corner[0], corner[1]), v3_add(corner[2], corner[3]));
   co_vec3 eye = v3_from4(cam->eye);
   co_vec3 to_lo = v3_sub(lo, eye), to_hi = v3_sub(hi, eye);
