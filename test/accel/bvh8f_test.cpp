@@ -203,11 +203,16 @@ TEST(Bvh8f, PacketGivesEachRayItsOwnWalksHit) {
       bvh8f_packet_begin(&packet, dirs[0]);
       const int lanes = trial % 4 == 3 ? 1 + trial % BVH8F_PACKET : BVH8F_PACKET;
       std::vector<int> lane_of_ray;
-      for (int l = 0; l < lanes; ++l) {
-        if (!bvh8f_packet_fits(&packet, dirs[l])) continue;  // only a ray of the packet's octant joins
-        bvh8f_packet_add(&view, &packet, std::uint32_t(lane_of_ray.size()), orgs[l], dirs[l]);
-        lane_of_ray.push_back(l);
+      for (int l = 0; l < lanes; ++l)
+        if (bvh8f_packet_fits(&packet, dirs[l])) lane_of_ray.push_back(l);  // only a ray of the packet's octant joins
+      // the packet filled as the naive kernel fills it: lanes past its rays repeat the first
+      float ox[BVH8F_PACKET], oy[BVH8F_PACKET], oz[BVH8F_PACKET], dx[BVH8F_PACKET], dy[BVH8F_PACKET], dz[BVH8F_PACKET];
+      for (std::size_t lane = 0; lane < BVH8F_PACKET; ++lane) {
+        const int l = lane_of_ray[lane < lane_of_ray.size() ? lane : 0];
+        ox[lane] = orgs[l].x, oy[lane] = orgs[l].y, oz[lane] = orgs[l].z;
+        dx[lane] = dirs[l].x, dy[lane] = dirs[l].y, dz[lane] = dirs[l].z;
       }
+      bvh8f_packet_add_all(&view, &packet, std::uint32_t(lane_of_ray.size()), ox, oy, oz, dx, dy, dz);
       bvh8f_trace_packet(&view, &packet);
       for (std::size_t lane = 0; lane < lane_of_ray.size(); ++lane) {
         const int l = lane_of_ray[lane];
@@ -230,11 +235,12 @@ TEST(Bvh8f, PacketGivesEachRayItsOwnWalksHit) {
   EXPECT_GT(ties_possible, 1'000u);
 }
 
-// bvh8f_packet_add_all (the camera rays' set-ups side by side) fills a packet with the bits that
-// bvh8f_packet_add gives lane after lane, for 1 to 8 rays: direction components of 0, below the
-// inverse's 1e-18 floor and of either sign, origins far out (beyond what the slabs can offset) and
-// not finite, so that every select of watertight_ray, bvh4_inverse and bvh_slab_ray is taken.
-TEST(Bvh8f, PacketAddAllFillsLaneByLanesBits) {
+// bvh8f_packet_add_all (the camera rays' set-ups side by side) gives each lane of a packet the bits
+// that watertight_ray, bvh_slab_ray and bvh_slab_offsets give its ray alone, and leaves the lanes
+// past its rays as bvh8f_packet_begin left them, for 1 to 8 rays: direction components of 0, below
+// the inverse's 1e-18 floor and of either sign, origins far out (beyond what the slabs can offset)
+// and not finite, so that every select of watertight_ray, bvh4_inverse and bvh_slab_ray is taken.
+TEST(Bvh8f, PacketAddAllGivesEachLaneItsRaysOwnSetUp) {
   const Bvh8fView view{};
   std::mt19937 rng(31);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
@@ -258,22 +264,28 @@ TEST(Bvh8f, PacketAddAllFillsLaneByLanesBits) {
       }
       ox[l] = o.x, oy[l] = o.y, oz[l] = o.z, dx[l] = d.x, dy[l] = d.y, dz[l] = d.z;
     }
-    Bvh8fPacket one_by_one, all;
-    bvh8f_packet_begin(&one_by_one, v3(dx[0], dy[0], dz[0]));
-    bvh8f_packet_begin(&all, v3(dx[0], dy[0], dz[0]));
-    for (std::uint32_t l = 0; l < n; ++l)
-      bvh8f_packet_add(&view, &one_by_one, l, v3(ox[l], oy[l], oz[l]), v3(dx[l], dy[l], dz[l]));
+    Bvh8fPacket begun, all;
+    bvh8f_packet_begin(&begun, v3(dx[0], dy[0], dz[0]));
+    all = begun;
     bvh8f_packet_add_all(&view, &all, n, ox, oy, oz, dx, dy, dz);
-    ASSERT_EQ(one_by_one.lanes, all.lanes) << "trial " << trial;
+    ASSERT_EQ(all.lanes, (1u << n) - 1u) << "trial " << trial;
     for (std::uint32_t l = 0; l < BVH8F_PACKET; ++l) {
-      for (int a = 0; a < 3; ++a) {
-        ASSERT_EQ(bits(one_by_one.near_o[a][l]), bits(all.near_o[a][l])) << "trial " << trial << " lane " << l;
-        ASSERT_EQ(bits(one_by_one.far_o[a][l]), bits(all.far_o[a][l])) << "trial " << trial << " lane " << l;
-        ASSERT_EQ(bits(one_by_one.inv[a][l]), bits(all.inv[a][l])) << "trial " << trial << " lane " << l;
+      // each ray's own set-up; a lane without a ray as the empty packet had it
+      co_vec3 o = v3(ox[l], oy[l], oz[l]), d = v3(dx[l], dy[l], dz[l]), origin, inverse, near_o, far_o;
+      bvh_slab_ray(o, d, &origin, &inverse);
+      bvh_slab_offsets(origin, inverse, &near_o, &far_o);
+      if (l >= n) {
+        near_o = v3(begun.near_o[0][l], begun.near_o[1][l], begun.near_o[2][l]);
+        far_o = v3(begun.far_o[0][l], begun.far_o[1][l], begun.far_o[2][l]);
+        inverse = v3(begun.inv[0][l], begun.inv[1][l], begun.inv[2][l]);
       }
+      ASSERT_TRUE(same(near_o, v3(all.near_o[0][l], all.near_o[1][l], all.near_o[2][l])) &&
+                  same(far_o, v3(all.far_o[0][l], all.far_o[1][l], all.far_o[2][l])) &&
+                  same(inverse, v3(all.inv[0][l], all.inv[1][l], all.inv[2][l])))
+          << "trial " << trial << " lane " << l;
       if (l >= n) continue;
-      const WatertightRay &a = one_by_one.wr[l], &b = all.wr[l];
-      ASSERT_TRUE(same(a.org, b.org) && same(a.row_x, b.row_x) && same(a.row_y, b.row_y) && same(a.row_z, b.row_z) &&
+      const WatertightRay a = watertight_ray(o, d), &b = all.wr[l];
+      ASSERT_TRUE(same(o, b.org) && same(a.row_x, b.row_x) && same(a.row_y, b.row_y) && same(a.row_z, b.row_z) &&
                   bits(a.sz) == bits(b.sz))
           << "trial " << trial << " lane " << l;
     }

@@ -322,26 +322,6 @@ CO_INLINE int bvh8f_packet_fits(const Bvh8fPacket* k, co_vec3 dir) {
          (dir.z < 0.0f ? 5 : 4) == k->near_z;
 }
 
-/* Lane `lane` (not yet taken) of packet `k` takes the closest-hit ray (org, dir) in (0, infinity); it
- * must fit. */
-CO_INLINE void bvh8f_packet_add(const Bvh8fView* bvh, Bvh8fPacket* k, uint32_t lane, co_vec3 org,
-                                co_vec3 dir CO_ALPHA_PARAM) {
-  k->wr[lane] = watertight_ray(org, dir);
-#if defined(COHORT_FEATURE_ALPHA)
-  k->wr[lane].alpha = &bvh->alpha;
-  k->wr[lane].alpha_seed = alpha_seed;
-#else
-  (void)bvh;
-#endif
-  co_vec3 o, inv, n, f;
-  bvh_slab_ray(org, dir, &o, &inv);
-  bvh_slab_offsets(o, inv, &n, &f);
-  k->near_o[0][lane] = n.x; k->near_o[1][lane] = n.y; k->near_o[2][lane] = n.z;
-  k->far_o[0][lane] = f.x; k->far_o[1][lane] = f.y; k->far_o[2][lane] = f.z;
-  k->inv[0][lane] = inv.x; k->inv[1][lane] = inv.y; k->inv[2][lane] = inv.z;
-  k->lanes |= 1u << lane;
-}
-
 #if defined(COHORT_FEATURE_ALPHA)
 #define BVH8F_ALPHA_SEEDS_PARAM , const uint32_t* alpha_seeds
 #else
@@ -349,15 +329,16 @@ CO_INLINE void bvh8f_packet_add(const Bvh8fView* bvh, Bvh8fPacket* k, uint32_t l
 #endif
 
 /* Lanes 0 to n-1 (n from 1 to BVH8F_PACKET) of an empty packet `k` take the closest-hit rays from
- * (ox, oy, oz)[l] along (dx, dy, dz)[l] in (0, infinity), as bvh8f_packet_add would one lane after
- * the other; every ray must fit. The arrays hold BVH8F_PACKET entries: those from n on are any
- * finite ray (the caller repeats lane 0's), computed and dropped. Why: on a CPU each work item is
- * scalar code, and a ray's set-up is a chain of six divisions, selects and products that one ray
- * at a time leaves the core waiting on (perf: 8.6 % of the DamagedHelmet's render samples in
- * bvh8f_packet_add, a fifth of them on its first division). Here the lanes' set-ups run in loops
- * of a fixed count over plain arrays, which a CPU compiler makes one vector operation per step;
- * each lane runs watertight_ray's, bvh_slab_ray's (its divisions in a loop of their own) and
- * bvh_slab_offsets' operations, so the packet holds the same bits. */
+ * (ox, oy, oz)[l] along (dx, dy, dz)[l] in (0, infinity); every ray must fit. Lane l holds what its
+ * ray alone gives: watertight_ray's shear, and bvh_slab_ray's origin and inverse direction with
+ * bvh_slab_offsets' offsets, axis by axis. The arrays hold BVH8F_PACKET entries: those from n on are
+ * any finite ray (the caller repeats lane 0's), computed and dropped. Why eight at once: on a CPU
+ * each work item is scalar code, and a ray's set-up is a chain of six divisions, selects and
+ * products that one ray at a time leaves the core waiting on (perf: 8.6 % of the DamagedHelmet's
+ * render samples in the one-ray set-up this replaced, a fifth of them on its first division). Here
+ * the lanes' set-ups run in loops of a fixed count over plain arrays, which a CPU compiler makes
+ * one vector operation per step; each lane runs those functions' operations (bvh_slab_ray's
+ * divisions in a loop of their own), so the packet holds the same bits. */
 CO_INLINE void bvh8f_packet_add_all(const Bvh8fView* bvh, Bvh8fPacket* k, uint32_t n, const float* ox, const float* oy,
                                     const float* oz, const float* dx, const float* dy,
                                     const float* dz BVH8F_ALPHA_SEEDS_PARAM) {
