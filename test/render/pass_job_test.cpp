@@ -34,9 +34,14 @@ PassFilm film_of(const SamplePass& pass, std::size_t pixels) {
 
 TEST(PassSchedule, DefaultPassesHoldOneToFourMillionSamples) {
   EXPECT_EQ(default_pass_samples(1024, 1024, 1024), 4u);  // 256 passes of 4 M samples
-  EXPECT_EQ(default_pass_samples(256, 256, 4), 16u);       // one pass, as full as one launch was
+  EXPECT_EQ(default_pass_samples(1024, 1024, 64), 4u);    // 16 passes of 4 M samples
+  EXPECT_EQ(default_pass_samples(256, 256, 4), 64u);       // one pass
+  EXPECT_EQ(default_pass_samples(256, 256, 64), 64u);      // one pass of 64 samples a pixel, not 4 of 16
+  EXPECT_EQ(default_pass_samples(256, 256, 1024), 64u);    // 16 passes of 4 M samples
+  EXPECT_EQ(default_pass_samples(128, 128, 256), 64u);     // 4 passes of 1 M samples
   EXPECT_EQ(default_pass_samples(2048, 2048, 64), 1u);     // at least one sample per pixel
   EXPECT_EQ(default_pass_samples(512, 512, 256), 16u);     // 16 passes
+  EXPECT_EQ(default_pass_samples(512, 512, 64), 16u);      // 4 passes of 4 M samples
   EXPECT_EQ(default_pass_samples(16, 16, 0), 1024u);       // time-limited: ~256 K samples
 }
 

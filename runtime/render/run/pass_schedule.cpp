@@ -8,12 +8,13 @@ namespace cohort {
 
 std::uint32_t default_pass_samples(std::uint32_t width, std::uint32_t height, std::uint32_t spp) {
   constexpr std::uint64_t kFullLaunch = 1u << 20, kMostPerPass = 1u << 22, kTimed = 1u << 18;
-  constexpr std::uint32_t kPasses = 16;
+  constexpr std::uint32_t kPasses = 16, kPixelRun = 64;
   const std::uint64_t pixels = std::max<std::uint64_t>(std::uint64_t(width) * height, 1);
-  const auto least = static_cast<std::uint32_t>(std::max<std::uint64_t>((kFullLaunch + pixels - 1) / pixels, 1));
   const auto most = static_cast<std::uint32_t>(std::max<std::uint64_t>(kMostPerPass / pixels, 1));
+  const auto full = static_cast<std::uint32_t>(std::max<std::uint64_t>((kFullLaunch + pixels - 1) / pixels, 1));
+  const std::uint32_t least = std::min(std::max(full, kPixelRun), most);
   if (spp == 0) return static_cast<std::uint32_t>(std::max<std::uint64_t>(kTimed / pixels, 1));
-  return std::clamp((spp + kPasses - 1) / kPasses, std::min(least, most), most);
+  return std::clamp((spp + kPasses - 1) / kPasses, least, most);
 }
 
 PassSchedule::PassSchedule(std::uint32_t pass_samples, std::uint32_t first_sample, std::uint32_t spp, bool rounds)

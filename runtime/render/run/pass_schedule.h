@@ -20,10 +20,13 @@ struct SamplePass {
   std::shared_ptr<const std::vector<std::uint32_t>> pixels;
 };
 
-// Passes of 1-4 M samples: at least 16 passes when that keeps each above ~1 M samples (load
-// balance over devices and ranks), never more than ~4 M samples (a wavefront launch's result
-// buffer, and where per-pass overhead is already negligible), at least one sample per pixel.
-// spp 0 (a time limit ends the render): ~256 K samples, so the limit is not overshot by much.
+// Passes of 1-4 M samples: 16 passes when that keeps each above ~1 M samples and 64 samples a
+// pixel (load balance over devices and ranks), never more than ~4 M samples (a wavefront launch's
+// result buffer), at least one sample per pixel. Why 64 samples a pixel where 4 M allow it: a CPU
+// work item traces its pixel's samples of a pass one after the other, and a pass of 16 against one
+// of 64 cost 5-12 % of a 256x256 render on PoCL (the per-pixel set-up and the walks' cache reuse;
+// docs/design.md, "Film"). spp 0 (a time limit ends the render): ~256 K samples, so the limit is
+// not overshot by much.
 std::uint32_t default_pass_samples(std::uint32_t width, std::uint32_t height, std::uint32_t spp);
 
 class PassSchedule {
