@@ -15,6 +15,7 @@
 
 #include "accel/ray_check.h"
 #include "host/scene_paths.h"
+#include "kernels/test_kernels.h"
 #include "runtime/bench/trace_bench.h"
 #include "runtime/cl/cl_error.h"
 #include "runtime/cl/context.h"
@@ -212,4 +213,35 @@ TEST(TraceKernel, BunnyMatchesBruteForce) {
 TEST(TraceKernel, CornellSphereMatchesBruteForce) {
   if (!fs::exists(shared("cornell-box-mcguire"))) GTEST_SKIP() << "the external models (scenes/external.json) are missing";
   check_scene(shared("cornell-box-mcguire/CornellBox-Sphere.obj"), 100000);
+}
+
+// co_c8_count, which counts each ray's visits in bvh8f_trace_packet (the naive kernel's camera
+// packets), as the device compiles it: OpenCL's int8, where a true comparison is -1 in each lane.
+TEST(PortHelpers, EightLaneCountsAddOneToTheLanesOfEachMask) {
+  std::unique_ptr<ClContext> cl;
+  ProgramBuild build;
+  try {
+    cl = std::make_unique<ClContext>(select_device(""));
+    build = build_test_kernel_program(*cl, ProgramCache(ProgramCache::default_directory()), "port_test.cl");
+  } catch (const std::exception& ex) {
+    GTEST_SKIP() << "no OpenCL device: " << ex.what();
+  }
+  std::vector<cl_uint> masks;
+  for (cl_uint m = 0; m < 256; ++m) masks.push_back(m);
+  for (cl_uint l = 0; l < 8; ++l)  // lane l alone, l + 1 times: each lane's count its own
+    for (cl_uint i = 0; i <= l; ++i) masks.push_back(1u << l);
+  std::array<int, 8> expected{};
+  for (const cl_uint m : masks)
+    for (int l = 0; l < 8; ++l) expected[l] += (m >> l) & 1u;
+  auto mask_buf = cl->buffer("masks", masks.size() * 4, masks.data());
+  auto out_buf = cl->buffer("counts", 8 * 4);
+  cl::Kernel k(build.program, "count8_test");
+  k.setArg(0, mask_buf);
+  k.setArg(1, cl_uint(masks.size()));
+  k.setArg(2, out_buf);
+  cl->queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(1));
+  std::array<int, 8> counted{};
+  cl->queue.enqueueReadBuffer(out_buf, CL_TRUE, 0, 8 * 4, counted.data());
+  EXPECT_EQ(counted, expected);
+  EXPECT_EQ(expected[7] - expected[0], 7);  // the masks tell the lanes apart
 }

@@ -401,11 +401,12 @@ CO_INLINE void bvh8f_trace_packet(const Bvh8fView* bvh, Bvh8fPacket* k) {
   const int rx = k->near_x, ry = k->near_y, rz = k->near_z;
   int sp = 0;
   uint32_t ref = 0u, lanes = k->lanes;
+  co_count8 visits = co_c8_zero(); /* each ray's, lane by lane */
   for (;;) {
     /* the rays whose own walk would visit this node */
     const co_float8 limit = co_f8_scale(co_f8_load(best), KD_TERMINATION_SLACK);
     const uint32_t live = lanes & ~co_f8_less(limit, co_f8_load(ref_t));
-    for (uint32_t rest = live; rest != 0u; rest &= rest - 1u) ++k->count[bvh8f_lowest(rest)];
+    visits = co_c8_count(visits, live);
     if (live != 0u) {
       if (bvh4_is_leaf(ref)) {
         const CO_GLOBAL Triangle4* block = &bvh->leaf_blocks[bvh4_leaf_first(ref)];
@@ -461,12 +462,15 @@ CO_INLINE void bvh8f_trace_packet(const Bvh8fView* bvh, Bvh8fPacket* k) {
         }
       }
     }
-    if (sp == 0) return;
+    if (sp == 0) break;
     --sp;
     ref = stack_ref[sp];
     lanes = stack_lanes[sp];
     co_f8_store(co_f8_load(stack_t[sp]), ref_t);
   }
+  int32_t counted[BVH8F_PACKET];
+  co_c8_store(visits, counted);
+  for (int l = 0; l < BVH8F_PACKET; ++l) k->count[l] += (uint32_t)counted[l];
 }
 
 #endif

@@ -316,6 +316,34 @@ CO_INLINE uint32_t co_f8_less(co_float8 a, co_float8 b) {
 }
 #endif
 
+/* Eight counters, one a lane (bvh8f_trace_packet's visits per ray): co_c8_count adds 1 to the lanes
+ * of `mask`'s bits (lane 0 in bit 0). OpenCL's int8, a few vector operations where eight scalar
+ * increments of a memory array form a chain of dependent stores; lane by lane elsewhere. */
+#if defined(__OPENCL_VERSION__)
+typedef int8 co_count8;
+#define co_c8_zero() ((int8)(0))
+/* a true vector comparison is -1 in each lane */
+#define co_c8_count(c, mask) \
+  ((c) - ((((int8)((int)(mask))) & (int8)(1, 2, 4, 8, 16, 32, 64, 128)) != (int8)(0)))
+#define co_c8_store(v, p) vstore8((v), 0, (p))
+#else
+typedef struct co_count8 {
+  int32_t s[8];
+} co_count8;
+CO_INLINE co_count8 co_c8_zero(void) {
+  co_count8 c;
+  for (int i = 0; i < 8; ++i) c.s[i] = 0;
+  return c;
+}
+CO_INLINE co_count8 co_c8_count(co_count8 c, uint32_t mask) {
+  for (int i = 0; i < 8; ++i) c.s[i] += (int32_t)((mask >> i) & 1u);
+  return c;
+}
+CO_INLINE void co_c8_store(co_count8 v, int32_t* p) {
+  for (int i = 0; i < 8; ++i) p[i] = v.s[i];
+}
+#endif
+
 /* A hint to start loading the cache line at p, where the host asks for it with -DCOHORT_PREFETCH
  * (devices whose local memory is the cached global memory: runtime/cl/kernel_program.cpp); GPUs hide
  * the latency with other warps. The form is chosen from what the compiler says it is, at program
