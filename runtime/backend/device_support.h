@@ -20,7 +20,7 @@ struct DeviceSupport {
   std::uint32_t pth_levels = 0;     // full levels of a tree's top that fit in local_budget
   bool prefetch = false;            // the BVH walk prefetches (kernels/common/core/port.h, co_prefetch)
   // the naive megakernel traces two samples' paths in lock step on the 8-wide BVH with float planes
-  // (kernels/common/wavefront/pathtrace.h, trace_path_pair)
+  // (kernels/common/wavefront/pathtrace.h, trace_paths_paired)
   bool paired_walks = false;
   // the BVH box tests compute each slab in one fused multiply-add (kernels/common/accel/bvh4_traverse.h,
   // BVH_SLAB4); without it the host passes -DCOHORT_UNFUSED_SLABS. The same hits either way.

@@ -474,7 +474,7 @@ TEST(Methods, GlassVolumeIsTheSameOnEveryTreeAndMethod) {
 }
 
 // On a CPU device the naive megakernel traces two samples' paths in lock step on the 8-wide BVH with
-// float planes (-DCOHORT_PAIRED_WALKS; kernels/common/wavefront/pathtrace.h, trace_path_pair): each
+// float planes (-DCOHORT_PAIRED_WALKS; kernels/common/wavefront/pathtrace.h, trace_paths_paired): each
 // path must still be what a walk of its own gives. Passes of an odd number of samples end with one
 // path alone; Russian roulette from the second segment and an alpha-masked scene end the two paths of
 // a pair at different segments. The reference is naive on the 4-wide BVH (no pairs) and sc+rg on the

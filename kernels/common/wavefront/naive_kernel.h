@@ -46,8 +46,8 @@ CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
     uint32_t walked[PATH_START_BATCH], n = 0u;
     uint32_t outside = path_start_batch(&p, pixel, first, start);
     /* camera rays that miss the scene end at once; the others walk the tree as one packet (where
-     * they share an octant, else each alone), then their paths go on in pairs, an odd one alone, and
-     * every sample reaches the film in sample order */
+     * they share an octant, else each alone), then their paths go on in pairs (trace_paths_paired),
+     * and every sample reaches the film in sample order */
     for (uint32_t j = 0u; j < m; ++j) {
       if ((outside >> j) & 1u)
         results[j] = trace_path_outside(&s, &p, start[j], pixel, first + j);
@@ -83,15 +83,11 @@ CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
                                             &camera.count[j] CO_ALPHA_ARG(st->alpha_seed));
         }
       }
-      uint32_t k = 0u;
-      for (; k + 1u < n; k += 2u) {
-        uint32_t a = walked[k], b = walked[k + 1u];
-        trace_path_pair(&s, &p, pixel, first + a, first + b, start[a], start[b], camera.hit[k],
-                        camera.hit[k + 1u], camera.count[k], camera.count[k + 1u], &results[a], &results[b]);
-      }
-      if (k < n)
-        results[walked[k]] =
-            trace_path_from_hit(&s, &p, start[walked[k]], camera.hit[k], camera.count[k], pixel, first + walked[k]);
+      if (n >= 2u)
+        trace_paths_paired(&s, &p, pixel, first, n, walked, start, camera.hit, camera.count, results);
+      else
+        results[walked[0]] =
+            trace_path_from_hit(&s, &p, start[walked[0]], camera.hit[0], camera.count[0], pixel, first + walked[0]);
     }
     for (uint32_t j = 0u; j < m; ++j) naive_add_sample(&acc, &rays, &max_steps, &dropped, results[j]);
   }

@@ -583,22 +583,27 @@ CO_INLINE PathResult trace_path(const SceneView* s, const RenderParams* p, uint3
 
 #if defined(COHORT_PAIRED_WALKS) && defined(COHORT_ACCEL_BVH8F)
 #define COHORT_NAIVE_PAIRS 1
-/* Two samples' paths in lock step, for CPUs: their rays walk the tree in turn (bvh8f_trace_pair),
- * so the core waits on two chains of node loads at once, and their set-up and shading are two
- * independent chains of arithmetic in one stream. `a` and `b` are the started paths (path_start)
- * of samples `sample_a` and `sample_b`, whose camera rays met hit_a and hit_b after visiting
- * steps_a and steps_b nodes (bvh8f_trace_packet); each computes exactly what trace_path computes
- * for it, and once one ends, the other goes on alone. */
-CO_INLINE void trace_path_pair(const SceneView* s, const RenderParams* p, uint32_t pixel, uint32_t sample_a,
-                               uint32_t sample_b, PathState a, PathState b, HitOut hit_a, HitOut hit_b,
-                               uint32_t steps_a, uint32_t steps_b, PathResult* ra, PathResult* rb) {
-  *ra = path_result_none();
-  *rb = path_result_none();
+/* A batch's n >= 2 started paths in pairs, for CPUs: two paths' rays walk the tree in turn
+ * (bvh8f_trace_pair), so the core waits on two chains of node loads at once, and their set-up and
+ * shading are two independent chains of arithmetic in one stream. Path j (0 <= j < n) is sample
+ * first + walked[j], started as start[walked[j]] (path_start); its camera ray met hits[j] after
+ * steps[j] visits (bvh8f_trace_packet); its result goes to results[walked[j]]. When a path ends,
+ * the next of the batch takes its place (its camera hit shaded at once), so the walks stay in pairs
+ * until one path is left, which goes on alone. Each path computes exactly what trace_path computes
+ * for it: the same calls on the same values, only interleaved with another path's. */
+CO_INLINE void trace_paths_paired(const SceneView* s, const RenderParams* p, uint32_t pixel, uint32_t first,
+                                  uint32_t n, const uint32_t* walked, const PathState* start, const HitOut* hits,
+                                  const uint32_t* steps, PathResult* results) {
+  uint32_t ja = 0u, jb = 1u, next = 2u;
+  PathState a = start[walked[0]], b = start[walked[1]];
+  HitOut hit_a = hits[0], hit_b = hits[1];
+  uint32_t steps_a = steps[0], steps_b = steps[1];
+  PathResult ra = path_result_none(), rb = path_result_none();
   for (;;) {
-    path_count_ray(ra, steps_a);
-    path_count_ray(rb, steps_b);
-    ShadowRay sa = path_shade(s, p, &a, hit_a, pixel, sample_a);
-    ShadowRay sb = path_shade(s, p, &b, hit_b, pixel, sample_b);
+    path_count_ray(&ra, steps_a);
+    path_count_ray(&rb, steps_b);
+    ShadowRay sa = path_shade(s, p, &a, hit_a, pixel, first + walked[ja]);
+    ShadowRay sb = path_shade(s, p, &b, hit_b, pixel, first + walked[jb]);
     Bvh8fWalk wa, wb;
     if (sa.valid || sb.valid) {
       if (sa.valid) bvh8f_walk_start(&s->tree, &wa, sa.org, sa.dir, 0.0f, sa.tmax, 1 CO_ALPHA_ARG(sa.alpha_seed));
@@ -609,12 +614,29 @@ CO_INLINE void trace_path_pair(const SceneView* s, const RenderParams* p, uint32
         bvh8f_walk_run(&s->tree, sa.valid ? &wa : &wb);
       if (sa.valid) {
         path_resolve_shadow(&a, &sa, wa.hit);
-        path_count_ray(ra, wa.count);
+        path_count_ray(&ra, wa.count);
       }
       if (sb.valid) {
         path_resolve_shadow(&b, &sb, wb.hit);
-        path_count_ray(rb, wb.count);
+        path_count_ray(&rb, wb.count);
       }
+    }
+    /* an ended path hands its place to the batch's next, whose camera hit is taken at once */
+    while (a.status != PATH_ALIVE && next < n) {
+      ra.radiance = a.radiance;
+      results[walked[ja]] = ra;
+      ja = next++;
+      a = start[walked[ja]];
+      ra = path_result_none();
+      path_take_hit(s, p, &a, hits[ja], steps[ja], pixel, first + walked[ja], &ra);
+    }
+    while (b.status != PATH_ALIVE && next < n) {
+      rb.radiance = b.radiance;
+      results[walked[jb]] = rb;
+      jb = next++;
+      b = start[walked[jb]];
+      rb = path_result_none();
+      path_take_hit(s, p, &b, hits[jb], steps[jb], pixel, first + walked[jb], &rb);
     }
     if (a.status != PATH_ALIVE || b.status != PATH_ALIVE) break;
     bvh8f_walk_start(&s->tree, &wa, a.org, a.dir, 0.0f, INFINITY, 0 CO_ALPHA_ARG(a.alpha_seed));
@@ -625,8 +647,10 @@ CO_INLINE void trace_path_pair(const SceneView* s, const RenderParams* p, uint32
     steps_a = wa.count;
     steps_b = wb.count;
   }
-  path_continue(s, p, &a, pixel, sample_a, ra);
-  path_continue(s, p, &b, pixel, sample_b, rb);
+  path_continue(s, p, &a, pixel, first + walked[ja], &ra);
+  path_continue(s, p, &b, pixel, first + walked[jb], &rb);
+  results[walked[ja]] = ra;
+  results[walked[jb]] = rb;
 }
 
 /* A started path whose camera ray met `hit` after `steps` nodes (bvh8f_trace_packet) to its end. */
