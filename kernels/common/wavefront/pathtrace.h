@@ -583,6 +583,23 @@ CO_INLINE PathResult trace_path(const SceneView* s, const RenderParams* p, uint3
 
 #if defined(COHORT_PAIRED_WALKS) && defined(COHORT_ACCEL_BVH8F)
 #define COHORT_NAIVE_PAIRS 1
+/* One place of trace_paths_paired's pair: while its path (st, the batch's path *j, its result r) has
+ * ended and the batch has more, the result goes out and the batch's next path takes the place, its
+ * camera hit taken at once. Forced inline, so that the pair's states stay in registers. */
+CO_FORCE_INLINE void paired_refill(const SceneView* s, const RenderParams* p, uint32_t pixel, uint32_t first,
+                                   uint32_t n, const uint32_t* walked, const PathState* start, const HitOut* hits,
+                                   const uint32_t* steps, PathResult* results, PathState* st, uint32_t* j,
+                                   PathResult* r, uint32_t* next) {
+  while (st->status != PATH_ALIVE && *next < n) {
+    r->radiance = st->radiance;
+    results[walked[*j]] = *r;
+    *j = (*next)++;
+    *st = start[walked[*j]];
+    *r = path_result_none();
+    path_take_hit(s, p, st, hits[*j], steps[*j], pixel, first + walked[*j], r);
+  }
+}
+
 /* A batch's n >= 2 started paths in pairs, for CPUs: two paths' rays walk the tree in turn
  * (bvh8f_trace_pair), so the core waits on two chains of node loads at once, and their set-up and
  * shading are two independent chains of arithmetic in one stream. Path j (0 <= j < n) is sample
@@ -621,23 +638,8 @@ CO_INLINE void trace_paths_paired(const SceneView* s, const RenderParams* p, uin
         path_count_ray(&rb, wb.count);
       }
     }
-    /* an ended path hands its place to the batch's next, whose camera hit is taken at once */
-    while (a.status != PATH_ALIVE && next < n) {
-      ra.radiance = a.radiance;
-      results[walked[ja]] = ra;
-      ja = next++;
-      a = start[walked[ja]];
-      ra = path_result_none();
-      path_take_hit(s, p, &a, hits[ja], steps[ja], pixel, first + walked[ja], &ra);
-    }
-    while (b.status != PATH_ALIVE && next < n) {
-      rb.radiance = b.radiance;
-      results[walked[jb]] = rb;
-      jb = next++;
-      b = start[walked[jb]];
-      rb = path_result_none();
-      path_take_hit(s, p, &b, hits[jb], steps[jb], pixel, first + walked[jb], &rb);
-    }
+    paired_refill(s, p, pixel, first, n, walked, start, hits, steps, results, &a, &ja, &ra, &next);
+    paired_refill(s, p, pixel, first, n, walked, start, hits, steps, results, &b, &jb, &rb, &next);
     if (a.status != PATH_ALIVE || b.status != PATH_ALIVE) break;
     bvh8f_walk_start(&s->tree, &wa, a.org, a.dir, 0.0f, INFINITY, 0 CO_ALPHA_ARG(a.alpha_seed));
     bvh8f_walk_start(&s->tree, &wb, b.org, b.dir, 0.0f, INFINITY, 0 CO_ALPHA_ARG(b.alpha_seed));
