@@ -90,6 +90,40 @@ class BenchSuite(unittest.TestCase):
             self.assertIn("| trav-cohort-base | s.obj | interior | primary | 401 | 201 | 601 | 3 |", table)
             self.assertIn("| trav-cohort | s.obj | interior | naive | 7 | 7 | 7 | 3 |", table)
 
+    def test_a_run_says_which_renders_gave_the_baselines_image_bytes(self):
+        # a stand-in render: the same image for both binaries, but for model "b", whose baseline differs
+        render = """#!/usr/bin/env python3
+import json, os, sys
+a = sys.argv[1:]
+def opt(name): return a[a.index(name) + 1]
+json.dump({"samples_per_second": 1e6}, open(opt("--stats"), "w"))
+base = os.path.basename(sys.argv[0]).endswith("-base")
+open(opt("-o") + ".exr", "wb").write(b"exr" + (b"!" if base and "-b-" in opt("-o") else b""))
+"""
+        with tempfile.TemporaryDirectory() as tmp:
+            tmp = Path(tmp)
+            bindir = tmp / "bin"
+            bindir.mkdir()
+            for name in ("cohort", "cohort-base"):
+                exe = bindir / name
+                exe.write_text(render)
+                exe.chmod(exe.stat().st_mode | stat.S_IEXEC)
+            suite = {"about": "test", "machine": "local", "rounds": 2, "binaries": ["cohort", "cohort-base"],
+                     "alternate": "step",
+                     "steps": [{"name": "r-{binary}-{model}", "kind": "render", "scene": "scenes/cornell-box.gltf",
+                                "for": {"model": ["a", "b"]}}]}
+            (tmp / "suite.json").write_text(json.dumps(suite))
+            out = tmp / "out"
+            r = subprocess.run([sys.executable, str(SCRIPT), str(tmp / "suite.json"), str(out), "--bin", str(bindir)],
+                               capture_output=True, text=True)
+            self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+            images = json.loads((out / "run.json").read_text())["images"]
+            self.assertEqual(sorted((x["run"], x["twin"], x["same"]) for x in images),
+                             [("r-cohort-a-1", "r-cohort-base-a-1", True), ("r-cohort-a-2", "r-cohort-base-a-2", True),
+                              ("r-cohort-b-1", "r-cohort-base-b-1", False), ("r-cohort-b-2", "r-cohort-base-b-2", False)])
+            self.assertIn("Images: 2 of 4 renders the same bytes as their twin of the other binary; differing: "
+                          "r-cohort-b-1, r-cohort-b-2.", bs.summary(out))
+
     def test_alternate_step_gives_each_step_to_every_binary_in_turn(self):
         steps = [{"name": f"{s}-{{binary}}-{{model}}", "kind": "bench", "scene": "x.obj", "for": {"model": ["a", "b"]}}
                  for s in ("naive", "rays")]
