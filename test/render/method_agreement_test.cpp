@@ -473,6 +473,37 @@ TEST(Methods, GlassVolumeIsTheSameOnEveryTreeAndMethod) {
   expect_every_tree_and_method_agrees(path, {1u, 5u}, glm::vec3(0.1f));
 }
 
+namespace {
+
+// A shipped scene on the two trees the paired walks are checked between: the 8-wide BVH with float
+// planes (on a CPU the naive kernel pairs its walks there) and the 4-wide BVH (no pairs).
+struct PairedTreeScenes {
+  PreparedScene wide, four;
+  DeviceScene wide_scene, four_scene;
+  PairedTreeScenes(const ClContext& cl, const std::filesystem::path& path)
+      : wide(prepare_scene(path, TreeChoice{.kd = KdBuildOptions{}, .bvh8f = true})),
+        four(prepare_scene(path, TreeChoice{KdBuildOptions{}, true})),
+        wide_scene(upload_scene(cl, wide.tree, wide.tables, wide.bvh())),
+        four_scene(upload_scene(cl, four.tree, four.tables, four.bvh())) {}
+};
+
+// Naive on the 4-wide BVH (the reference), then naive (paired on a CPU) and sc+rg (one walk per ray)
+// on the 8-wide BVH with float planes, through `camera` with settings `s` (the method set here): each
+// bit for bit the reference. Returns the paired render.
+RenderResult expect_paired_as_reference(const ClContext& cl, const ProgramCache& cache, const PairedTreeScenes& t,
+                                        const SceneCamera& camera, RenderSettings s, const std::string& what) {
+  s.method = "naive";
+  const RenderResult reference = render(cl, cache, t.four_scene, camera, s);
+  RenderResult paired = render(cl, cache, t.wide_scene, camera, s);
+  s.method = "sc+rg";
+  const RenderResult single = render(cl, cache, t.wide_scene, camera, s);
+  expect_bitwise_equal(reference, paired, ("paired naive: " + what).c_str());
+  expect_bitwise_equal(reference, single, ("sc+rg: " + what).c_str());
+  return paired;
+}
+
+}  // namespace
+
 // On a CPU device the naive megakernel traces two samples' paths in lock step on the 8-wide BVH with
 // float planes (-DCOHORT_PAIRED_WALKS; kernels/common/wavefront/pathtrace.h, trace_paths_paired): each
 // path must still be what a walk of its own gives. Passes of an odd number of samples end with one
@@ -484,11 +515,7 @@ TEST(Methods, PairedWalksGiveEachPathItsOwnWalksImage) {
   if (!device_support(cl.info()).paired_walks) GTEST_SKIP() << cl.info().name << " runs no paired walks";
   const ProgramCache cache(ProgramCache::default_directory());
   for (const char* scene : {"cornell-box.gltf", "reference/alpha-mask.gltf"}) {
-    const auto path = shipped_scene(scene);
-    PreparedScene wide = prepare_scene(path, TreeChoice{.kd = KdBuildOptions{}, .bvh8f = true});
-    PreparedScene four = prepare_scene(path, TreeChoice{KdBuildOptions{}, true});
-    const DeviceScene wide_scene = upload_scene(cl, wide.tree, wide.tables, wide.bvh());
-    const DeviceScene four_scene = upload_scene(cl, four.tree, four.tables, four.bvh());
+    const PairedTreeScenes trees(cl, shipped_scene(scene));
     for (const std::uint32_t pass_samples : {0u, 1u, 3u}) {
       RenderSettings s;
       s.width = 24;
@@ -497,14 +524,8 @@ TEST(Methods, PairedWalksGiveEachPathItsOwnWalksImage) {
       s.seed = 5;
       s.rr_depth = 2;
       s.pass_samples = pass_samples;
-      s.method = "naive";
-      const RenderResult reference = render(cl, cache, four_scene, four.camera, s);
-      const RenderResult paired = render(cl, cache, wide_scene, wide.camera, s);
-      s.method = "sc+rg";
-      const RenderResult single = render(cl, cache, wide_scene, wide.camera, s);
       const std::string what = fmt::format("{}, passes of {} samples", scene, pass_samples);
-      expect_bitwise_equal(reference, paired, ("paired naive: " + what).c_str());
-      expect_bitwise_equal(reference, single, ("sc+rg: " + what).c_str());
+      const RenderResult paired = expect_paired_as_reference(cl, cache, trees, trees.wide.camera, s, what);
       double sum = 0.0;
       for (const float v : paired.image.rgb) sum += v;
       EXPECT_GT(sum, 0.0) << what << ": a black image proves nothing";
@@ -520,13 +541,9 @@ TEST(Methods, BackgroundPixelsGiveTheTracedImage) {
   const ClContext cl(select_device(""));
   if (!device_support(cl.info()).paired_walks) GTEST_SKIP() << cl.info().name << " runs no paired walks";
   const ProgramCache cache(ProgramCache::default_directory());
-  const auto path = shipped_scene("reference/alpha-mask.gltf");
-  PreparedScene wide = prepare_scene(path, TreeChoice{.kd = KdBuildOptions{}, .bvh8f = true});
-  PreparedScene four = prepare_scene(path, TreeChoice{KdBuildOptions{}, true});
-  const DeviceScene wide_scene = upload_scene(cl, wide.tree, wide.tables, wide.bvh());
-  const DeviceScene four_scene = upload_scene(cl, four.tree, four.tables, four.bvh());
+  const PairedTreeScenes trees(cl, shipped_scene("reference/alpha-mask.gltf"));
   // from afar and aslant, the scene's box a few tens of degrees wide in a 45-degree frame
-  const Bounds& b = wide_scene.bounds;
+  const Bounds& b = trees.wide_scene.bounds;
   const glm::vec3 lo(b.lo.x, b.lo.y, b.lo.z), hi(b.hi.x, b.hi.y, b.hi.z);
   SceneCamera far;
   far.target = 0.5f * (lo + hi);
@@ -537,13 +554,7 @@ TEST(Methods, BackgroundPixelsGiveTheTracedImage) {
   s.spp = 9;
   s.seed = 3;
   s.environment = glm::vec3(0.7f, 0.9f, 1.3f);
-  s.method = "naive";
-  const RenderResult reference = render(cl, cache, four_scene, far, s);
-  const RenderResult paired = render(cl, cache, wide_scene, far, s);
-  s.method = "sc+rg";
-  const RenderResult single = render(cl, cache, wide_scene, far, s);
-  expect_bitwise_equal(reference, paired, "paired naive with background pixels");
-  expect_bitwise_equal(reference, single, "sc+rg with background pixels");
+  expect_paired_as_reference(cl, cache, trees, far, s, "with background pixels");
   const CameraParams cam = make_camera_params(far, s.width, s.height);
   int background = 0;
   for (std::uint32_t y = 0; y < s.height; ++y)
