@@ -63,23 +63,27 @@ class BenchSuite(unittest.TestCase):
         kept = sorted(p.name for p in record.iterdir() if p.name != "README.md")
         self.assertEqual(planned, kept)
 
+    def run_with_stand_ins(self, tmp, program, suite):
+        """`suite` run by bench-suite in tmp/out with `program` standing in for cohort and cohort-base."""
+        bindir = tmp / "bin"
+        bindir.mkdir()
+        for name in ("cohort", "cohort-base"):
+            exe = bindir / name
+            exe.write_text(program)
+            exe.chmod(exe.stat().st_mode | stat.S_IEXEC)
+        (tmp / "suite.json").write_text(json.dumps(suite))
+        out = tmp / "out"
+        r = subprocess.run([sys.executable, str(SCRIPT), str(tmp / "suite.json"), str(out), "--bin", str(bindir)],
+                           capture_output=True, text=True)
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        return out
+
     def test_a_run_alternates_binaries_and_summarises_json(self):
         with tempfile.TemporaryDirectory() as tmp:
-            tmp = Path(tmp)
-            bindir = tmp / "bin"
-            bindir.mkdir()
-            for name in ("cohort", "cohort-base"):
-                exe = bindir / name
-                exe.write_text(FAKE)
-                exe.chmod(exe.stat().st_mode | stat.S_IEXEC)
             suite = {"about": "test", "machine": "local", "rounds": 3, "binaries": ["cohort", "cohort-base"],
                      "steps": [{"name": "trav-{binary}", "kind": "bench", "scene": "scenes/cornell-box.gltf",
                                 "args": ["--view", "interior"]}]}
-            (tmp / "suite.json").write_text(json.dumps(suite))
-            out = tmp / "out"
-            r = subprocess.run([sys.executable, str(SCRIPT), str(tmp / "suite.json"), str(out), "--bin", str(bindir)],
-                               capture_output=True, text=True)
-            self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+            out = self.run_with_stand_ins(Path(tmp), FAKE, suite)
             record = json.loads((out / "run.json").read_text())
             order = [(x["round"], x["binary"]) for x in record["runs"]]
             self.assertEqual(order, [(1, "cohort"), (1, "cohort-base"), (2, "cohort"), (2, "cohort-base"),
@@ -101,22 +105,11 @@ base = os.path.basename(sys.argv[0]).endswith("-base")
 open(opt("-o") + ".exr", "wb").write(b"exr" + (b"!" if base and "-b-" in opt("-o") else b""))
 """
         with tempfile.TemporaryDirectory() as tmp:
-            tmp = Path(tmp)
-            bindir = tmp / "bin"
-            bindir.mkdir()
-            for name in ("cohort", "cohort-base"):
-                exe = bindir / name
-                exe.write_text(render)
-                exe.chmod(exe.stat().st_mode | stat.S_IEXEC)
             suite = {"about": "test", "machine": "local", "rounds": 2, "binaries": ["cohort", "cohort-base"],
                      "alternate": "step",
                      "steps": [{"name": "r-{binary}-{model}", "kind": "render", "scene": "scenes/cornell-box.gltf",
                                 "for": {"model": ["a", "b"]}}]}
-            (tmp / "suite.json").write_text(json.dumps(suite))
-            out = tmp / "out"
-            r = subprocess.run([sys.executable, str(SCRIPT), str(tmp / "suite.json"), str(out), "--bin", str(bindir)],
-                               capture_output=True, text=True)
-            self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+            out = self.run_with_stand_ins(Path(tmp), render, suite)
             images = json.loads((out / "run.json").read_text())["images"]
             self.assertEqual(sorted((x["run"], x["twin"], x["same"]) for x in images),
                              [("r-cohort-a-1", "r-cohort-base-a-1", True), ("r-cohort-a-2", "r-cohort-base-a-2", True),
