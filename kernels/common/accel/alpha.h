@@ -25,9 +25,8 @@
 
 /* The seed a ray's BLEND decisions hash from: 24 bits, so that the wavefront kernels can keep it
  * exactly in a float (the w of a ray origin) between launches (alpha_seed_to_float). */
-CO_INLINE uint32_t alpha_ray_seed(uint32_t seed, uint32_t pixel, uint32_t sample, uint32_t segment,
-                                  uint32_t purpose) {
-  return rng_make(seed, pixel, sample, segment, purpose).state >> 8;
+CO_INLINE uint32_t alpha_ray_seed(uint32_t path_key, uint32_t segment, uint32_t purpose) {
+  return rng_at(path_key, segment, purpose).state >> 8;
 }
 #endif
 /* the sheen roughness and specular textures read the alpha channel too (scene_view.h, sheen_params and

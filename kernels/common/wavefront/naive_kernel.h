@@ -36,21 +36,22 @@ CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
                          camera_pixel_misses_box(&p.camera, p.width, p.height, pixel % p.width, pixel / p.width,
                                                  v3_from4(p.scene_min), v3_from4(p.scene_max));
   if (background) {
-    const PathResult sky = trace_path_outside(&s, &p, path_start(&p, pixel, p.sample_offset), pixel, p.sample_offset);
+    const PathResult sky = trace_path_outside(&s, &p, path_start(&p, pixel, p.sample_offset),
+                                              rng_path_key(p.seed, pixel, p.sample_offset));
     for (uint32_t i = 0u; i < p.samples_per_pass; ++i) naive_add_sample(&acc, &rays, &max_steps, &dropped, sky);
   }
   for (uint32_t i = 0u; !background && i < p.samples_per_pass; i += PATH_START_BATCH) {
     uint32_t m = co_umin(PATH_START_BATCH, p.samples_per_pass - i), first = p.sample_offset + i;
     PathState start[PATH_START_BATCH];
     PathResult results[PATH_START_BATCH];
-    uint32_t walked[PATH_START_BATCH], n = 0u;
-    uint32_t outside = path_start_batch(&p, pixel, first, start);
+    uint32_t walked[PATH_START_BATCH], keys[PATH_START_BATCH], n = 0u;
+    uint32_t outside = path_start_batch(&p, pixel, first, start, keys);
     /* camera rays that miss the scene end at once; the others walk the tree as one packet (where
      * they share an octant, else each alone), then their paths go on in pairs (trace_paths_paired),
      * and every sample reaches the film in sample order */
     for (uint32_t j = 0u; j < m; ++j) {
       if ((outside >> j) & 1u)
-        results[j] = trace_path_outside(&s, &p, start[j], pixel, first + j);
+        results[j] = trace_path_outside(&s, &p, start[j], keys[j]);
       else
         walked[n++] = j;
     }
@@ -84,10 +85,10 @@ CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
         }
       }
       if (n >= 2u)
-        trace_paths_paired(&s, &p, pixel, first, n, walked, start, camera.hit, camera.count, results);
+        trace_paths_paired(&s, &p, n, walked, start, keys, camera.hit, camera.count, results);
       else
         results[walked[0]] =
-            trace_path_from_hit(&s, &p, start[walked[0]], camera.hit[0], camera.count[0], pixel, first + walked[0]);
+            trace_path_from_hit(&s, &p, start[walked[0]], camera.hit[0], camera.count[0], keys[walked[0]]);
     }
     for (uint32_t j = 0u; j < m; ++j) naive_add_sample(&acc, &rays, &max_steps, &dropped, results[j]);
   }

@@ -75,14 +75,14 @@ CO_INLINE uint32_t pass_pixel(uint32_t k, CO_GLOBAL const uint32_t* pixel_list, 
 }
 
 /* The camera ray's direction of a pixel's sample: its jitter from the sample's camera stream. */
-CO_INLINE co_vec3 path_camera_direction(const RenderParams* p, uint32_t pixel, uint32_t sample) {
-  Rng cam_rng = rng_make(p->seed, pixel, sample, 0u, RNG_CAMERA);
+CO_INLINE co_vec3 path_camera_direction(const RenderParams* p, uint32_t pixel, uint32_t path_key) {
+  Rng cam_rng = rng_at(path_key, 0u, RNG_CAMERA);
   float jx = rng_next(&cam_rng), jy = rng_next(&cam_rng);
   return camera_direction(&p->camera, p->width, p->height, pixel % p->width, pixel / p->width, jx, jy);
 }
 
 /* A path at the camera, about to trace the camera ray along `dir`. */
-CO_INLINE PathState path_start_along(const RenderParams* p, uint32_t pixel, uint32_t sample, co_vec3 dir) {
+CO_INLINE PathState path_start_along(const RenderParams* p, uint32_t path_key, co_vec3 dir) {
   PathState st;
   st.org = v3_from4(p->camera.eye);
   st.dir = dir;
@@ -93,10 +93,9 @@ CO_INLINE PathState path_start_along(const RenderParams* p, uint32_t pixel, uint
   st.segment = 1u;
   st.status = PATH_ALIVE;
 #if defined(COHORT_FEATURE_ALPHA)
-  st.alpha_seed = alpha_ray_seed(p->seed, pixel, sample, 1u, RNG_ALPHA);
+  st.alpha_seed = alpha_ray_seed(path_key, 1u, RNG_ALPHA);
 #else
-  (void)pixel;
-  (void)sample;
+  (void)path_key;
 #endif
 #if defined(COHORT_FEATURE_VOLUME)
   st.medium = MEDIUM_NONE; /* the camera is outside every volume (docs/bsdf.md, "Volumes") */
@@ -105,7 +104,8 @@ CO_INLINE PathState path_start_along(const RenderParams* p, uint32_t pixel, uint
 }
 
 CO_INLINE PathState path_start(const RenderParams* p, uint32_t pixel, uint32_t sample) {
-  return path_start_along(p, pixel, sample, path_camera_direction(p, pixel, sample));
+  const uint32_t key = rng_path_key(p->seed, pixel, sample);
+  return path_start_along(p, key, path_camera_direction(p, pixel, key));
 }
 
 /* path_start for PATH_START_BATCH consecutive samples of one pixel, from `sample`: the camera
@@ -119,11 +119,13 @@ CO_INLINE PathState path_start(const RenderParams* p, uint32_t pixel, uint32_t s
  * intersect_box with the KD-tree's inverse is the test the KD-tree clips every ray with, so such a
  * ray hits nothing on any tree, and its walk (the ray's set-up, the root's box test) can be skipped. */
 #define PATH_START_BATCH 8u
-CO_INLINE uint32_t path_start_batch(const RenderParams* p, uint32_t pixel, uint32_t sample, PathState* out) {
+CO_INLINE uint32_t path_start_batch(const RenderParams* p, uint32_t pixel, uint32_t sample, PathState* out,
+                                    uint32_t* keys) {
   float dx[PATH_START_BATCH], dy[PATH_START_BATCH], dz[PATH_START_BATCH];
-  uint32_t outside[PATH_START_BATCH];
+  uint32_t outside[PATH_START_BATCH], key[PATH_START_BATCH];
   for (uint32_t l = 0u; l < PATH_START_BATCH; ++l) {
-    co_vec3 d = path_camera_direction(p, pixel, sample + l);
+    key[l] = rng_path_key(p->seed, pixel, sample + l);
+    co_vec3 d = path_camera_direction(p, pixel, key[l]);
     dx[l] = d.x; dy[l] = d.y; dz[l] = d.z;
   }
   const co_vec3 eye = v3_from4(p->camera.eye), lo = v3_from4(p->scene_min), hi = v3_from4(p->scene_max);
@@ -133,7 +135,8 @@ CO_INLINE uint32_t path_start_batch(const RenderParams* p, uint32_t pixel, uint3
   }
   uint32_t mask = 0u;
   for (uint32_t l = 0u; l < PATH_START_BATCH; ++l) {
-    out[l] = path_start_along(p, pixel, sample + l, v3(dx[l], dy[l], dz[l]));
+    out[l] = path_start_along(p, key[l], v3(dx[l], dy[l], dz[l]));
+    keys[l] = key[l];
     mask |= outside[l] << l;
   }
   return mask;
@@ -352,8 +355,8 @@ CO_INLINE void path_escape(const SceneView* s, const RenderParams* p, PathState*
  * with u_select and used for both NEE and the continuation, the four numbers of the RNG_BSDF
  * stream (u_select, u_lobe, u1, u2), no NEE at delta BSDFs, and after a delta sample a
  * prev_bsdf_pdf of 0: the next emitter hit counts with weight 1. */
-CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathState* st, HitOut hit, uint32_t pixel,
-                               uint32_t sample) {
+CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathState* st, HitOut hit,
+                               uint32_t path_key) {
   ShadowRay none;
   none.valid = 0;
   if (hit.triangle == HIT_NONE) {
@@ -406,7 +409,7 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
     return none;
   }
 
-  Rng bsdf_rng = rng_make(p->seed, pixel, sample, segment, RNG_BSDF);
+  Rng bsdf_rng = rng_at(path_key, segment, RNG_BSDF);
   float u_select = rng_next(&bsdf_rng), u_lobe = rng_next(&bsdf_rng);
   float u1 = rng_next(&bsdf_rng), u2 = rng_next(&bsdf_rng);
   SurfaceParams sp = surface_params(s, m, hit.triangle, hit.u, hit.v);
@@ -463,10 +466,10 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
 
   ShadowRay shadow = none;
   if (nee && !bsdf_is_delta(&b)) {
-    Rng light_rng = rng_make(p->seed, pixel, sample, segment, RNG_LIGHT);
+    Rng light_rng = rng_at(path_key, segment, RNG_LIGHT);
     shadow = sample_direct_light(s, p, &light_rng, pos, offset, &frame, &b, wi, st->throughput);
 #if defined(COHORT_FEATURE_ALPHA)
-    shadow.alpha_seed = alpha_ray_seed(p->seed, pixel, sample, segment, RNG_ALPHA_SHADOW);
+    shadow.alpha_seed = alpha_ray_seed(path_key, segment, RNG_ALPHA_SHADOW);
 #endif
 #if defined(COHORT_FEATURE_VOLUME)
     /* A shadow ray that stays inside a volume (from a vertex inside, or through a rough dielectric
@@ -484,7 +487,7 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
 #endif
   }
   if ((p->flags & RENDER_FLAG_RUSSIAN_ROULETTE) && segment >= p->rr_depth) {
-    Rng rr_rng = rng_make(p->seed, pixel, sample, segment, RNG_ROULETTE);
+    Rng rr_rng = rng_at(path_key, segment, RNG_ROULETTE);
     /* refraction may lift the throughput above 1 (the eta^2 scale): q stays at most 0.95 */
     float q = fmin(v3_max_component(st->throughput), 0.95f);
     if (!(rng_next(&rr_rng) < q)) {
@@ -521,7 +524,7 @@ CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathSt
   st->dir = frame_to_world(&frame, bs.wo);
   st->segment = segment + 1u;
 #if defined(COHORT_FEATURE_ALPHA)
-  st->alpha_seed = alpha_ray_seed(p->seed, pixel, sample, segment + 1u, RNG_ALPHA);
+  st->alpha_seed = alpha_ray_seed(path_key, segment + 1u, RNG_ALPHA);
 #endif
   return shadow;
 }
@@ -544,9 +547,9 @@ CO_INLINE void path_count_ray(PathResult* result, uint32_t steps) {
 
 /* A path's ray met `hit` after visiting `steps` nodes: counted, shaded, its shadow ray traced. */
 CO_INLINE void path_take_hit(const SceneView* s, const RenderParams* p, PathState* st, HitOut hit, uint32_t steps,
-                             uint32_t pixel, uint32_t sample, PathResult* result) {
+                             uint32_t path_key, PathResult* result) {
   path_count_ray(result, steps);
-  ShadowRay sr = path_shade(s, p, st, hit, pixel, sample);
+  ShadowRay sr = path_shade(s, p, st, hit, path_key);
   if (sr.valid) {
     path_resolve_shadow(st, &sr,
                         scene_trace_steps(&s->tree, sr.org, sr.dir, 0.0f, sr.tmax, 1, &steps CO_ALPHA_ARG(sr.alpha_seed)));
@@ -555,12 +558,12 @@ CO_INLINE void path_take_hit(const SceneView* s, const RenderParams* p, PathStat
 }
 
 /* A started path to its end, one ray and its shadow ray at a time. */
-CO_INLINE void path_continue(const SceneView* s, const RenderParams* p, PathState* st, uint32_t pixel, uint32_t sample,
+CO_INLINE void path_continue(const SceneView* s, const RenderParams* p, PathState* st, uint32_t path_key,
                              PathResult* result) {
   while (st->status == PATH_ALIVE) {
     uint32_t steps = 0u;
     HitOut hit = scene_trace_steps(&s->tree, st->org, st->dir, 0.0f, INFINITY, 0, &steps CO_ALPHA_ARG(st->alpha_seed));
-    path_take_hit(s, p, st, hit, steps, pixel, sample, result);
+    path_take_hit(s, p, st, hit, steps, path_key, result);
   }
   result->radiance = st->radiance;
 }
@@ -576,8 +579,9 @@ CO_INLINE PathResult path_result_none(void) {
 /* The whole path in one call: what the NAIVE megakernel runs per sample. */
 CO_INLINE PathResult trace_path(const SceneView* s, const RenderParams* p, uint32_t pixel, uint32_t sample) {
   PathResult result = path_result_none();
-  PathState st = path_start(p, pixel, sample);
-  path_continue(s, p, &st, pixel, sample, &result);
+  const uint32_t key = rng_path_key(p->seed, pixel, sample);
+  PathState st = path_start_along(p, key, path_camera_direction(p, pixel, key));
+  path_continue(s, p, &st, key, &result);
   return result;
 }
 
@@ -586,8 +590,8 @@ CO_INLINE PathResult trace_path(const SceneView* s, const RenderParams* p, uint3
 /* One place of trace_paths_paired's pair: while its path (st, the batch's path *j, its result r) has
  * ended and the batch has more, the result goes out and the batch's next path takes the place, its
  * camera hit taken at once. Forced inline, so that the pair's states stay in registers. */
-CO_FORCE_INLINE void paired_refill(const SceneView* s, const RenderParams* p, uint32_t pixel, uint32_t first,
-                                   uint32_t n, const uint32_t* walked, const PathState* start, const HitOut* hits,
+CO_FORCE_INLINE void paired_refill(const SceneView* s, const RenderParams* p, uint32_t n, const uint32_t* walked,
+                                   const PathState* start, const uint32_t* keys, const HitOut* hits,
                                    const uint32_t* steps, PathResult* results, PathState* st, uint32_t* j,
                                    PathResult* r, uint32_t* next) {
   while (st->status != PATH_ALIVE && *next < n) {
@@ -596,20 +600,21 @@ CO_FORCE_INLINE void paired_refill(const SceneView* s, const RenderParams* p, ui
     *j = (*next)++;
     *st = start[walked[*j]];
     *r = path_result_none();
-    path_take_hit(s, p, st, hits[*j], steps[*j], pixel, first + walked[*j], r);
+    path_take_hit(s, p, st, hits[*j], steps[*j], keys[walked[*j]], r);
   }
 }
 
 /* A batch's n >= 2 started paths in pairs, for CPUs: two paths' rays walk the tree in turn
  * (bvh8f_trace_pair), so the core waits on two chains of node loads at once, and their set-up and
- * shading are two independent chains of arithmetic in one stream. Path j (0 <= j < n) is sample
- * first + walked[j], started as start[walked[j]] (path_start); its camera ray met hits[j] after
+ * shading are two independent chains of arithmetic in one stream. Path j (0 <= j < n) is the
+ * batch's sample walked[j], started as start[walked[j]] with the stream key keys[walked[j]]
+ * (path_start_batch); its camera ray met hits[j] after
  * steps[j] visits (bvh8f_trace_packet); its result goes to results[walked[j]]. When a path ends,
  * the next of the batch takes its place (its camera hit shaded at once), so the walks stay in pairs
  * until one path is left, which goes on alone. Each path computes exactly what trace_path computes
  * for it: the same calls on the same values, only interleaved with another path's. */
-CO_INLINE void trace_paths_paired(const SceneView* s, const RenderParams* p, uint32_t pixel, uint32_t first,
-                                  uint32_t n, const uint32_t* walked, const PathState* start, const HitOut* hits,
+CO_INLINE void trace_paths_paired(const SceneView* s, const RenderParams* p, uint32_t n, const uint32_t* walked,
+                                  const PathState* start, const uint32_t* keys, const HitOut* hits,
                                   const uint32_t* steps, PathResult* results) {
   uint32_t ja = 0u, jb = 1u, next = 2u;
   PathState a = start[walked[0]], b = start[walked[1]];
@@ -619,8 +624,8 @@ CO_INLINE void trace_paths_paired(const SceneView* s, const RenderParams* p, uin
   for (;;) {
     path_count_ray(&ra, steps_a);
     path_count_ray(&rb, steps_b);
-    ShadowRay sa = path_shade(s, p, &a, hit_a, pixel, first + walked[ja]);
-    ShadowRay sb = path_shade(s, p, &b, hit_b, pixel, first + walked[jb]);
+    ShadowRay sa = path_shade(s, p, &a, hit_a, keys[walked[ja]]);
+    ShadowRay sb = path_shade(s, p, &b, hit_b, keys[walked[jb]]);
     Bvh8fWalk wa, wb;
     if (sa.valid || sb.valid) {
       if (sa.valid) bvh8f_walk_start(&s->tree, &wa, sa.org, sa.dir, 0.0f, sa.tmax, 1 CO_ALPHA_ARG(sa.alpha_seed));
@@ -638,8 +643,8 @@ CO_INLINE void trace_paths_paired(const SceneView* s, const RenderParams* p, uin
         path_count_ray(&rb, wb.count);
       }
     }
-    paired_refill(s, p, pixel, first, n, walked, start, hits, steps, results, &a, &ja, &ra, &next);
-    paired_refill(s, p, pixel, first, n, walked, start, hits, steps, results, &b, &jb, &rb, &next);
+    paired_refill(s, p, n, walked, start, keys, hits, steps, results, &a, &ja, &ra, &next);
+    paired_refill(s, p, n, walked, start, keys, hits, steps, results, &b, &jb, &rb, &next);
     if (a.status != PATH_ALIVE || b.status != PATH_ALIVE) break;
     bvh8f_walk_start(&s->tree, &wa, a.org, a.dir, 0.0f, INFINITY, 0 CO_ALPHA_ARG(a.alpha_seed));
     bvh8f_walk_start(&s->tree, &wb, b.org, b.dir, 0.0f, INFINITY, 0 CO_ALPHA_ARG(b.alpha_seed));
@@ -649,18 +654,18 @@ CO_INLINE void trace_paths_paired(const SceneView* s, const RenderParams* p, uin
     steps_a = wa.count;
     steps_b = wb.count;
   }
-  path_continue(s, p, &a, pixel, first + walked[ja], &ra);
-  path_continue(s, p, &b, pixel, first + walked[jb], &rb);
+  path_continue(s, p, &a, keys[walked[ja]], &ra);
+  path_continue(s, p, &b, keys[walked[jb]], &rb);
   results[walked[ja]] = ra;
   results[walked[jb]] = rb;
 }
 
 /* A started path whose camera ray met `hit` after `steps` nodes (bvh8f_trace_packet) to its end. */
 CO_INLINE PathResult trace_path_from_hit(const SceneView* s, const RenderParams* p, PathState st, HitOut hit,
-                                         uint32_t steps, uint32_t pixel, uint32_t sample) {
+                                         uint32_t steps, uint32_t path_key) {
   PathResult result = path_result_none();
-  path_take_hit(s, p, &st, hit, steps, pixel, sample, &result);
-  path_continue(s, p, &st, pixel, sample, &result);
+  path_take_hit(s, p, &st, hit, steps, path_key, &result);
+  path_continue(s, p, &st, path_key, &result);
   return result;
 }
 
@@ -668,11 +673,10 @@ CO_INLINE PathResult trace_path_from_hit(const SceneView* s, const RenderParams*
  * it, without the walk, which finds no triangle for it. The ray counts one node visit, the root's
  * (a ray grazing the padding of the root's child boxes would have counted a few more: a statistic,
  * never the image). */
-CO_INLINE PathResult trace_path_outside(const SceneView* s, const RenderParams* p, PathState st, uint32_t pixel,
-                                        uint32_t sample) {
+CO_INLINE PathResult trace_path_outside(const SceneView* s, const RenderParams* p, PathState st, uint32_t path_key) {
   PathResult result = path_result_none();
   path_count_ray(&result, 1u);
-  path_shade(s, p, &st, hit_none(INFINITY), pixel, sample); /* the sky: the path ends */
+  path_shade(s, p, &st, hit_none(INFINITY), path_key); /* the sky: the path ends */
   result.radiance = st.radiance;
   return result;
 }
