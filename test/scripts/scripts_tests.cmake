@@ -13,6 +13,9 @@ if(COHORT_PYTHON3)
   # The peer comparison of scripts/bench-suite and the suite cpu-peers: groups alternate Cohort and
   # Mitsuba per model within a round, ratios divide figures of one round (stand-in programs).
   add_test(NAME scripts_cpu_peers COMMAND ${COHORT_PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/cpu_peers_test.py)
+  # scripts/remote/gpu-check passes on one set of image bytes and passing tests, fails on any other
+  # (stand-in binaries: no GPU here).
+  add_test(NAME scripts_gpu_check COMMAND ${COHORT_PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/gpu_check_test.py)
   # scripts/ holds what a user or CI runs: each entry answers --help, the README's table names each,
   # and every scripts/... path the README and docs name exists.
   add_test(NAME scripts_layout COMMAND ${COHORT_PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/scripts_layout_test.py)
