@@ -476,15 +476,25 @@ TEST(Methods, GlassVolumeIsTheSameOnEveryTreeAndMethod) {
 namespace {
 
 // A shipped scene on the two trees the paired walks are checked between: the 8-wide BVH with float
-// planes (on a CPU the naive kernel pairs its walks there) and the 4-wide BVH (no pairs).
+// planes (on a CPU the naive kernel pairs its walks there) and the 4-wide BVH (no pairs); with
+// `white_sky`, the scene of the white-sky workload (apply_white_sky: one grey Lambertian, the
+// framing camera; the settings' part is the caller's).
 struct PairedTreeScenes {
   PreparedScene wide, four;
   DeviceScene wide_scene, four_scene;
-  PairedTreeScenes(const ClContext& cl, const std::filesystem::path& path)
-      : wide(prepare_scene(path, TreeChoice{.kd = KdBuildOptions{}, .bvh8f = true})),
-        four(prepare_scene(path, TreeChoice{KdBuildOptions{}, true})),
+  PairedTreeScenes(const ClContext& cl, const std::filesystem::path& path, bool white_sky = false)
+      : wide(prepared(path, TreeChoice{.kd = KdBuildOptions{}, .bvh8f = true}, white_sky)),
+        four(prepared(path, TreeChoice{KdBuildOptions{}, true}, white_sky)),
         wide_scene(upload_scene(cl, wide.tree, wide.tables, wide.bvh())),
         four_scene(upload_scene(cl, four.tree, four.tables, four.bvh())) {}
+
+ private:
+  static PreparedScene prepared(const std::filesystem::path& path, const TreeChoice& trees, bool white_sky) {
+    PreparedScene p = prepare_scene(path, trees);
+    RenderSettings unused;
+    if (white_sky) apply_white_sky(p, unused);
+    return p;
+  }
 };
 
 // Naive on the 4-wide BVH (the reference), then naive (paired on a CPU) and sc+rg (one walk per ray)
@@ -530,6 +540,47 @@ TEST(Methods, PairedWalksGiveEachPathItsOwnWalksImage) {
       for (const float v : paired.image.rgb) sum += v;
       EXPECT_GT(sum, 0.0) << what << ": a black image proves nothing";
     }
+  }
+}
+
+// Where the program is Lambertian-only and no shadow ray or roulette follows the camera hits, the
+// paired naive kernel shades a batch's camera hits eight to a vector (kernels/common/wavefront/
+// shade_batch.h): each path's state must still be path_shade's, bit for bit. The Cornell box without
+// NEE (camera rays that meet its one-sided light add its emission at the hit; roulette from the
+// second segment), in passes of 3 samples too (lanes past the batch's paths); the white-sky workload
+// from outside (lanes that miss) with 5 segments and with 1 (every path ends at its camera hit).
+TEST(Methods, DiffuseCameraHitsShadedSideBySide) {
+  const ClContext cl(select_device(""));
+  if (!device_support(cl.info()).paired_walks) GTEST_SKIP() << cl.info().name << " runs no paired walks";
+  const ProgramCache cache(ProgramCache::default_directory());
+  const PairedTreeScenes box(cl, shipped_scene("cornell-box.gltf"));
+  ASSERT_TRUE(box.wide.tables.features.names().empty()) << "the Cornell box is no longer Lambertian-only";
+  for (const std::uint32_t pass_samples : {0u, 3u}) {
+    RenderSettings s;
+    s.width = 24;
+    s.height = 20;
+    s.spp = 9;
+    s.seed = 11;
+    s.nee = false;
+    s.rr_depth = 2;
+    s.pass_samples = pass_samples;
+    expect_paired_as_reference(cl, cache, box, box.wide.camera, s,
+                               fmt::format("Cornell box without NEE, passes of {} samples", pass_samples));
+  }
+  const PairedTreeScenes white(cl, shipped_scene("cornell-box.gltf"), true);
+  for (const std::uint32_t segments : {5u, 1u}) {
+    RenderSettings s;
+    s.width = 32;
+    s.height = 24;
+    s.spp = 8;
+    s.seed = 2;
+    apply_white_sky_settings(s);
+    s.max_depth = segments;
+    const RenderResult paired = expect_paired_as_reference(cl, cache, white, white.wide.camera, s,
+                                                           fmt::format("white sky, {} segments", segments));
+    double sum = 0.0;
+    for (const float v : paired.image.rgb) sum += v;
+    EXPECT_GT(sum, 0.0) << "a black image proves nothing";
   }
 }
 

@@ -6,6 +6,7 @@
 
 #include "common/core/kernel_params.h"
 #include "common/wavefront/pathtrace.h"
+#include "common/wavefront/shade_batch.h"
 
 /* A sample's path into the pixel's sum and the counters. A NaN or infinite sample never reaches the
  * image; it counts as a zero sample. */
@@ -84,8 +85,24 @@ CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
                                             &camera.count[j] CO_ALPHA_ARG(st->alpha_seed));
         }
       }
+      /* the camera hits shaded eight to a vector where the program is Lambertian-only and no shadow
+       * ray or roulette follows them (shade_batch.h); a lane that missed is shaded alone */
+#if defined(COHORT_DIFFUSE_BATCH)
+      uint32_t some = HIT_NONE;
+      for (uint32_t l = 0u; l < n; ++l) some = camera.hit[l].triangle != HIT_NONE ? camera.hit[l].triangle : some;
+      const int shaded = n >= 2u && some != HIT_NONE && !nee_enabled(&s, &p) &&
+                         (!(p.flags & RENDER_FLAG_RUSSIAN_ROULETTE) || p.rr_depth > 1u);
+      if (shaded) {
+        path_shade_diffuse8(&s, &p, n, walked, keys, camera.hit, some, start);
+        for (uint32_t l = 0u; l < n; ++l)
+          if (camera.hit[l].triangle == HIT_NONE)
+            (void)path_shade(&s, &p, &start[walked[l]], camera.hit[l], keys[walked[l]]);
+      }
+#else
+      const int shaded = 0;
+#endif
       if (n >= 2u)
-        trace_paths_paired(&s, &p, n, walked, start, keys, camera.hit, camera.count, results);
+        trace_paths_paired(&s, &p, n, walked, start, keys, camera.hit, camera.count, shaded, results);
       else
         results[walked[0]] =
             trace_path_from_hit(&s, &p, start[walked[0]], camera.hit[0], camera.count[0], keys[walked[0]]);

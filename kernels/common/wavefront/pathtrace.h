@@ -589,18 +589,22 @@ CO_INLINE PathResult trace_path(const SceneView* s, const RenderParams* p, uint3
 #define COHORT_NAIVE_PAIRS 1
 /* One place of trace_paths_paired's pair: while its path (st, the batch's path *j, its result r) has
  * ended and the batch has more, the result goes out and the batch's next path takes the place, its
- * camera hit taken at once. Forced inline, so that the pair's states stay in registers. */
+ * camera hit taken at once (counted only, where the batch's camera hits were shaded before: `shaded`).
+ * Forced inline, so that the pair's states stay in registers. */
 CO_FORCE_INLINE void paired_refill(const SceneView* s, const RenderParams* p, uint32_t n, const uint32_t* walked,
                                    const PathState* start, const uint32_t* keys, const HitOut* hits,
-                                   const uint32_t* steps, PathResult* results, PathState* st, uint32_t* j,
-                                   PathResult* r, uint32_t* next) {
+                                   const uint32_t* steps, int shaded, PathResult* results, PathState* st,
+                                   uint32_t* j, PathResult* r, uint32_t* next) {
   while (st->status != PATH_ALIVE && *next < n) {
     r->radiance = st->radiance;
     results[walked[*j]] = *r;
     *j = (*next)++;
     *st = start[walked[*j]];
     *r = path_result_none();
-    path_take_hit(s, p, st, hits[*j], steps[*j], keys[walked[*j]], r);
+    if (shaded)
+      path_count_ray(r, steps[*j]);
+    else
+      path_take_hit(s, p, st, hits[*j], steps[*j], keys[walked[*j]], r);
   }
 }
 
@@ -611,21 +615,27 @@ CO_FORCE_INLINE void paired_refill(const SceneView* s, const RenderParams* p, ui
  * (path_start_batch); its camera ray met hits[j] after
  * steps[j] visits (bvh8f_trace_packet); its result goes to results[walked[j]]. When a path ends,
  * the next of the batch takes its place (its camera hit shaded at once), so the walks stay in pairs
- * until one path is left, which goes on alone. Each path computes exactly what trace_path computes
- * for it: the same calls on the same values, only interleaved with another path's. */
+ * until one path is left, which goes on alone. Where `shaded`, start[] holds the states after the
+ * camera hits' shading (path_shade_diffuse8), and the pair begins with the walks of their bounce rays.
+ * Each path computes exactly what trace_path computes for it: the same calls on the same values, only
+ * interleaved with another path's. */
 CO_INLINE void trace_paths_paired(const SceneView* s, const RenderParams* p, uint32_t n, const uint32_t* walked,
                                   const PathState* start, const uint32_t* keys, const HitOut* hits,
-                                  const uint32_t* steps, PathResult* results) {
+                                  const uint32_t* steps, int shaded, PathResult* results) {
   uint32_t ja = 0u, jb = 1u, next = 2u;
   PathState a = start[walked[0]], b = start[walked[1]];
   HitOut hit_a = hits[0], hit_b = hits[1];
   uint32_t steps_a = steps[0], steps_b = steps[1];
   PathResult ra = path_result_none(), rb = path_result_none();
-  for (;;) {
+  for (int taken = shaded;; taken = 0) {
     path_count_ray(&ra, steps_a);
     path_count_ray(&rb, steps_b);
-    ShadowRay sa = path_shade(s, p, &a, hit_a, keys[walked[ja]]);
-    ShadowRay sb = path_shade(s, p, &b, hit_b, keys[walked[jb]]);
+    ShadowRay sa, sb;
+    sa.valid = sb.valid = 0;
+    if (!taken) {
+      sa = path_shade(s, p, &a, hit_a, keys[walked[ja]]);
+      sb = path_shade(s, p, &b, hit_b, keys[walked[jb]]);
+    }
     Bvh8fWalk wa, wb;
     if (sa.valid || sb.valid) {
       if (sa.valid) bvh8f_walk_start(&s->tree, &wa, sa.org, sa.dir, 0.0f, sa.tmax, 1 CO_ALPHA_ARG(sa.alpha_seed));
@@ -643,8 +653,8 @@ CO_INLINE void trace_paths_paired(const SceneView* s, const RenderParams* p, uin
         path_count_ray(&rb, wb.count);
       }
     }
-    paired_refill(s, p, n, walked, start, keys, hits, steps, results, &a, &ja, &ra, &next);
-    paired_refill(s, p, n, walked, start, keys, hits, steps, results, &b, &jb, &rb, &next);
+    paired_refill(s, p, n, walked, start, keys, hits, steps, shaded, results, &a, &ja, &ra, &next);
+    paired_refill(s, p, n, walked, start, keys, hits, steps, shaded, results, &b, &jb, &rb, &next);
     if (a.status != PATH_ALIVE || b.status != PATH_ALIVE) break;
     bvh8f_walk_start(&s->tree, &wa, a.org, a.dir, 0.0f, INFINITY, 0 CO_ALPHA_ARG(a.alpha_seed));
     bvh8f_walk_start(&s->tree, &wb, b.org, b.dir, 0.0f, INFINITY, 0 CO_ALPHA_ARG(b.alpha_seed));
