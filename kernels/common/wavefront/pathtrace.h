@@ -354,7 +354,8 @@ CO_INLINE void path_escape(const SceneView* s, const RenderParams* p, PathState*
  * front is the exterior, which dielectrics need), one BSDF chosen per vertex from the material
  * with u_select and used for both NEE and the continuation, the four numbers of the RNG_BSDF
  * stream (u_select, u_lobe, u1, u2), no NEE at delta BSDFs, and after a delta sample a
- * prev_bsdf_pdf of 0: the next emitter hit counts with weight 1. */
+ * prev_bsdf_pdf of 0: the next emitter hit counts with weight 1. Every stream comes from the path's
+ * path_key (rng_path_key), which a miss does not read. */
 CO_INLINE ShadowRay path_shade(const SceneView* s, const RenderParams* p, PathState* st, HitOut hit,
                                uint32_t path_key) {
   ShadowRay none;

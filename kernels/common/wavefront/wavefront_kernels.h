@@ -58,7 +58,11 @@ CO_KERNEL wf_shade(CO_PARAMS(WF_SHADE_PARAMS)) {
   RenderParams p = *params;
   SceneView s = SCENE_VIEW(p);
   PathState st = load_path(PATH_ARGS, slot);
-  ShadowRay sr = path_shade(&s, &p, &st, hits[slot], rng_path_key(p.seed, pixel_of(item, pixel_list, &p), sample_of(item, &p)));
+  /* a path that escapes draws no random number: its stream key is made only at a hit */
+  const HitOut hit = hits[slot];
+  const uint32_t key =
+      hit.triangle != HIT_NONE ? rng_path_key(p.seed, pixel_of(item, pixel_list, &p), sample_of(item, &p)) : 0u;
+  ShadowRay sr = path_shade(&s, &p, &st, hit, key);
   store_path(PATH_ARGS, slot, &st);
   if (sr.valid) {
 #if defined(COHORT_FEATURE_ALPHA)
