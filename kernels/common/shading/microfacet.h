@@ -18,6 +18,13 @@
  * sampling then amplifies near grazing angles). u * 4 is exact, so the quadrant and the remainder
  * r in [-1/2, 1/2) are exact; x = r pi/2 lies in [-pi/4, pi/4], where the Taylor polynomials below
  * (to x^11 and x^12) are accurate to about 1 ulp. */
+#define CO_SIN_POLY(x, x2)                                                                         \
+  ((x) * (1.0f + (x2) * (-1.0f / 6.0f + (x2) * (1.0f / 120.0f + (x2) * (-1.0f / 5040.0f +                \
+                 (x2) * (1.0f / 362880.0f + (x2) * (-1.0f / 39916800.0f)))))))
+#define CO_COS_POLY(x2)                                                                            \
+  (1.0f + (x2) * (-0.5f + (x2) * (1.0f / 24.0f + (x2) * (-1.0f / 720.0f + (x2) * (1.0f / 40320.0f +       \
+                 (x2) * (-1.0f / 3628800.0f + (x2) * (1.0f / 479001600.0f)))))))
+/* (the polynomials are macros so that the eight-lane form, shade_batch.h, rounds as this one does) */
 CO_INLINE void co_sincos_2pi(float u, float* s, float* c) {
   float q4 = u * 4.0f;
   int k = (int)q4;
@@ -28,10 +35,7 @@ CO_INLINE void co_sincos_2pi(float u, float* s, float* c) {
   }
   float x = r * (0.5f * CO_PI);
   float x2 = x * x;
-  float sx = x * (1.0f + x2 * (-1.0f / 6.0f + x2 * (1.0f / 120.0f + x2 * (-1.0f / 5040.0f +
-                  x2 * (1.0f / 362880.0f + x2 * (-1.0f / 39916800.0f))))));
-  float cx = 1.0f + x2 * (-0.5f + x2 * (1.0f / 24.0f + x2 * (-1.0f / 720.0f + x2 * (1.0f / 40320.0f +
-                  x2 * (-1.0f / 3628800.0f + x2 * (1.0f / 479001600.0f))))));
+  float sx = CO_SIN_POLY(x, x2), cx = CO_COS_POLY(x2);
   /* the quadrant by selects rather than branches: k is as random as u, so a branch on it missed
    * about every other time (quadrants 0-3: sin sx, cx, -sx, -cx; cos cx, -sx, -cx, sx) */
   float sin_r = (k & 1) ? cx : sx, cos_r = (k & 1) ? sx : cx;

@@ -70,10 +70,7 @@ CO_INLINE void sincos_2pi8(float8 u, float8* s, float8* c) {
   k = k - up; /* up is -1 where r >= 0.5 */
   float8 x = r * (0.5f * CO_PI);
   float8 x2 = x * x;
-  float8 sx = x * (1.0f + x2 * (-1.0f / 6.0f + x2 * (1.0f / 120.0f + x2 * (-1.0f / 5040.0f +
-                   x2 * (1.0f / 362880.0f + x2 * (-1.0f / 39916800.0f))))));
-  float8 cx = 1.0f + x2 * (-0.5f + x2 * (1.0f / 24.0f + x2 * (-1.0f / 720.0f + x2 * (1.0f / 40320.0f +
-                   x2 * (-1.0f / 3628800.0f + x2 * (1.0f / 479001600.0f))))));
+  float8 sx = CO_SIN_POLY(x, x2), cx = CO_COS_POLY(x2);
   int8 odd = (k & 1) != 0;
   float8 sin_r = select(sx, cx, odd), cos_r = select(cx, sx, odd);
   *s = select(sin_r, -sin_r, (k & 2) != 0);
