@@ -555,12 +555,16 @@ TEST(Methods, DiffuseCameraHitsShadedSideBySide) {
   const ProgramCache cache(ProgramCache::default_directory());
   const PairedTreeScenes box(cl, shipped_scene("cornell-box.gltf"));
   ASSERT_TRUE(box.wide.tables.features.names().empty()) << "the Cornell box is no longer Lambertian-only";
-  for (const std::uint32_t pass_samples : {0u, 3u}) {
+  const auto small = [](std::uint32_t width, std::uint32_t height, std::uint32_t spp, std::uint32_t seed) {
     RenderSettings s;
-    s.width = 24;
-    s.height = 20;
-    s.spp = 9;
-    s.seed = 11;
+    s.width = width;
+    s.height = height;
+    s.spp = spp;
+    s.seed = seed;
+    return s;
+  };
+  for (const std::uint32_t pass_samples : {0u, 3u}) {
+    RenderSettings s = small(24, 20, 9, 11);
     s.nee = false;
     s.rr_depth = 2;
     s.pass_samples = pass_samples;
@@ -569,11 +573,7 @@ TEST(Methods, DiffuseCameraHitsShadedSideBySide) {
   }
   const PairedTreeScenes white(cl, shipped_scene("cornell-box.gltf"), true);
   for (const std::uint32_t segments : {5u, 1u}) {
-    RenderSettings s;
-    s.width = 32;
-    s.height = 24;
-    s.spp = 8;
-    s.seed = 2;
+    RenderSettings s = small(32, 24, 8, 2);
     apply_white_sky_settings(s);
     s.max_depth = segments;
     const RenderResult paired = expect_paired_as_reference(cl, cache, white, white.wide.camera, s,
