@@ -24,9 +24,10 @@ typedef struct Rng {
   uint32_t state;
 } Rng;
 
-/* The hashes of a stream that depend on its path alone (seed, pixel, sample). A path's streams differ
- * only in segment and purpose, so a kernel that follows one path through its segments hashes this
- * once and makes each stream with rng_at: the same state as rng_make, one hash instead of four. */
+/* A stream's state is pcg_hash of (seed, pixel, sample), chained one after the other, then of
+ * segment * 16 + purpose. The first part depends on the path alone and the path's streams differ
+ * only in the second, so a kernel that follows one path through its segments hashes the first once
+ * (rng_path_key) and makes each stream with one hash more (rng_at). */
 CO_INLINE uint32_t rng_path_key(uint32_t seed, uint32_t pixel, uint32_t sample) {
   uint32_t h = pcg_hash(seed ^ 0x9e3779b9u);
   h = pcg_hash(h ^ pixel);
@@ -37,10 +38,6 @@ CO_INLINE Rng rng_at(uint32_t path_key, uint32_t segment, uint32_t purpose) {
   Rng r;
   r.state = pcg_hash(path_key ^ (segment * 16u + purpose));
   return r;
-}
-
-CO_INLINE Rng rng_make(uint32_t seed, uint32_t pixel, uint32_t sample, uint32_t segment, uint32_t purpose) {
-  return rng_at(rng_path_key(seed, pixel, sample), segment, purpose);
 }
 
 /* Uniform in [0, 1): 24 bits so that the value is exact in float. */
