@@ -26,7 +26,7 @@ CO_KERNEL render_aov(CO_PARAMS(RENDER_AOV_PARAMS)) {
   uint32_t count = own > p.sample_offset ? own - p.sample_offset : 0u;
   if (count > p.samples_per_pass) count = p.samples_per_pass;
   for (uint32_t i = 0u; i < count; ++i) {
-    PathState st = path_start(&p, pixel, p.sample_offset + i);
+    PathState st = path_start(&p, pixel, rng_path_key(p.seed, pixel, p.sample_offset + i));
     HitOut hit = scene_trace_steps(&s.tree, st.org, st.dir, 0.0f, INFINITY, 0, 0 CO_ALPHA_ARG(st.alpha_seed));
     if (hit.triangle == HIT_NONE) continue;
     const CO_GLOBAL Material* m = &s.materials[s.triangle_material[hit.triangle]];

@@ -37,8 +37,8 @@ CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
                          camera_pixel_misses_box(&p.camera, p.width, p.height, pixel % p.width, pixel / p.width,
                                                  v3_from4(p.scene_min), v3_from4(p.scene_max));
   if (background) {
-    const PathResult sky = trace_path_outside(&s, &p, path_start(&p, pixel, p.sample_offset),
-                                              rng_path_key(p.seed, pixel, p.sample_offset));
+    const uint32_t key = rng_path_key(p.seed, pixel, p.sample_offset);
+    const PathResult sky = trace_path_outside(&s, &p, path_start(&p, pixel, key), key);
     for (uint32_t i = 0u; i < p.samples_per_pass; ++i) naive_add_sample(&acc, &rays, &max_steps, &dropped, sky);
   }
   for (uint32_t i = 0u; !background && i < p.samples_per_pass; i += PATH_START_BATCH) {
@@ -85,22 +85,8 @@ CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
                                             &camera.count[j] CO_ALPHA_ARG(st->alpha_seed));
         }
       }
-      /* the camera hits shaded eight to a vector where the program is Lambertian-only and no shadow
-       * ray or roulette follows them (shade_batch.h); a lane that missed is shaded alone */
-#if defined(COHORT_DIFFUSE_BATCH)
-      uint32_t some = HIT_NONE;
-      for (uint32_t l = 0u; l < n; ++l) some = camera.hit[l].triangle != HIT_NONE ? camera.hit[l].triangle : some;
-      const int shaded = n >= 2u && some != HIT_NONE && !nee_enabled(&s, &p) &&
-                         (!(p.flags & RENDER_FLAG_RUSSIAN_ROULETTE) || p.rr_depth > 1u);
-      if (shaded) {
-        path_shade_diffuse8(&s, &p, n, walked, keys, camera.hit, some, start);
-        for (uint32_t l = 0u; l < n; ++l)
-          if (camera.hit[l].triangle == HIT_NONE)
-            (void)path_shade(&s, &p, &start[walked[l]], camera.hit[l], keys[walked[l]]);
-      }
-#else
-      const int shaded = 0;
-#endif
+      /* in Lambertian-only programs the camera hits shaded eight to a vector (shade_batch.h) */
+      const int shaded = n >= 2u && path_shade_camera_hits(&s, &p, n, walked, keys, camera.hit, start);
       if (n >= 2u)
         trace_paths_paired(&s, &p, n, walked, start, keys, camera.hit, camera.count, shaded, results);
       else

@@ -21,7 +21,10 @@
     !defined(COHORT_FEATURE_NORMAL_MAP) && !defined(COHORT_FEATURE_TEXTURES) &&                     \
     !defined(COHORT_FEATURE_VERTEX_COLORS) && !defined(COHORT_FEATURE_CLEARCOAT)
 #define COHORT_DIFFUSE_BATCH 1
-#define SHADE_BATCH 8u
+#define SHADE_BATCH 8u /* float8's lanes */
+#if PATH_START_BATCH != SHADE_BATCH
+#error "a batch of camera rays (PATH_START_BATCH) is shaded as one float8"
+#endif
 
 /* Three float8: a co_vec3 per lane. The helpers below are vec.h's, lane by lane. */
 typedef struct Vec3x8 {
@@ -184,6 +187,28 @@ CO_INLINE void path_shade_diffuse8(const SceneView* s, const RenderParams* p, ui
     ps->dir = v3(o_dir[0][j], o_dir[1][j], o_dir[2][j]);
     ps->segment = ps->segment + 1u;
   }
+}
+
+/* The camera hits of a batch's n paths (hits[l] of path walked[l]) shaded: eight to a vector where
+ * no shadow ray and no roulette follows them, a lane that missed alone. Returns 1 where it shaded
+ * them, 0 (nothing done) where path_shade is the caller's to run. */
+CO_INLINE int path_shade_camera_hits(const SceneView* s, const RenderParams* p, uint32_t n, const uint32_t* walked,
+                                     const uint32_t* keys, const HitOut* hits, PathState* st) {
+  uint32_t some = HIT_NONE;
+  for (uint32_t l = 0u; l < n; ++l) some = hits[l].triangle != HIT_NONE ? hits[l].triangle : some;
+  if (some == HIT_NONE || nee_enabled(s, p) || ((p->flags & RENDER_FLAG_RUSSIAN_ROULETTE) && p->rr_depth <= 1u))
+    return 0;
+  path_shade_diffuse8(s, p, n, walked, keys, hits, some, st);
+  for (uint32_t l = 0u; l < n; ++l)
+    if (hits[l].triangle == HIT_NONE) (void)path_shade(s, p, &st[walked[l]], hits[l], keys[walked[l]]);
+  return 1;
+}
+#elif defined(COHORT_NAIVE_PAIRS)
+/* a program with other materials or features: path_shade shades every hit (trace_paths_paired) */
+CO_INLINE int path_shade_camera_hits(const SceneView* s, const RenderParams* p, uint32_t n, const uint32_t* walked,
+                                     const uint32_t* keys, const HitOut* hits, PathState* st) {
+  (void)s; (void)p; (void)n; (void)walked; (void)keys; (void)hits; (void)st;
+  return 0;
 }
 #endif
 

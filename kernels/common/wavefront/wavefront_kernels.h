@@ -26,7 +26,8 @@ CO_KERNEL wf_generate(CO_PARAMS(WF_GENERATE_PARAMS)) {
   uint32_t item = co_atomic_inc(&counters[COUNTER_NEXT_ITEM]);
   if (item >= item_end) return;
   RenderParams p = *params;
-  PathState st = path_start(&p, pixel_of(item, pixel_list, &p), sample_of(item, &p));
+  const uint32_t pixel = pixel_of(item, pixel_list, &p);
+  PathState st = path_start(&p, pixel, rng_path_key(p.seed, pixel, sample_of(item, &p)));
   path_item[slot] = item;
   store_path(PATH_ARGS, slot, &st);
   uint32_t index = co_atomic_inc(&counters[COUNTER_QUEUE]); /* live slots, queue or not */
