@@ -549,6 +549,9 @@ TEST(Methods, PairedWalksGiveEachPathItsOwnWalksImage) {
 // NEE (camera rays that meet its one-sided light add its emission at the hit; roulette from the
 // second segment), in passes of 3 samples too (lanes past the batch's paths); the white-sky workload
 // from outside (lanes that miss) with 5 segments and with 1 (every path ends at its camera hit).
+// From inside the box (an interior view) the paths go on bounce by bounce, their bounce hits shaded
+// eight to a vector too where no roulette follows them (trace_paths_diffuse): roulette from the
+// fourth segment, so that rounds of both kinds run, and the white-sky workload.
 TEST(Methods, DiffuseCameraHitsShadedSideBySide) {
   const ClContext cl(select_device(""));
   if (!device_support(cl.info()).paired_walks) GTEST_SKIP() << cl.info().name << " runs no paired walks";
@@ -582,6 +585,29 @@ TEST(Methods, DiffuseCameraHitsShadedSideBySide) {
     for (const float v : paired.image.rgb) sum += v;
     EXPECT_GT(sum, 0.0) << "a black image proves nothing";
   }
+  const Bounds& b = box.wide_scene.bounds;
+  const glm::vec3 lo(b.lo.x, b.lo.y, b.lo.z), hi(b.hi.x, b.hi.y, b.hi.z);
+  const auto inside_box = [&](const glm::vec3& p) {
+    return glm::all(glm::greaterThanEqual(p, lo)) && glm::all(glm::lessThanEqual(p, hi));
+  };
+  ASSERT_FALSE(inside_box(box.wide.camera.eye)) << "the views above must be exterior ones";
+  SceneCamera inside = box.wide.camera;
+  inside.eye = 0.5f * (lo + hi);
+  inside.target = inside.eye + glm::normalize(box.wide.camera.target - box.wide.camera.eye);
+  for (const std::uint32_t pass_samples : {0u, 3u}) {
+    RenderSettings s = small(24, 20, 9, 5);
+    s.nee = false;
+    s.rr_depth = 4;
+    s.pass_samples = pass_samples;
+    expect_paired_as_reference(cl, cache, box, inside, s,
+                               fmt::format("inside the Cornell box without NEE, passes of {} samples", pass_samples));
+  }
+  RenderSettings s = small(32, 24, 8, 7);
+  apply_white_sky_settings(s);
+  const RenderResult paired = expect_paired_as_reference(cl, cache, white, inside, s, "inside, white sky");
+  double sum = 0.0;
+  for (const float v : paired.image.rgb) sum += v;
+  EXPECT_GT(sum, 0.0) << "inside, white sky: a black image proves nothing";
 }
 
 // The paired naive kernel gives a pixel that no ray of it can meet the scene through (the background

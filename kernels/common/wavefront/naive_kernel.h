@@ -85,10 +85,10 @@ CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
                                             &camera.count[j] CO_ALPHA_ARG(st->alpha_seed));
         }
       }
-      /* in Lambertian-only programs the camera hits shaded eight to a vector (shade_batch.h) */
-      const int shaded = n >= 2u && path_shade_camera_hits(&s, &p, n, walked, keys, camera.hit, start);
-      if (n >= 2u)
-        trace_paths_paired(&s, &p, n, walked, start, keys, camera.hit, camera.count, shaded, results);
+      /* in Lambertian-only programs the hits shaded eight to a vector, bounce by bounce (shade_batch.h) */
+      if (n >= 2u && trace_paths_diffuse(&s, &p, n, walked, keys, camera.hit, camera.count, start, results)) {
+      } else if (n >= 2u)
+        trace_paths_paired(&s, &p, n, walked, start, keys, camera.hit, camera.count, 0, results);
       else
         results[walked[0]] =
             trace_path_from_hit(&s, &p, start[walked[0]], camera.hit[0], camera.count[0], keys[walked[0]]);

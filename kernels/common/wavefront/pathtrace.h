@@ -593,22 +593,23 @@ CO_INLINE PathResult trace_path(const SceneView* s, const RenderParams* p, uint3
 #define COHORT_NAIVE_PAIRS 1
 /* One place of trace_paths_paired's pair: while its path (st, the batch's path *j, its result r) has
  * ended and the batch has more, the result goes out and the batch's next path takes the place, its
- * camera hit taken at once (counted only, where the batch's camera hits were shaded before: `shaded`).
+ * camera hit taken at once; where the paths come shaded (`begun`), its result so far taken instead.
  * Forced inline, so that the pair's states stay in registers. */
 CO_FORCE_INLINE void paired_refill(const SceneView* s, const RenderParams* p, uint32_t n, const uint32_t* walked,
                                    const PathState* start, const uint32_t* keys, const HitOut* hits,
-                                   const uint32_t* steps, int shaded, PathResult* results, PathState* st,
+                                   const uint32_t* steps, const PathResult* begun, PathResult* results, PathState* st,
                                    uint32_t* j, PathResult* r, uint32_t* next) {
   while (st->status != PATH_ALIVE && *next < n) {
     r->radiance = st->radiance;
     results[walked[*j]] = *r;
     *j = (*next)++;
     *st = start[walked[*j]];
-    *r = path_result_none();
-    if (shaded)
-      path_count_ray(r, steps[*j]);
-    else
+    if (begun) {
+      *r = begun[*j];
+    } else {
+      *r = path_result_none();
       path_take_hit(s, p, st, hits[*j], steps[*j], keys[walked[*j]], r);
+    }
   }
 }
 
@@ -616,27 +617,39 @@ CO_FORCE_INLINE void paired_refill(const SceneView* s, const RenderParams* p, ui
  * (bvh8f_trace_pair), so the core waits on two chains of node loads at once, and their set-up and
  * shading are two independent chains of arithmetic in one stream. Path j (0 <= j < n) is the
  * batch's sample walked[j], started as start[walked[j]] with the stream key keys[walked[j]]
- * (path_start_batch); its camera ray met hits[j] after
- * steps[j] visits (bvh8f_trace_packet); its result goes to results[walked[j]]. When a path ends,
- * the next of the batch takes its place (its camera hit shaded at once), so the walks stay in pairs
- * until one path is left, which goes on alone. Where `shaded`, start[] holds the states after the
- * camera hits' shading (path_shade_diffuse8), and the pair begins with the walks of their bounce rays.
- * Each path computes exactly what trace_path computes for it: the same calls on the same values, only
- * interleaved with another path's. */
+ * (path_start_batch); its camera ray met hits[j] after steps[j] visits (bvh8f_trace_packet); its
+ * result goes to results[walked[j]]. When a path ends, the next of the batch takes its place (its
+ * camera hit shaded at once), so the walks stay in pairs until one path is left, which goes on alone.
+ * Where `begun` is not null, the paths come shaded (trace_paths_by_bounce): start[] holds the states
+ * after their last hit's shading, begun[j] path j's result so far (every ray it walked counted), and
+ * hits and steps are not read; the pair begins with the walks of their next rays. Each path computes
+ * exactly what trace_path computes for it: the same calls on the same values, only interleaved with
+ * another path's. */
 CO_INLINE void trace_paths_paired(const SceneView* s, const RenderParams* p, uint32_t n, const uint32_t* walked,
                                   const PathState* start, const uint32_t* keys, const HitOut* hits,
-                                  const uint32_t* steps, int shaded, PathResult* results) {
+                                  const uint32_t* steps, const PathResult* begun, PathResult* results) {
   uint32_t ja = 0u, jb = 1u, next = 2u;
   PathState a = start[walked[0]], b = start[walked[1]];
-  HitOut hit_a = hits[0], hit_b = hits[1];
-  uint32_t steps_a = steps[0], steps_b = steps[1];
-  PathResult ra = path_result_none(), rb = path_result_none();
-  for (int taken = shaded;; taken = 0) {
-    path_count_ray(&ra, steps_a);
-    path_count_ray(&rb, steps_b);
+  HitOut hit_a = hit_none(INFINITY), hit_b = hit_none(INFINITY);
+  uint32_t steps_a = 0u, steps_b = 0u;
+  PathResult ra, rb;
+  if (begun) {
+    ra = begun[0];
+    rb = begun[1];
+  } else {
+    ra = path_result_none();
+    rb = path_result_none();
+    hit_a = hits[0];
+    hit_b = hits[1];
+    steps_a = steps[0];
+    steps_b = steps[1];
+  }
+  for (int taken = begun != 0;; taken = 0) {
     ShadowRay sa, sb;
     sa.valid = sb.valid = 0;
     if (!taken) {
+      path_count_ray(&ra, steps_a);
+      path_count_ray(&rb, steps_b);
       sa = path_shade(s, p, &a, hit_a, keys[walked[ja]]);
       sb = path_shade(s, p, &b, hit_b, keys[walked[jb]]);
     }
@@ -657,8 +670,8 @@ CO_INLINE void trace_paths_paired(const SceneView* s, const RenderParams* p, uin
         path_count_ray(&rb, wb.count);
       }
     }
-    paired_refill(s, p, n, walked, start, keys, hits, steps, shaded, results, &a, &ja, &ra, &next);
-    paired_refill(s, p, n, walked, start, keys, hits, steps, shaded, results, &b, &jb, &rb, &next);
+    paired_refill(s, p, n, walked, start, keys, hits, steps, begun, results, &a, &ja, &ra, &next);
+    paired_refill(s, p, n, walked, start, keys, hits, steps, begun, results, &b, &jb, &rb, &next);
     if (a.status != PATH_ALIVE || b.status != PATH_ALIVE) break;
     bvh8f_walk_start(&s->tree, &wa, a.org, a.dir, 0.0f, INFINITY, 0 CO_ALPHA_ARG(a.alpha_seed));
     bvh8f_walk_start(&s->tree, &wb, b.org, b.dir, 0.0f, INFINITY, 0 CO_ALPHA_ARG(b.alpha_seed));

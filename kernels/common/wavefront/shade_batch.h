@@ -22,6 +22,8 @@
     !defined(COHORT_FEATURE_VERTEX_COLORS) && !defined(COHORT_FEATURE_CLEARCOAT)
 #define COHORT_DIFFUSE_BATCH 1
 #define SHADE_BATCH 8u /* float8's lanes */
+#define SHADE_SCALAR_MOST 2u /* hits shaded one by one where no more than this many are shaded */
+#define BY_BOUNCE_LEAST 4u   /* paths that go on bounce by bounce; fewer go on in refilled pairs */
 #if PATH_START_BATCH != SHADE_BATCH
 #error "a batch of camera rays (PATH_START_BATCH) is shaded as one float8"
 #endif
@@ -189,25 +191,116 @@ CO_INLINE void path_shade_diffuse8(const SceneView* s, const RenderParams* p, ui
   }
 }
 
-/* The camera hits of a batch's n paths (hits[l] of path walked[l]) shaded: eight to a vector where
- * no shadow ray and no roulette follows them, a lane that missed alone. Returns 1 where it shaded
- * them, 0 (nothing done) where path_shade is the caller's to run. */
-CO_INLINE int path_shade_camera_hits(const SceneView* s, const RenderParams* p, uint32_t n, const uint32_t* walked,
-                                     const uint32_t* keys, const HitOut* hits, PathState* st) {
+/* Whether the paths' hits at `segment` are shaded as path_shade_diffuse8 shades them: no shadow ray
+ * and no roulette follows them. */
+CO_INLINE int diffuse8_shades(const SceneView* s, const RenderParams* p, uint32_t segment) {
+  return !nee_enabled(s, p) && !((p->flags & RENDER_FLAG_RUSSIAN_ROULETTE) && segment >= p->rr_depth);
+}
+
+/* Whether the camera's eye lies in the scene's box: an interior view, whose paths mostly live to
+ * their last segment. */
+CO_INLINE int camera_inside_scene(const RenderParams* p) {
+  const co_float4 e = p->camera.eye;
+  return e.x >= p->scene_min.x && e.x <= p->scene_max.x && e.y >= p->scene_min.y && e.y <= p->scene_max.y &&
+         e.z >= p->scene_min.z && e.z <= p->scene_max.z;
+}
+
+/* The hits[k] of paths slot[k] (k < m) shaded: eight to a vector where some path hit something and
+ * more than SHADE_SCALAR_MOST paths are shaded (fewer cost more as a vector than one by one), a lane
+ * that missed alone. */
+CO_INLINE void shade_paths8(const SceneView* s, const RenderParams* p, uint32_t m, const uint32_t* slot,
+                            const uint32_t* keys, const HitOut* hits, PathState* st) {
   uint32_t some = HIT_NONE;
-  for (uint32_t l = 0u; l < n; ++l) some = hits[l].triangle != HIT_NONE ? hits[l].triangle : some;
-  if (some == HIT_NONE || nee_enabled(s, p) || ((p->flags & RENDER_FLAG_RUSSIAN_ROULETTE) && p->rr_depth <= 1u))
-    return 0;
-  path_shade_diffuse8(s, p, n, walked, keys, hits, some, st);
-  for (uint32_t l = 0u; l < n; ++l)
-    if (hits[l].triangle == HIT_NONE) (void)path_shade(s, p, &st[walked[l]], hits[l], keys[walked[l]]);
+  for (uint32_t k = 0u; k < m; ++k) some = hits[k].triangle != HIT_NONE ? hits[k].triangle : some;
+  const int vector = some != HIT_NONE && m > SHADE_SCALAR_MOST;
+  if (vector) path_shade_diffuse8(s, p, m, slot, keys, hits, some, st);
+  for (uint32_t k = 0u; k < m; ++k)
+    if (!vector || hits[k].triangle == HIT_NONE) (void)path_shade(s, p, &st[slot[k]], hits[k], keys[slot[k]]);
+}
+
+/* A batch's n >= 2 paths to their ends where no shadow ray and no roulette follows their camera
+ * hits: the camera hits shaded eight to a vector; then, in an interior view (camera_inside_scene),
+ * bounce by bounce while at least BY_BOUNCE_LEAST paths live (their rays walked in pairs, their hits
+ * shaded eight to a vector where no roulette follows them); the paths left (all of them, in an
+ * exterior view) in refilled pairs (trace_paths_paired). Path j is the batch's sample walked[j]
+ * with state st[walked[j]] and stream key keys[walked[j]]; its camera ray met camera_hits[j] after
+ * camera_steps[j] visits; its result goes to results[walked[j]]. Returns 0, having done nothing,
+ * where the camera hits are not for the vector shading (then the paths are trace_paths_paired's).
+ * Why the view decides: in an interior most paths live to their last segment, and shading their
+ * bounce hits as vectors paid (the Sponza interior 1.12x); on exteriors most paths end at their first
+ * or second bounce, and bounce by bounce lost there (0.87-0.99x) what the refilled pairs' walks
+ * keep. Each path computes what trace_path computes for it. */
+CO_INLINE int trace_paths_diffuse(const SceneView* s, const RenderParams* p, uint32_t n, const uint32_t* walked,
+                                  const uint32_t* keys, const HitOut* camera_hits, const uint32_t* camera_steps,
+                                  PathState* st, PathResult* results) {
+  uint32_t some = HIT_NONE;
+  for (uint32_t l = 0u; l < n; ++l) some = camera_hits[l].triangle != HIT_NONE ? camera_hits[l].triangle : some;
+  if (some == HIT_NONE || !diffuse8_shades(s, p, 1u)) return 0;
+  shade_paths8(s, p, n, walked, keys, camera_hits, st);
+  PathResult r[SHADE_BATCH];
+  for (uint32_t j = 0u; j < n; ++j) {
+    r[j] = path_result_none();
+    path_count_ray(&r[j], camera_steps[j]);
+  }
+  uint32_t handed = 0u; /* the paths whose results trace_paths_paired or path_continue wrote, path j in bit j */
+  const uint32_t least = camera_inside_scene(p) ? BY_BOUNCE_LEAST : SHADE_BATCH + 1u;
+  for (;;) {
+    uint32_t live[SHADE_BATCH], slot[SHADE_BATCH], m = 0u, segment = 0u;
+    for (uint32_t j = 0u; j < n; ++j)
+      if (st[walked[j]].status == PATH_ALIVE) {
+        live[m] = j;
+        slot[m++] = walked[j];
+        segment = co_umax(segment, st[walked[j]].segment);
+      }
+    if (m < least) {
+      /* the few paths left: in refilled pairs, or alone */
+      PathResult begun[SHADE_BATCH];
+      for (uint32_t k = 0u; k < m; ++k) begun[k] = r[live[k]];
+      if (m >= 2u) {
+        trace_paths_paired(s, p, m, slot, st, keys, 0, 0, begun, results);
+      } else if (m == 1u) {
+        path_continue(s, p, &st[slot[0]], keys[slot[0]], &begun[0]);
+        results[slot[0]] = begun[0];
+      }
+      for (uint32_t k = 0u; k < m; ++k) handed |= 1u << live[k];
+      break;
+    }
+    HitOut hits[SHADE_BATCH];
+    for (uint32_t k = 0u; k < m; k += 2u) {
+      const PathState* a = &st[slot[k]];
+      Bvh8fWalk wa, wb;
+      bvh8f_walk_start(&s->tree, &wa, a->org, a->dir, 0.0f, INFINITY, 0);
+      if (k + 1u < m) {
+        const PathState* b = &st[slot[k + 1u]];
+        bvh8f_walk_start(&s->tree, &wb, b->org, b->dir, 0.0f, INFINITY, 0);
+        bvh8f_trace_pair(&s->tree, &wa, &wb);
+        hits[k + 1u] = wb.hit;
+        path_count_ray(&r[live[k + 1u]], wb.count);
+      } else {
+        bvh8f_walk_run(&s->tree, &wa);
+      }
+      hits[k] = wa.hit;
+      path_count_ray(&r[live[k]], wa.count);
+    }
+    if (diffuse8_shades(s, p, segment)) {
+      shade_paths8(s, p, m, slot, keys, hits, st);
+    } else {
+      for (uint32_t k = 0u; k < m; ++k) (void)path_shade(s, p, &st[slot[k]], hits[k], keys[slot[k]]);
+    }
+  }
+  for (uint32_t j = 0u; j < n; ++j)
+    if (!((handed >> j) & 1u)) {
+      r[j].radiance = st[walked[j]].radiance;
+      results[walked[j]] = r[j];
+    }
   return 1;
 }
 #elif defined(COHORT_NAIVE_PAIRS)
-/* a program with other materials or features: path_shade shades every hit (trace_paths_paired) */
-CO_INLINE int path_shade_camera_hits(const SceneView* s, const RenderParams* p, uint32_t n, const uint32_t* walked,
-                                     const uint32_t* keys, const HitOut* hits, PathState* st) {
-  (void)s; (void)p; (void)n; (void)walked; (void)keys; (void)hits; (void)st;
+/* a program with other materials or features: the paths are trace_paths_paired's */
+CO_INLINE int trace_paths_diffuse(const SceneView* s, const RenderParams* p, uint32_t n, const uint32_t* walked,
+                                  const uint32_t* keys, const HitOut* camera_hits, const uint32_t* camera_steps,
+                                  PathState* st, PathResult* results) {
+  (void)s; (void)p; (void)n; (void)walked; (void)keys; (void)camera_hits; (void)camera_steps; (void)st; (void)results;
   return 0;
 }
 #endif
