@@ -85,11 +85,11 @@ CO_KERNEL render_naive(CO_PARAMS(RENDER_NAIVE_PARAMS)) {
                                             &camera.count[j] CO_ALPHA_ARG(st->alpha_seed));
         }
       }
-      /* in Lambertian-only programs the hits shaded eight to a vector, bounce by bounce (shade_batch.h) */
-      if (n >= 2u && trace_paths_diffuse(&s, &p, n, walked, keys, camera.hit, camera.count, start, results)) {
-      } else if (n >= 2u)
+      /* in Lambertian-only programs the hits shaded eight to a vector (shade_batch.h), else in pairs */
+      const int traced = n >= 2u && trace_paths_diffuse(&s, &p, n, walked, keys, camera.hit, camera.count, start, results);
+      if (!traced && n >= 2u)
         trace_paths_paired(&s, &p, n, walked, start, keys, camera.hit, camera.count, 0, results);
-      else
+      else if (!traced)
         results[walked[0]] =
             trace_path_from_hit(&s, &p, start[walked[0]], camera.hit[0], camera.count[0], keys[walked[0]]);
     }

@@ -1,5 +1,6 @@
-/* The camera hits of a pixel's batch shaded eight to a vector, for the paired naive megakernel on
- * CPUs (trace_paths_paired), in programs whose materials are all untextured Lambertians.
+/* The hits of a pixel's batch shaded eight to a vector, for the paired naive megakernel on CPUs, in
+ * programs whose materials are all untextured Lambertians: the camera hits, and in interior views the
+ * bounce hits too (trace_paths_diffuse).
  *
  * Why: on PoCL each work item is scalar code, so path_shade runs one sample at a time, while Mitsuba
  * 3's llvm variant shades eight samples to an AVX vector; `perf` gives path_shade 13-30 % of the
@@ -7,8 +8,8 @@
  * path_shade's steps (docs/design.md, "Paired walks"), so the steps are written here in OpenCL's
  * float8 and uint8: each lane runs path_shade's operations in its order (the same roundings: no
  * contraction, correctly rounded division and square root), so a lane's state is the bits path_shade
- * gives it. Only what a diffuse-only program's path_shade does at a hit is here; the caller uses it
- * where no shadow ray and no roulette follow the camera hits (nee_enabled false, rr_depth above 1).
+ * gives it. Only what a diffuse-only program's path_shade does at a hit is here; it runs where no
+ * shadow ray and no roulette follow the hits (nee_enabled false, the segment below rr_depth).
  * `Methods.DiffuseCameraHitsShadedSideBySide` renders such scenes against the unpaired kernels. */
 #ifndef COHORT_SHADE_BATCH_H
 #define COHORT_SHADE_BATCH_H
@@ -226,10 +227,11 @@ CO_INLINE void shade_paths8(const SceneView* s, const RenderParams* p, uint32_t 
  * with state st[walked[j]] and stream key keys[walked[j]]; its camera ray met camera_hits[j] after
  * camera_steps[j] visits; its result goes to results[walked[j]]. Returns 0, having done nothing,
  * where the camera hits are not for the vector shading (then the paths are trace_paths_paired's).
- * Why the view decides: in an interior most paths live to their last segment, and shading their
- * bounce hits as vectors paid (the Sponza interior 1.12x); on exteriors most paths end at their first
- * or second bounce, and bounce by bounce lost there (0.87-0.99x) what the refilled pairs' walks
- * keep. Each path computes what trace_path computes for it. */
+ * Why the view decides: in an interior most paths live to their last segment, so a round shades
+ * eight; on an exterior most paths end at their first or second bounce. Bounce by bounce on every
+ * view gave the Sponza interior 1.12x but the exteriors 0.87-1.01x, where the refilled pairs keep
+ * their walks going (docs/design.md, "Interior views go on bounce by bounce"). Each path computes
+ * what trace_path computes for it. */
 CO_INLINE int trace_paths_diffuse(const SceneView* s, const RenderParams* p, uint32_t n, const uint32_t* walked,
                                   const uint32_t* keys, const HitOut* camera_hits, const uint32_t* camera_steps,
                                   PathState* st, PathResult* results) {
