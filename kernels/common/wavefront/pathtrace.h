@@ -620,7 +620,7 @@ CO_FORCE_INLINE void paired_refill(const SceneView* s, const RenderParams* p, ui
  * (path_start_batch); its camera ray met hits[j] after steps[j] visits (bvh8f_trace_packet); its
  * result goes to results[walked[j]]. When a path ends, the next of the batch takes its place (its
  * camera hit shaded at once), so the walks stay in pairs until one path is left, which goes on alone.
- * Where `begun` is not null, the paths come shaded (trace_paths_by_bounce): start[] holds the states
+ * Where `begun` is not null, the paths come shaded (trace_paths_diffuse): start[] holds the states
  * after their last hit's shading, begun[j] path j's result so far (every ray it walked counted), and
  * hits and steps are not read; the pair begins with the walks of their next rays. Each path computes
  * exactly what trace_path computes for it: the same calls on the same values, only interleaved with
