@@ -206,14 +206,18 @@ CO_INLINE int camera_inside_scene(const RenderParams* p) {
          e.z >= p->scene_min.z && e.z <= p->scene_max.z;
 }
 
-/* The hits[k] of paths slot[k] (k < m) shaded: eight to a vector where some path hit something and
- * more than SHADE_SCALAR_MOST paths are shaded (fewer cost more as a vector than one by one), a lane
- * that missed alone. */
+/* The hits[k] of paths slot[k] (k < m) shaded: eight to a vector where no shadow ray and no
+ * roulette follows them (diffuse8_shades at the paths' segment), some path hit something and more
+ * than SHADE_SCALAR_MOST paths are shaded (fewer cost more as a vector than one by one); else, and a
+ * lane that missed, by path_shade. */
 CO_INLINE void shade_paths8(const SceneView* s, const RenderParams* p, uint32_t m, const uint32_t* slot,
                             const uint32_t* keys, const HitOut* hits, PathState* st) {
-  uint32_t some = HIT_NONE;
-  for (uint32_t k = 0u; k < m; ++k) some = hits[k].triangle != HIT_NONE ? hits[k].triangle : some;
-  const int vector = some != HIT_NONE && m > SHADE_SCALAR_MOST;
+  uint32_t some = HIT_NONE, segment = 0u;
+  for (uint32_t k = 0u; k < m; ++k) {
+    some = hits[k].triangle != HIT_NONE ? hits[k].triangle : some;
+    segment = co_umax(segment, st[slot[k]].segment);
+  }
+  const int vector = some != HIT_NONE && m > SHADE_SCALAR_MOST && diffuse8_shades(s, p, segment);
   if (vector) path_shade_diffuse8(s, p, m, slot, keys, hits, some, st);
   for (uint32_t k = 0u; k < m; ++k)
     if (!vector || hits[k].triangle == HIT_NONE) (void)path_shade(s, p, &st[slot[k]], hits[k], keys[slot[k]]);
@@ -226,7 +230,7 @@ CO_INLINE void shade_paths8(const SceneView* s, const RenderParams* p, uint32_t 
  * exterior view) in refilled pairs (trace_paths_paired). Path j is the batch's sample walked[j]
  * with state st[walked[j]] and stream key keys[walked[j]]; its camera ray met camera_hits[j] after
  * camera_steps[j] visits; its result goes to results[walked[j]]. Returns 0, having done nothing,
- * where the camera hits are not for the vector shading (then the paths are trace_paths_paired's).
+ * where a shadow ray or roulette follows the camera hits (then the paths are trace_paths_paired's).
  * Why the view decides: in an interior most paths live to their last segment, so a round shades
  * eight; on an exterior most paths end at their first or second bounce. Bounce by bounce on every
  * view gave the Sponza interior 1.12x but the exteriors 0.87-1.01x, where the refilled pairs keep
@@ -235,9 +239,7 @@ CO_INLINE void shade_paths8(const SceneView* s, const RenderParams* p, uint32_t 
 CO_INLINE int trace_paths_diffuse(const SceneView* s, const RenderParams* p, uint32_t n, const uint32_t* walked,
                                   const uint32_t* keys, const HitOut* camera_hits, const uint32_t* camera_steps,
                                   PathState* st, PathResult* results) {
-  uint32_t some = HIT_NONE;
-  for (uint32_t l = 0u; l < n; ++l) some = camera_hits[l].triangle != HIT_NONE ? camera_hits[l].triangle : some;
-  if (some == HIT_NONE || !diffuse8_shades(s, p, 1u)) return 0;
+  if (!diffuse8_shades(s, p, 1u)) return 0; /* the camera hits' segment */
   shade_paths8(s, p, n, walked, keys, camera_hits, st);
   PathResult r[SHADE_BATCH];
   for (uint32_t j = 0u; j < n; ++j) {
@@ -247,12 +249,11 @@ CO_INLINE int trace_paths_diffuse(const SceneView* s, const RenderParams* p, uin
   uint32_t handed = 0u; /* the paths whose results trace_paths_paired or path_continue wrote, path j in bit j */
   const uint32_t least = camera_inside_scene(p) ? BY_BOUNCE_LEAST : SHADE_BATCH + 1u;
   for (;;) {
-    uint32_t live[SHADE_BATCH], slot[SHADE_BATCH], m = 0u, segment = 0u;
+    uint32_t live[SHADE_BATCH], slot[SHADE_BATCH], m = 0u;
     for (uint32_t j = 0u; j < n; ++j)
       if (st[walked[j]].status == PATH_ALIVE) {
         live[m] = j;
         slot[m++] = walked[j];
-        segment = co_umax(segment, st[walked[j]].segment);
       }
     if (m < least) {
       /* the few paths left: in refilled pairs, or alone */
@@ -284,11 +285,7 @@ CO_INLINE int trace_paths_diffuse(const SceneView* s, const RenderParams* p, uin
       hits[k] = wa.hit;
       path_count_ray(&r[live[k]], wa.count);
     }
-    if (diffuse8_shades(s, p, segment)) {
-      shade_paths8(s, p, m, slot, keys, hits, st);
-    } else {
-      for (uint32_t k = 0u; k < m; ++k) (void)path_shade(s, p, &st[slot[k]], hits[k], keys[slot[k]]);
-    }
+    shade_paths8(s, p, m, slot, keys, hits, st);
   }
   for (uint32_t j = 0u; j < n; ++j)
     if (!((handed >> j) & 1u)) {
